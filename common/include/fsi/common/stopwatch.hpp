@@ -1,0 +1,38 @@
+#pragma once
+#include <chrono>
+
+namespace fsi {
+
+// Accumulates wall time over several start/stop intervals (monotonic clock).
+class Stopwatch {
+ public:
+  using Clock = std::chrono::steady_clock;
+
+  void start() { started_ = Clock::now(); }
+  // Adds the interval since start() to the total and returns that interval in seconds.
+  double stop() {
+    const double interval = std::chrono::duration<double>(Clock::now() - started_).count();
+    total_ += interval;
+    return interval;
+  }
+  double seconds() const { return total_; }
+  void reset() { total_ = 0.0; }
+
+ private:
+  Clock::time_point started_{Clock::now()};
+  double total_ = 0.0;
+};
+
+// Adds the lifetime of the scope to a Stopwatch.
+class ScopedTimer {
+ public:
+  explicit ScopedTimer(Stopwatch& watch) : watch_(watch) { watch_.start(); }
+  ~ScopedTimer() { watch_.stop(); }
+  ScopedTimer(const ScopedTimer&) = delete;
+  ScopedTimer& operator=(const ScopedTimer&) = delete;
+
+ private:
+  Stopwatch& watch_;
+};
+
+}  // namespace fsi

@@ -1,0 +1,46 @@
+#pragma once
+// `fix fsi/sph` inside Debian's LIGGGHTS 3.8 (ARCHITECTURE.md §3). LIGGGHTS' style tables are
+// compiled in, so the fix is not found by name: the client recognises the script line and calls
+// add_fix_fsi_sph(), which constructs the fix and appends it to LIGGGHTS' fix list the way
+// Modify::add_fix does.
+//
+// The client and the fix share a CouplingBoundary: the client writes vertex positions and
+// velocities into it before each step, the fix writes this rank's vertex forces and diagnostics.
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "fsi/contact/wall_contact.hpp"
+
+namespace LAMMPS_NS {
+class LAMMPS;
+}
+
+namespace fsi::contact {
+
+struct CouplingBoundary {
+  BoundaryMesh2D mesh;  // all vertices, dynamic ones first
+  std::size_t dynamic_vertex_count = 0;
+  double refinement_resolution = 0.0;
+
+  // Results of the latest evaluation on this rank (not yet summed over ranks).
+  std::vector<double> vertex_forces;
+  ContactDiagnostics diagnostics;
+  std::uint64_t evaluations = 0;
+  double seconds_in_fix = 0.0;  // accumulated on this rank
+};
+
+// True for a command whose words are "fix ID GROUP fsi/sph ...".
+bool is_fix_fsi_sph_command(std::span<const std::string> words);
+
+// Creates the fix from the words of its command (variables already substituted) and adds it to
+// the instance's fix list, replacing an earlier fsi/sph fix with the same ID. Throws
+// std::invalid_argument naming the bad argument (unknown group, bad keyword, bad value).
+// A newly added fix is called by LIGGGHTS only after a run with set-up (e.g. "run 0").
+void add_fix_fsi_sph(LAMMPS_NS::LAMMPS& lammps, std::span<const std::string> words,
+                     std::shared_ptr<CouplingBoundary> boundary);
+
+}  // namespace fsi::contact

@@ -1,0 +1,130 @@
+// The LAMMPS Fix adapter: maps LIGGGHTS' per-atom arrays onto the contact core.
+#include <chrono>
+#include <cstring>
+#include <stdexcept>
+#include <vector>
+
+#include "atom.h"
+#include "domain.h"
+#include "fix.h"
+#include "group.h"
+#include "lammps.h"
+#include "memory.h"
+#include "modify.h"
+
+#include "fsi/contact/fix_arguments.hpp"
+#include "fsi/contact/liggghts_fix.hpp"
+
+namespace fsi::contact {
+namespace {
+
+constexpr const char* kStyle = "fsi/sph";
+
+class FixFsiSph : public LAMMPS_NS::Fix {
+ public:
+  FixFsiSph(LAMMPS_NS::LAMMPS* lammps, int argc, char** argv, const ContactSettings& settings,
+            std::shared_ptr<CouplingBoundary> boundary)
+      : Fix(lammps, argc, argv), contact_(settings), boundary_(std::move(boundary)) {}
+
+  int setmask() override { return LAMMPS_NS::FixConst::POST_FORCE; }
+
+  void init() override {
+    if (domain->dimension != 2) {
+      throw std::invalid_argument("fix fsi/sph: this version handles 2D only (dimension 2)");
+    }
+    if (atom->v == nullptr) {
+      throw std::invalid_argument("fix fsi/sph: the atom style has no velocities");
+    }
+  }
+
+  void setup(int vflag) override { post_force(vflag); }
+
+  void post_force(int /*vflag*/) override {
+    const auto started = std::chrono::steady_clock::now();
+    CouplingBoundary& boundary = *boundary_;
+    const int local = atom->nlocal;
+    ParticleArrays particles;
+    particles.count = static_cast<std::size_t>(local);
+    if (local > 0) {
+      particles.positions = atom->x[0];
+      particles.velocities = atom->v[0];
+      particles.forces = atom->f[0];
+      particles.group_mask = std::span<const int>(atom->mask, static_cast<std::size_t>(local));
+      particles.group_bit = groupbit;
+    }
+    boundary.vertex_forces.resize(boundary.mesh.positions.size());
+    boundary.diagnostics = contact_.compute(boundary.mesh, particles, boundary.vertex_forces);
+    ++boundary.evaluations;
+    boundary.seconds_in_fix +=
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  }
+
+ private:
+  WallContact2D contact_;
+  std::shared_ptr<CouplingBoundary> boundary_;
+};
+
+}  // namespace
+
+bool is_fix_fsi_sph_command(std::span<const std::string> words) {
+  return words.size() >= 4 && words[0] == "fix" && words[3] == kStyle;
+}
+
+void add_fix_fsi_sph(LAMMPS_NS::LAMMPS& lammps, std::span<const std::string> words,
+                     std::shared_ptr<CouplingBoundary> boundary) {
+  if (!is_fix_fsi_sph_command(words)) {
+    throw std::invalid_argument("not a 'fix ID group fsi/sph ...' command");
+  }
+  if (!boundary) throw std::invalid_argument("fix fsi/sph: no coupling boundary attached");
+  const FixFsiSphArguments arguments = parse_fix_fsi_sph_arguments(words.subspan(4));
+  ContactSettings settings;
+  settings.law = arguments.law;
+  settings.gauss_points = arguments.gauss_points;
+  settings.refinement_resolution = boundary->refinement_resolution;
+  settings.validate();
+  boundary->mesh.validate();
+
+  // Checks LIGGGHTS would make with error->all(), which ends the process: fail softly instead.
+  if (lammps.domain->box_exist == 0) {
+    throw std::invalid_argument(
+        "fix fsi/sph: define the simulation box (create_box) before the fix");
+  }
+  if (lammps.group->find(words[2].c_str()) < 0) {
+    throw std::invalid_argument("fix fsi/sph: group '" + words[2] + "' does not exist");
+  }
+
+  // LAMMPS' Fix constructor wants argv without the leading "fix".
+  std::vector<std::string> arguments_text(words.begin() + 1, words.end());
+  std::vector<char*> argv;
+  for (std::string& word : arguments_text)
+    argv.push_back(word.data());
+  const int argc = static_cast<int>(argv.size());
+
+  LAMMPS_NS::Modify& modify = *lammps.modify;
+  int slot = modify.find_fix(words[1].c_str());
+  if (slot >= 0) {
+    if (std::strcmp(modify.fix[slot]->style, kStyle) != 0) {
+      throw std::invalid_argument("fix fsi/sph: fix ID '" + words[1] + "' is already used by a '" +
+                                  modify.fix[slot]->style + "' fix; choose another ID");
+    }
+    modify.fix[slot]->pre_delete(true);
+    delete modify.fix[slot];
+    modify.fix[slot] = nullptr;
+  } else {
+    if (modify.nfix == modify.maxfix) {
+      constexpr int kGrowth = 4;
+      modify.maxfix += kGrowth;
+      modify.fix = static_cast<LAMMPS_NS::Fix**>(lammps.memory->srealloc(
+          modify.fix, modify.maxfix * sizeof(LAMMPS_NS::Fix*), "modify:fix"));
+      lammps.memory->grow(modify.fmask, modify.maxfix, "modify:fmask");
+    }
+    slot = modify.nfix;
+  }
+  modify.fix[slot] = new FixFsiSph(&lammps, argc, argv.data(), settings, std::move(boundary));
+  modify.fmask[slot] = modify.fix[slot]->setmask();
+  if (slot == modify.nfix) ++modify.nfix;
+  modify.fix[slot]->post_create_pre_restart();
+  modify.fix[slot]->post_create();
+}
+
+}  // namespace fsi::contact

@@ -1,0 +1,334 @@
+#include "liggghts_driver.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <numeric>
+#include <stdexcept>
+
+#include "atom.h"
+#include "atom_vec.h"
+#include "comm.h"
+#include "domain.h"
+#include "fix.h"
+#include "input.h"
+#include "lammps.h"
+#include "memory.h"
+#include "modify.h"
+#include "update.h"
+#include "variable.h"
+
+#include "fsi/common/error.hpp"
+
+namespace fsi::client {
+namespace {
+
+std::string format_double(double value) {
+  char text[40];
+  std::snprintf(text, sizeof text, "%.17g", value);
+  return text;
+}
+
+// Removes a '#' comment that is not inside quotes (LIGGGHTS' own rule).
+std::string strip_comment(const std::string& line) {
+  bool in_single = false, in_double = false;
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    const char c = line[i];
+    if (c == '"' && !in_single) in_double = !in_double;
+    if (c == '\'' && !in_double) in_single = !in_single;
+    if (c == '#' && !in_single && !in_double) return line.substr(0, i);
+  }
+  return line;
+}
+
+std::vector<std::string> split_words(const std::string& line) {
+  std::vector<std::string> words;
+  std::size_t i = 0;
+  while (i < line.size()) {
+    while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i])))
+      ++i;
+    if (i >= line.size()) break;
+    if (line[i] == '"' || line[i] == '\'') {
+      const char quote = line[i];
+      const std::size_t end = line.find(quote, i + 1);
+      words.push_back(
+          line.substr(i + 1, end == std::string::npos ? std::string::npos : end - i - 1));
+      i = end == std::string::npos ? line.size() : end + 1;
+    } else {
+      const std::size_t start = i;
+      while (i < line.size() && !std::isspace(static_cast<unsigned char>(line[i])))
+        ++i;
+      words.push_back(line.substr(start, i - start));
+    }
+  }
+  return words;
+}
+
+// Names referenced as ${name} or $x in a line (outside quotes).
+std::vector<std::string> referenced_variables(const std::string& line) {
+  std::vector<std::string> names;
+  bool in_single = false, in_double = false;
+  for (std::size_t i = 0; i + 1 < line.size(); ++i) {
+    const char c = line[i];
+    if (c == '"' && !in_single) in_double = !in_double;
+    if (c == '\'' && !in_double) in_single = !in_single;
+    if (c != '$' || in_single || in_double) continue;
+    if (line[i + 1] == '{') {
+      const std::size_t end = line.find('}', i + 2);
+      if (end != std::string::npos) names.push_back(line.substr(i + 2, end - i - 2));
+    } else if (line[i + 1] != '(') {
+      names.emplace_back(1, line[i + 1]);
+    }
+  }
+  return names;
+}
+
+}  // namespace
+
+LiggghtsDriver::LiggghtsDriver(MPI_Comm communicator, const DriverOptions& options,
+                               std::shared_ptr<contact::CouplingBoundary> boundary)
+    : communicator_(communicator), boundary_(std::move(boundary)) {
+  MPI_Comm_rank(communicator_, &rank_);
+  capture_ = std::make_unique<OutputCapture>(options.echo_output && rank_ == 0);
+  std::vector<std::string> arguments{"fsi-client", "-screen", "none", "-log",
+                                     options.log_file.empty() ? "none" : options.log_file};
+  std::vector<char*> argv;
+  for (std::string& argument : arguments)
+    argv.push_back(argument.data());
+  lammps_ = new LAMMPS_NS::LAMMPS(static_cast<int>(argv.size()), argv.data(), communicator_);
+  // LIGGGHTS prints to `screen`; ours keeps the lines and forwards errors to stderr.
+  lammps_->screen = capture_->stream();
+}
+
+LiggghtsDriver::~LiggghtsDriver() {
+  // The fix list holds our fix, which refers to the boundary: delete LIGGGHTS first.
+  lammps_->screen = nullptr;
+  delete lammps_;
+}
+
+void LiggghtsDriver::define_variables(
+    std::span<const std::pair<std::string, std::string>> variables) {
+  for (const auto& [name, value] : variables) {
+    const bool plain = !value.empty() && value.find_first_of(" \t\"'#$") == std::string::npos;
+    position_ = {"LIGGGHTS variables from the scene", 0, "variable " + name};
+    command("variable " + name + " string " + (plain ? value : "\"" + value + "\""));
+  }
+}
+
+void LiggghtsDriver::command(const std::string& line) {
+  position_.command = line;
+  lammps_->input->one(line.c_str());
+}
+
+std::vector<std::string> LiggghtsDriver::substituted_words(const std::string& line) {
+  // Input::substitute aborts the job on an unknown variable: check first and fail softly.
+  for (const std::string& name : referenced_variables(line)) {
+    std::vector<char> buffer(name.begin(), name.end());
+    buffer.push_back('\0');
+    if (lammps_->input->variable->find(buffer.data()) < 0) {
+      throw Error(
+          "LIGGGHTS variable '" + name + "' is not defined",
+          position_.script + ":" + std::to_string(position_.line),
+          "define it in the scene's LIGGGHTS_SPH_parameters block or earlier in the script");
+    }
+  }
+  int capacity = static_cast<int>(line.size()) + 1;
+  int work_capacity = capacity;
+  auto* text = static_cast<char*>(lammps_->memory->smalloc(capacity, "fsi:line"));
+  auto* work = static_cast<char*>(lammps_->memory->smalloc(work_capacity, "fsi:work"));
+  std::memcpy(text, line.c_str(), line.size() + 1);
+  lammps_->input->substitute(text, work, capacity, work_capacity, 0);
+  std::vector<std::string> words = split_words(text);
+  lammps_->memory->sfree(text);
+  lammps_->memory->sfree(work);
+  return words;
+}
+
+void LiggghtsDriver::run_script(const std::string& name, const std::string& text,
+                                const std::function<void()>& after_create_box) {
+  std::vector<std::string> lines;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    std::size_t end = text.find('\n', start);
+    if (end == std::string::npos) end = text.size();
+    lines.push_back(text.substr(start, end - start));
+    start = end + 1;
+  }
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    const int first_line = static_cast<int>(i) + 1;
+    std::string line = lines[i];
+    // '&' at the end continues the command on the next line.
+    while (!line.empty() && line.find_last_not_of(" \t\r") != std::string::npos &&
+           line[line.find_last_not_of(" \t\r")] == '&' && i + 1 < lines.size()) {
+      line = line.substr(0, line.find_last_not_of(" \t\r")) + " " + lines[++i];
+    }
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    const std::string code = strip_comment(line);
+    const std::vector<std::string> raw = split_words(code);
+    if (raw.empty()) continue;
+    position_ = {name, first_line, code};
+    if (contact::is_fix_fsi_sph_command(raw)) {
+      const std::vector<std::string> words = substituted_words(code);
+      try {
+        contact::add_fix_fsi_sph(*lammps_, words, boundary_);
+      } catch (const std::invalid_argument& bad) {
+        throw Error(bad.what(), name + ":" + std::to_string(first_line),
+                    "correct the fix line; docs/fix_fsi_sph.md lists every keyword");
+      }
+      ++fsi_fix_count_;
+    } else {
+      lammps_->input->one(code.c_str());
+      if (raw.front() == "create_box" && after_create_box) after_create_box();
+    }
+  }
+}
+
+void LiggghtsDriver::insert_particles(const ParticleBlock& particles) {
+  const auto& domain = *lammps_->domain;
+  const int dimension = particles.dimension;
+  if (domain.box_exist == 0) {
+    throw Error("the particles of the fluid region cannot be created: no simulation box",
+                "LIGGGHTS script 1", "create the box (region + create_box) in script 1");
+  }
+  if (dimension != domain.dimension) {
+    throw Error("the scene is " + std::to_string(dimension) + "D but LIGGGHTS runs in " +
+                    std::to_string(domain.dimension) + "D",
+                "LIGGGHTS script 1", "make 'dimension' in script 1 match the scene");
+  }
+  if (particles.atom_type < 1 || particles.atom_type > lammps_->atom->ntypes) {
+    throw Error("fluid particles use atom type " + std::to_string(particles.atom_type) +
+                    " but the box has " + std::to_string(lammps_->atom->ntypes) + " type(s)",
+                "LIGGGHTS script 1", "create_box with enough atom types");
+  }
+  const std::size_t count = particles.positions.size() / static_cast<std::size_t>(dimension);
+  // A particle outside the box would silently be dropped: refuse the whole set instead.
+  for (std::size_t i = 0; i < count; ++i) {
+    for (int k = 0; k < dimension; ++k) {
+      const double c = particles.positions[i * dimension + k];
+      if (!(c >= domain.boxlo[k] && c <= domain.boxhi[k])) {
+        throw Error("fluid particle " + std::to_string(i) + " at " + format_double(c) +
+                        " (coordinate " + std::to_string(k) + ") lies outside the LIGGGHTS box [" +
+                        format_double(domain.boxlo[k]) + ", " + format_double(domain.boxhi[k]) +
+                        "]",
+                    "LIGGGHTS script 1", "enlarge the box in script 1 or move the fluid region");
+      }
+    }
+  }
+  if (dimension == 2 && !(0.0 >= domain.boxlo[2] && 0.0 < domain.boxhi[2])) {
+    throw Error("the 2D box does not contain z = 0", "LIGGGHTS script 1",
+                "give the box a z-range around 0 (ARCHITECTURE.md §3)");
+  }
+
+  auto& atom = *lammps_->atom;
+  const auto& comm = *lammps_->comm;
+  for (std::size_t i = 0; i < count; ++i) {
+    double coordinate[3] = {0.0, 0.0, 0.0};
+    for (int k = 0; k < dimension; ++k)
+      coordinate[k] = particles.positions[i * dimension + k];
+    bool mine = true;
+    for (int k = 0; k < 3 && mine; ++k) {
+      const bool last_along_k = comm.myloc[k] == comm.procgrid[k] - 1;
+      const bool upper_closed = last_along_k && coordinate[k] == domain.subhi[k];
+      mine = coordinate[k] >= domain.sublo[k] && (coordinate[k] < domain.subhi[k] || upper_closed);
+    }
+    if (!mine) continue;
+    atom.avec->create_atom(particles.atom_type, coordinate);
+    const int n = atom.nlocal - 1;
+    for (int k = 0; k < dimension; ++k)
+      atom.v[n][k] = particles.velocities[i * dimension + k];
+    if (atom.rho) atom.rho[n] = particles.density;
+    for (int j = 0; j < lammps_->modify->nfix; ++j) {
+      LAMMPS_NS::Fix* fix = lammps_->modify->fix[j];
+      if (fix->create_attribute) {
+        fix->pre_set_arrays();
+        fix->set_arrays(n);
+      }
+    }
+  }
+  const auto before = static_cast<long long>(atom.natoms);
+  long long local = atom.nlocal;
+  long long total = 0;
+  MPI_Allreduce(&local, &total, 1, MPI_LONG_LONG, MPI_SUM, communicator_);
+  atom.natoms = total;
+  if (total - before != static_cast<long long>(count)) {
+    throw Error("created " + std::to_string(total - before) + " of " + std::to_string(count) +
+                    " fluid particles",
+                "particle insertion", "report this with the scene and scripts (a bug)");
+  }
+  atom.tag_extend();
+  if (atom.map_style) {
+    atom.nghost = 0;
+    atom.map_init();
+    atom.map_set();
+  }
+  command("mass " + std::to_string(particles.atom_type) + " " + format_double(particles.mass));
+}
+
+void LiggghtsDriver::set_time_step(double time_step) {
+  command("timestep " + format_double(time_step));
+}
+
+double LiggghtsDriver::time_step() const {
+  return lammps_->update->dt;
+}
+
+void LiggghtsDriver::run_with_setup(std::uint64_t steps) {
+  command("run " + std::to_string(steps));
+}
+
+void LiggghtsDriver::step() {
+  command("run 1 pre no post no");
+}
+
+std::uint64_t LiggghtsDriver::particle_count() const {
+  return static_cast<std::uint64_t>(lammps_->atom->natoms);
+}
+
+Snapshot LiggghtsDriver::gather_snapshot(int dimension) const {
+  const auto& atom = *lammps_->atom;
+  const int local = atom.nlocal;
+  std::vector<double> packed;  // id, position, velocity, density, pressure per particle
+  const int width = 1 + 2 * dimension + 2;
+  packed.reserve(static_cast<std::size_t>(local) * width);
+  for (int i = 0; i < local; ++i) {
+    packed.push_back(static_cast<double>(atom.tag[i]));
+    for (int k = 0; k < dimension; ++k)
+      packed.push_back(atom.x[i][k]);
+    for (int k = 0; k < dimension; ++k)
+      packed.push_back(atom.v[i][k]);
+    packed.push_back(atom.rho ? atom.rho[i] : 0.0);
+    packed.push_back(atom.p ? atom.p[i] : 0.0);
+  }
+  int ranks = 1;
+  MPI_Comm_size(communicator_, &ranks);
+  const int sent = static_cast<int>(packed.size());
+  std::vector<int> counts(ranks), offsets(ranks);
+  MPI_Gather(&sent, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, communicator_);
+  std::vector<double> all;
+  if (rank_ == 0) {
+    std::exclusive_scan(counts.begin(), counts.end(), offsets.begin(), 0);
+    all.resize(static_cast<std::size_t>(offsets.back()) + counts.back());
+  }
+  MPI_Gatherv(packed.data(), sent, MPI_DOUBLE, all.data(), counts.data(), offsets.data(),
+              MPI_DOUBLE, 0, communicator_);
+  Snapshot snapshot;
+  if (rank_ != 0) return snapshot;
+  const std::size_t n = all.size() / width;
+  std::vector<std::size_t> order(n);
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(),
+            [&](std::size_t a, std::size_t b) { return all[a * width] < all[b * width]; });
+  for (std::size_t j : order) {
+    const double* row = all.data() + j * width;
+    snapshot.ids.push_back(static_cast<std::uint64_t>(row[0]));
+    snapshot.positions.insert(snapshot.positions.end(), row + 1, row + 1 + dimension);
+    snapshot.velocities.insert(snapshot.velocities.end(), row + 1 + dimension,
+                               row + 1 + 2 * dimension);
+    snapshot.density.push_back(row[1 + 2 * dimension]);
+    snapshot.pressure.push_back(row[2 + 2 * dimension]);
+  }
+  return snapshot;
+}
+
+}  // namespace fsi::client

@@ -1,0 +1,102 @@
+#pragma once
+// Drives one LIGGGHTS instance (a library, on all ranks of a communicator) for the coupling:
+// variables, scripts fed line by line with `fix fsi/sph` intercepted (ARCHITECTURE.md §3),
+// particle insertion from server data, stepping, and gathering of particle snapshots.
+// Every method is collective: all ranks call it with the same arguments.
+
+#include <mpi.h>
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <span>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "fsi/contact/liggghts_fix.hpp"
+#include "output_capture.hpp"
+
+namespace LAMMPS_NS {
+class LAMMPS;
+}
+
+namespace fsi::client {
+
+struct DriverOptions {
+  std::string log_file;      // LIGGGHTS log file; empty: none
+  bool echo_output = false;  // echo LIGGGHTS' screen output to stdout (rank 0)
+};
+
+struct ParticleBlock {
+  int dimension = 2;
+  int atom_type = 1;
+  double mass = 0.0;
+  double density = 0.0;
+  std::vector<double> positions;   // dimension per particle
+  std::vector<double> velocities;  // dimension per particle
+};
+
+struct Snapshot {
+  std::vector<std::uint64_t> ids;
+  std::vector<double> positions, velocities, density, pressure;  // gathered on rank 0 only
+};
+
+// Where the driver is in the scripts, for messages about LIGGGHTS errors.
+struct ScriptPosition {
+  std::string script;
+  int line = 0;
+  std::string command;
+};
+
+class LiggghtsDriver {
+ public:
+  LiggghtsDriver(MPI_Comm communicator, const DriverOptions& options,
+                 std::shared_ptr<contact::CouplingBoundary> boundary);
+  ~LiggghtsDriver();
+  LiggghtsDriver(const LiggghtsDriver&) = delete;
+  LiggghtsDriver& operator=(const LiggghtsDriver&) = delete;
+
+  // Defines `variable NAME string VALUE` for each pair (values arrive as exact text).
+  void define_variables(std::span<const std::pair<std::string, std::string>> variables);
+  // Executes a script line by line; `&` continues a line; `fix ... fsi/sph ...` is created by us.
+  // after_create_box runs right after the script's create_box command (where the client inserts
+  // the server's particles: fixes and `set` commands later in the script then see them).
+  // Throws fsi::Error naming script:line for problems we detect before LIGGGHTS does.
+  void run_script(const std::string& name, const std::string& text,
+                  const std::function<void()>& after_create_box = {});
+  // Executes one LIGGGHTS command.
+  void command(const std::string& line);
+  // Creates the particles on the ranks owning their positions, sets per-type mass and density.
+  void insert_particles(const ParticleBlock& particles);
+
+  void set_time_step(double time_step);
+  double time_step() const;
+  // A run with set-up: re-initialises styles and fixes (needed after changed settings, and for a
+  // newly added fix), evaluates forces at the current state.
+  void run_with_setup(std::uint64_t steps);
+  // The coupled step: one LIGGGHTS step without set-up.
+  void step();
+
+  std::uint64_t particle_count() const;
+  bool has_fsi_fix() const { return fsi_fix_count_ > 0; }
+  // Gathers id, position, velocity, density and pressure of every particle on rank 0, sorted by id.
+  Snapshot gather_snapshot(int dimension) const;
+
+  const OutputCapture& output() const { return *capture_; }
+  const ScriptPosition& position() const { return position_; }
+  LAMMPS_NS::LAMMPS& lammps() { return *lammps_; }
+
+ private:
+  std::vector<std::string> substituted_words(const std::string& line);
+
+  MPI_Comm communicator_;
+  int rank_ = 0;
+  std::unique_ptr<OutputCapture> capture_;
+  LAMMPS_NS::LAMMPS* lammps_ = nullptr;
+  std::shared_ptr<contact::CouplingBoundary> boundary_;
+  int fsi_fix_count_ = 0;
+  ScriptPosition position_;
+};
+
+}  // namespace fsi::client
