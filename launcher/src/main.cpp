@@ -1,0 +1,223 @@
+// fsi-run SCENE --np N --output DIR [--set KEY=EXPR ...]
+// Starts fsi-server (port chosen by the OS, written to a port file) and `mpirun -np N fsi-client`
+// on localhost, waits for both and exits with the server's status. A client that outlives the
+// server by more than the grace period is terminated.
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+#include <CLI/CLI.hpp>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "fsi/common/version.hpp"
+
+extern char** environ;
+
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+volatile sig_atomic_t g_interrupted = 0;
+
+void on_signal(int) {
+  g_interrupted = 1;
+}
+
+pid_t spawn(const std::vector<std::string>& command) {
+  std::vector<char*> argv;
+  for (const std::string& word : command)
+    argv.push_back(const_cast<char*>(word.c_str()));
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  posix_spawnattr_t attributes;
+  posix_spawnattr_init(&attributes);
+  // Own process group: a terminal's Ctrl-C reaches us, and we stop the children in order.
+  posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETPGROUP);
+  posix_spawnattr_setpgroup(&attributes, 0);
+  const int status = posix_spawnp(&pid, argv[0], nullptr, &attributes, argv.data(), environ);
+  posix_spawnattr_destroy(&attributes);
+  if (status != 0) {
+    std::fprintf(stderr, "fsi-run: cannot start %s: %s\n", argv[0], std::strerror(status));
+    return -1;
+  }
+  return pid;
+}
+
+// Exit status of a finished child, or nullopt while it runs.
+std::optional<int> poll(pid_t pid) {
+  int status = 0;
+  const pid_t done = waitpid(pid, &status, WNOHANG);
+  if (done != pid) return std::nullopt;
+  if (WIFEXITED(status)) return WEXITSTATUS(status);
+  if (WIFSIGNALED(status)) return 128 + WTERMSIG(status);
+  return 1;
+}
+
+int wait_for(pid_t pid, std::chrono::milliseconds grace, const char* name) {
+  const auto deadline = Clock::now() + grace;
+  while (Clock::now() < deadline) {
+    if (auto status = poll(pid)) return *status;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  std::fprintf(stderr, "fsi-run: %s still running %.0f s after the server ended; terminating it\n",
+               name, std::chrono::duration<double>(grace).count());
+  kill(-pid, SIGTERM);
+  const auto kill_deadline = Clock::now() + std::chrono::seconds(5);
+  while (Clock::now() < kill_deadline) {
+    if (auto status = poll(pid)) return *status;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  kill(-pid, SIGKILL);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  return 128 + SIGKILL;
+}
+
+fs::path own_directory() {
+  return fs::canonical("/proc/self/exe").parent_path();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "Runs one coupled simulation on this machine: fsi-server on an OS-chosen loopback "
+      "port and `mpirun -np N fsi-client` connected to it. Exits with the server's "
+      "status."};
+  app.set_version_flag("--version", std::string(fsi::software_version()));
+  std::string scene;
+  int ranks = 1;
+  std::string output;
+  std::vector<std::string> overrides;
+  std::vector<std::string> server_arguments;
+  std::vector<std::string> client_arguments;
+  double client_grace = 10.0;
+  std::string mpirun = "mpirun";
+  app.add_option("scene", scene, "Scene parameter file")->required()->check(CLI::ExistingFile);
+  app.add_option("--np", ranks, "Number of MPI ranks of fsi-client")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  app.add_option("--output", output, "Output folder of the run (created)")->required();
+  app.add_option("--set", overrides, "Override a scene parameter, KEY=EXPR (repeatable)");
+  app.add_option("--server-arg", server_arguments, "Extra argument for fsi-server (repeatable)")
+      ->allow_extra_args(false);
+  app.add_option("--client-arg", client_arguments, "Extra argument for fsi-client (repeatable)")
+      ->allow_extra_args(false);
+  app.add_option("--client-grace", client_grace,
+                 "Seconds the client may outlive the server before it is terminated")
+      ->capture_default_str();
+  app.add_option("--mpirun", mpirun, "MPI launcher")->capture_default_str();
+  CLI11_PARSE(app, argc, argv);
+
+  const fs::path bin = own_directory();
+  const fs::path server = bin / "fsi-server";
+  const fs::path client = bin / "fsi-client";
+  for (const fs::path& program : {server, client}) {
+    if (!fs::exists(program)) {
+      std::fprintf(stderr, "fsi-run: %s not found; build the project (scripts/build)\n",
+                   program.c_str());
+      return 2;
+    }
+  }
+  std::error_code error;
+  fs::create_directories(output, error);
+  if (error) {
+    std::fprintf(stderr, "fsi-run: cannot create output folder %s: %s\n", output.c_str(),
+                 error.message().c_str());
+    return 2;
+  }
+  const fs::path port_file = fs::path(output) / "server.port";
+  fs::remove(port_file, error);
+
+  struct sigaction action {};
+  action.sa_handler = on_signal;
+  sigaction(SIGINT, &action, nullptr);
+  sigaction(SIGTERM, &action, nullptr);
+
+  std::vector<std::string> server_command{
+      server.string(), scene, "--output", output, "--port", "0", "--port-file", port_file.string()};
+  for (const std::string& item : overrides) {
+    server_command.push_back("--set");
+    server_command.push_back(item);
+  }
+  server_command.insert(server_command.end(), server_arguments.begin(), server_arguments.end());
+  const pid_t server_pid = spawn(server_command);
+  if (server_pid < 0) return 2;
+
+  // The server writes the port file once it listens.
+  std::string port;
+  const auto deadline = Clock::now() + std::chrono::seconds(60);
+  while (port.empty()) {
+    if (auto status = poll(server_pid)) {
+      std::fprintf(stderr, "fsi-run: fsi-server ended with status %d before listening\n", *status);
+      return *status;
+    }
+    if (g_interrupted || Clock::now() > deadline) {
+      std::fprintf(stderr, "fsi-run: %s\n",
+                   g_interrupted
+                       ? "interrupted"
+                       : "fsi-server did not listen within 60 s (no port file); giving up");
+      kill(-server_pid, SIGTERM);
+      wait_for(server_pid, std::chrono::seconds(5), "fsi-server");
+      return 1;
+    }
+    std::ifstream in(port_file);
+    std::string text;
+    // The server writes the file atomically (rename), so any content is complete.
+    if (in >> text && !text.empty()) port = text;
+    if (port.empty()) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+
+  std::vector<std::string> client_command{mpirun, "-np", std::to_string(ranks)};
+  if (geteuid() == 0) client_command.push_back("--allow-run-as-root");
+  client_command.insert(client_command.end(),
+                        {"--oversubscribe", client.string(), "--server", "127.0.0.1:" + port});
+  client_command.insert(client_command.end(), client_arguments.begin(), client_arguments.end());
+  const pid_t client_pid = spawn(client_command);
+  if (client_pid < 0) {
+    kill(-server_pid, SIGTERM);
+    wait_for(server_pid, std::chrono::seconds(10), "fsi-server");
+    return 2;
+  }
+
+  std::optional<int> server_status;
+  std::optional<int> client_status;
+  bool forwarded = false;
+  while (!server_status) {
+    server_status = poll(server_pid);
+    if (!client_status) client_status = poll(client_pid);
+    if (g_interrupted && !forwarded) {
+      std::fprintf(stderr, "fsi-run: interrupted; stopping server and client\n");
+      kill(-server_pid, SIGTERM);
+      kill(-client_pid, SIGTERM);
+      forwarded = true;
+    }
+    if (!server_status) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  if (!client_status) {
+    client_status =
+        wait_for(client_pid, std::chrono::milliseconds(static_cast<long>(client_grace * 1000)),
+                 "fsi-client");
+  }
+  if (*server_status != 0) {
+    std::fprintf(stderr, "fsi-run: fsi-server exited with status %d (fsi-client: %d)\n",
+                 *server_status, *client_status);
+  } else if (*client_status != 0) {
+    std::fprintf(stderr,
+                 "fsi-run: warning: fsi-client exited with status %d after a "
+                 "successful server run\n",
+                 *client_status);
+  }
+  return *server_status;
+}
