@@ -2,7 +2,7 @@
 
 function(fsi_configure_target target)
   target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow -Wnon-virtual-dtor
-    -Woverloaded-virtual -Wcast-align -Wnull-dereference -Wdouble-promotion -Wformat=2
+    -Woverloaded-virtual -Wcast-align -Wdouble-promotion -Wformat=2
     -Wimplicit-fallthrough)
   if(FSI_WARNINGS_AS_ERRORS)
     target_compile_options(${target} PRIVATE -Werror)

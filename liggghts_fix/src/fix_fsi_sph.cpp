@@ -83,6 +83,7 @@ void add_fix_fsi_sph(LAMMPS_NS::LAMMPS& lammps, std::span<const std::string> wor
   settings.refinement_resolution = boundary->refinement_resolution;
   settings.validate();
   boundary->mesh.validate();
+  boundary->law = settings.law;
 
   // Checks LIGGGHTS would make with error->all(), which ends the process: fail softly instead.
   if (lammps.domain->box_exist == 0) {

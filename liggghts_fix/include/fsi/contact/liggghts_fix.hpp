@@ -25,6 +25,7 @@ struct CouplingBoundary {
   BoundaryMesh2D mesh;  // all vertices, dynamic ones first
   std::size_t dynamic_vertex_count = 0;
   double refinement_resolution = 0.0;
+  ForceLaw law;  // set when the fix is created from the script
 
   // Results of the latest evaluation on this rank (not yet summed over ranks).
   std::vector<double> vertex_forces;

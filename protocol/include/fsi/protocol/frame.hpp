@@ -1,0 +1,96 @@
+#pragma once
+// Frames of the fsi protocol (docs/protocol.md). Every frame is a fixed 20-byte header followed
+// by the payload; all integers little-endian:
+//   0  magic "FSIP"    4  u16 major   6  u16 minor   8  u16 type   10  u16 flags
+//   12 u32 payload length               16 u32 CRC-32C over bytes 0..15 and the payload
+// The header layout is frozen across major versions, so a mismatch can always be reported.
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "fsi/common/error.hpp"
+
+namespace fsi::protocol {
+
+inline constexpr std::uint16_t kMajorVersion = 1;
+inline constexpr std::uint16_t kMinorVersion = 0;
+inline constexpr std::size_t kHeaderSize = 20;
+inline constexpr std::array<std::byte, 4> kMagic{std::byte{'F'}, std::byte{'S'}, std::byte{'I'},
+                                                 std::byte{'P'}};
+inline constexpr std::size_t kDefaultMaxPayload = std::size_t{1} << 30;
+
+enum class MessageType : std::uint16_t {
+  Hello = 0x01,
+  Welcome = 0x02,
+  Error = 0x03,
+  Setup = 0x10,
+  Mesh = 0x11,
+  Particles = 0x12,
+  Ready = 0x13,
+  Step = 0x20,
+  Forces = 0x21,
+  SnapshotRequest = 0x30,
+  Snapshot = 0x31,
+  Shutdown = 0x40,
+  Goodbye = 0x41,
+};
+
+// "Step", "Forces", ... or "unknown type 0x0077".
+std::string name(MessageType type);
+bool is_known(MessageType type);
+// Hello and Error keep their layout in every major version.
+bool is_version_independent(MessageType type);
+
+// A fault in what a peer sent or in the connection: says what was wrong and where.
+class ProtocolError : public fsi::Error {
+ public:
+  using fsi::Error::Error;
+};
+
+struct FrameHeader {
+  std::uint16_t major = kMajorVersion;
+  std::uint16_t minor = kMinorVersion;
+  MessageType type = MessageType::Hello;
+  std::uint16_t flags = 0;
+  std::uint32_t payload_length = 0;
+  std::uint32_t crc = 0;
+};
+
+struct Frame {
+  FrameHeader header;
+  std::vector<std::byte> payload;
+};
+
+// CRC-32C (Castagnoli, reflected, initial value and final xor 0xFFFFFFFF). Continue a running
+// value by passing the previous result.
+std::uint32_t crc32c(std::span<const std::byte> data, std::uint32_t previous = 0);
+
+// Header bytes for a payload (the CRC covers header bytes 0..15 and the payload).
+std::array<std::byte, kHeaderSize> encode_header(MessageType type,
+                                                 std::span<const std::byte> payload,
+                                                 std::uint16_t major = kMajorVersion,
+                                                 std::uint16_t minor = kMinorVersion);
+// A whole frame in one buffer.
+std::vector<std::byte> encode_frame(MessageType type, std::span<const std::byte> payload,
+                                    std::uint16_t major = kMajorVersion,
+                                    std::uint16_t minor = kMinorVersion);
+
+// Parses and checks a header: magic, known type, flags, payload length <= max_payload, and the
+// major version (except for the version-independent types). Throws ProtocolError.
+FrameHeader decode_header(std::span<const std::byte, kHeaderSize> bytes,
+                          std::size_t max_payload = kDefaultMaxPayload,
+                          std::uint16_t expected_major = kMajorVersion);
+// Checks the CRC of a received frame. Throws ProtocolError naming type and both values.
+void verify_crc(std::span<const std::byte, kHeaderSize> header_bytes, const FrameHeader& header,
+                std::span<const std::byte> payload);
+// Decodes and verifies a complete frame held in one buffer (tests, fuzzing).
+Frame decode_frame(std::span<const std::byte> bytes, std::size_t max_payload = kDefaultMaxPayload);
+
+// "protocol 1.0"
+std::string version_text(std::uint16_t major, std::uint16_t minor);
+
+}  // namespace fsi::protocol

@@ -1,0 +1,425 @@
+#include "client_session.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <variant>
+#include <vector>
+
+#include "fsi/common/error.hpp"
+#include "fsi/common/stopwatch.hpp"
+#include "fsi/common/version.hpp"
+#include "fsi/contact/liggghts_fix.hpp"
+#include "fsi/protocol/channel.hpp"
+#include "fsi/protocol/messages.hpp"
+#include "liggghts_driver.hpp"
+
+namespace fsi::client {
+namespace {
+
+namespace protocol = fsi::protocol;
+
+// The set-up data every rank needs, broadcast from rank 0.
+struct SetupData {
+  protocol::Setup setup;
+  protocol::Mesh mesh;
+  protocol::Particles particles;
+};
+
+// State the exit handler needs when LIGGGHTS ends the process with exit(1) (Error::all).
+struct ExitReport {
+  protocol::Channel* channel = nullptr;
+  const LiggghtsDriver* driver = nullptr;
+  bool active = false;
+};
+ExitReport g_exit_report;
+
+void report_liggghts_exit() {
+  if (!g_exit_report.active || !g_exit_report.channel) return;
+  std::string text = "LIGGGHTS stopped the client";
+  if (g_exit_report.driver) {
+    const auto& position = g_exit_report.driver->position();
+    const std::string error = g_exit_report.driver->output().last_error_line();
+    if (!error.empty()) text += ": " + error;
+    if (!position.script.empty()) {
+      text += " (while executing " + position.script +
+              (position.line > 0 ? ":" + std::to_string(position.line) : std::string()) + ": '" +
+              position.command + "')";
+    }
+  }
+  try {
+    g_exit_report.channel->send(protocol::ErrorMessage{protocol::ErrorCode::LiggghtsError, text});
+  } catch (...) {
+    // The server may be gone already; the exit status tells the rest.
+  }
+}
+
+class MpiContext {
+ public:
+  explicit MpiContext(MPI_Comm communicator) : communicator_(communicator) {
+    MPI_Comm_rank(communicator_, &rank_);
+    MPI_Comm_size(communicator_, &size_);
+  }
+  MPI_Comm communicator() const { return communicator_; }
+  int rank() const { return rank_; }
+  int size() const { return size_; }
+  bool root() const { return rank_ == 0; }
+
+  // Broadcasts a message type and its payload from rank 0.
+  void broadcast(std::uint16_t& type, std::vector<std::byte>& payload) const {
+    std::uint64_t header[2] = {type, payload.size()};
+    MPI_Bcast(header, 2, MPI_UINT64_T, 0, communicator_);
+    type = static_cast<std::uint16_t>(header[0]);
+    payload.resize(header[1]);
+    // MPI counts are int: send large payloads in pieces.
+    constexpr std::size_t kPiece = std::size_t{1} << 30;
+    for (std::size_t offset = 0; offset < payload.size(); offset += kPiece) {
+      const int count = static_cast<int>(std::min(kPiece, payload.size() - offset));
+      MPI_Bcast(payload.data() + offset, count, MPI_BYTE, 0, communicator_);
+    }
+  }
+
+ private:
+  MPI_Comm communicator_;
+  int rank_ = 0;
+  int size_ = 1;
+};
+
+std::string host_name() {
+  char name[256] = {};
+  gethostname(name, sizeof name - 1);
+  return name;
+}
+
+class ClientSession {
+ public:
+  ClientSession(MPI_Comm communicator, const ClientOptions& options)
+      : mpi_(communicator), options_(options) {}
+
+  int run() {
+    if (mpi_.root()) connect();
+    const SetupData data = receive_setup();
+    configure_boundary(data.mesh);
+    DriverOptions driver_options;
+    driver_options.log_file = mpi_.root() ? options_.liggghts_log : std::string();
+    driver_options.echo_output = options_.echo_liggghts;
+    driver_ = std::make_unique<LiggghtsDriver>(mpi_.communicator(), driver_options, boundary_);
+    g_exit_report.driver = driver_.get();
+    prepare_fluid(data);
+    exchange_loop();
+    g_exit_report.active = false;
+    return 0;
+  }
+
+  void report_failure(const std::string& text, protocol::ErrorCode code) {
+    if (!channel_) return;
+    try {
+      channel_->send(protocol::ErrorMessage{code, text});
+    } catch (...) {
+    }
+  }
+
+ private:
+  void connect() {
+    channel_ = std::make_unique<protocol::Channel>(
+        protocol::Channel::connect(options_.host, options_.port, options_.connect_timeout));
+    g_exit_report.channel = channel_.get();
+    g_exit_report.active = true;
+    std::atexit(report_liggghts_exit);
+    protocol::Hello hello;
+    hello.software_version = std::string(fsi::software_version());
+    hello.host = host_name();
+    hello.mpi_ranks = static_cast<std::uint32_t>(mpi_.size());
+    hello.capabilities = 0;
+    channel_->send(hello);
+    const auto welcome = channel_->expect<protocol::Welcome>(options_.connect_timeout);
+    std::fprintf(stderr, "fsi-client: connected to %s (fsi-server %s, run '%s'), %d rank(s)\n",
+                 channel_->peer_description().c_str(), welcome.software_version.c_str(),
+                 welcome.run_name.c_str(), mpi_.size());
+  }
+
+  // Receives one frame on rank 0 and hands type and payload to every rank.
+  protocol::Message next_message() {
+    std::uint16_t type = 0;
+    std::vector<std::byte> payload;
+    if (mpi_.root()) {
+      protocol::Frame frame = channel_->receive(std::nullopt);
+      type = static_cast<std::uint16_t>(frame.header.type);
+      payload = std::move(frame.payload);
+    }
+    mpi_.broadcast(type, payload);
+    return protocol::decode(static_cast<protocol::MessageType>(type), payload);
+  }
+
+  template <class T>
+  T expect_message(const char* phase) {
+    protocol::Message message = next_message();
+    if (auto* wanted = std::get_if<T>(&message)) return std::move(*wanted);
+    if (auto* error = std::get_if<protocol::ErrorMessage>(&message)) {
+      throw Error("fsi-server reported: " + error->text, phase, "see the server's log");
+    }
+    throw Error("unexpected message from fsi-server during " + std::string(phase), "protocol",
+                "use matching fsi-server and fsi-client releases");
+  }
+
+  SetupData receive_setup() {
+    SetupData data;
+    data.setup = expect_message<protocol::Setup>("set-up");
+    data.mesh = expect_message<protocol::Mesh>("set-up (mesh)");
+    data.particles = expect_message<protocol::Particles>("set-up (particles)");
+    if (data.setup.dimension != 2 || data.mesh.dimension != 2) {
+      throw Error("this fsi-client handles 2D scenes only (got dimension " +
+                      std::to_string(data.setup.dimension) + ")",
+                  "set-up", "use a 2D scene");
+    }
+    return data;
+  }
+
+  void configure_boundary(const protocol::Mesh& mesh) {
+    boundary_ = std::make_shared<contact::CouplingBoundary>();
+    boundary_->mesh.positions = mesh.positions;
+    boundary_->mesh.velocities = mesh.velocities;
+    boundary_->mesh.segments = mesh.element_vertices;
+    boundary_->dynamic_vertex_count = mesh.dynamic_vertex_count;
+    boundary_->refinement_resolution = mesh.refinement_resolution;
+    try {
+      boundary_->mesh.validate();
+    } catch (const std::invalid_argument& bad) {
+      throw Error(std::string("boundary mesh from the server is inconsistent: ") + bad.what(),
+                  "set-up (mesh)", "check the scene's meshes");
+    }
+    initial_velocities_ = mesh.velocities;
+  }
+
+  void prepare_fluid(const SetupData& data) {
+    Stopwatch setup_watch;
+    setup_watch.start();
+    std::vector<std::pair<std::string, std::string>> variables;
+    for (const auto& variable : data.setup.liggghts_variables) {
+      variables.emplace_back(variable.name, variable.value);
+    }
+    driver_->define_variables(variables);
+
+    ParticleBlock particles;
+    particles.dimension = static_cast<int>(data.particles.dimension);
+    particles.atom_type = static_cast<int>(data.particles.atom_type);
+    particles.mass = data.particles.mass;
+    particles.density = data.particles.density;
+    particles.positions = data.particles.positions;
+    particles.velocities = data.particles.velocities;
+    const bool have_particles = !particles.positions.empty();
+    bool inserted = false;
+    driver_->run_script(data.setup.script1_name, data.setup.script1_text, [&] {
+      if (have_particles && !inserted) {
+        driver_->insert_particles(particles);
+        inserted = true;
+      }
+    });
+    if (have_particles && !inserted) {
+      throw Error(
+          "script 1 has no create_box command, so the fluid particles of the scene "
+          "could not be created",
+          data.setup.script1_name, "create the simulation box in script 1");
+    }
+    if (!driver_->has_fsi_fix()) {
+      throw Error(
+          "script 1 defines no 'fix ID group fsi/sph ...': the fluid would not see the "
+          "structure",
+          data.setup.script1_name, "add the fix (docs/fix_fsi_sph.md)");
+    }
+    // Equilibration (thesis §5.4.2): the structure rests in its initial configuration.
+    std::fill(boundary_->mesh.velocities.begin(), boundary_->mesh.velocities.end(), 0.0);
+    driver_->set_time_step(data.setup.time_step);
+    driver_->run_with_setup(0);
+    const double seconds_setup = setup_watch.stop();
+
+    Stopwatch equilibration_watch;
+    equilibration_watch.start();
+    if (data.setup.equilibration_steps > 0) {
+      driver_->run_with_setup(data.setup.equilibration_steps);
+    }
+    driver_->run_script(data.setup.script2_name, data.setup.script2_text);
+    // The coupled phase starts from the structure's initial velocities; a run with set-up makes
+    // script 2's changes effective and evaluates the wall forces f(0).
+    boundary_->mesh.velocities = initial_velocities_;
+    driver_->set_time_step(data.setup.time_step);
+    driver_->run_with_setup(0);
+    const double seconds_equilibration = equilibration_watch.stop();
+    time_step_ = data.setup.time_step;
+    dimension_ = static_cast<int>(data.setup.dimension);
+
+    const std::uint64_t count = driver_->particle_count();
+    if (mpi_.root()) {
+      protocol::Ready ready;
+      ready.particle_count = count;
+      ready.liggghts_version = "LIGGGHTS 3.8 (Debian libliggghts)";
+      ready.seconds_setup = seconds_setup;
+      ready.seconds_equilibration = seconds_equilibration;
+      channel_->send(ready);
+    }
+    send_forces(0, 0.0, 0.0);
+  }
+
+  // Sums this rank's vertex forces and diagnostics over all ranks; rank 0 sends them.
+  void send_forces(std::uint64_t step, double seconds_liggghts, double seconds_contact) {
+    Stopwatch communication;
+    communication.start();
+    const std::size_t dynamic_values = boundary_->dynamic_vertex_count * 2;
+    const auto& diagnostics = boundary_->diagnostics;
+    // Layout: dynamic vertex forces, force on fluid (3), on structure (3), magnitude sum,
+    // particles in range.
+    std::vector<double> sums(dynamic_values + 8, 0.0);
+    std::copy_n(boundary_->vertex_forces.begin(),
+                std::min(dynamic_values, boundary_->vertex_forces.size()), sums.begin());
+    for (int k = 0; k < 3; ++k) {
+      sums[dynamic_values + k] = diagnostics.force_on_particles[k];
+      sums[dynamic_values + 3 + k] = diagnostics.force_on_structure[k];
+    }
+    sums[dynamic_values + 6] = diagnostics.pair_force_magnitude_sum;
+    sums[dynamic_values + 7] = static_cast<double>(diagnostics.particles_in_range);
+    std::vector<double> total(sums.size(), 0.0);
+    MPI_Reduce(sums.data(), total.data(), static_cast<int>(sums.size()), MPI_DOUBLE, MPI_SUM, 0,
+               mpi_.communicator());
+    double closest = diagnostics.closest_distance;
+    double closest_total = 0.0;
+    MPI_Reduce(&closest, &closest_total, 1, MPI_DOUBLE, MPI_MIN, 0, mpi_.communicator());
+    const std::uint64_t particles = driver_->particle_count();
+    if (!mpi_.root()) return;
+
+    protocol::Forces forces;
+    forces.step = step;
+    forces.forces.assign(total.begin(), total.begin() + static_cast<long>(dynamic_values));
+    auto& out = forces.diagnostics;
+    for (int k = 0; k < 3; ++k) {
+      out.force_on_fluid[k] = total[dynamic_values + k];
+      out.force_on_structure[k] = total[dynamic_values + 3 + k];
+    }
+    out.pair_force_magnitude_sum = total[dynamic_values + 6];
+    out.particles_in_range = static_cast<std::uint64_t>(std::llround(total[dynamic_values + 7]));
+    const double r0 = boundary_->law.equilibrium_distance;
+    out.closest_approach_over_r0 = std::isfinite(closest_total) && r0 > 0.0
+                                       ? closest_total / r0
+                                       : std::numeric_limits<double>::infinity();
+    out.particle_count = particles;
+    out.seconds_liggghts = seconds_liggghts;
+    out.seconds_contact = seconds_contact;
+    communication.stop();
+    out.seconds_client_communication = communication_seconds_ + communication.seconds();
+    channel_->send(forces);
+  }
+
+  void exchange_loop() {
+    Stopwatch total;
+    total.start();
+    std::uint64_t steps = 0;
+    while (true) {
+      Stopwatch communication;
+      communication.start();
+      protocol::Message message = next_message();
+      communication.stop();
+      communication_seconds_ = communication.seconds();
+      if (auto* step = std::get_if<protocol::Step>(&message)) {
+        apply_step(*step);
+        const double fix_before = boundary_->seconds_in_fix;
+        Stopwatch liggghts;
+        liggghts.start();
+        driver_->step();
+        liggghts.stop();
+        const double contact = boundary_->seconds_in_fix - fix_before;
+        send_forces(step->step, liggghts.seconds() - contact, contact);
+        ++steps;
+      } else if (auto* request = std::get_if<protocol::SnapshotRequest>(&message)) {
+        Snapshot snapshot = driver_->gather_snapshot(dimension_);
+        if (mpi_.root()) {
+          protocol::Snapshot reply;
+          reply.step = request->step;
+          reply.time = last_time_;
+          reply.dimension = static_cast<std::uint32_t>(dimension_);
+          reply.ids = std::move(snapshot.ids);
+          reply.positions = std::move(snapshot.positions);
+          reply.velocities = std::move(snapshot.velocities);
+          reply.density = std::move(snapshot.density);
+          reply.pressure = std::move(snapshot.pressure);
+          channel_->send(reply);
+        }
+      } else if (std::holds_alternative<protocol::Shutdown>(message)) {
+        if (mpi_.root()) {
+          protocol::Goodbye goodbye;
+          goodbye.steps_done = steps;
+          goodbye.seconds_total = total.stop();
+          channel_->send(goodbye);
+          std::fprintf(stderr, "fsi-client: run finished after %llu coupled steps\n",
+                       static_cast<unsigned long long>(steps));
+        }
+        return;
+      } else if (auto* error = std::get_if<protocol::ErrorMessage>(&message)) {
+        throw Error("fsi-server ended the run: " + error->text, "coupled steps",
+                    "see the server's log");
+      } else {
+        throw Error("unexpected message from fsi-server during the coupled steps", "protocol",
+                    "use matching fsi-server and fsi-client releases");
+      }
+    }
+  }
+
+  void apply_step(const protocol::Step& step) {
+    const std::size_t values = boundary_->dynamic_vertex_count * 2;
+    if (step.positions.size() != values || step.velocities.size() != values) {
+      throw Error("Step message carries " + std::to_string(step.positions.size() / 2) +
+                      " vertices, the mesh has " + std::to_string(boundary_->dynamic_vertex_count) +
+                      " dynamic ones",
+                  "step " + std::to_string(step.step), "use matching server and client releases");
+    }
+    std::copy(step.positions.begin(), step.positions.end(), boundary_->mesh.positions.begin());
+    std::copy(step.velocities.begin(), step.velocities.end(), boundary_->mesh.velocities.begin());
+    if (step.time_step != time_step_) {
+      // A changed step size needs a run with set-up so that every fix uses it.
+      driver_->set_time_step(step.time_step);
+      driver_->run_with_setup(0);
+      time_step_ = step.time_step;
+    }
+    last_time_ = step.time;
+  }
+
+  MpiContext mpi_;
+  ClientOptions options_;
+  std::unique_ptr<protocol::Channel> channel_;
+  std::shared_ptr<contact::CouplingBoundary> boundary_;
+  std::unique_ptr<LiggghtsDriver> driver_;
+  std::vector<double> initial_velocities_;
+  double time_step_ = 0.0;
+  double last_time_ = 0.0;
+  double communication_seconds_ = 0.0;
+  int dimension_ = 2;
+};
+
+}  // namespace
+
+int run_client_session(MPI_Comm communicator, const ClientOptions& options) {
+  int rank = 0;
+  MPI_Comm_rank(communicator, &rank);
+  ClientSession session(communicator, options);
+  try {
+    return session.run();
+  } catch (const std::exception& failure) {
+    // Whatever happened on this rank ends the whole job: the other ranks may wait in a
+    // collective call forever otherwise.
+    std::fprintf(stderr, "fsi-client (rank %d): error: %s\n", rank, failure.what());
+    std::fflush(stderr);
+    if (rank == 0) {
+      const bool protocol_fault = dynamic_cast<const protocol::ProtocolError*>(&failure) != nullptr;
+      if (!protocol_fault) session.report_failure(failure.what(), protocol::ErrorCode::SetupFailed);
+    }
+    g_exit_report.active = false;
+    MPI_Abort(communicator, 1);
+    return 1;
+  }
+}
+
+}  // namespace fsi::client

@@ -1,0 +1,26 @@
+#pragma once
+// One coupled run as seen by fsi-client: rank 0 talks to fsi-server, every rank drives LIGGGHTS.
+// Sequence (docs/protocol.md): handshake, set-up (script 1 with particle insertion, equilibration,
+// script 2), initial forces, then Step -> Forces until Shutdown, with snapshots on request.
+
+#include <mpi.h>
+
+#include <chrono>
+#include <cstdint>
+#include <string>
+
+namespace fsi::client {
+
+struct ClientOptions {
+  std::string host = "127.0.0.1";
+  std::uint16_t port = 0;
+  std::chrono::milliseconds connect_timeout{60000};
+  std::string liggghts_log;  // LIGGGHTS log file (rank 0); empty: none
+  bool echo_liggghts = false;
+};
+
+// Runs the session; returns the process exit status. Faults end the whole MPI job: rank 0 tells
+// the server what happened (if it still can) and every rank prints its message.
+int run_client_session(MPI_Comm communicator, const ClientOptions& options);
+
+}  // namespace fsi::client

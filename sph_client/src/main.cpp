@@ -1,0 +1,61 @@
+// fsi-client: `mpirun -np N fsi-client --server HOST:PORT`. Rank 0 connects to fsi-server (retrying
+// until it listens), all ranks run LIGGGHTS with `fix fsi/sph`, one LIGGGHTS step per server step.
+#include <mpi.h>
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <string>
+
+#include "client_session.hpp"
+#include "fsi/common/version.hpp"
+
+int main(int argc, char** argv) {
+  MPI_Init(&argc, &argv);
+  int rank = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+
+  CLI::App app{
+      "fsi-client: the SPH side of the FSI co-simulation. Run it under MPI "
+      "(mpirun -np N fsi-client --server HOST:PORT); rank 0 talks to fsi-server, all "
+      "ranks drive LIGGGHTS."};
+  app.set_version_flag("--version", std::string(fsi::software_version()) + " (git " +
+                                        std::string(fsi::git_revision()) + ")");
+  std::string server;
+  double connect_timeout = 60.0;
+  fsi::client::ClientOptions options;
+  app.add_option("--server", server, "Address of fsi-server as HOST:PORT")->required();
+  app.add_option("--connect-timeout", connect_timeout,
+                 "Seconds to keep retrying while the server does not listen yet")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  app.add_option("--liggghts-log", options.liggghts_log, "Write LIGGGHTS' log to this file");
+  app.add_flag("--echo", options.echo_liggghts, "Show LIGGGHTS' screen output (rank 0)");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& error) {
+    const int status = rank == 0 ? app.exit(error) : (error.get_exit_code() == 0 ? 0 : 2);
+    MPI_Finalize();
+    return status;
+  }
+  const auto colon = server.rfind(':');
+  unsigned long port = 0;
+  try {
+    if (colon == std::string::npos) throw std::invalid_argument("no colon");
+    port = std::stoul(server.substr(colon + 1));
+    if (port == 0 || port > 65535) throw std::out_of_range("port");
+  } catch (const std::exception&) {
+    if (rank == 0) {
+      std::fprintf(stderr, "fsi-client: --server '%s' is not HOST:PORT with a port 1..65535\n",
+                   server.c_str());
+    }
+    MPI_Finalize();
+    return 2;
+  }
+  options.host = server.substr(0, colon);
+  options.port = static_cast<std::uint16_t>(port);
+  options.connect_timeout = std::chrono::milliseconds(static_cast<long>(connect_timeout * 1000));
+
+  const int status = fsi::client::run_client_session(MPI_COMM_WORLD, options);
+  MPI_Finalize();
+  return status;
+}
