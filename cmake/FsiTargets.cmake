@@ -3,7 +3,9 @@
 function(fsi_configure_target target)
   target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow -Wnon-virtual-dtor
     -Woverloaded-virtual -Wcast-align -Wdouble-promotion -Wformat=2
-    -Wimplicit-fallthrough)
+    -Wimplicit-fallthrough
+    # GCC 12 reports false -Wrestrict positives on std::string concatenation at -O2 (GCC bug 105329).
+    -Wno-restrict)
   if(FSI_WARNINGS_AS_ERRORS)
     target_compile_options(${target} PRIVATE -Werror)
   endif()
