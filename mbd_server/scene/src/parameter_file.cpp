@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -644,9 +645,10 @@ void convert(const RawBlock& raw, Block& out) {
 }
 
 std::string format_number(double value) {
+  // Shortest text that reads back to the same double.
   char text[40];
-  std::snprintf(text, sizeof text, "%.17g", value);
-  return text;
+  const auto end = std::to_chars(text, text + sizeof text, value).ptr;
+  return std::string(text, end);
 }
 
 std::string format_value(const Value& value) {

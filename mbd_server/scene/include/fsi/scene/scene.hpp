@@ -1,0 +1,87 @@
+#pragma once
+// A scene: everything fsi-server needs for one coupled run, built from a parameter file
+// (docs/parameters.md is generated from scene_schema()).
+
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "fsi/mbd/integrator.hpp"
+#include "fsi/mbd/model.hpp"
+#include "fsi/scene/parameter_file.hpp"
+#include "fsi/scene/schema.hpp"
+
+namespace fsi::scene {
+
+inline constexpr int kSceneFormatVersion = 1;
+
+struct SolverSettings {
+  double end_time = 0.0;
+  double step_size = 0.0;
+  int stages = 3;
+  mbd::NewtonOptions newton;
+};
+
+struct OutputSettings {
+  long sensor_every_steps = 1;
+  long snapshot_every_steps = 0;  // 0: no particle snapshots
+};
+
+// The structure's surface as the fluid sees it: mesh vertex k is model marker k; dynamic
+// vertices (on bodies) come first, static ones (ground) after (thesis §5.2).
+struct BoundaryMesh {
+  std::size_t vertex_count = 0;
+  std::size_t dynamic_vertex_count = 0;
+  std::vector<std::uint32_t> segments;  // two vertex indices each
+  double refinement_resolution = 0.0;
+  int refinement_option = 1;
+};
+
+struct FluidParticles {
+  int dimension = 2;
+  int atom_type = 1;
+  double mass = 0.0;  // per particle (2D: per unit depth)
+  double density = 0.0;
+  double spacing = 0.0;
+  std::vector<double> positions;  // x, y per particle
+  std::vector<double> velocities;
+  std::size_t count() const { return positions.size() / 2; }
+};
+
+struct LiggghtsSetup {
+  std::vector<std::pair<std::string, std::string>> variables;  // LIGGGHTS_SPH_parameters
+  std::string script1_name, script1_text;
+  std::string script2_name, script2_text;
+  std::uint64_t equilibration_steps = 0;
+};
+
+enum class SensorType { Position, Velocity, FluidForce, ConstraintForce };
+
+struct SensorSpec {
+  std::string name;
+  SensorType type = SensorType::Position;
+  mbd::BodyId body = 0;
+  mbd::Coordinate component = mbd::Coordinate::X;  // Angle means the torque for force sensors
+  std::string unit;
+};
+
+struct Scene {
+  std::string file;
+  Block parameters;  // the evaluated parameter tree
+  mbd::Model model;
+  SolverSettings solver;
+  OutputSettings output;
+  BoundaryMesh boundary;
+  FluidParticles fluid;
+  LiggghtsSetup liggghts;
+  std::vector<SensorSpec> sensors;
+};
+
+// The declaration of every scene parameter.
+const BlockSpec& scene_schema();
+
+// Loads, validates (all problems at once) and builds a scene. Throws fsi::Error.
+Scene build_scene(const std::string& path, const std::vector<Override>& overrides = {});
+
+}  // namespace fsi::scene

@@ -1,0 +1,476 @@
+#include "fsi/scene/scene.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+
+#include "fsi/common/error.hpp"
+
+namespace fsi::scene {
+namespace {
+
+namespace fs = std::filesystem;
+
+ParameterSpec with_default(ParameterSpec p, Value value) {
+  p.default_value = std::move(value);
+  return p;
+}
+ParameterSpec positive(ParameterSpec p) {
+  p.minimum = 0.0;
+  p.minimum_exclusive = true;
+  return p;
+}
+ParameterSpec at_least(ParameterSpec p, double minimum) {
+  p.minimum = minimum;
+  return p;
+}
+ParameterSpec choice(ParameterSpec p, std::vector<std::string> choices) {
+  p.choices = std::move(choices);
+  return p;
+}
+ParameterSpec optional(ParameterSpec p) {
+  p.optional_without_default = true;
+  return p;
+}
+
+BlockSpec block(std::string name, std::string doc, std::vector<ParameterSpec> parameters,
+                std::vector<BlockSpec> blocks = {}) {
+  BlockSpec b;
+  b.name = std::move(name);
+  b.doc = std::move(doc);
+  b.parameters = std::move(parameters);
+  b.blocks = std::move(blocks);
+  return b;
+}
+BlockSpec repeated(BlockSpec b) {
+  b.repeated = true;
+  return b;
+}
+BlockSpec required(BlockSpec b) {
+  b.required = true;
+  return b;
+}
+
+BlockSpec make_schema() {
+  ParameterSpec version =
+      with_default(integer("version", "scene language version the file is written for"),
+                   number_value(kSceneFormatVersion));
+  version.minimum = 1;
+
+  BlockSpec timeint = required(block(
+      "Timeint", "Time integration of the multibody system (fixed step when coupled).",
+      {positive(number("step_size", "s",
+                       "coupled time step, the same on both sides; SPH needs <= 0.25 h/c")),
+       with_default(choice(text("tableau", "implicit Runge-Kutta scheme"), {"RadauIIA"}),
+                    text_value("RadauIIA")),
+       [] {
+         ParameterSpec p = with_default(
+             integer("stages", "Radau IIA stages: 1, 2, 3 (orders 1, 3, 5)"), number_value(3));
+         p.minimum = 1;
+         p.maximum = 3;
+         return p;
+       }()}));
+  BlockSpec newton = block(
+      "Newton", "Newton iterations of the implicit stage equations.",
+      {with_default(positive(number("relative_tolerance", "",
+                                    "increment tolerance relative to the stage values")),
+                    number_value(1e-10)),
+       with_default(at_least(integer("max_iterations", "iterations before the step fails"), 1),
+                    number_value(12)),
+       with_default(at_least(integer("max_modified_newton_steps",
+                                     "steps that reuse one factorised Jacobian (0: full Newton)"),
+                             0),
+                    number_value(20))});
+  BlockSpec solver =
+      required(block("SolverOptions", "Solver settings of the run.",
+                     {positive(number("end_time", "s", "simulated time of the coupled phase"))},
+                     {timeint, newton}));
+
+  BlockSpec output = block(
+      "Output", "What the server writes into the output folder.",
+      {with_default(
+           at_least(integer("sensor_every_steps", "write a sensors.csv row every N steps"), 1),
+           number_value(1)),
+       with_default(at_least(integer("snapshot_every_steps",
+                                     "request an SPH particle snapshot every N steps (0: never)"),
+                             0),
+                    number_value(0))});
+
+  BlockSpec gravity = block("Gravity", "Uniform gravitational acceleration.",
+                            {with_default(vector("acceleration", 2, "m/s^2", "acceleration vector"),
+                                          vector_value({0.0, 0.0}))});
+
+  BlockSpec mesh = repeated(
+      block("Mesh",
+            "Surface line segments through the given points (body coordinates on a body, world "
+            "coordinates on "
+            "the ground), thesis §4.3.",
+            {matrix("points", 2, "m", "polyline vertices, one [x, y] per row"), [] {
+               ParameterSpec p = with_default(
+                   integer("closed", "1: also join the last point to the first"), number_value(0));
+               p.minimum = 0;
+               p.maximum = 1;
+               return p;
+             }()}));
+
+  BlockSpec body = repeated(block(
+      "RigidBody2D", "A planar rigid body; coordinates x, y, angle of its centre of mass.",
+      {text("name", "unique name, used by constraints and sensors"),
+       positive(number("mass", "kg/m", "mass (per unit depth in 2D)")),
+       positive(number("inertia", "kg m",
+                       "moment of inertia about the centre of mass (per unit depth)")),
+       with_default(vector("position", 2, "m", "initial centre of mass"), vector_value({0.0, 0.0})),
+       with_default(number("angle", "rad", "initial angle"), number_value(0.0)),
+       with_default(vector("velocity", 2, "m/s", "initial velocity"), vector_value({0.0, 0.0})),
+       with_default(number("angular_velocity", "rad/s", "initial angular velocity"),
+                    number_value(0.0))},
+      {mesh}));
+
+  BlockSpec ground = repeated(
+      block("Ground", "Static geometry fixed in space (its meshes are static boundary vertices).",
+            {}, {mesh}));
+
+  ParameterSpec body_name = text("body", "name of a RigidBody2D");
+  ParameterSpec coordinate = choice(text("coordinate", "body coordinate"), {"x", "y", "angle"});
+  BlockSpec coordinate_constraint = repeated(block(
+      "CoordinateConstraint",
+      "Holds a body coordinate at a value (position level; force from a Lagrange multiplier).",
+      {body_name, coordinate,
+       optional(number("value", "m or rad", "held value (default: the initial coordinate)"))}));
+  BlockSpec velocity_constraint = repeated(block(
+      "VelocityConstraint",
+      "Prescribes the velocity of a body coordinate (velocity level, thesis §6.3 piston).",
+      {body_name, coordinate, number("velocity", "m/s or rad/s", "prescribed constant velocity")}));
+
+  BlockSpec sensor = repeated(
+      block("Sensor", "A column of sensors.csv, written every Output.sensor_every_steps steps.",
+            {text("name", "column name"),
+             choice(text("type", "what is measured"),
+                    {"position", "velocity", "fluid_force", "constraint_force"}),
+             body_name,
+             choice(text("component", "x, y, angle (torque for forces)"),
+                    {"x", "y", "angle", "torque"})}));
+
+  BlockSpec fluid = block(
+      "FluidRegion",
+      "SPH particles generated by the server on a square lattice (thesis §6.2) and sent to the "
+      "client.",
+      {choice(text("shape", "region shape"), {"box"}),
+       vector("lower", 2, "m", "lower corner of the box"),
+       vector("upper", 2, "m", "upper corner of the box"),
+       positive(number("spacing", "m", "lattice constant d")),
+       positive(number("density", "kg/m^3", "initial density rho0; particle mass = rho0 d^2")),
+       with_default(vector("velocity", 2, "m/s", "initial particle velocity"),
+                    vector_value({0.0, 0.0})),
+       with_default(
+           at_least(number("random_displacement", "", "uniform random offset, as a fraction of d"),
+                    0.0),
+           number_value(0.0)),
+       with_default(integer("seed", "random generator seed"), number_value(1)),
+       with_default(at_least(integer("atom_type", "LIGGGHTS atom type of the particles"), 1),
+                    number_value(1))});
+
+  BlockSpec liggghts = required(block(
+      "LIGGGHTS",
+      "The two LIGGGHTS input scripts (thesis §5.6), sent by the server; paths relative to the "
+      "scene.",
+      {text("script1", "set-up script, run before the equilibration"),
+       text("script2", "script run after the equilibration (e.g. the real viscosity)"),
+       with_default(
+           at_least(
+               integer("equilibration_steps", "LIGGGHTS-only steps with the structure at rest"), 0),
+           number_value(0))}));
+
+  BlockSpec sph =
+      block("LIGGGHTS_SPH_parameters",
+            "Every entry becomes a LIGGGHTS string variable ${name} defined before script 1.", {});
+  sph.open = true;
+
+  BlockSpec coupling = required(block(
+      "Coupling", "The SPH-wall contact of fix fsi/sph (docs/fix_fsi_sph.md).",
+      {positive(number("refinement_resolution", "m",
+                       "segments are bisected until shorter than this (thesis eq. 4.7: ~2h)")),
+       [] {
+         ParameterSpec p = with_default(
+             integer("refinement_option", "thesis Table 5.1; 2D: always 1"), number_value(1));
+         p.minimum = 1;
+         p.maximum = 1;
+         return p;
+       }()}));
+
+  BlockSpec root;
+  root.name = "";
+  root.doc = "A scene file.";
+  root.user_blocks_allowed = true;
+  root.blocks = {
+      block("SceneFormat", "Version of the scene language this file is written for.", {version}),
+      solver,
+      output,
+      gravity,
+      body,
+      ground,
+      coordinate_constraint,
+      velocity_constraint,
+      sensor,
+      fluid,
+      liggghts,
+      sph,
+      coupling};
+  return root;
+}
+
+mbd::Coordinate coordinate_of(const std::string& text) {
+  if (text == "x") return mbd::Coordinate::X;
+  if (text == "y") return mbd::Coordinate::Y;
+  return mbd::Coordinate::Angle;  // "angle" or "torque"
+}
+
+std::string format_exact(double value) {
+  // Shortest text that reads back to the same double.
+  char text[40];
+  const auto end = std::to_chars(text, text + sizeof text, value).ptr;
+  return std::string(text, end);
+}
+
+std::string read_script(const fs::path& scene_dir, const std::string& name,
+                        const SourceLocation& where, std::vector<Problem>& problems) {
+  const fs::path path = fs::path(name).is_absolute() ? fs::path(name) : scene_dir / name;
+  std::ifstream in(path);
+  if (!in) {
+    problems.push_back({where, "LIGGGHTS script '" + path.string() + "' cannot be read",
+                        "give the path relative to the scene file"});
+    return {};
+  }
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+}  // namespace
+
+const BlockSpec& scene_schema() {
+  static const BlockSpec schema = make_schema();
+  return schema;
+}
+
+Scene build_scene(const std::string& path, const std::vector<Override>& overrides) {
+  Scene scene;
+  scene.file = path;
+  scene.parameters = load_parameter_file(path, overrides);
+  const BlockSpec& schema = scene_schema();
+  std::vector<Problem> problems = validate(scene.parameters, schema);
+  throw_if_any(problems, path);
+
+  const View root(scene.parameters, schema);
+  const long version = root.block("SceneFormat").integer("version");
+  if (version > kSceneFormatVersion) {
+    throw Error("the scene is written for scene language version " + std::to_string(version) +
+                    ", this fsi-server reads version " + std::to_string(kSceneFormatVersion),
+                root.block("SceneFormat").location("version").text(), "use a newer fsi-server");
+  }
+
+  // Solver and output.
+  const View solver = root.block("SolverOptions");
+  scene.solver.end_time = solver.number("end_time");
+  scene.solver.step_size = solver.block("Timeint").number("step_size");
+  scene.solver.stages = static_cast<int>(solver.block("Timeint").integer("stages"));
+  const View newton = solver.block("Newton");
+  scene.solver.newton.relative_tolerance = newton.number("relative_tolerance");
+  scene.solver.newton.max_iterations = static_cast<int>(newton.integer("max_iterations"));
+  scene.solver.newton.max_modified_newton_steps =
+      static_cast<int>(newton.integer("max_modified_newton_steps"));
+  scene.output.sensor_every_steps = root.block("Output").integer("sensor_every_steps");
+  scene.output.snapshot_every_steps = root.block("Output").integer("snapshot_every_steps");
+
+  // Bodies and their meshes: body vertices first (dynamic), ground vertices after (static).
+  mbd::Model& model = scene.model;
+  const auto gravity = root.block("Gravity").vector("acceleration");
+  model.set_gravity({gravity[0], gravity[1]});
+  auto add_mesh = [&](const View& mesh, mbd::BodyId body) {
+    const auto points = mesh.matrix("points");
+    if (points.size() < 2) {
+      problems.push_back({mesh.location("points"), "a mesh needs at least 2 points", "add points"});
+      return;
+    }
+    const auto first = static_cast<std::uint32_t>(model.marker_count());
+    for (const auto& point : points)
+      model.add_marker(body, {point[0], point[1]});
+    const auto count = static_cast<std::uint32_t>(points.size());
+    for (std::uint32_t k = 0; k + 1 < count; ++k) {
+      scene.boundary.segments.insert(scene.boundary.segments.end(), {first + k, first + k + 1});
+    }
+    if (mesh.integer("closed") == 1 && count > 2) {
+      scene.boundary.segments.insert(scene.boundary.segments.end(), {first + count - 1, first});
+    }
+  };
+  for (const View& body : root.blocks("RigidBody2D")) {
+    mbd::RigidBody2DSpec spec;
+    spec.name = body.string("name");
+    spec.mass = body.number("mass");
+    spec.inertia = body.number("inertia");
+    const auto position = body.vector("position");
+    const auto velocity = body.vector("velocity");
+    spec.position = {position[0], position[1]};
+    spec.velocity = {velocity[0], velocity[1]};
+    spec.angle = body.number("angle");
+    spec.angular_velocity = body.number("angular_velocity");
+    try {
+      const mbd::BodyId id = model.add_rigid_body(spec);
+      for (const View& mesh : body.blocks("Mesh"))
+        add_mesh(mesh, id);
+    } catch (const Error& error) {
+      problems.push_back({body.location("name"), error.fault(), error.remedy()});
+    }
+  }
+  scene.boundary.dynamic_vertex_count = static_cast<std::size_t>(model.marker_count());
+  for (const View& ground : root.blocks("Ground")) {
+    for (const View& mesh : ground.blocks("Mesh"))
+      add_mesh(mesh, mbd::kGround);
+  }
+  scene.boundary.vertex_count = static_cast<std::size_t>(model.marker_count());
+  const View coupling = root.block("Coupling");
+  scene.boundary.refinement_resolution = coupling.number("refinement_resolution");
+  scene.boundary.refinement_option = static_cast<int>(coupling.integer("refinement_option"));
+  if (scene.boundary.segments.empty()) {
+    problems.push_back({scene.parameters.location,
+                        "the scene has no surface mesh: the fluid would see no structure",
+                        "add Mesh { points = ... } to bodies or Ground"});
+  }
+
+  auto find_body = [&](const View& element) -> std::optional<mbd::BodyId> {
+    try {
+      return model.find_body(element.string("body"));
+    } catch (const Error& error) {
+      problems.push_back({element.location("body"), error.fault(), error.remedy()});
+      return std::nullopt;
+    }
+  };
+  for (const View& c : root.blocks("CoordinateConstraint")) {
+    if (auto body = find_body(c)) {
+      std::optional<double> value;
+      if (c.has("value")) value = c.number("value");
+      model.add_coordinate_constraint(*body, coordinate_of(c.string("coordinate")), value);
+    }
+  }
+  for (const View& c : root.blocks("VelocityConstraint")) {
+    if (auto body = find_body(c)) {
+      model.add_velocity_constraint(*body, coordinate_of(c.string("coordinate")),
+                                    c.number("velocity"));
+    }
+  }
+  for (const View& s : root.blocks("Sensor")) {
+    SensorSpec sensor;
+    sensor.name = s.string("name");
+    const std::string type = s.string("type");
+    const std::string component = s.string("component");
+    sensor.type = type == "position"      ? SensorType::Position
+                  : type == "velocity"    ? SensorType::Velocity
+                  : type == "fluid_force" ? SensorType::FluidForce
+                                          : SensorType::ConstraintForce;
+    const bool force =
+        sensor.type == SensorType::FluidForce || sensor.type == SensorType::ConstraintForce;
+    if (force && component == "angle") {
+      problems.push_back({s.location("component"), "a force sensor has components x, y or torque",
+                          "write torque"});
+    }
+    if (!force && component == "torque") {
+      problems.push_back({s.location("component"),
+                          "a " + type + " sensor has components x, y or angle", "write angle"});
+    }
+    sensor.component = coordinate_of(component);
+    const bool rotational = sensor.component == mbd::Coordinate::Angle;
+    sensor.unit = sensor.type == SensorType::Position   ? (rotational ? "rad" : "m")
+                  : sensor.type == SensorType::Velocity ? (rotational ? "rad/s" : "m/s")
+                                                        : (rotational ? "N m/m" : "N/m");
+    for (const auto& other : scene.sensors) {
+      if (other.name == sensor.name) {
+        problems.push_back(
+            {s.location("name"), "a second sensor is named '" + sensor.name + "'", "rename it"});
+      }
+    }
+    if (auto body = find_body(s)) {
+      sensor.body = *body;
+      scene.sensors.push_back(sensor);
+    }
+  }
+
+  // Fluid particles on a lattice.
+  if (root.has_block("FluidRegion")) {
+    const View region = root.block("FluidRegion");
+    const auto lower = region.vector("lower");
+    const auto upper = region.vector("upper");
+    const double d = region.number("spacing");
+    const auto velocity = region.vector("velocity");
+    FluidParticles& fluid = scene.fluid;
+    fluid.spacing = d;
+    fluid.density = region.number("density");
+    fluid.mass = fluid.density * d * d;
+    fluid.atom_type = static_cast<int>(region.integer("atom_type"));
+    const long nx = static_cast<long>(std::floor((upper[0] - lower[0]) / d + 1e-9));
+    const long ny = static_cast<long>(std::floor((upper[1] - lower[1]) / d + 1e-9));
+    if (nx < 1 || ny < 1) {
+      problems.push_back(
+          {region.location("upper"),
+           "the fluid box holds no lattice point (upper must exceed lower by at least one spacing)",
+           "check lower, upper and spacing"});
+    } else if (static_cast<double>(nx) * static_cast<double>(ny) > 5e7) {
+      problems.push_back({region.location("spacing"),
+                          "the fluid box would hold " + std::to_string(nx * ny) + " particles",
+                          "increase the spacing"});
+    } else {
+      std::mt19937_64 random(static_cast<std::uint64_t>(region.integer("seed")));
+      const double jitter = region.number("random_displacement") * d;
+      std::uniform_real_distribution<double> offset(-jitter, jitter);
+      for (long j = 0; j < ny; ++j) {
+        for (long i = 0; i < nx; ++i) {
+          const double x =
+              lower[0] + (static_cast<double>(i) + 0.5) * d + (jitter > 0 ? offset(random) : 0.0);
+          const double y =
+              lower[1] + (static_cast<double>(j) + 0.5) * d + (jitter > 0 ? offset(random) : 0.0);
+          fluid.positions.insert(fluid.positions.end(), {x, y});
+          fluid.velocities.insert(fluid.velocities.end(), {velocity[0], velocity[1]});
+        }
+      }
+    }
+  }
+
+  // LIGGGHTS scripts and variables.
+  const fs::path scene_dir = fs::path(path).parent_path();
+  const View liggghts = root.block("LIGGGHTS");
+  scene.liggghts.script1_name = liggghts.string("script1");
+  scene.liggghts.script2_name = liggghts.string("script2");
+  scene.liggghts.script1_text =
+      read_script(scene_dir, scene.liggghts.script1_name, liggghts.location("script1"), problems);
+  scene.liggghts.script2_text =
+      read_script(scene_dir, scene.liggghts.script2_name, liggghts.location("script2"), problems);
+  scene.liggghts.equilibration_steps =
+      static_cast<std::uint64_t>(liggghts.integer("equilibration_steps"));
+  if (const Block* sph = scene.parameters.child("LIGGGHTS_SPH_parameters")) {
+    for (const Parameter& p : sph->parameters) {
+      if (p.value.kind == ValueKind::Number) {
+        scene.liggghts.variables.emplace_back(p.key, format_exact(p.value.number));
+      } else if (p.value.kind == ValueKind::String) {
+        scene.liggghts.variables.emplace_back(p.key, p.value.text);
+      } else {
+        problems.push_back(
+            {p.location,
+             "LIGGGHTS variable '" + p.key + "' is a " + std::string(name(p.value.kind)),
+             "LIGGGHTS variables are numbers or strings"});
+      }
+    }
+  }
+
+  throw_if_any(problems, path);
+  try {
+    (void)model.initial_state();
+  } catch (const Error& error) {
+    throw Error(error.fault(), path, error.remedy());
+  }
+  return scene;
+}
+
+}  // namespace fsi::scene

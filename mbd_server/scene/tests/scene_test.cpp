@@ -1,0 +1,108 @@
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "fsi/common/error.hpp"
+#include "fsi/scene/scene.hpp"
+
+namespace fsi::scene {
+namespace {
+
+namespace fs = std::filesystem;
+
+TEST(Scene, BuildsTheCoarseStaticTank) {
+  const Scene scene = build_scene(FSI_EXAMPLES_DIR "/static_tank/static_tank_coarse.scene");
+  EXPECT_EQ(scene.model.body_count(), 2);
+  // Two closed rectangles (4 vertices each, dynamic) and two walls (2 vertices each, static).
+  EXPECT_EQ(scene.boundary.dynamic_vertex_count, 8u);
+  EXPECT_EQ(scene.boundary.vertex_count, 12u);
+  EXPECT_EQ(scene.boundary.segments.size(), 2u * (4 + 4 + 1 + 1));
+  EXPECT_EQ(scene.model.constraint_count(), 6);
+  EXPECT_EQ(scene.sensors.size(), 5u);
+  const double h = 0.0016;
+  const double d = h / 1.9;
+  EXPECT_DOUBLE_EQ(scene.fluid.spacing, d);
+  EXPECT_DOUBLE_EQ(scene.fluid.mass, 1000.0 * d * d);
+  EXPECT_GT(scene.fluid.count(), 1800u);
+  EXPECT_LT(scene.fluid.count(), 2200u);
+  EXPECT_EQ(scene.solver.step_size, 1e-5);
+  EXPECT_FALSE(scene.liggghts.script1_text.empty());
+  bool found = false;
+  for (const auto& [name, value] : scene.liggghts.variables) {
+    if (name == "smoothinglength") {
+      EXPECT_EQ(value, "0.0016");
+      found = true;
+    }
+  }
+  EXPECT_TRUE(found);
+  // All particles inside the tank, at least one smoothing length from the walls.
+  for (std::size_t i = 0; i < scene.fluid.count(); ++i) {
+    EXPECT_GE(scene.fluid.positions[2 * i], h);
+    EXPECT_LE(scene.fluid.positions[2 * i], 0.05 - h);
+  }
+}
+
+TEST(Scene, OverridesReachTheBuiltScene) {
+  const Scene scene =
+      build_scene(FSI_EXAMPLES_DIR "/static_tank/static_tank_coarse.scene",
+                  {{"Resolution.end_time", "0.01"}, {"Geometry.piston_mass", "0.2"}});
+  EXPECT_EQ(scene.solver.end_time, 0.01);
+  EXPECT_EQ(scene.model.body(scene.model.find_body("piston")).mass, 0.2);
+}
+
+TEST(Scene, ReportsAllProblemsWithLocations) {
+  const fs::path folder = fs::temp_directory_path() / "fsi_scene_build_test";
+  fs::create_directories(folder);
+  std::ofstream(folder / "bad.scene")
+      << R"(SolverOptions { end_time = 1; Timeint { step_size = 0 } }
+RigidBody2D { name = "a"; mass = 1; inertia = 1; Mesh { points = [[0, 0], [1, 0]] } }
+CoordinateConstraint { body = "b"; coordinate = "x" }
+Sensor { name = "s"; type = "fluid_force"; body = "a"; component = "angle" }
+LIGGGHTS { script1 = "missing.in"; script2 = "missing2.in" }
+Coupling { refinement_resolution = 0.001 }
+)";
+  try {
+    build_scene((folder / "bad.scene").string());
+    FAIL() << "bad scene accepted";
+  } catch (const fsi::Error& error) {
+    const std::string text = error.what();
+    // Schema problems come first (and alone): step_size out of range.
+    EXPECT_NE(text.find("bad.scene:1:41"), std::string::npos) << text;
+    EXPECT_NE(text.find("'SolverOptions.Timeint.step_size' = 0 s is out of range"),
+              std::string::npos)
+        << text;
+  }
+  std::ofstream(folder / "bad2.scene")
+      << R"(SolverOptions { end_time = 1; Timeint { step_size = 1e-5 } }
+RigidBody2D { name = "a"; mass = 1; inertia = 1; Mesh { points = [[0, 0], [1, 0]] } }
+CoordinateConstraint { body = "b"; coordinate = "x" }
+Sensor { name = "s"; type = "fluid_force"; body = "a"; component = "angle" }
+LIGGGHTS { script1 = "missing.in"; script2 = "missing2.in" }
+Coupling { refinement_resolution = 0.001 }
+)";
+  try {
+    build_scene((folder / "bad2.scene").string());
+    FAIL() << "bad scene accepted";
+  } catch (const fsi::Error& error) {
+    const std::string text = error.what();
+    EXPECT_NE(text.find("4 problem(s)"), std::string::npos) << text;
+    EXPECT_NE(text.find("bad2.scene:3:24: no body named 'b'"), std::string::npos) << text;
+    EXPECT_NE(text.find("known bodies: a"), std::string::npos) << text;
+    EXPECT_NE(text.find("a force sensor has components x, y or torque"), std::string::npos) << text;
+    EXPECT_NE(text.find("missing.in' cannot be read"), std::string::npos) << text;
+  }
+  fs::remove_all(folder);
+}
+
+TEST(Scene, SchemaDocumentsEveryBlock) {
+  const std::string markdown = render_markdown(scene_schema());
+  for (const char* block :
+       {"SolverOptions", "RigidBody2D", "RigidBody2D.Mesh", "CoordinateConstraint",
+        "VelocityConstraint", "Sensor", "FluidRegion", "LIGGGHTS", "Coupling"}) {
+    EXPECT_NE(markdown.find(std::string("## `") + block + "`"), std::string::npos) << block;
+  }
+}
+
+}  // namespace
+}  // namespace fsi::scene
