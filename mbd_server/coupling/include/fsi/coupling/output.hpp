@@ -1,0 +1,39 @@
+#pragma once
+// Files of a run folder: sensors.csv (one column per sensor, flushed on a schedule) and
+// particle snapshots (snapshots/particles_<step>.csv).
+
+#include <chrono>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+namespace fsi::coupling {
+
+class SensorFile {
+ public:
+  // names/units exclude the time column.
+  SensorFile(const std::string& path, const std::string& title,
+             const std::vector<std::string>& names, const std::vector<std::string>& units);
+  ~SensorFile();
+  SensorFile(const SensorFile&) = delete;
+  SensorFile& operator=(const SensorFile&) = delete;
+
+  void write(double time, const std::vector<double>& values);
+  void flush();
+
+ private:
+  std::FILE* file_ = nullptr;
+  std::string path_;
+  std::chrono::steady_clock::time_point last_flush_;
+};
+
+struct ParticleSnapshot {
+  std::uint64_t step = 0;
+  double time = 0.0;
+  std::vector<std::uint64_t> ids;
+  std::vector<double> positions, velocities, density, pressure;  // 2D
+};
+
+void write_snapshot_csv(const std::string& path, const ParticleSnapshot& snapshot);
+
+}  // namespace fsi::coupling

@@ -1,0 +1,29 @@
+#pragma once
+// The server's side of one coupled run (thesis §4.4, Fig. 4.10; docs/protocol.md): accept the
+// client, send the set-up, then per step integrate the structure with the fluid forces f(t) held
+// constant, send the boundary state at t+dt, receive f(t+dt). Writes sensors.csv, particle
+// snapshots and run.json into the output folder.
+
+#include <chrono>
+#include <cstdint>
+#include <string>
+
+#include "fsi/scene/scene.hpp"
+
+namespace fsi::coupling {
+
+struct ServerOptions {
+  std::string listen_address = "127.0.0.1";
+  std::uint16_t port = 0;  // 0: the operating system chooses
+  std::string port_file;   // written (atomically) once listening
+  std::string output_dir;
+  std::chrono::milliseconds accept_timeout{std::chrono::minutes(2)};
+  std::chrono::milliseconds handshake_timeout{std::chrono::seconds(30)};
+  std::string command_line;  // recorded in run.json
+};
+
+// Runs the session; returns the process exit status (0 success, 1 failure). Never throws for
+// faults of the run: they are logged, told to the client if possible, and recorded in run.json.
+int run_coupled_session(scene::Scene& scene, const ServerOptions& options);
+
+}  // namespace fsi::coupling

@@ -1,0 +1,69 @@
+#include "fsi/coupling/output.hpp"
+
+#include <cerrno>
+#include <cstring>
+
+#include "fsi/common/error.hpp"
+
+namespace fsi::coupling {
+
+SensorFile::SensorFile(const std::string& path, const std::string& title,
+                       const std::vector<std::string>& names, const std::vector<std::string>& units)
+    : path_(path), last_flush_(std::chrono::steady_clock::now()) {
+  file_ = std::fopen(path.c_str(), "w");
+  if (!file_) {
+    throw Error("cannot write " + path + ": " + std::strerror(errno), "output folder",
+                "choose a writable --output folder");
+  }
+  std::fprintf(file_, "# %s\n# units: time [s]", title.c_str());
+  for (std::size_t i = 0; i < names.size(); ++i)
+    std::fprintf(file_, ", %s [%s]", names[i].c_str(), units[i].c_str());
+  std::fprintf(file_, "\ntime");
+  for (const auto& name : names)
+    std::fprintf(file_, ",%s", name.c_str());
+  std::fprintf(file_, "\n");
+  std::fflush(file_);
+}
+
+SensorFile::~SensorFile() {
+  if (file_) std::fclose(file_);
+}
+
+void SensorFile::write(double time, const std::vector<double>& values) {
+  std::fprintf(file_, "%.17g", time);
+  for (double value : values)
+    std::fprintf(file_, ",%.17g", value);
+  std::fputc('\n', file_);
+  // A crash loses at most about one second of rows.
+  const auto now = std::chrono::steady_clock::now();
+  if (now - last_flush_ > std::chrono::seconds(1)) {
+    flush();
+    last_flush_ = now;
+  }
+}
+
+void SensorFile::flush() {
+  if (std::fflush(file_) != 0) {
+    throw Error("cannot write " + path_ + ": " + std::strerror(errno), "sensor output",
+                "free disk space");
+  }
+}
+
+void write_snapshot_csv(const std::string& path, const ParticleSnapshot& snapshot) {
+  std::FILE* file = std::fopen(path.c_str(), "w");
+  if (!file) {
+    throw Error("cannot write " + path + ": " + std::strerror(errno), "snapshot output",
+                "free disk space");
+  }
+  std::fprintf(file, "# SPH particles at step %llu, t = %.17g s\nid,x,y,vx,vy,density,pressure\n",
+               static_cast<unsigned long long>(snapshot.step), snapshot.time);
+  for (std::size_t i = 0; i < snapshot.ids.size(); ++i) {
+    std::fprintf(file, "%llu,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n",
+                 static_cast<unsigned long long>(snapshot.ids[i]), snapshot.positions[2 * i],
+                 snapshot.positions[2 * i + 1], snapshot.velocities[2 * i],
+                 snapshot.velocities[2 * i + 1], snapshot.density[i], snapshot.pressure[i]);
+  }
+  std::fclose(file);
+}
+
+}  // namespace fsi::coupling

@@ -1,0 +1,506 @@
+#include "fsi/coupling/session.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <csignal>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <sstream>
+
+#include "fsi/common/error.hpp"
+#include "fsi/common/stopwatch.hpp"
+#include "fsi/common/version.hpp"
+#include "fsi/coupling/output.hpp"
+#include "fsi/protocol/channel.hpp"
+
+namespace fsi::coupling {
+namespace {
+
+namespace fs = std::filesystem;
+namespace protocol = fsi::protocol;
+using json = nlohmann::json;
+
+std::atomic<int> g_stop_signal{0};
+extern "C" void on_stop_signal(int signal) {
+  g_stop_signal = signal;
+}
+
+std::uint64_t fnv1a(const std::string& text) {
+  std::uint64_t hash = 1469598103934665603ull;
+  for (unsigned char c : text) {
+    hash ^= c;
+    hash *= 1099511628211ull;
+  }
+  return hash;
+}
+
+std::string hex(std::uint64_t value) {
+  char text[24];
+  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(value));
+  return text;
+}
+
+void write_port_file(const std::string& path, std::uint16_t port) {
+  // Written to a temporary name and renamed, so a reader never sees a partial number.
+  const std::string temporary = path + ".tmp";
+  {
+    std::ofstream out(temporary);
+    out << port << "\n";
+    if (!out)
+      throw Error("cannot write port file " + temporary, "--port-file", "choose a writable path");
+  }
+  fs::rename(temporary, path);
+}
+
+struct Timings {
+  Stopwatch total, setup, coupled, mbd, output, round_trip;
+  double client_liggghts = 0.0;
+  double client_contact = 0.0;
+  double client_communication = 0.0;
+};
+
+struct Checks {
+  double max_action_reaction = 0.0;  // |F_fluid + F_structure| / sum |pair forces|
+  double closest_approach_over_r0 = std::numeric_limits<double>::infinity();
+  std::uint64_t particles_initial = 0;
+  std::uint64_t particles_final = 0;
+  bool lost_warned = false;
+  bool balance_warned = false;
+};
+
+class Session {
+ public:
+  Session(scene::Scene& scene, const ServerOptions& options) : scene_(scene), options_(options) {}
+
+  int run() {
+    timings_.total.start();
+    int status = 0;
+    try {
+      prepare_output();
+      connect();
+      set_up();
+      couple();
+      finish();
+      status_ = "completed";
+    } catch (const std::exception& failure) {
+      status = 1;
+      status_ = "failed";
+      reason_ = failure.what();
+      spdlog::error("{}", failure.what());
+      if (channel_ && dynamic_cast<const protocol::ProtocolError*>(&failure) == nullptr) {
+        try {
+          channel_->send(protocol::ErrorMessage{protocol::ErrorCode::SetupFailed, failure.what()});
+        } catch (...) {
+        }
+      }
+    }
+    timings_.total.stop();
+    try {
+      if (sensors_) sensors_->flush();
+      write_manifest();
+    } catch (const std::exception& failure) {
+      spdlog::error("writing run.json failed: {}", failure.what());
+      status = 1;
+    }
+    if (status == 0) {
+      spdlog::info("run completed: {} steps in {:.1f} s; results in {}", steps_done_,
+                   timings_.total.seconds(), options_.output_dir);
+    } else {
+      spdlog::error("run failed after {} coupled steps; partial results in {}", steps_done_,
+                    options_.output_dir);
+    }
+    return status;
+  }
+
+ private:
+  void prepare_output() {
+    std::error_code error;
+    fs::create_directories(options_.output_dir, error);
+    if (error) {
+      throw Error("cannot create output folder " + options_.output_dir + ": " + error.message(),
+                  "--output", "choose a writable folder");
+    }
+    std::vector<std::string> names, units;
+    for (const auto& sensor : scene_.sensors) {
+      names.push_back(sensor.name);
+      units.push_back(sensor.unit);
+    }
+    sensors_ =
+        std::make_unique<SensorFile>((fs::path(options_.output_dir) / "sensors.csv").string(),
+                                     "fsi-server sensors of " + scene_.file, names, units);
+    if (scene_.output.snapshot_every_steps > 0)
+      fs::create_directories(fs::path(options_.output_dir) / "snapshots");
+    std::signal(SIGINT, on_stop_signal);
+    std::signal(SIGTERM, on_stop_signal);
+  }
+
+  void connect() {
+    protocol::Listener listener(options_.listen_address, options_.port);
+    spdlog::info("listening on {}:{} for fsi-client (mpirun -np N fsi-client --server {}:{})",
+                 options_.listen_address, listener.port(), options_.listen_address,
+                 listener.port());
+    if (!options_.port_file.empty()) write_port_file(options_.port_file, listener.port());
+    channel_ = std::make_unique<protocol::Channel>(listener.accept(options_.accept_timeout));
+    // The Hello layout is the same in every protocol version, so a mismatch is always readable.
+    const auto hello = channel_->expect<protocol::Hello>(options_.handshake_timeout);
+    const protocol::VersionCheck version = protocol::check_peer_version(
+        protocol::Role::Server, channel_->peer_major(), channel_->peer_minor());
+    if (!version.compatible) {
+      const std::string& text = version.message;
+      channel_->send(protocol::ErrorMessage{protocol::ErrorCode::VersionMismatch, text});
+      throw Error("refused fsi-client " + hello.software_version + " at " +
+                      channel_->peer_description() + ": " + text,
+                  "handshake", "use matching fsi-server and fsi-client releases");
+    }
+    client_ = hello;
+    protocol::Welcome welcome;
+    welcome.accepted_minor = version.agreed_minor;
+    welcome.software_version = std::string(fsi::software_version());
+    welcome.run_name = fs::path(options_.output_dir).filename().string();
+    channel_->send(welcome);
+    spdlog::info("fsi-client {} connected from {} ({}, {} MPI rank(s))", hello.software_version,
+                 channel_->peer_description(), hello.host, hello.mpi_ranks);
+  }
+
+  void send_boundary_setup() {
+    const auto& boundary = scene_.boundary;
+    protocol::Mesh mesh;
+    mesh.dimension = 2;
+    mesh.dynamic_vertex_count = static_cast<std::uint32_t>(boundary.dynamic_vertex_count);
+    mesh.refinement_option = static_cast<std::uint32_t>(boundary.refinement_option);
+    mesh.refinement_resolution = boundary.refinement_resolution;
+    mesh.positions.resize(2 * boundary.vertex_count);
+    mesh.velocities.resize(2 * boundary.vertex_count);
+    scene_.model.marker_positions(state_, mesh.positions);
+    scene_.model.marker_velocities(state_, mesh.velocities);
+    mesh.element_vertices = boundary.segments;
+    channel_->send(mesh);
+  }
+
+  void set_up() {
+    timings_.setup.start();
+    state_ = scene_.model.initial_state();
+    integrator_ = std::make_unique<mbd::RadauIIA>(scene_.solver.stages, scene_.solver.newton);
+
+    protocol::Setup setup;
+    setup.dimension = 2;
+    setup.time_step = scene_.solver.step_size;
+    setup.equilibration_steps = scene_.liggghts.equilibration_steps;
+    for (const auto& [name, value] : scene_.liggghts.variables)
+      setup.liggghts_variables.push_back({name, value});
+    setup.script1_name = scene_.liggghts.script1_name;
+    setup.script1_text = scene_.liggghts.script1_text;
+    setup.script2_name = scene_.liggghts.script2_name;
+    setup.script2_text = scene_.liggghts.script2_text;
+    channel_->send(setup);
+    send_boundary_setup();
+    protocol::Particles particles;
+    particles.dimension = 2;
+    particles.atom_type = static_cast<std::uint32_t>(scene_.fluid.atom_type);
+    particles.mass = scene_.fluid.mass;
+    particles.density = scene_.fluid.density;
+    particles.positions = scene_.fluid.positions;
+    particles.velocities = scene_.fluid.velocities;
+    channel_->send(particles);
+    spdlog::info(
+        "sent set-up: {} particles (m = {:.6g} kg/m), {} boundary vertices ({} dynamic), {} "
+        "segments; "
+        "client runs script 1, {} equilibration steps, script 2",
+        scene_.fluid.count(), scene_.fluid.mass, scene_.boundary.vertex_count,
+        scene_.boundary.dynamic_vertex_count, scene_.boundary.segments.size() / 2,
+        scene_.liggghts.equilibration_steps);
+    // Set-up and equilibration may take long; a client that dies closes the connection.
+    ready_ = channel_->expect<protocol::Ready>(std::nullopt);
+    checks_.particles_initial = ready_.particle_count;
+    spdlog::info("client ready: {} particles in LIGGGHTS; set-up {:.2f} s, equilibration {:.2f} s",
+                 ready_.particle_count, ready_.seconds_setup, ready_.seconds_equilibration);
+    if (ready_.particle_count != scene_.fluid.count()) {
+      spdlog::warn(
+          "LIGGGHTS holds {} particles, the scene generated {} (the scripts create or delete "
+          "particles)",
+          ready_.particle_count, scene_.fluid.count());
+    }
+    apply_forces(channel_->expect<protocol::Forces>(std::nullopt), 0);
+    timings_.setup.stop();
+  }
+
+  // The fluid forces on the dynamic vertices become point loads held over the next step.
+  void apply_forces(const protocol::Forces& forces, std::uint64_t expected_step) {
+    if (forces.step != expected_step) {
+      throw Error("Forces of step " + std::to_string(forces.step) + " arrived, step " +
+                      std::to_string(expected_step) + " was expected",
+                  "coupled step", "use matching fsi-server and fsi-client releases");
+    }
+    const std::size_t dynamic_values = 2 * scene_.boundary.dynamic_vertex_count;
+    if (forces.forces.size() != dynamic_values) {
+      throw Error("Forces carry " + std::to_string(forces.forces.size() / 2) +
+                      " vertices, the mesh has " +
+                      std::to_string(scene_.boundary.dynamic_vertex_count) + " dynamic ones",
+                  "step " + std::to_string(expected_step),
+                  "use matching fsi-server and fsi-client releases");
+    }
+    for (double f : forces.forces) {
+      if (!std::isfinite(f)) {
+        throw Error("the fluid forces of step " + std::to_string(expected_step) + " are not finite",
+                    "fluid side",
+                    "reduce the time step or the contact stiffness k (see the thesis' §6.2 rules)");
+      }
+    }
+    loads_.assign(2 * scene_.boundary.vertex_count, 0.0);
+    std::copy(forces.forces.begin(), forces.forces.end(), loads_.begin());
+    scene_.model.set_point_loads(loads_);
+
+    const auto& d = forces.diagnostics;
+    timings_.client_liggghts += d.seconds_liggghts;
+    timings_.client_contact += d.seconds_contact;
+    timings_.client_communication += d.seconds_client_communication;
+    if (d.pair_force_magnitude_sum > 0.0) {
+      double imbalance = 0.0;
+      for (int k = 0; k < 3; ++k)
+        imbalance = std::max(imbalance, std::abs(d.force_on_fluid[k] + d.force_on_structure[k]));
+      const double ratio = imbalance / d.pair_force_magnitude_sum;
+      checks_.max_action_reaction = std::max(checks_.max_action_reaction, ratio);
+      if (ratio > 1e-12 && !checks_.balance_warned) {
+        spdlog::warn(
+            "step {}: forces on fluid and structure differ by {:.3e} of the pair force sum (> "
+            "1e-12)",
+            expected_step, ratio);
+        checks_.balance_warned = true;
+      }
+    }
+    checks_.closest_approach_over_r0 =
+        std::min(checks_.closest_approach_over_r0, d.closest_approach_over_r0);
+    checks_.particles_final = d.particle_count;
+    if (d.particle_count < checks_.particles_initial && !checks_.lost_warned) {
+      spdlog::warn("step {}: {} particle(s) lost (left the LIGGGHTS box)", expected_step,
+                   checks_.particles_initial - d.particle_count);
+      checks_.lost_warned = true;
+    }
+  }
+
+  std::vector<double> sensor_values() const {
+    std::vector<double> values;
+    const mbd::Model& model = scene_.model;
+    for (const auto& sensor : scene_.sensors) {
+      const int component = static_cast<int>(sensor.component);
+      switch (sensor.type) {
+        case scene::SensorType::Position:
+          values.push_back(model.coordinate(state_, sensor.body, sensor.component));
+          break;
+        case scene::SensorType::Velocity:
+          values.push_back(model.velocity(state_, sensor.body, sensor.component));
+          break;
+        case scene::SensorType::FluidForce:
+          values.push_back(model.point_load_resultant(state_, sensor.body)(component));
+          break;
+        case scene::SensorType::ConstraintForce:
+          values.push_back(model.constraint_force(state_, sensor.body, sensor.component));
+          break;
+      }
+    }
+    return values;
+  }
+
+  void couple() {
+    timings_.coupled.start();
+    const double dt = scene_.solver.step_size;
+    const auto steps = static_cast<std::uint64_t>(std::llround(scene_.solver.end_time / dt));
+    const std::size_t dynamic_values = 2 * scene_.boundary.dynamic_vertex_count;
+    std::vector<double> positions(2 * scene_.boundary.vertex_count), velocities(positions.size());
+    spdlog::info("coupled phase: {} steps of {:.3g} s to t = {:.6g} s", steps, dt, steps * dt);
+    coupled_begin_ = std::chrono::steady_clock::now();
+    auto last_report = coupled_begin_;
+    for (std::uint64_t n = 1; n <= steps; ++n) {
+      if (g_stop_signal != 0) {
+        throw Error("stopped by signal " + std::to_string(g_stop_signal.load()) + " at step " +
+                        std::to_string(n),
+                    "fsi-server", "results up to this step are in the output folder");
+      }
+      {
+        ScopedTimer timer(timings_.mbd);
+        integrator_->step(scene_.model, state_, dt);
+        state_.time = static_cast<double>(n) * dt;  // no drift of the clock over many steps
+      }
+      {
+        ScopedTimer timer(timings_.output);
+        // Sensors at t_n: multipliers of the step and the fluid forces that acted during it.
+        if (n % static_cast<std::uint64_t>(scene_.output.sensor_every_steps) == 0)
+          sensors_->write(state_.time, sensor_values());
+      }
+      scene_.model.marker_positions(state_, positions);
+      scene_.model.marker_velocities(state_, velocities);
+      protocol::Step step;
+      step.step = n;
+      step.time = state_.time;
+      step.time_step = dt;
+      step.positions.assign(positions.begin(),
+                            positions.begin() + static_cast<long>(dynamic_values));
+      step.velocities.assign(velocities.begin(),
+                             velocities.begin() + static_cast<long>(dynamic_values));
+      timings_.round_trip.start();
+      channel_->send(step);
+      const auto forces = channel_->expect<protocol::Forces>(std::nullopt);
+      timings_.round_trip.stop();
+      apply_forces(forces, n);
+      steps_done_ = n;
+
+      if (scene_.output.snapshot_every_steps > 0 &&
+          n % static_cast<std::uint64_t>(scene_.output.snapshot_every_steps) == 0) {
+        take_snapshot(n);
+      }
+      const auto now = std::chrono::steady_clock::now();
+      if (now - last_report > std::chrono::seconds(10)) {
+        const double rate =
+            static_cast<double>(n) /
+            std::max(1e-9, std::chrono::duration<double>(now - coupled_begin_).count());
+        spdlog::info(
+            "t = {:.5f} s ({:.1f} %), {:.0f} steps/s, ETA {:.0f} s, closest wall approach {:.3f} "
+            "r0",
+            state_.time, 100.0 * static_cast<double>(n) / static_cast<double>(steps), rate,
+            static_cast<double>(steps - n) / std::max(rate, 1e-9),
+            forces.diagnostics.closest_approach_over_r0);
+        last_report = now;
+      }
+    }
+    timings_.coupled.stop();
+  }
+
+  void take_snapshot(std::uint64_t n) {
+    ScopedTimer timer(timings_.output);
+    channel_->send(protocol::SnapshotRequest{n});
+    auto reply = channel_->expect<protocol::Snapshot>(std::nullopt);
+    ParticleSnapshot snapshot;
+    snapshot.step = reply.step;
+    snapshot.time = reply.time;
+    snapshot.ids = std::move(reply.ids);
+    snapshot.positions = std::move(reply.positions);
+    snapshot.velocities = std::move(reply.velocities);
+    snapshot.density = std::move(reply.density);
+    snapshot.pressure = std::move(reply.pressure);
+    char name[64];
+    std::snprintf(name, sizeof name, "particles_%09llu.csv", static_cast<unsigned long long>(n));
+    write_snapshot_csv((fs::path(options_.output_dir) / "snapshots" / name).string(), snapshot);
+    ++snapshots_;
+  }
+
+  void finish() {
+    channel_->send(protocol::Shutdown{"end time reached"});
+    const auto goodbye = channel_->expect<protocol::Goodbye>(std::chrono::seconds(60));
+    spdlog::info("client finished: {} steps, {:.1f} s", goodbye.steps_done, goodbye.seconds_total);
+    channel_->close();
+  }
+
+  void write_manifest() {
+    json manifest;
+    manifest["format"] = "fsi-run-manifest";
+    manifest["format_version"] = 1;
+    manifest["program"] = {{"name", "fsi-server"},
+                           {"version", std::string(fsi::software_version())},
+                           {"git_revision", std::string(fsi::git_revision())},
+                           {"command_line", options_.command_line}};
+    manifest["protocol"] = {{"major", protocol::kMajorVersion}, {"minor", protocol::kMinorVersion}};
+    if (client_) {
+      manifest["client"] = {{"software_version", client_->software_version},
+                            {"host", client_->host},
+                            {"mpi_ranks", client_->mpi_ranks},
+                            {"liggghts_version", ready_.liggghts_version}};
+    }
+    std::ifstream scene_file(scene_.file);
+    std::stringstream scene_text;
+    scene_text << scene_file.rdbuf();
+    manifest["scene"] = {{"file", fs::absolute(scene_.file).string()},
+                         {"fnv1a64", hex(fnv1a(scene_text.str()))}};
+    manifest["parameters"] = scene::to_json(scene_.parameters);
+    manifest["parameters_flat"] = scene::flatten_numbers(scene_.parameters);
+    json bodies = json::array();
+    for (int b = 0; b < scene_.model.body_count(); ++b) {
+      const auto& body = scene_.model.body(b);
+      bodies.push_back({{"name", body.name}, {"mass", body.mass}, {"inertia", body.inertia}});
+    }
+    manifest["model"] = {
+        {"gravity", {scene_.model.gravity().x(), scene_.model.gravity().y()}},
+        {"bodies", bodies},
+        {"constraints", scene_.model.constraint_count()},
+        {"integrator", "Radau IIA, " + std::to_string(scene_.solver.stages) + " stages"}};
+    manifest["fluid"] = {
+        {"particle_count", ready_.particle_count ? ready_.particle_count : scene_.fluid.count()},
+        {"generated_particles", scene_.fluid.count()},
+        {"particle_mass", scene_.fluid.mass},
+        {"density", scene_.fluid.density},
+        {"spacing", scene_.fluid.spacing}};
+    manifest["mesh"] = {{"vertices", scene_.boundary.vertex_count},
+                        {"dynamic_vertices", scene_.boundary.dynamic_vertex_count},
+                        {"segments", scene_.boundary.segments.size() / 2},
+                        {"refinement_resolution", scene_.boundary.refinement_resolution}};
+    manifest["time_step"] = scene_.solver.step_size;
+    manifest["end_time"] = scene_.solver.end_time;
+    manifest["steps"] = steps_done_;
+    manifest["snapshots"] = snapshots_;
+    const double round_trip = timings_.round_trip.seconds();
+    const double communication =
+        std::max(0.0, round_trip - timings_.client_liggghts - timings_.client_contact);
+    manifest["timings_seconds"] = {{"total", timings_.total.seconds()},
+                                   {"setup_and_equilibration", timings_.setup.seconds()},
+                                   {"client_setup", ready_.seconds_setup},
+                                   {"client_equilibration", ready_.seconds_equilibration},
+                                   {"coupled_phase", timings_.coupled.seconds()},
+                                   {"mbd", timings_.mbd.seconds()},
+                                   {"liggghts", timings_.client_liggghts},
+                                   {"contact_fix", timings_.client_contact},
+                                   {"communication", communication},
+                                   {"client_mpi_communication", timings_.client_communication},
+                                   {"output", timings_.output.seconds()}};
+    const auto& stats = integrator_ ? integrator_->statistics() : mbd::IntegratorStatistics{};
+    manifest["newton"] = {{"steps", stats.steps},
+                          {"iterations", stats.newton_iterations},
+                          {"jacobian_evaluations", stats.jacobian_evaluations},
+                          {"factorisations", stats.factorisations}};
+    manifest["checks"] = {
+        {"max_action_reaction_relative", checks_.max_action_reaction},
+        {"closest_approach_over_r0", std::isfinite(checks_.closest_approach_over_r0)
+                                         ? json(checks_.closest_approach_over_r0)
+                                         : json(nullptr)},
+        {"particles_initial", checks_.particles_initial},
+        {"particles_final", checks_.particles_final},
+        {"position_constraint_drift", scene_.model.position_constraint_drift(state_)},
+        {"velocity_constraint_drift", scene_.model.velocity_constraint_drift(state_)}};
+    manifest["status"] = status_;
+    if (!reason_.empty()) manifest["reason"] = reason_;
+    const fs::path path = fs::path(options_.output_dir) / "run.json";
+    std::ofstream out(path);
+    out << manifest.dump(2) << "\n";
+    if (!out) throw Error("cannot write " + path.string(), "output folder", "free disk space");
+  }
+
+  scene::Scene& scene_;
+  ServerOptions options_;
+  std::unique_ptr<SensorFile> sensors_;
+  std::unique_ptr<protocol::Channel> channel_;
+  std::optional<protocol::Hello> client_;
+  protocol::Ready ready_;
+  std::unique_ptr<mbd::RadauIIA> integrator_;
+  mbd::State state_;
+  std::vector<double> loads_;
+  Timings timings_;
+  Checks checks_;
+  std::uint64_t steps_done_ = 0;
+  std::uint64_t snapshots_ = 0;
+  std::string status_ = "started";
+  std::string reason_;
+  std::chrono::steady_clock::time_point coupled_begin_;
+};
+
+}  // namespace
+
+int run_coupled_session(scene::Scene& scene, const ServerOptions& options) {
+  Session session(scene, options);
+  return session.run();
+}
+
+}  // namespace fsi::coupling

@@ -1,0 +1,139 @@
+"""Helpers for integration tests that start the real fsi-server and `mpirun fsi-client`."""
+import json
+import os
+import shutil
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+
+BIN = os.environ.get("FSI_BIN_DIR", "")
+EXAMPLES = os.environ.get("FSI_EXAMPLES_DIR", "")
+ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
+           OMPI_MCA_rmaps_base_oversubscribe="1")
+
+
+def binary(name):
+    path = os.path.join(BIN, name)
+    if not os.path.exists(path):
+        fail(f"{path} is missing (FSI_BIN_DIR={BIN!r})")
+    return path
+
+
+def example(*parts):
+    return os.path.join(EXAMPLES, *parts)
+
+
+def fail(message):
+    print(f"FAIL: {message}", flush=True)
+    sys.exit(1)
+
+
+def check(condition, message):
+    if not condition:
+        fail(message)
+    print(f"ok: {message}", flush=True)
+
+
+def work_dir(name):
+    path = tempfile.mkdtemp(prefix=f"fsi_{name}_")
+    return path
+
+
+def start_server(scene, output, overrides=(), extra=()):
+    port_file = os.path.join(output, "port")
+    os.makedirs(output, exist_ok=True)
+    command = [binary("fsi-server"), scene, "--output", output, "--port", "0", "--port-file", port_file]
+    for item in overrides:
+        command += ["--set", item]
+    command += list(extra)
+    log = open(os.path.join(output, "server.stderr"), "w")
+    process = subprocess.Popen(command, stdout=log, stderr=subprocess.STDOUT, env=ENV, start_new_session=True)
+    deadline = time.time() + 60
+    while time.time() < deadline:
+        if os.path.exists(port_file):
+            with open(port_file) as handle:
+                text = handle.read().strip()
+            if text:
+                return process, int(text)
+        if process.poll() is not None:
+            fail(f"fsi-server ended with {process.returncode} before listening:\n{read(output, 'server.stderr')}")
+        time.sleep(0.05)
+    process.kill()
+    fail("fsi-server did not listen within 60 s")
+
+
+def start_client(port, ranks, output, extra=()):
+    command = ["mpirun", "--oversubscribe", "-np", str(ranks)]
+    if os.geteuid() == 0:
+        command.append("--allow-run-as-root")
+    command += [binary("fsi-client"), "--server", f"127.0.0.1:{port}"] + list(extra)
+    log = open(os.path.join(output, "client.stderr"), "w")
+    return subprocess.Popen(command, stdout=log, stderr=subprocess.STDOUT, env=ENV, start_new_session=True)
+
+
+def wait(process, timeout):
+    try:
+        return process.wait(timeout=timeout)
+    except subprocess.TimeoutExpired:
+        return None
+
+
+def kill_group(process, sig=signal.SIGKILL):
+    try:
+        os.killpg(process.pid, sig)
+    except ProcessLookupError:
+        pass
+
+
+def read(output, name):
+    path = os.path.join(output, name)
+    if not os.path.exists(path):
+        return ""
+    with open(path, errors="replace") as handle:
+        return handle.read()
+
+
+def sensor_rows(output):
+    text = read(output, "sensors.csv")
+    return [line for line in text.splitlines() if line and not line.startswith("#")][1:]
+
+
+def load_sensors(output):
+    text = read(output, "sensors.csv")
+    lines = [line for line in text.splitlines() if line and not line.startswith("#")]
+    header = lines[0].split(",")
+    columns = {name: [] for name in header}
+    for line in lines[1:]:
+        for name, value in zip(header, line.split(",")):
+            columns[name].append(float(value))
+    return columns
+
+
+def manifest(output):
+    with open(os.path.join(output, "run.json")) as handle:
+        return json.load(handle)
+
+
+def run_pair(scene, output, ranks, overrides=(), timeout=1200):
+    """Runs server and client to completion; returns (server status, client status)."""
+    server, port = start_server(scene, output, overrides)
+    client = start_client(port, ranks, output)
+    server_status = wait(server, timeout)
+    if server_status is None:
+        kill_group(server)
+        kill_group(client)
+        fail(f"fsi-server did not finish within {timeout} s")
+    client_status = wait(client, 30)
+    if client_status is None:
+        kill_group(client)
+        fail("fsi-client did not end within 30 s after the server")
+    return server_status, client_status
+
+
+def cleanup(path):
+    if os.environ.get("FSI_KEEP_TEST_OUTPUT"):
+        print(f"kept {path}")
+    else:
+        shutil.rmtree(path, ignore_errors=True)

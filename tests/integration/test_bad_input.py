@@ -1,0 +1,55 @@
+#!/usr/bin/python3
+"""Bad input gets a clear error before anything runs, or ends the run cleanly: a scene error
+names file:line:column, an override error suggests the right key, a bad `fix fsi/sph` line and a
+LIGGGHTS error in a script reach the server with script name and line."""
+import os
+import subprocess
+
+from fsi_test import ENV, binary, check, cleanup, example, read, run_pair, work_dir
+
+scene = example("static_tank", "static_tank_coarse.scene")
+output = work_dir("bad_input")
+
+
+def server(*arguments):
+    return subprocess.run([binary("fsi-server"), *arguments], capture_output=True, text=True, env=ENV, timeout=60)
+
+
+ok = server(scene, "--check")
+check(ok.returncode == 0 and "particles" in ok.stdout, "--check accepts the example and summarises it")
+
+bad_scene = os.path.join(output, "bad.scene")
+with open(bad_scene, "w") as handle:
+    handle.write('include "%s"\nOutput.sensor_every_step = 2\n' % example("static_tank", "static_tank_coarse.scene"))
+result = server(bad_scene, "--check")
+check(result.returncode == 2, f"unknown key: exit status 2 ({result.returncode})")
+check("bad.scene:2:1" in result.stderr and "did you mean 'sensor_every_steps'" in result.stderr,
+      "unknown key: file:line:column and a suggestion")
+
+result = server(scene, "--check", "--set", "Geometry.widht=0.06")
+check(result.returncode == 2 and "did you mean 'Geometry.width'" in result.stderr, "bad --set suggests the key")
+
+result = server(scene, "--check", "--set", "SolverOptions.Timeint.step_size=-1")
+check(result.returncode == 2 and "out of range" in result.stderr, "a negative step size is out of range")
+
+with open(example("static_tank", "static_tank.in1")) as handle:
+    script = handle.read()
+bad_fix = os.path.join(output, "bad_fix.in1")
+with open(bad_fix, "w") as handle:
+    handle.write(script.replace("cutoff ${SPH_wall_cutoff}", "cutof ${SPH_wall_cutoff}"))
+run_dir = os.path.join(output, "bad_fix")
+status, client = run_pair(scene, run_dir, 1, [f'LIGGGHTS.script1="{bad_fix}"'], timeout=120)
+log = read(run_dir, "server.stderr")
+check(status == 1 and client != 0, f"bad fix keyword: server {status}, client {client} (both non-zero)")
+check("unknown keyword 'cutof'" in log and "bad_fix.in1:" in log, "bad fix keyword: reported with script and line")
+
+bad_liggghts = os.path.join(output, "bad_pair.in1")
+with open(bad_liggghts, "w") as handle:
+    handle.write(script.replace("sph/artVisc/tensCorr spiky2d", "sph/nonsense spiky2d"))
+run_dir = os.path.join(output, "bad_pair")
+status, client = run_pair(scene, run_dir, 2, [f'LIGGGHTS.script1="{bad_liggghts}"'], timeout=120)
+log = read(run_dir, "server.stderr")
+check(status == 1 and client != 0, f"LIGGGHTS error: server {status}, client {client} (both non-zero)")
+check("Invalid pair style" in log and "bad_pair.in1:" in log,
+      "LIGGGHTS' own error message and the script line reach the server")
+cleanup(output)

@@ -1,0 +1,87 @@
+#!/usr/bin/python3
+"""Faults end both sides cleanly: a killed client ends the server within 10 s with a clear
+message and non-zero status, and the other way round; a peer of another protocol major version
+is refused with a message naming both versions, by the server and by the client."""
+import os
+import subprocess
+import time
+
+from fsi_test import (ENV, binary, check, cleanup, example, fail, kill_group, read, sensor_rows, start_client,
+                      start_server, wait, work_dir)
+
+scene = example("static_tank", "static_tank_coarse.scene")
+long_run = ["Resolution.end_time=10", "Resolution.equilibration_steps=100"]
+output = work_dir("faults")
+
+
+def start_running_pair(name):
+    run_dir = os.path.join(output, name)
+    server, port = start_server(scene, run_dir, long_run)
+    client = start_client(port, 2, run_dir)
+    deadline = time.time() + 300
+    while len(sensor_rows(run_dir)) < 200:
+        if time.time() > deadline or server.poll() is not None or client.poll() is not None:
+            fail(f"{name}: the coupled run did not start:\n{read(run_dir, 'server.stderr')}\n{read(run_dir, 'client.stderr')}")
+        time.sleep(0.2)
+    return run_dir, server, client
+
+
+# 1. The client dies mid-run.
+run_dir, server, client = start_running_pair("kill_client")
+kill_group(client)
+started = time.time()
+status = wait(server, 10)
+elapsed = time.time() - started
+log = read(run_dir, "server.stderr")
+if status is None:
+    kill_group(server)
+    fail("fsi-server still runs 10 s after the client was killed")
+check(status != 0, f"server exits non-zero ({status}) {elapsed:.2f} s after the client was killed")
+check("connection closed by peer" in log, "server says the connection was closed by the client")
+check('"status": "failed"' in read(run_dir, "run.json"), "run.json records the failure")
+
+# 2. The server dies mid-run.
+run_dir, server, client = start_running_pair("kill_server")
+kill_group(server)
+started = time.time()
+status = wait(client, 10)
+elapsed = time.time() - started
+log = read(run_dir, "client.stderr")
+if status is None:
+    kill_group(client)
+    fail("fsi-client still runs 10 s after the server was killed")
+check(status != 0, f"client exits non-zero ({status}) {elapsed:.2f} s after the server was killed")
+check("connection closed by peer" in log, "client says the connection was closed by the server")
+
+# 3. A client speaking protocol 2.0 is refused by the server.
+run_dir = os.path.join(output, "client_version")
+server, port = start_server(scene, run_dir)
+fake = subprocess.run([binary("fake_peer"), "client", "127.0.0.1", str(port), "2"], capture_output=True,
+                      text=True, timeout=30, env=ENV)
+status = wait(server, 10)
+log = read(run_dir, "server.stderr")
+check(fake.returncode == 1 and "server refused" in fake.stdout, f"fake client refused: {fake.stdout.strip()}")
+check("protocol 2.0" in fake.stdout and "1.0" in fake.stdout, "the refusal names both versions")
+check(status is not None and status != 0, f"server exits non-zero ({status})")
+check("protocol 2.0" in log and "1.0" in log, "the server's message names both versions")
+
+# 4. A server speaking protocol 2.0 is refused by the client.
+run_dir = os.path.join(output, "server_version")
+os.makedirs(run_dir)
+port_file = os.path.join(run_dir, "port")
+fake_server = subprocess.Popen([binary("fake_peer"), "server", port_file, "2"], stdout=subprocess.PIPE,
+                               stderr=subprocess.STDOUT, text=True, env=ENV)
+deadline = time.time() + 20
+while not os.path.exists(port_file) and time.time() < deadline:
+    time.sleep(0.05)
+port = int(open(port_file).read())
+client = start_client(port, 1, run_dir)
+status = wait(client, 10)
+log = read(run_dir, "client.stderr")
+if status is None:
+    kill_group(client)
+    fail("fsi-client still runs 10 s after meeting a protocol 2.0 server")
+check(status != 0, f"client exits non-zero ({status})")
+check("protocol 2.0" in log and "1.0" in log, "the client's message names both versions")
+fake_server.wait(timeout=30)
+cleanup(output)
