@@ -1,10 +1,15 @@
 // Boost.Asio 1.74 with GCC 12 in C++20 needs <utility> before <boost/asio.hpp> (ARCHITECTURE §12).
 #include <utility>
-// clang-format off
-#include <boost/asio.hpp>
-// clang-format on
 
+#include <boost/asio.hpp>
+
+#include <netinet/in.h>
+#include <netinet/tcp.h>
+#include <sys/socket.h>
+
+#include <algorithm>
 #include <array>
+#include <cstdio>
 #include <thread>
 #include <vector>
 
@@ -13,45 +18,88 @@
 namespace fsi::protocol {
 namespace asio = boost::asio;
 using tcp = asio::ip::tcp;
+using Clock = std::chrono::steady_clock;
+using Deadline = std::optional<Clock::time_point>;
+using boost::system::error_code;
 
 namespace {
 
-std::string endpoint_text(const tcp::endpoint& endpoint) {
-  const auto address = endpoint.address();
-  return (address.is_v6() ? "[" + address.to_string() + "]" : address.to_string()) + ":" +
-         std::to_string(endpoint.port());
+// The first piece of a payload is read into at most this much memory; the buffer then doubles
+// with the bytes that actually arrive, so a header announcing a huge payload costs nothing until
+// the data is there.
+constexpr std::size_t kFirstPayloadPiece = std::size_t{1} << 20;
+
+constexpr const char* kPeerEnded =
+    "the other program ended or lost the network; its output or log says why";
+
+Deadline deadline_after(std::optional<Milliseconds> timeout) {
+  if (!timeout) return std::nullopt;
+  return Clock::now() + *timeout;
 }
 
-std::string seconds_text(Milliseconds duration) {
+std::string duration_text(Milliseconds duration) {
   char text[32];
   std::snprintf(text, sizeof text, "%.3g s", static_cast<double>(duration.count()) / 1000.0);
   return text;
 }
 
-// Runs the context until the operation flagged by `done` finishes or the timeout passes; on a
-// timeout the socket's operations are cancelled. Returns false on timeout.
+std::string endpoint_text(const tcp::endpoint& endpoint) {
+  const auto address = endpoint.address();
+  const std::string host = address.is_v6() ? "[" + address.to_string() + "]" : address.to_string();
+  return host + ":" + std::to_string(endpoint.port());
+}
+
+bool is_disconnect(const error_code& error) {
+  return error == asio::error::eof || error == asio::error::connection_reset ||
+         error == asio::error::broken_pipe || error == asio::error::connection_aborted ||
+         error == asio::error::not_connected || error == asio::error::bad_descriptor;
+}
+
+// Runs the context until `finished` is set by the handler of the one outstanding operation. If
+// the deadline passes first, cancel() aborts the operation and the context runs on until its
+// handler has seen the abort. Returns whether the deadline passed; the operation may still have
+// completed in that race, which its error code tells.
 template <class Cancel>
-bool run_until(asio::io_context& context, const bool& done, std::optional<Milliseconds> timeout,
+bool run_until(asio::io_context& context, const bool& finished, const Deadline& deadline,
                Cancel&& cancel) {
   context.restart();
-  if (!timeout) {
-    while (!done && context.run_one() > 0) {
+  bool expired = false;
+  while (!finished) {
+    if (deadline && !expired) {
+      if (Clock::now() >= *deadline) {
+        expired = true;
+        cancel();
+        continue;
+      }
+      context.run_one_until(*deadline);
+    } else {
+      context.run_one();
     }
-    return done;
+    if (context.stopped() && !finished) context.restart();
   }
-  const auto deadline = std::chrono::steady_clock::now() + *timeout;
-  while (!done) {
-    if (context.run_one_until(deadline) == 0 && !done) {
-      if (std::chrono::steady_clock::now() >= deadline) break;
-    }
-  }
-  if (done) return true;
-  cancel();
-  context.restart();
-  while (!done && context.run_one() > 0) {
-  }
-  return false;
+  return expired;
 }
+
+// Keep-alive probes let a blocking wait without timeout notice a peer host that vanished
+// without closing the connection (about 2 minutes: 60 s idle, then 6 probes 10 s apart).
+void enable_keep_alive(tcp::socket& socket) {
+  error_code ignored;
+  socket.set_option(asio::socket_base::keep_alive(true), ignored);
+  const int handle = socket.native_handle();
+  const int idle_seconds = 60;
+  const int probe_interval_seconds = 10;
+  const int probe_count = 6;
+  ::setsockopt(handle, IPPROTO_TCP, TCP_KEEPIDLE, &idle_seconds, sizeof idle_seconds);
+  ::setsockopt(handle, IPPROTO_TCP, TCP_KEEPINTVL, &probe_interval_seconds,
+               sizeof probe_interval_seconds);
+  ::setsockopt(handle, IPPROTO_TCP, TCP_KEEPCNT, &probe_count, sizeof probe_count);
+}
+
+struct Transfer {
+  error_code error;
+  std::size_t bytes = 0;
+  bool timed_out = false;
+};
 
 }  // namespace
 
@@ -59,154 +107,328 @@ struct Channel::Impl {
   asio::io_context context;
   tcp::socket socket{context};
   ChannelOptions options;
-  std::string peer;
+  std::string peer = "unconnected peer";
   std::uint16_t peer_major = 0;
   std::uint16_t peer_minor = 0;
   std::array<std::byte, kHeaderSize> header_bytes{};
+  std::vector<std::byte> payload_buffer;  // reused from frame to frame
+  std::string unusable_because;           // set once the incoming stream can no longer be trusted
+  std::string send_unusable_because;      // set once a frame went out only in part
 
-  void configure() {
-    socket.set_option(tcp::no_delay(true));
-    boost::system::error_code ignored;
-    peer = endpoint_text(socket.remote_endpoint(ignored));
+  explicit Impl(const ChannelOptions& channel_options) : options(channel_options) {}
+
+  void configure_connected_socket() {
+    error_code ignored;
+    socket.set_option(tcp::no_delay(true), ignored);
+    enable_keep_alive(socket);
+    const auto remote = socket.remote_endpoint(ignored);
+    if (!ignored) peer = endpoint_text(remote);
   }
 
-  // Reads exactly buffer.size() bytes or throws.
-  void read_exactly(std::span<std::byte> buffer, std::optional<Milliseconds> timeout,
-                    const std::string& waiting_for, const char* part) {
-    bool done = false;
-    boost::system::error_code error;
-    std::size_t got = 0;
-    asio::async_read(socket, asio::buffer(buffer.data(), buffer.size()),
-                     [&](const boost::system::error_code& e, std::size_t n) {
-                       error = e;
-                       got = n;
-                       done = true;
+  Transfer read(std::span<std::byte> into, const Deadline& deadline) {
+    Transfer transfer;
+    bool finished = false;
+    asio::async_read(socket, asio::buffer(into.data(), into.size()),
+                     [&](const error_code& error, std::size_t bytes) {
+                       transfer.error = error;
+                       transfer.bytes = bytes;
+                       finished = true;
                      });
-    const bool in_time = run_until(context, done, timeout, [&] {
-      boost::system::error_code ignored;
+    const bool expired = run_until(context, finished, deadline, [this] {
+      error_code ignored;
       socket.cancel(ignored);
     });
-    if (!in_time) {
-      throw ProtocolError("no " + std::string(part) + " from " + peer + " within " +
-                              seconds_text(*timeout) + " while waiting for " + waiting_for,
-                          "connection to " + peer,
-                          "the peer hangs or is overloaded; check it, or raise the timeout");
+    transfer.timed_out = expired && transfer.error == asio::error::operation_aborted;
+    return transfer;
+  }
+
+  // Reports a failed read. Only a timeout before the first byte of a frame leaves the stream in
+  // step; everything else makes the channel unusable for further receives.
+  [[noreturn]] void fail_read(const Transfer& transfer, std::optional<Milliseconds> timeout,
+                              std::string_view waiting_for, std::size_t frame_bytes_before,
+                              const std::string& progress) {
+    const std::size_t frame_bytes = frame_bytes_before + transfer.bytes;
+    const std::string in_frame = frame_bytes > 0 ? " (" + progress + ")" : std::string();
+    const std::string where = "connection to " + peer;
+    std::string fault;
+    std::string fix;
+    if (transfer.timed_out) {
+      fault = "timed out after " + duration_text(timeout.value_or(Milliseconds{0})) +
+              " while waiting for " + std::string(waiting_for) + " from " + peer + in_frame;
+      fix =
+          "the peer is stuck, overloaded or waiting for us; check its output, or allow a "
+          "longer timeout";
+    } else if (is_disconnect(transfer.error)) {
+      fault = "connection closed by peer " + peer + " while waiting for " +
+              std::string(waiting_for) + in_frame;
+      fix = kPeerEnded;
+    } else {
+      fault = "receiving from " + peer + " failed while waiting for " + std::string(waiting_for) +
+              in_frame + ": " + transfer.error.message();
+      fix = "check the network and the peer";
     }
-    if (error) {
-      const bool closed = error == asio::error::eof || error == asio::error::connection_reset ||
-                          error == asio::error::broken_pipe;
-      if (closed) {
-        throw ProtocolError(
-            "connection closed by peer " + peer + " while waiting for " + waiting_for +
-                (got > 0 ? " (after " + std::to_string(got) + " bytes of a " + part + ")"
-                         : std::string()),
-            "connection to " + peer, "the other program ended; see its output for the reason");
+    if (!(transfer.timed_out && frame_bytes == 0)) unusable_because = fault;
+    throw ProtocolError(fault, where, fix);
+  }
+
+  // Adds the peer and the wait to a fault found in a received frame, and marks the stream
+  // unusable: after a bad header the frame boundaries are lost.
+  [[noreturn]] void fail_frame(const ProtocolError& error, std::string_view waiting_for) {
+    unusable_because = error.fault();
+    throw ProtocolError(
+        error.fault(),
+        error.location() + " from " + peer + ", while waiting for " + std::string(waiting_for),
+        error.remedy());
+  }
+
+  // Reads one frame; its payload is the first payload_length bytes of payload_buffer.
+  FrameHeader receive_frame(std::optional<Milliseconds> timeout, std::string_view waiting_for) {
+    if (!socket.is_open()) {
+      throw ProtocolError(
+          "cannot wait for " + std::string(waiting_for) + ": the channel to " + peer + " is closed",
+          "connection to " + peer, "this is a bug in the caller");
+    }
+    if (!unusable_because.empty()) {
+      throw ProtocolError("cannot wait for " + std::string(waiting_for) + " from " + peer +
+                              ": the channel is unusable after an earlier fault (" +
+                              unusable_because + ")",
+                          "connection to " + peer, "close the channel and reconnect");
+    }
+    const Deadline deadline = deadline_after(timeout);
+
+    const Transfer head = read(header_bytes, deadline);
+    if (head.error || head.timed_out) {
+      fail_read(head, timeout, waiting_for, 0,
+                "received " + std::to_string(head.bytes) + " of the 20 header bytes");
+    }
+    FrameHeader header;
+    try {
+      header = decode_header(header_bytes, options.max_payload, options.major);
+    } catch (const ProtocolError& error) {
+      fail_frame(error, waiting_for);
+    }
+    peer_major = header.major;
+    peer_minor = header.minor;
+
+    const std::size_t length = header.payload_length;
+    std::size_t filled = 0;
+    while (filled < length) {
+      const std::size_t target =
+          std::min(length, std::max({payload_buffer.size(), 2 * filled, kFirstPayloadPiece}));
+      if (payload_buffer.size() < target) payload_buffer.resize(target);
+      const Transfer piece =
+          read(std::span(payload_buffer).subspan(filled, target - filled), deadline);
+      filled += piece.bytes;
+      if (piece.error || piece.timed_out) {
+        fail_read(piece, timeout, waiting_for, kHeaderSize + filled - piece.bytes,
+                  "received " + std::to_string(filled) + " of the " + std::to_string(length) +
+                      " payload bytes of a " + name(header.type) + " frame");
       }
-      throw ProtocolError("receive from " + peer + " failed while waiting for " + waiting_for +
-                              ": " + error.message(),
-                          "connection to " + peer, "check the network and the peer");
     }
+    try {
+      verify_crc(header_bytes, header, std::span(payload_buffer).first(length));
+    } catch (const ProtocolError& error) {
+      fail_frame(error, waiting_for);
+    }
+    return header;
+  }
+
+  void close() {
+    if (!socket.is_open()) return;
+    error_code ignored;
+    socket.shutdown(tcp::socket::shutdown_send, ignored);
+    // Closing with unread data makes the kernel send a reset, which may destroy the last message
+    // we sent before the peer reads it. So read and discard until the peer closes too.
+    if (options.close_linger.count() > 0 && !ignored) {
+      const Deadline deadline = Clock::now() + options.close_linger;
+      std::array<std::byte, 4096> discard;
+      while (true) {
+        bool finished = false;
+        error_code error;
+        socket.async_read_some(asio::buffer(discard), [&](const error_code& e, std::size_t) {
+          error = e;
+          finished = true;
+        });
+        run_until(context, finished, deadline, [this] {
+          error_code cancel_ignored;
+          socket.cancel(cancel_ignored);
+        });
+        if (error) break;  // end of stream, deadline or a broken connection
+      }
+    }
+    socket.close(ignored);
   }
 };
 
 Channel::Channel(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 Channel::Channel(Channel&&) noexcept = default;
-Channel& Channel::operator=(Channel&&) noexcept = default;
-Channel::~Channel() = default;
+
+Channel& Channel::operator=(Channel&& other) noexcept {
+  if (this != &other) {
+    if (impl_) impl_->close();
+    impl_ = std::move(other.impl_);
+  }
+  return *this;
+}
+
+Channel::~Channel() {
+  if (impl_) impl_->close();
+}
 
 Channel Channel::connect(const std::string& host, std::uint16_t port, Milliseconds give_up_after,
                          const ChannelOptions& options) {
-  auto impl = std::make_unique<Impl>();
-  impl->options = options;
-  const auto deadline = std::chrono::steady_clock::now() + give_up_after;
+  auto impl = std::make_unique<Impl>(options);
+  const std::string target = host + ":" + std::to_string(port);
+  const auto deadline = Clock::now() + give_up_after;
   Milliseconds pause{50};
+  int attempts = 0;
   std::string last_problem;
   while (true) {
-    boost::system::error_code error;
+    ++attempts;
     tcp::resolver resolver(impl->context);
-    const auto endpoints = resolver.resolve(host, std::to_string(port), error);
-    if (!error) {
-      bool done = false;
-      asio::async_connect(impl->socket, endpoints,
-                          [&](const boost::system::error_code& e, const tcp::endpoint&) {
-                            error = e;
-                            done = true;
-                          });
-      const auto left =
-          std::chrono::duration_cast<Milliseconds>(deadline - std::chrono::steady_clock::now());
-      const bool in_time = run_until(impl->context, done, std::max(left, Milliseconds{1}), [&] {
-        boost::system::error_code ignored;
+    tcp::resolver::results_type endpoints;
+    error_code error;
+    bool finished = false;
+    resolver.async_resolve(host, std::to_string(port),
+                           [&](const error_code& e, tcp::resolver::results_type results) {
+                             error = e;
+                             endpoints = std::move(results);
+                             finished = true;
+                           });
+    run_until(impl->context, finished, deadline, [&] { resolver.cancel(); });
+    if (error) {
+      if (error != asio::error::operation_aborted || last_problem.empty()) {
+        last_problem = error == asio::error::operation_aborted
+                           ? "name resolution did not finish in time"
+                           : "cannot resolve '" + host + "': " + error.message();
+      }
+    } else {
+      finished = false;
+      asio::async_connect(impl->socket, endpoints, [&](const error_code& e, const tcp::endpoint&) {
+        error = e;
+        finished = true;
+      });
+      run_until(impl->context, finished, deadline, [&] {
+        error_code ignored;
         impl->socket.close(ignored);
       });
-      if (in_time && !error) {
-        impl->configure();
+      if (!error) {
+        impl->configure_connected_socket();
         return Channel(std::move(impl));
       }
-      last_problem = in_time ? error.message() : "connection attempt timed out";
-      boost::system::error_code ignored;
+      // An attempt cut short by the deadline says less than the refusal before it.
+      if (error != asio::error::operation_aborted || last_problem.empty()) {
+        last_problem =
+            error == asio::error::operation_aborted ? "no answer in time" : error.message();
+      }
+      error_code ignored;
       impl->socket.close(ignored);
-    } else {
-      last_problem = "cannot resolve host: " + error.message();
     }
-    if (std::chrono::steady_clock::now() + pause > deadline) break;
-    std::this_thread::sleep_for(pause);
+    const auto left = deadline - Clock::now();
+    if (left <= Clock::duration::zero()) break;
+    std::this_thread::sleep_for(std::min<Clock::duration>(pause, left));
+    if (Clock::now() >= deadline) break;
     pause = std::min(pause * 2, Milliseconds{1000});
   }
-  throw ProtocolError("cannot connect to fsi-server at " + host + ":" + std::to_string(port) +
-                          " within " + seconds_text(give_up_after) + " (" + last_problem + ")",
-                      "--server " + host + ":" + std::to_string(port),
-                      "start fsi-server first (it prints its port), check host, port and "
-                      "firewall, or raise --connect-timeout");
+  throw ProtocolError("cannot connect to fsi-server at " + target + " within " +
+                          duration_text(give_up_after) + " (" + std::to_string(attempts) +
+                          " attempts; last: " + last_problem + ")",
+                      "connecting to " + target,
+                      "check that fsi-server is running and listening on " + target +
+                          " (it prints its address and port when it starts), that host and "
+                          "port are right, and that no firewall blocks the port; or allow more "
+                          "time to connect");
 }
 
 void Channel::send(MessageType type, std::span<const std::byte> payload) {
-  const auto header = encode_header(type, payload, impl_->options.major, impl_->options.minor);
-  const std::array<asio::const_buffer, 2> buffers{asio::buffer(header.data(), header.size()),
-                                                  asio::buffer(payload.data(), payload.size())};
-  boost::system::error_code error;
-  asio::write(impl_->socket, buffers, error);
-  if (error) {
-    throw ProtocolError("cannot send " + name(type) + " to " + impl_->peer + ": " + error.message(),
-                        "connection to " + impl_->peer,
-                        "the other program ended; see its output for the reason");
+  Impl& impl = *impl_;
+  if (!impl.socket.is_open()) {
+    throw ProtocolError(
+        "cannot send " + name(type) + ": the channel to " + impl.peer + " is closed",
+        "connection to " + impl.peer, "this is a bug in the caller");
   }
+  if (!impl.send_unusable_because.empty()) {
+    throw ProtocolError("cannot send " + name(type) + " to " + impl.peer + ": " +
+                            impl.send_unusable_because + ", so the peer can no longer find frames",
+                        "connection to " + impl.peer, "close the channel and reconnect");
+  }
+  const auto header = encode_header(type, payload, impl.options.major, impl.options.minor);
+  const std::array<asio::const_buffer, 2> pieces{asio::buffer(header.data(), header.size()),
+                                                 asio::buffer(payload.data(), payload.size())};
+  Transfer transfer;
+  if (!impl.options.send_timeout) {
+    asio::write(impl.socket, pieces, transfer.error);
+  } else {
+    bool finished = false;
+    asio::async_write(impl.socket, pieces, [&](const error_code& error, std::size_t bytes) {
+      transfer.error = error;
+      transfer.bytes = bytes;
+      finished = true;
+    });
+    const bool expired =
+        run_until(impl.context, finished, deadline_after(impl.options.send_timeout), [&] {
+          error_code ignored;
+          impl.socket.cancel(ignored);
+        });
+    transfer.timed_out = expired && transfer.error == asio::error::operation_aborted;
+  }
+  if (!transfer.error && !transfer.timed_out) return;
+  const std::string where = "connection to " + impl.peer;
+  if (transfer.timed_out) {
+    // Part of the frame may be out; the peer can no longer find frame boundaries.
+    impl.send_unusable_because = "an earlier send timed out part-way";
+    throw ProtocolError("timed out after " + duration_text(*impl.options.send_timeout) +
+                            " sending a " + name(type) + " frame of " +
+                            std::to_string(kHeaderSize + payload.size()) + " bytes to " +
+                            impl.peer + " (" + std::to_string(transfer.bytes) + " sent)",
+                        where, "the peer does not read; check that it is alive");
+  }
+  if (is_disconnect(transfer.error)) {
+    throw ProtocolError("connection closed by peer " + impl.peer + " while sending " + name(type),
+                        where, kPeerEnded);
+  }
+  throw ProtocolError(
+      "sending " + name(type) + " to " + impl.peer + " failed: " + transfer.error.message(), where,
+      "check the network and the peer");
 }
 
-Frame Channel::receive(std::optional<Milliseconds> timeout, const std::string& waiting_for) {
+void Channel::send(const Message& message) {
+  send(type_of(message), encode(message));
+}
+
+Frame Channel::receive(std::optional<Milliseconds> timeout, std::string_view waiting_for) {
   Impl& impl = *impl_;
-  const auto started = std::chrono::steady_clock::now();
-  impl.read_exactly(impl.header_bytes, timeout, waiting_for, "frame header");
   Frame frame;
-  frame.header = decode_header(impl.header_bytes, impl.options.max_payload, impl.options.major);
-  impl.peer_major = frame.header.major;
-  impl.peer_minor = frame.header.minor;
-  frame.payload.resize(frame.header.payload_length);
-  std::optional<Milliseconds> left = timeout;
-  if (timeout) {
-    const auto spent =
-        std::chrono::duration_cast<Milliseconds>(std::chrono::steady_clock::now() - started);
-    left = std::max(*timeout - spent, Milliseconds{1});
-  }
-  impl.read_exactly(frame.payload, left, waiting_for,
-                    (name(frame.header.type) + " payload").c_str());
-  verify_crc(impl.header_bytes, frame.header, frame.payload);
+  frame.header = impl.receive_frame(timeout, waiting_for);
+  // The caller keeps the payload, so the buffer goes with it instead of being copied.
+  impl.payload_buffer.resize(frame.header.payload_length);
+  frame.payload = std::move(impl.payload_buffer);
+  impl.payload_buffer = {};
   return frame;
 }
 
 Message Channel::receive_message(std::optional<Milliseconds> timeout,
-                                 const std::string& waiting_for) {
-  Frame frame = receive(timeout, waiting_for);
-  return decode(frame.header.type, frame.payload);
+                                 std::string_view waiting_for) {
+  Impl& impl = *impl_;
+  const FrameHeader header = impl.receive_frame(timeout, waiting_for);
+  const auto payload = std::span(impl.payload_buffer).first(header.payload_length);
+  try {
+    return decode(header.type, payload);
+  } catch (const ProtocolError& error) {
+    // The frame was whole, so the stream is still in step; the caller decides what to do.
+    throw ProtocolError(error.fault(), error.location() + " from " + impl.peer, error.remedy());
+  }
 }
 
-void Channel::throw_unexpected(const std::string& expected, const Message& got) const {
-  if (const auto* error = std::get_if<ErrorMessage>(&got)) {
-    throw ProtocolError("peer reported: " + error->text,
-                        "connection to " + impl_->peer + " (while waiting for " + expected + ")");
+void Channel::throw_unexpected(MessageType expected, const Message& received) const {
+  const std::string where =
+      "connection to " + impl_->peer + ", while waiting for " + name(expected);
+  if (const auto* error = std::get_if<ErrorMessage>(&received)) {
+    throw PeerReportedError(error->code, error->text, where);
   }
-  throw ProtocolError("expected " + expected + " but received " + name(type_of(got)),
-                      "connection to " + impl_->peer,
-                      "use matching fsi-server and fsi-client releases");
+  throw ProtocolError(
+      "expected a " + name(expected) + " message but received " + name(type_of(received)), where,
+      "use matching releases of fsi-server and fsi-client");
 }
 
 std::string Channel::peer_description() const {
@@ -221,11 +443,11 @@ std::uint16_t Channel::peer_major() const {
 std::uint16_t Channel::peer_minor() const {
   return impl_->peer_minor;
 }
-
+bool Channel::is_open() const {
+  return impl_ && impl_->socket.is_open();
+}
 void Channel::close() {
-  boost::system::error_code ignored;
-  impl_->socket.shutdown(tcp::socket::shutdown_both, ignored);
-  impl_->socket.close(ignored);
+  if (impl_) impl_->close();
 }
 
 struct Listener::Impl {
@@ -233,17 +455,20 @@ struct Listener::Impl {
   tcp::acceptor acceptor{context};
   ChannelOptions options;
   std::string address;
+  std::uint16_t port = 0;
 };
 
 Listener::Listener(const std::string& address, std::uint16_t port, const ChannelOptions& options)
     : impl_(std::make_unique<Impl>()) {
   impl_->options = options;
   impl_->address = address;
-  boost::system::error_code error;
+  const std::string where = "listening on " + address + ":" + std::to_string(port);
+  error_code error;
   const auto ip = asio::ip::make_address(address, error);
   if (error) {
-    throw fsi::Error("'" + address + "' is not an IP address", "--listen",
-                     "give an address such as 127.0.0.1 or 0.0.0.0");
+    throw fsi::Error("'" + address + "' is not a numeric IP address", where,
+                     "give an address such as 127.0.0.1 (this host only) or 0.0.0.0 (all "
+                     "interfaces)");
   }
   const tcp::endpoint endpoint(ip, port);
   impl_->acceptor.open(endpoint.protocol(), error);
@@ -251,56 +476,62 @@ Listener::Listener(const std::string& address, std::uint16_t port, const Channel
   if (!error) impl_->acceptor.bind(endpoint, error);
   if (!error) impl_->acceptor.listen(asio::socket_base::max_listen_connections, error);
   if (error) {
+    std::string fix = "choose an address of this host and a free port";
+    if (error == asio::error::address_in_use) {
+      fix = "another program (perhaps another fsi-server) uses port " + std::to_string(port) +
+            "; stop it or choose another port (0 lets the system choose one)";
+    } else if (error == asio::error::access_denied) {
+      fix = "ports below 1024 need privileges; choose a port above 1023";
+    } else if (error == boost::system::errc::address_not_available) {
+      fix = address +
+            " is not an address of this host; use 127.0.0.1, 0.0.0.0 or an address "
+            "listed by 'ip addr'";
+    }
     throw fsi::Error(
-        "cannot listen on " + address + ":" + std::to_string(port) + ": " + error.message(),
-        "--listen/--port",
-        error == asio::error::address_in_use
-            ? "another program uses the port; choose another with --port (0 lets "
-              "the system choose)"
-            : "choose an address of this host and a free port");
+        "cannot listen on " + address + ":" + std::to_string(port) + ": " + error.message(), where,
+        fix);
   }
+  impl_->port = impl_->acceptor.local_endpoint(error).port();
 }
 
 Listener::Listener(Listener&&) noexcept = default;
+Listener& Listener::operator=(Listener&&) noexcept = default;
 Listener::~Listener() = default;
 
 std::uint16_t Listener::port() const {
-  return impl_->acceptor.local_endpoint().port();
+  return impl_->port;
 }
 std::string Listener::address() const {
   return impl_->address;
 }
 
 Channel Listener::accept(std::optional<Milliseconds> timeout) {
-  auto impl = std::make_unique<Channel::Impl>();
-  impl->options = impl_->options;
-  bool done = false;
-  boost::system::error_code error;
-  // The channel's socket lives in its own context; accept into a socket of the listener's context
-  // and move the native handle over.
-  tcp::socket socket(impl_->context);
-  impl_->acceptor.async_accept(socket, [&](const boost::system::error_code& e) {
+  auto channel = std::make_unique<Channel::Impl>(impl_->options);
+  const std::string where = "listening on " + impl_->address + ":" + std::to_string(impl_->port);
+  bool finished = false;
+  error_code error;
+  // The accepted socket belongs to the channel's own io_context.
+  impl_->acceptor.async_accept(channel->socket, [&](const error_code& e) {
     error = e;
-    done = true;
+    finished = true;
   });
-  const bool in_time = run_until(impl_->context, done, timeout, [&] {
-    boost::system::error_code ignored;
+  const bool expired = run_until(impl_->context, finished, deadline_after(timeout), [this] {
+    error_code ignored;
     impl_->acceptor.cancel(ignored);
   });
-  if (!in_time) {
-    throw ProtocolError("no fsi-client connected within " + seconds_text(*timeout),
-                        "listening on " + impl_->address + ":" + std::to_string(port()),
-                        "start the client (mpirun -np N fsi-client --server HOST:" +
-                            std::to_string(port()) + ") or raise --accept-timeout");
+  if (expired && error == asio::error::operation_aborted) {
+    throw ProtocolError(
+        "no fsi-client connected within " + duration_text(*timeout), where,
+        "start the client (mpirun -np N fsi-client --server HOST:" + std::to_string(impl_->port) +
+            "), check that it can reach this address (firewall), or allow more "
+            "time");
   }
   if (error) {
-    throw ProtocolError("accepting a connection failed: " + error.message(),
-                        "listening on " + impl_->address + ":" + std::to_string(port()));
+    throw ProtocolError("accepting a connection failed: " + error.message(), where,
+                        "check the system's limits on open files and connections");
   }
-  const auto protocol = socket.local_endpoint().protocol();
-  impl->socket.assign(protocol, socket.release());
-  impl->configure();
-  return Channel(std::move(impl));
+  channel->configure_connected_socket();
+  return Channel(std::move(channel));
 }
 
 }  // namespace fsi::protocol

@@ -1,34 +1,45 @@
+#include "fsi/protocol/frame.hpp"
+
 #include <cstdio>
 #include <cstring>
-
-#include "fsi/protocol/frame.hpp"
+#include <limits>
 
 namespace fsi::protocol {
 namespace {
 
-void put16(std::byte* out, std::uint16_t value) {
-  out[0] = std::byte(value & 0xFF);
-  out[1] = std::byte(value >> 8);
+// Header fields are written byte by byte, so the header is little-endian on any host.
+void store_u16(std::byte* out, std::uint16_t value) {
+  out[0] = static_cast<std::byte>(value & 0xFFu);
+  out[1] = static_cast<std::byte>(value >> 8);
 }
-void put32(std::byte* out, std::uint32_t value) {
+void store_u32(std::byte* out, std::uint32_t value) {
   for (int k = 0; k < 4; ++k)
-    out[k] = std::byte((value >> (8 * k)) & 0xFF);
+    out[k] = static_cast<std::byte>((value >> (8 * k)) & 0xFFu);
 }
-std::uint16_t get16(const std::byte* in) {
+std::uint16_t load_u16(const std::byte* in) {
   return static_cast<std::uint16_t>(std::to_integer<unsigned>(in[0]) |
                                     (std::to_integer<unsigned>(in[1]) << 8));
 }
-std::uint32_t get32(const std::byte* in) {
+std::uint32_t load_u32(const std::byte* in) {
   std::uint32_t value = 0;
   for (int k = 0; k < 4; ++k)
     value |= std::to_integer<std::uint32_t>(in[k]) << (8 * k);
   return value;
 }
-std::string hex(std::uint32_t value) {
+
+std::string hex32(std::uint32_t value) {
   char text[16];
-  std::snprintf(text, sizeof text, "0x%08x", value);
+  std::snprintf(text, sizeof text, "0x%08x", static_cast<unsigned>(value));
   return text;
 }
+
+std::string hex16(std::uint16_t value) {
+  char text[16];
+  std::snprintf(text, sizeof text, "0x%04x", static_cast<unsigned>(value));
+  return text;
+}
+
+constexpr const char* kMatchingReleases = "use matching releases of fsi-server and fsi-client";
 
 }  // namespace
 
@@ -61,46 +72,58 @@ std::string name(MessageType type) {
     case MessageType::Goodbye:
       return "Goodbye";
   }
-  char text[32];
-  std::snprintf(text, sizeof text, "unknown type 0x%04x", static_cast<unsigned>(type));
-  return text;
+  return "unknown type " + hex16(static_cast<std::uint16_t>(type));
 }
 
 bool is_known(MessageType type) {
-  return name(type).rfind("unknown", 0) != 0;
+  switch (type) {
+    case MessageType::Hello:
+    case MessageType::Welcome:
+    case MessageType::Error:
+    case MessageType::Setup:
+    case MessageType::Mesh:
+    case MessageType::Particles:
+    case MessageType::Ready:
+    case MessageType::Step:
+    case MessageType::Forces:
+    case MessageType::SnapshotRequest:
+    case MessageType::Snapshot:
+    case MessageType::Shutdown:
+    case MessageType::Goodbye:
+      return true;
+  }
+  return false;
 }
 
 bool is_version_independent(MessageType type) {
   return type == MessageType::Hello || type == MessageType::Error;
 }
 
-std::string version_text(std::uint16_t major, std::uint16_t minor) {
-  return "protocol " + std::to_string(major) + "." + std::to_string(minor);
-}
-
 std::array<std::byte, kHeaderSize> encode_header(MessageType type,
                                                  std::span<const std::byte> payload,
                                                  std::uint16_t major, std::uint16_t minor) {
-  if (payload.size() > 0xFFFFFFFFu) {
-    throw ProtocolError(name(type) + " payload of " + std::to_string(payload.size()) +
-                            " bytes exceeds the 4 GiB frame limit",
-                        "sending", "request smaller snapshots");
+  if (payload.size() > std::numeric_limits<std::uint32_t>::max()) {
+    throw ProtocolError("cannot send a " + name(type) + " payload of " +
+                            std::to_string(payload.size()) +
+                            " bytes: a frame carries less than 4 GiB",
+                        "encoding a " + name(type) + " frame",
+                        "send less data per message (e.g. snapshots of fewer particles)");
   }
   std::array<std::byte, kHeaderSize> header{};
-  std::memcpy(header.data(), kMagic.data(), 4);
-  put16(&header[4], major);
-  put16(&header[6], minor);
-  put16(&header[8], static_cast<std::uint16_t>(type));
-  put16(&header[10], 0);
-  put32(&header[12], static_cast<std::uint32_t>(payload.size()));
-  const std::uint32_t crc = crc32c(payload, crc32c(std::span(header).first(16)));
-  put32(&header[16], crc);
+  std::memcpy(header.data(), kMagic.data(), kMagic.size());
+  store_u16(&header[4], major);
+  store_u16(&header[6], minor);
+  store_u16(&header[8], static_cast<std::uint16_t>(type));
+  store_u16(&header[10], 0);
+  store_u32(&header[12], static_cast<std::uint32_t>(payload.size()));
+  store_u32(&header[16], crc32c(payload, crc32c(std::span(header).first(16))));
   return header;
 }
 
 std::vector<std::byte> encode_frame(MessageType type, std::span<const std::byte> payload,
                                     std::uint16_t major, std::uint16_t minor) {
   const auto header = encode_header(type, payload, major, minor);
+  // Sized once and filled by memcpy: GCC 12 warns falsely (-Wstringop-overflow) on inserts here.
   std::vector<std::byte> frame(kHeaderSize + payload.size());
   std::memcpy(frame.data(), header.data(), kHeaderSize);
   if (!payload.empty()) std::memcpy(frame.data() + kHeaderSize, payload.data(), payload.size());
@@ -109,41 +132,48 @@ std::vector<std::byte> encode_frame(MessageType type, std::span<const std::byte>
 
 FrameHeader decode_header(std::span<const std::byte, kHeaderSize> bytes, std::size_t max_payload,
                           std::uint16_t expected_major) {
-  if (std::memcmp(bytes.data(), kMagic.data(), 4) != 0) {
+  if (std::memcmp(bytes.data(), kMagic.data(), kMagic.size()) != 0) {
     throw ProtocolError(
-        "bad frame magic (expected \"FSIP\"): the peer does not speak the fsi "
-        "protocol or the stream is out of step",
-        "frame header", "connect fsi-client to fsi-server's port");
+        "bad frame magic " + hex32(load_u32(bytes.data())) +
+            " (expected \"FSIP\"): the peer does not speak the fsi protocol, or the byte "
+            "stream lost its place",
+        "frame header",
+        "make sure fsi-client connects to fsi-server's port and nothing else talks to it");
   }
   FrameHeader header;
-  header.major = get16(&bytes[4]);
-  header.minor = get16(&bytes[6]);
-  header.type = static_cast<MessageType>(get16(&bytes[8]));
-  header.flags = get16(&bytes[10]);
-  header.payload_length = get32(&bytes[12]);
-  header.crc = get32(&bytes[16]);
-  if (!is_known(header.type)) {
-    throw ProtocolError(
-        name(header.type) + " (not in " + version_text(kMajorVersion, kMinorVersion) + ")",
-        "frame header", "use matching fsi-server and fsi-client releases");
-  }
-  if (header.major != expected_major && !is_version_independent(header.type)) {
-    throw ProtocolError(name(header.type) + " frame of " +
-                            version_text(header.major, header.minor) + ", this side speaks " +
+  header.major = load_u16(&bytes[4]);
+  header.minor = load_u16(&bytes[6]);
+  header.type = static_cast<MessageType>(load_u16(&bytes[8]));
+  header.flags = load_u16(&bytes[10]);
+  header.payload_length = load_u32(&bytes[12]);
+  header.crc = load_u32(&bytes[16]);
+  const bool same_major = header.major == expected_major;
+  // A peer of another major version may use types and flags we do not know; its version is the
+  // fault worth reporting, so it is checked first.
+  if (!same_major && !is_version_independent(header.type)) {
+    throw ProtocolError(name(header.type) + " frame of protocol " +
+                            version_text(header.major, header.minor) + ", but this side speaks " +
                             version_text(expected_major, kMinorVersion),
-                        "frame header", "use matching fsi-server and fsi-client releases");
+                        "frame header", kMatchingReleases);
   }
-  if (header.flags != 0) {
-    throw ProtocolError(name(header.type) + " frame has flags " + hex(header.flags) +
-                            "; no flags are defined in " +
-                            version_text(kMajorVersion, kMinorVersion),
-                        "frame header", "use matching fsi-server and fsi-client releases");
+  if (!is_known(header.type)) {
+    throw ProtocolError("frame of " + name(header.type) + ", which protocol " +
+                            version_text(kMajorVersion, kMinorVersion) + " does not define",
+                        "frame header", kMatchingReleases);
+  }
+  if (same_major && header.flags != 0) {
+    throw ProtocolError(name(header.type) + " frame has flags " + hex16(header.flags) +
+                            "; protocol " + version_text(kMajorVersion, kMinorVersion) +
+                            " defines none, so they must be 0",
+                        "frame header", kMatchingReleases);
   }
   if (header.payload_length > max_payload) {
-    throw ProtocolError(
-        name(header.type) + " frame announces " + std::to_string(header.payload_length) +
-            " payload bytes, more than the " + std::to_string(max_payload) + " allowed",
-        "frame header", "the peer is faulty, or raise the payload limit");
+    throw ProtocolError(name(header.type) + " frame announces a payload of " +
+                            std::to_string(header.payload_length) + " bytes, more than the " +
+                            std::to_string(max_payload) + " bytes this side accepts",
+                        "frame header",
+                        "if the peer is genuine, raise the payload limit (ChannelOptions::"
+                        "max_payload) or send smaller messages; otherwise the peer is faulty");
   }
   return header;
 }
@@ -152,31 +182,34 @@ void verify_crc(std::span<const std::byte, kHeaderSize> header_bytes, const Fram
                 std::span<const std::byte> payload) {
   const std::uint32_t computed = crc32c(payload, crc32c(header_bytes.first(16)));
   if (computed != header.crc) {
-    throw ProtocolError("CRC-32C mismatch in " + name(header.type) + " frame: computed " +
-                            hex(computed) + ", received " + hex(header.crc),
-                        "frame of " + std::to_string(payload.size()) + " payload bytes",
-                        "the data was corrupted in transit; check the network");
+    throw ProtocolError(
+        "CRC-32C mismatch in " + name(header.type) + " frame: computed " + hex32(computed) +
+            ", received " + hex32(header.crc),
+        name(header.type) + " frame with " + std::to_string(payload.size()) + " payload bytes",
+        "the data was damaged on the way or the peer is faulty; check the "
+        "network and the peer's version");
   }
 }
 
-Frame decode_frame(std::span<const std::byte> bytes, std::size_t max_payload) {
+Frame decode_frame(std::span<const std::byte> bytes, std::size_t max_payload,
+                   std::uint16_t expected_major) {
   if (bytes.size() < kHeaderSize) {
-    throw ProtocolError(
-        "truncated frame: " + std::to_string(bytes.size()) + " bytes, a header alone has 20",
-        "frame header", "the peer is faulty");
+    throw ProtocolError("truncated frame: " + std::to_string(bytes.size()) +
+                            " bytes, fewer than the 20 of a header",
+                        "frame header", "the sender is faulty");
   }
   const auto header_bytes = bytes.first<kHeaderSize>();
   Frame frame;
-  frame.header = decode_header(header_bytes, max_payload);
-  const std::size_t available = bytes.size() - kHeaderSize;
-  if (available != frame.header.payload_length) {
-    throw ProtocolError((available < frame.header.payload_length ? "truncated " : "overlong ") +
-                            name(frame.header.type) + " frame: header announces " +
-                            std::to_string(frame.header.payload_length) + " payload bytes, " +
-                            std::to_string(available) + " present",
-                        "frame", "the peer is faulty");
-  }
+  frame.header = decode_header(header_bytes, max_payload, expected_major);
   const auto payload = bytes.subspan(kHeaderSize);
+  if (payload.size() != frame.header.payload_length) {
+    throw ProtocolError(
+        std::string(payload.size() < frame.header.payload_length ? "truncated " : "overlong ") +
+            name(frame.header.type) + " frame: the header announces " +
+            std::to_string(frame.header.payload_length) + " payload bytes, " +
+            std::to_string(payload.size()) + " are present",
+        name(frame.header.type) + " frame", "the sender is faulty");
+  }
   verify_crc(header_bytes, frame.header, payload);
   frame.payload.assign(payload.begin(), payload.end());
   return frame;

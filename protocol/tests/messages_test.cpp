@@ -5,131 +5,66 @@
 #include <cstring>
 #include <limits>
 #include <random>
+#include <string>
+#include <vector>
 
 #include "fsi/protocol/messages.hpp"
 
 namespace fsi::protocol {
 namespace {
 
-template <class T>
-T round_trip(const T& message) {
-  const auto payload = encode(message);
-  Message decoded = decode(T::kType, payload);
-  EXPECT_EQ(type_of(decoded), T::kType);
-  return std::get<T>(decoded);
+using Limits = std::numeric_limits<double>;
+
+// One fully populated example of every message.
+Hello sample_hello() {
+  return {"0.1.0", "node-7", 4, 0};
+}
+Welcome sample_welcome() {
+  return {0, 0, "0.1.0", "tank-2024"};
+}
+ErrorMessage sample_error() {
+  return {ErrorCode::LiggghtsError, "ERROR: Illegal pair_style"};
+}
+Setup sample_setup() {
+  return {2,          5e-6,
+          4000,       {{"h", "0.000614"}, {"title", "tank with space"}, {"empty", ""}},
+          "tank.in1", "dimension 2\n# comment \xc3\xa4\n",
+          "tank.in2", ""};
+}
+Mesh sample_mesh() {
+  return {2, 2, 1, 0.001, {0, 0, 1, 0, 1, 1}, {0.5, 0, 0.5, 0, 0, 0}, {0, 1, 1, 2}};
+}
+Particles sample_particles() {
+  return {2, 1, 1e-4, 1000, {0.1, 0.2, 0.3, 0.4}, {0, -1, 0, 1}};
+}
+Ready sample_ready() {
+  return {13892, "LIGGGHTS-PUBLIC 3.8.0", 1.5, 30.25};
+}
+Step sample_step() {
+  return {7, 0.125, 5e-6, {1, 2, 3, 4}, {-1, -2, -3, -4}};
+}
+Forces sample_forces() {
+  return {
+      7, {0.5, -0.25, 1e-9, 3}, {{1, 2, 3}, {-1, -2, -3}, 17.5, 42, 0.75, 13892, 0.5, 0.1, 0.01}};
+}
+SnapshotRequest sample_snapshot_request() {
+  return {99};
+}
+Snapshot sample_snapshot() {
+  return {100, 0.0005, 2, {5, 9}, {0, 1, 2, 3}, {4, 5, 6, 7}, {1000, 1001}, {0, 12.5}};
+}
+Shutdown sample_shutdown() {
+  return {"end time reached"};
+}
+Goodbye sample_goodbye() {
+  return {140000, 3600.5};
 }
 
-std::vector<double> tricky_doubles() {
-  std::vector<double> values{0.0,
-                             -0.0,
-                             1.0,
-                             -1.5,
-                             std::numeric_limits<double>::infinity(),
-                             -std::numeric_limits<double>::infinity(),
-                             std::numeric_limits<double>::denorm_min(),
-                             -std::numeric_limits<double>::denorm_min(),
-                             std::numeric_limits<double>::min() / 3.0,
-                             std::numeric_limits<double>::max(),
-                             std::bit_cast<double>(0x7FF8000000000001ull),   // quiet NaN payload
-                             std::bit_cast<double>(0x7FF0000000000BADull),   // signalling NaN
-                             std::bit_cast<double>(0xFFF80000DEADBEEFull)};  // negative NaN
-  std::mt19937_64 rng(11);
-  for (int i = 0; i < 2000; ++i)
-    values.push_back(std::bit_cast<double>(rng()));
-  return values;
-}
-
-void expect_bits_equal(const std::vector<double>& a, const std::vector<double>& b) {
-  ASSERT_EQ(a.size(), b.size());
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    ASSERT_EQ(std::bit_cast<std::uint64_t>(a[i]), std::bit_cast<std::uint64_t>(b[i])) << i;
-  }
-}
-
-TEST(Messages, HandshakeAndControlRoundTrip) {
-  Hello hello{"0.1.0", "node-7", 4, 0};
-  auto h = round_trip(hello);
-  EXPECT_EQ(h.software_version, "0.1.0");
-  EXPECT_EQ(h.host, "node-7");
-  EXPECT_EQ(h.mpi_ranks, 4u);
-  Welcome welcome{0, 0, "0.1.0", "run-1"};
-  EXPECT_EQ(round_trip(welcome).run_name, "run-1");
-  ErrorMessage error{ErrorCode::LiggghtsError, "ERROR: bad pair style"};
-  auto e = round_trip(error);
-  EXPECT_EQ(e.code, ErrorCode::LiggghtsError);
-  EXPECT_EQ(e.text, error.text);
-  EXPECT_EQ(round_trip(SnapshotRequest{42}).step, 42u);
-  EXPECT_EQ(round_trip(Shutdown{"end time reached"}).reason, "end time reached");
-  auto bye = round_trip(Goodbye{1000, 12.5});
-  EXPECT_EQ(bye.steps_done, 1000u);
-  EXPECT_EQ(bye.seconds_total, 12.5);
-  auto ready = round_trip(Ready{2000, "LIGGGHTS 3.8", 1.5, 30.25});
-  EXPECT_EQ(ready.particle_count, 2000u);
-  EXPECT_EQ(ready.seconds_equilibration, 30.25);
-}
-
-TEST(Messages, SetupRoundTrip) {
-  protocol::Setup setup;
-  setup.dimension = 2;
-  setup.time_step = 5e-6;
-  setup.equilibration_steps = 4000;
-  setup.liggghts_variables = {{"h", "0.000614"}, {"name", "with space"}};
-  setup.script1_name = "a.in1";
-  setup.script1_text = "dimension 2\n# comment\n";
-  setup.script2_name = "a.in2";
-  setup.script2_text = "";
-  const protocol::Setup back = round_trip(setup);
-  EXPECT_EQ(back.time_step, 5e-6);
-  EXPECT_EQ(back.equilibration_steps, 4000u);
-  ASSERT_EQ(back.liggghts_variables.size(), 2u);
-  EXPECT_EQ(back.liggghts_variables[1].value, "with space");
-  EXPECT_EQ(back.script1_text, setup.script1_text);
-}
-
-TEST(Messages, ArraysAreBitExact) {
-  const auto values = tricky_doubles();
-  Step step{7, 0.125, 5e-6, values, values};
-  const Step back = round_trip(step);
-  expect_bits_equal(back.positions, values);
-  expect_bits_equal(back.velocities, values);
-
-  Forces forces;
-  forces.step = 9;
-  forces.forces = values;
-  forces.diagnostics.force_on_fluid = {values[10], values[1], values[6]};
-  forces.diagnostics.particles_in_range = 123;
-  forces.diagnostics.closest_approach_over_r0 = 0.25;
-  const Forces f = round_trip(forces);
-  expect_bits_equal(f.forces, values);
-  EXPECT_EQ(std::bit_cast<std::uint64_t>(f.diagnostics.force_on_fluid[0]),
-            std::bit_cast<std::uint64_t>(values[10]));
-  EXPECT_EQ(f.diagnostics.particles_in_range, 123u);
-
-  Mesh mesh;
-  mesh.dimension = 2;
-  mesh.dynamic_vertex_count = 2;
-  mesh.refinement_resolution = 0.001;
-  mesh.positions = {0, 0, 1, 0, 1, 1};
-  mesh.velocities = {0, 0, 0, 0, -0.0, 0};
-  mesh.element_vertices = {0, 1, 1, 2};
-  const Mesh m = round_trip(mesh);
-  EXPECT_EQ(m.vertex_count(), 3u);
-  EXPECT_EQ(m.element_vertices, mesh.element_vertices);
-  EXPECT_TRUE(std::signbit(m.velocities[4]));
-
-  Snapshot snapshot;
-  snapshot.dimension = 2;
-  snapshot.ids = {1, 2};
-  snapshot.positions = {values[0], values[1], values[2], values[3]};
-  snapshot.velocities = {1, 2, 3, 4};
-  snapshot.density = {1000, 1001};
-  snapshot.pressure = {values[11], 3};
-  const Snapshot s = round_trip(snapshot);
-  EXPECT_EQ(s.ids, snapshot.ids);
-  expect_bits_equal(s.pressure, snapshot.pressure);
-
-  Particles particles{2, 1, 1e-4, 1000, {0.1, 0.2}, {0, 0}};
-  EXPECT_EQ(round_trip(particles).positions, particles.positions);
+std::vector<Message> all_samples() {
+  return {sample_hello(),  sample_welcome(),          sample_error(),    sample_setup(),
+          sample_mesh(),   sample_particles(),        sample_ready(),    sample_step(),
+          sample_forces(), sample_snapshot_request(), sample_snapshot(), sample_shutdown(),
+          sample_goodbye()};
 }
 
 std::string decode_error(MessageType type, std::span<const std::byte> payload) {
@@ -138,66 +73,276 @@ std::string decode_error(MessageType type, std::span<const std::byte> payload) {
   } catch (const ProtocolError& error) {
     return error.what();
   }
-  return "";
+  return "(no error)";
 }
 
-TEST(Messages, EveryTruncationIsRejectedWithFieldAndOffset) {
-  Mesh mesh;
-  mesh.dynamic_vertex_count = 1;
-  mesh.refinement_resolution = 0.5;
-  mesh.positions = {0, 0, 1, 0};
-  mesh.velocities = {0, 0, 0, 0};
-  mesh.element_vertices = {0, 1};
-  const auto payload = encode(mesh);
-  for (std::size_t length = 0; length < payload.size(); ++length) {
-    const std::string text = decode_error(MessageType::Mesh, std::span(payload).first(length));
-    ASSERT_NE(text.find("malformed Mesh message"), std::string::npos) << length << ": " << text;
-    ASSERT_NE(text.find("payload byte"), std::string::npos) << text;
+template <class T>
+std::string decode_error(const T& message) {
+  return decode_error(T::kType, encode(message));
+}
+
+TEST(ProtocolMessages, EveryMessageRoundTrips) {
+  const auto samples = all_samples();
+  ASSERT_EQ(samples.size(), std::variant_size_v<Message>);
+  for (const Message& sample : samples) {
+    const MessageType type = type_of(sample);
+    const Message back = decode(type, encode(sample));
+    EXPECT_EQ(back, sample) << name(type);
+    EXPECT_EQ(type_of(back), type);
   }
-  auto longer = payload;
-  longer.push_back(std::byte{0});
-  EXPECT_NE(decode_error(MessageType::Mesh, longer).find("trailing"), std::string::npos);
 }
 
-TEST(Messages, CountsAreCheckedBeforeAllocation) {
-  Step step{1, 0, 1e-5, {1, 2}, {3, 4}};
-  auto payload = encode(step);
-  // The positions count sits after step, time and time_step (24 bytes): claim 2^60 elements.
-  const std::uint64_t huge = 1ull << 60;
-  std::memcpy(payload.data() + 24, &huge, sizeof huge);
-  const std::string text = decode_error(MessageType::Step, payload);
-  EXPECT_NE(text.find("'positions' announces 1152921504606846976 elements"), std::string::npos)
-      << text;
+TEST(ProtocolMessages, TypedEncodeAndDecodeAgreeWithTheVariantOnes) {
+  EXPECT_EQ(encode(sample_mesh()), encode(Message{sample_mesh()}));
+  EXPECT_EQ(decode_as<Step>(encode(sample_step())), sample_step());
+  EXPECT_EQ(decode_as<protocol::Setup>(encode(sample_setup())).liggghts_variables[1].value,
+            "tank with space");
 }
 
-TEST(Messages, InconsistentContentIsRejected) {
-  Mesh mesh;
-  mesh.dynamic_vertex_count = 1;
-  mesh.refinement_resolution = 0.5;
-  mesh.positions = {0, 0, 1, 0};
-  mesh.velocities = {0, 0, 0, 0};
-  mesh.element_vertices = {0, 2};
-  EXPECT_NE(decode_error(MessageType::Mesh, encode(mesh)).find("refers to vertex 2"),
-            std::string::npos);
-  mesh.element_vertices = {0, 1};
-  mesh.dynamic_vertex_count = 3;
-  EXPECT_NE(decode_error(MessageType::Mesh, encode(mesh)).find("dynamic_vertex_count"),
-            std::string::npos);
-  mesh.dynamic_vertex_count = 1;
-  mesh.refinement_resolution = -1;
-  EXPECT_NE(decode_error(MessageType::Mesh, encode(mesh)).find("refinement_resolution"),
-            std::string::npos);
+TEST(ProtocolMessages, PayloadSizesFollowTheSpecTables) {
+  // docs/protocol.md: fixed part + counts and elements.
+  EXPECT_EQ(encode(sample_hello()).size(), 4u + 5 + 4 + 6 + 4 + 4);
+  EXPECT_EQ(encode(sample_step()).size(), 8u + 8 + 8 + (8 + 4 * 8) + (8 + 4 * 8));
+  EXPECT_EQ(encode(sample_forces()).size(), 8u + (8 + 4 * 8) + 6 * 8 + 8 + 8 + 8 + 8 + 3 * 8);
+  EXPECT_EQ(encode(sample_mesh()).size(), 4u + 4 + 4 + 8 + (8 + 6 * 8) * 2 + (8 + 4 * 4));
+  EXPECT_EQ(encode(sample_snapshot_request()).size(), 8u);
+  EXPECT_EQ(encode(Welcome{}).size(), 2u + 4 + 4 + 4);
+}
+
+std::vector<double> awkward_doubles() {
+  std::vector<double> values{0.0,
+                             -0.0,
+                             1.0,
+                             -1.5,
+                             Limits::infinity(),
+                             -Limits::infinity(),
+                             Limits::denorm_min(),
+                             -Limits::denorm_min(),
+                             Limits::min() / 3.0,
+                             Limits::max(),
+                             Limits::lowest(),
+                             std::bit_cast<double>(0x7FF8000000000001ull),   // quiet NaN, payload
+                             std::bit_cast<double>(0x7FF0000000000BADull),   // signalling NaN
+                             std::bit_cast<double>(0xFFF80000DEADBEEFull)};  // negative NaN
+  std::mt19937_64 generator(11);
+  for (int i = 0; i < 2000; ++i)
+    values.push_back(std::bit_cast<double>(generator()));
+  return values;
+}
+
+void expect_same_bits(const std::vector<double>& expected, const std::vector<double>& actual) {
+  ASSERT_EQ(expected.size(), actual.size());
+  for (std::size_t i = 0; i < expected.size(); ++i) {
+    ASSERT_EQ(std::bit_cast<std::uint64_t>(expected[i]), std::bit_cast<std::uint64_t>(actual[i]))
+        << "value " << i;
+  }
+}
+
+void expect_same_bits(double expected, double actual) {
+  EXPECT_EQ(std::bit_cast<std::uint64_t>(expected), std::bit_cast<std::uint64_t>(actual));
+}
+
+TEST(ProtocolMessages, DoublesSurviveBitExactInArraysAndScalars) {
+  const auto values = awkward_doubles();
+  const Step step{7, values[11], 5e-6, values, values};
+  const Step step_back = decode_as<Step>(encode(step));
+  expect_same_bits(values, step_back.positions);
+  expect_same_bits(values, step_back.velocities);
+  expect_same_bits(values[11], step_back.time);
+
+  Forces forces;
+  forces.forces = values;
+  forces.diagnostics.force_on_fluid = {values[1], values[6], values[12]};
+  forces.diagnostics.seconds_contact = values[13];
+  const Forces forces_back = decode_as<Forces>(encode(forces));
+  expect_same_bits(values, forces_back.forces);
+  for (int k = 0; k < 3; ++k)
+    expect_same_bits(forces.diagnostics.force_on_fluid[k],
+                     forces_back.diagnostics.force_on_fluid[k]);
+  expect_same_bits(values[13], forces_back.diagnostics.seconds_contact);
+
   Snapshot snapshot;
-  snapshot.ids = {1, 2};
-  snapshot.positions = {0, 0};
-  EXPECT_NE(decode_error(MessageType::Snapshot, encode(snapshot)).find("'positions' has 2 values"),
+  snapshot.dimension = 2;
+  snapshot.time = values[7];
+  snapshot.ids.resize(values.size() / 2);
+  snapshot.positions.assign(values.begin(), values.begin() + 2 * snapshot.ids.size());
+  snapshot.velocities = snapshot.positions;
+  snapshot.density.assign(values.begin(), values.begin() + snapshot.ids.size());
+  snapshot.pressure = snapshot.density;
+  const Snapshot snapshot_back = decode_as<Snapshot>(encode(snapshot));
+  expect_same_bits(snapshot.positions, snapshot_back.positions);
+  expect_same_bits(snapshot.pressure, snapshot_back.pressure);
+  expect_same_bits(values[7], snapshot_back.time);
+
+  const Goodbye goodbye{1, values[12]};
+  expect_same_bits(values[12], decode_as<Goodbye>(encode(goodbye)).seconds_total);
+}
+
+TEST(ProtocolMessages, EveryTruncationOfEveryMessageIsRejected) {
+  for (const Message& sample : all_samples()) {
+    const MessageType type = type_of(sample);
+    const auto payload = encode(sample);
+    for (std::size_t length = 0; length < payload.size(); ++length) {
+      const std::string text = decode_error(type, std::span(payload).first(length));
+      ASSERT_NE(text.find("malformed " + name(type) + " message: field '"), std::string::npos)
+          << name(type) << " cut to " << length << ": " << text;
+      ASSERT_NE(text.find(name(type) + " payload byte "), std::string::npos) << text;
+    }
+  }
+}
+
+TEST(ProtocolMessages, TruncationNamesTheFieldAndItsOffset) {
+  const auto payload = encode(sample_step());
+  const std::string text = decode_error(MessageType::Step, std::span(payload).first(12));
+  EXPECT_NE(text.find("Step payload byte 8 of 12"), std::string::npos) << text;
+  EXPECT_NE(text.find("field 'time' is truncated"), std::string::npos) << text;
+  const auto setup = encode(sample_setup());
+  // Cut inside the second variable's name, which starts after 28 bytes of fixed fields and count
+  // and the 17 bytes of the first variable. (Shorter cuts fail the count check, 3 entries of at
+  // least 8 bytes, before any entry is read.)
+  const std::string inner = decode_error(MessageType::Setup, std::span(setup).first(52));
+  EXPECT_NE(inner.find("field 'liggghts_variables[1].name'"), std::string::npos) << inner;
+  EXPECT_NE(inner.find("Setup payload byte 45"), std::string::npos) << inner;
+  EXPECT_NE(inner.find("needs a string of 5 bytes, but only 3 bytes remain"), std::string::npos)
+      << inner;
+  const std::string count = decode_error(MessageType::Setup, std::span(setup).first(47));
+  EXPECT_NE(count.find("'liggghts_variables' announces 3 entries of at least 8 bytes but only 19"),
+            std::string::npos)
+      << count;
+}
+
+TEST(ProtocolMessages, TrailingBytesAreRejected) {
+  auto payload = encode(sample_goodbye());
+  payload.push_back(std::byte{0});
+  EXPECT_NE(decode_error(MessageType::Goodbye, payload).find("1 bytes follow the last field"),
             std::string::npos);
 }
 
-TEST(Messages, VersionMismatchTextNamesBothVersions) {
-  const std::string text = version_mismatch_text("client", 2, 1, "server");
-  EXPECT_NE(text.find("client speaks protocol 2.1"), std::string::npos);
-  EXPECT_NE(text.find("server speaks protocol 1.0"), std::string::npos);
+TEST(ProtocolMessages, CountsAreCheckedBeforeAllocation) {
+  auto step = encode(sample_step());
+  // The positions count follows step, time and time_step (24 bytes).
+  const std::uint64_t huge = 1ull << 60;
+  std::memcpy(step.data() + 24, &huge, sizeof huge);
+  const std::string array_text = decode_error(MessageType::Step, step);
+  EXPECT_NE(array_text.find("field 'positions' announces 1152921504606846976 elements of 8 bytes "
+                            "but only 72 bytes remain"),
+            std::string::npos)
+      << array_text;
+  EXPECT_NE(array_text.find("Step payload byte 24"), std::string::npos) << array_text;
+
+  auto shutdown = encode(sample_shutdown());
+  const std::uint32_t long_string = 0xFFFFFFFFu;
+  std::memcpy(shutdown.data(), &long_string, sizeof long_string);
+  EXPECT_NE(decode_error(MessageType::Shutdown, shutdown)
+                .find("'reason' is truncated: needs a string of 4294967295 bytes"),
+            std::string::npos);
+
+  auto setup = encode(sample_setup());
+  // The variable count follows dimension, time_step and equilibration_steps (20 bytes).
+  std::memcpy(setup.data() + 20, &huge, sizeof huge);
+  EXPECT_NE(decode_error(MessageType::Setup, setup)
+                .find("'liggghts_variables' announces 1152921504606846976 entries"),
+            std::string::npos);
+}
+
+TEST(ProtocolMessages, MeshContentIsChecked) {
+  Mesh mesh = sample_mesh();
+  mesh.element_vertices = {0, 3};
+  std::string text = decode_error(mesh);
+  EXPECT_NE(text.find("'element_vertices' entry 1 refers to vertex 3 of only 3"), std::string::npos)
+      << text;
+  // element_vertices starts after 4+4+4+8 bytes and two arrays of 8 + 6*8 bytes.
+  EXPECT_NE(text.find("Mesh payload byte 132"), std::string::npos) << text;
+
+  mesh = sample_mesh();
+  mesh.element_vertices = {0, 1, 2};
+  EXPECT_NE(decode_error(mesh).find("not a multiple of the 2 vertices per element"),
+            std::string::npos);
+
+  mesh = sample_mesh();
+  mesh.dynamic_vertex_count = 4;
+  EXPECT_NE(decode_error(mesh).find("'dynamic_vertex_count' is 4, more than the 3 vertices"),
+            std::string::npos);
+
+  for (double bad : {0.0, -1.0, Limits::infinity(), Limits::quiet_NaN()}) {
+    mesh = sample_mesh();
+    mesh.refinement_resolution = bad;
+    EXPECT_NE(decode_error(mesh).find("'refinement_resolution' is"), std::string::npos) << bad;
+  }
+
+  mesh = sample_mesh();
+  mesh.refinement_option = 4;
+  EXPECT_NE(decode_error(mesh).find("'refinement_option' is 4"), std::string::npos);
+
+  mesh = sample_mesh();
+  mesh.positions.push_back(2);
+  EXPECT_NE(decode_error(mesh).find("'positions' has 7 values, not a multiple of the dimension 2"),
+            std::string::npos);
+
+  mesh = sample_mesh();
+  mesh.velocities.pop_back();
+  EXPECT_NE(decode_error(mesh).find("'velocities' has 5 values, expected 6"), std::string::npos);
+
+  mesh = sample_mesh();
+  mesh.dimension = 3;
+  mesh.positions = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  mesh.velocities.assign(9, 0.0);
+  mesh.element_vertices = {0, 1, 2};
+  EXPECT_EQ(decode_as<Mesh>(encode(mesh)), mesh);
+}
+
+TEST(ProtocolMessages, OtherContentIsChecked) {
+  protocol::Setup setup = sample_setup();
+  setup.dimension = 4;
+  EXPECT_NE(decode_error(setup).find("'dimension' is 4; only 2 and 3 exist"), std::string::npos);
+  setup = sample_setup();
+  setup.time_step = 0.0;
+  EXPECT_NE(decode_error(setup).find("'time_step' is 0;"), std::string::npos);
+  setup = sample_setup();
+  setup.liggghts_variables[0].name = "h; shell";
+  EXPECT_NE(decode_error(setup).find("entry 0 has the name 'h; shell'"), std::string::npos);
+  setup = sample_setup();
+  setup.liggghts_variables[1].value = "a\nrun 1000";
+  EXPECT_NE(decode_error(setup).find("line break"), std::string::npos);
+
+  Particles particles = sample_particles();
+  particles.mass = -1;
+  EXPECT_NE(decode_error(particles).find("'mass' is -1"), std::string::npos);
+  particles = sample_particles();
+  particles.velocities.pop_back();
+  EXPECT_NE(decode_error(particles).find("'velocities' has 3 values, expected 4"),
+            std::string::npos);
+
+  Step step = sample_step();
+  step.velocities.push_back(0);
+  EXPECT_NE(decode_error(step).find("'velocities' has 5 values, expected 4"), std::string::npos);
+  step = sample_step();
+  step.time_step = Limits::quiet_NaN();
+  EXPECT_NE(decode_error(step).find("'time_step' is nan"), std::string::npos);
+
+  Snapshot snapshot = sample_snapshot();
+  snapshot.positions.pop_back();
+  EXPECT_NE(decode_error(snapshot).find("'positions' has 3 values, expected 4 (2 per id)"),
+            std::string::npos);
+  snapshot = sample_snapshot();
+  snapshot.pressure.push_back(1);
+  EXPECT_NE(decode_error(snapshot).find("'pressure' has 3 values, expected 2"), std::string::npos);
+}
+
+TEST(ProtocolMessages, UnknownErrorCodesAndEmptyValuesDecode) {
+  ErrorMessage future{static_cast<ErrorCode>(99), "a code from a later version"};
+  const ErrorMessage back = decode_as<ErrorMessage>(encode(future));
+  EXPECT_EQ(static_cast<std::uint32_t>(back.code), 99u);
+  EXPECT_EQ(name(back.code), "code 99");
+  EXPECT_EQ(name(ErrorCode::VersionMismatch), "VersionMismatch");
+  EXPECT_EQ(decode_as<Shutdown>(encode(Shutdown{})), Shutdown{});
+  Snapshot empty;
+  EXPECT_EQ(decode_as<Snapshot>(encode(empty)), empty);
+}
+
+TEST(ProtocolMessages, UnknownTypeCannotBeDecoded) {
+  EXPECT_NE(decode_error(static_cast<MessageType>(0x50), {}).find("unknown type 0x0050"),
+            std::string::npos);
 }
 
 }  // namespace

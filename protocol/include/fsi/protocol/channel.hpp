@@ -1,15 +1,19 @@
 #pragma once
-// A framed, checked message connection over TCP (Boost.Asio behind a pimpl). Every receive can
-// carry a timeout; a closed connection, a timeout or a malformed frame throws ProtocolError that
-// names the fault and what was being waited for.
+// A framed, checked message connection over TCP. Boost.Asio stays behind a pimpl. The API is
+// synchronous; every wait can carry a timeout. A closed connection, a timeout or a malformed
+// frame throws ProtocolError naming the fault, the peer and what was being waited for.
+//
+// A Channel or Listener is used by one thread at a time. Both are move-only; a moved-from object
+// may only be destroyed or assigned to.
 
 #include <chrono>
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <optional>
 #include <span>
 #include <string>
-#include <variant>
+#include <string_view>
 
 #include "fsi/protocol/frame.hpp"
 #include "fsi/protocol/messages.hpp"
@@ -19,65 +23,85 @@ namespace fsi::protocol {
 using Milliseconds = std::chrono::milliseconds;
 
 struct ChannelOptions {
-  std::uint16_t major = kMajorVersion;  // version written into sent headers (tests fake others)
+  // Version written into every sent header. Only tests that fake another peer change it.
+  std::uint16_t major = kMajorVersion;
   std::uint16_t minor = kMinorVersion;
+  // Largest payload accepted from the peer; longer frames are refused before any allocation.
   std::size_t max_payload = kDefaultMaxPayload;
+  // Limit for one send (a peer that stops reading fills the socket buffers); none waits as long
+  // as it takes.
+  std::optional<Milliseconds> send_timeout;
+  // close() first tells the peer "no more data" and waits up to this long for the peer to close
+  // too, so that a last Error message is not destroyed by a TCP reset.
+  Milliseconds close_linger{500};
 };
 
 class Channel {
  public:
-  // Connects to host:port, retrying with back-off (50 ms doubling to 1 s) until the server
-  // listens or give_up_after has passed.
+  // Connects to an fsi-server at host:port (name or address), retrying with exponential back-off
+  // (50 ms doubling to 1 s) until the server listens or give_up_after has passed; then throws
+  // ProtocolError naming host:port.
   static Channel connect(const std::string& host, std::uint16_t port, Milliseconds give_up_after,
                          const ChannelOptions& options = {});
 
   Channel(Channel&&) noexcept;
   Channel& operator=(Channel&&) noexcept;
-  ~Channel();
+  ~Channel();  // closes like close()
 
+  // One frame, header and payload gathered into one write.
   void send(MessageType type, std::span<const std::byte> payload);
   template <class T>
-  void send(const T& message) {
-    const auto payload = encode(message);
-    send(T::kType, payload);
-  }
+  requires requires { T::kType; }
+  void send(const T& message) { send(T::kType, encode(message)); }
+  void send(const Message& message);
 
-  // Receives one complete, CRC-checked frame. timeout: none waits forever.
-  Frame receive(std::optional<Milliseconds> timeout, const std::string& waiting_for = "a message");
+  // Receives one complete frame with a checked header and CRC. No timeout waits for ever;
+  // waiting_for words the errors ("Forces", "the set-up", ...). A timeout before the first byte
+  // of a frame leaves the channel usable; any other receive fault makes later receives throw.
+  Frame receive(std::optional<Milliseconds> timeout, std::string_view waiting_for = "a message");
+  // Receives and decodes one message; the payload goes through a buffer the channel reuses.
   Message receive_message(std::optional<Milliseconds> timeout,
-                          const std::string& waiting_for = "a message");
-  // Receives a message of type T; an Error message from the peer or any other message throws.
+                          std::string_view waiting_for = "a message");
+  // Receives a T. An Error message throws "peer reported: <its text>"; any other message throws
+  // naming the expected and the received type.
   template <class T>
   T expect(std::optional<Milliseconds> timeout) {
     Message message = receive_message(timeout, name(T::kType));
     if (auto* wanted = std::get_if<T>(&message)) return std::move(*wanted);
-    throw_unexpected(name(T::kType), message);
+    throw_unexpected(T::kType, message);
   }
 
+  // "127.0.0.1:40312"
   std::string peer_description() const;
   const ChannelOptions& options() const;
-  // Version the peer wrote into its last received header.
+  // Version in the last header received from the peer (0.0 before the first frame).
   std::uint16_t peer_major() const;
   std::uint16_t peer_minor() const;
+  bool is_open() const;
+  // Ends the connection gracefully (see ChannelOptions::close_linger). Idempotent.
   void close();
 
  private:
   friend class Listener;
   struct Impl;
   explicit Channel(std::unique_ptr<Impl> impl);
-  [[noreturn]] void throw_unexpected(const std::string& expected, const Message& got) const;
+  [[noreturn]] void throw_unexpected(MessageType expected, const Message& received) const;
   std::unique_ptr<Impl> impl_;
 };
 
 class Listener {
  public:
-  // port 0: the operating system chooses (see port()).
+  // Listens on address (numeric IPv4 or IPv6; 127.0.0.1 keeps the server private to this host)
+  // and port (0: the operating system chooses, see port()). SO_REUSEADDR is set, so a restarted
+  // server can reuse its port at once. Throws fsi::Error naming address:port and the remedy.
   Listener(const std::string& address, std::uint16_t port, const ChannelOptions& options = {});
   Listener(Listener&&) noexcept;
+  Listener& operator=(Listener&&) noexcept;
   ~Listener();
 
   std::uint16_t port() const;
   std::string address() const;
+  // Waits for one client; the channel gets the listener's options. No timeout waits for ever.
   Channel accept(std::optional<Milliseconds> timeout);
 
  private:

@@ -1,9 +1,10 @@
 #pragma once
-// Frames of the fsi protocol (docs/protocol.md). Every frame is a fixed 20-byte header followed
-// by the payload; all integers little-endian:
-//   0  magic "FSIP"    4  u16 major   6  u16 minor   8  u16 type   10  u16 flags
-//   12 u32 payload length               16 u32 CRC-32C over bytes 0..15 and the payload
-// The header layout is frozen across major versions, so a mismatch can always be reported.
+// Frames of the fsi protocol (docs/protocol.md, "Frame"). A frame is a fixed 20-byte header and a
+// payload; all integers little-endian:
+//   0  magic "FSIP"   4  u16 major   6  u16 minor   8  u16 message type   10  u16 flags
+//   12 u32 payload length            16 u32 CRC-32C over header bytes 0..15, then the payload
+// The header layout and the Hello and Error messages are frozen across major versions, so a
+// version mismatch can always be reported.
 
 #include <array>
 #include <cstddef>
@@ -13,15 +14,14 @@
 #include <vector>
 
 #include "fsi/common/error.hpp"
+#include "fsi/protocol/version.hpp"
 
 namespace fsi::protocol {
 
-inline constexpr std::uint16_t kMajorVersion = 1;
-inline constexpr std::uint16_t kMinorVersion = 0;
 inline constexpr std::size_t kHeaderSize = 20;
 inline constexpr std::array<std::byte, 4> kMagic{std::byte{'F'}, std::byte{'S'}, std::byte{'I'},
                                                  std::byte{'P'}};
-inline constexpr std::size_t kDefaultMaxPayload = std::size_t{1} << 30;
+inline constexpr std::size_t kDefaultMaxPayload = std::size_t{1} << 30;  // 1 GiB
 
 enum class MessageType : std::uint16_t {
   Hello = 0x01,
@@ -45,7 +45,8 @@ bool is_known(MessageType type);
 // Hello and Error keep their layout in every major version.
 bool is_version_independent(MessageType type);
 
-// A fault in what a peer sent or in the connection: says what was wrong and where.
+// A fault in what a peer sent or in the connection to it. The message says what was wrong and
+// where (message type, field, byte offset, peer address).
 class ProtocolError : public fsi::Error {
  public:
   using fsi::Error::Error;
@@ -65,32 +66,31 @@ struct Frame {
   std::vector<std::byte> payload;
 };
 
-// CRC-32C (Castagnoli, reflected, initial value and final xor 0xFFFFFFFF). Continue a running
-// value by passing the previous result.
+// CRC-32C (Castagnoli, reflected, initial value and final xor 0xFFFFFFFF): crc32c("123456789") is
+// 0xE3069283. Pass the previous result to continue over data that arrives in pieces.
 std::uint32_t crc32c(std::span<const std::byte> data, std::uint32_t previous = 0);
 
-// Header bytes for a payload (the CRC covers header bytes 0..15 and the payload).
+// The header for a payload, CRC included. Throws ProtocolError for payloads of 4 GiB or more.
 std::array<std::byte, kHeaderSize> encode_header(MessageType type,
                                                  std::span<const std::byte> payload,
                                                  std::uint16_t major = kMajorVersion,
                                                  std::uint16_t minor = kMinorVersion);
-// A whole frame in one buffer.
+// Header and payload in one buffer (tests, fuzzing, fake peers).
 std::vector<std::byte> encode_frame(MessageType type, std::span<const std::byte> payload,
                                     std::uint16_t major = kMajorVersion,
                                     std::uint16_t minor = kMinorVersion);
 
-// Parses and checks a header: magic, known type, flags, payload length <= max_payload, and the
-// major version (except for the version-independent types). Throws ProtocolError.
+// Parses and checks a header in this order: magic; major version (skipped for Hello and Error,
+// whose layout never changes); known type; flags zero; payload length <= max_payload. Throws
+// ProtocolError naming the fault. The CRC is checked by verify_crc once the payload is in.
 FrameHeader decode_header(std::span<const std::byte, kHeaderSize> bytes,
                           std::size_t max_payload = kDefaultMaxPayload,
                           std::uint16_t expected_major = kMajorVersion);
-// Checks the CRC of a received frame. Throws ProtocolError naming type and both values.
+// Throws ProtocolError "CRC-32C mismatch in <type> frame: computed 0x..., received 0x...".
 void verify_crc(std::span<const std::byte, kHeaderSize> header_bytes, const FrameHeader& header,
                 std::span<const std::byte> payload);
-// Decodes and verifies a complete frame held in one buffer (tests, fuzzing).
-Frame decode_frame(std::span<const std::byte> bytes, std::size_t max_payload = kDefaultMaxPayload);
-
-// "protocol 1.0"
-std::string version_text(std::uint16_t major, std::uint16_t minor);
+// Decodes and verifies one complete frame held in one buffer; extra or missing bytes are errors.
+Frame decode_frame(std::span<const std::byte> bytes, std::size_t max_payload = kDefaultMaxPayload,
+                   std::uint16_t expected_major = kMajorVersion);
 
 }  // namespace fsi::protocol

@@ -1,7 +1,8 @@
 #pragma once
-// The messages of protocol 1.0 (docs/protocol.md gives the byte layout of each). encode() makes a
-// payload; decode() checks every length against the remaining bytes before allocating and throws
-// ProtocolError naming the message, the field and the byte offset.
+// The messages of protocol 1.0; docs/protocol.md gives the byte layout of each. encode() makes a
+// payload; decode() checks every count against the bytes that remain before allocating, checks
+// the content for consistency, and throws ProtocolError naming the message, the field and the
+// byte offset.
 
 #include <array>
 #include <cstddef>
@@ -15,6 +16,10 @@
 
 namespace fsi::protocol {
 
+// Capability bits of Hello and Welcome. Protocol 1.0 defines none; later minors add optional
+// features here (shared-secret authentication is planned), agreed as the AND of both sides' bits.
+inline constexpr std::uint32_t kNoCapabilities = 0;
+
 enum class ErrorCode : std::uint32_t {
   VersionMismatch = 1,
   MalformedMessage = 2,
@@ -24,84 +29,109 @@ enum class ErrorCode : std::uint32_t {
   PeerAborted = 6,
   Internal = 7,
 };
+// "VersionMismatch", ..., or "code 42" for codes this version does not know.
+std::string name(ErrorCode code);
 
-struct Hello {  // client -> server
+// The peer sent an Error message: it has given up and explains why. Do not answer with an Error.
+class PeerReportedError : public ProtocolError {
+ public:
+  PeerReportedError(ErrorCode code, const std::string& peer_text, const std::string& where);
+  ErrorCode code() const noexcept { return code_; }
+  const std::string& peer_text() const noexcept { return peer_text_; }
+
+ private:
+  ErrorCode code_;
+  std::string peer_text_;
+};
+
+struct Hello {  // client -> server; layout frozen in every major version
   static constexpr MessageType kType = MessageType::Hello;
   std::string software_version;
   std::string host;
   std::uint32_t mpi_ranks = 1;
-  std::uint32_t capabilities = 0;
+  std::uint32_t capabilities = kNoCapabilities;
+  bool operator==(const Hello&) const = default;
 };
 
 struct Welcome {  // server -> client
   static constexpr MessageType kType = MessageType::Welcome;
   std::uint16_t accepted_minor = kMinorVersion;
-  std::uint32_t capabilities = 0;
+  std::uint32_t capabilities = kNoCapabilities;
   std::string software_version;
   std::string run_name;
+  bool operator==(const Welcome&) const = default;
 };
 
-struct ErrorMessage {  // either way
+struct ErrorMessage {  // either way; layout frozen in every major version
   static constexpr MessageType kType = MessageType::Error;
-  ErrorCode code = ErrorCode::Internal;
+  ErrorCode code = ErrorCode::Internal;  // codes unknown to this version are kept as they are
   std::string text;
+  bool operator==(const ErrorMessage&) const = default;
 };
 
 struct LiggghtsVariable {
   std::string name;
   std::string value;
+  bool operator==(const LiggghtsVariable&) const = default;
 };
 
 struct Setup {  // server -> client
   static constexpr MessageType kType = MessageType::Setup;
-  std::uint32_t dimension = 2;
-  double time_step = 0.0;
+  std::uint32_t dimension = 2;  // 2 or 3
+  double time_step = 0.0;       // > 0, finite
   std::uint64_t equilibration_steps = 0;
   std::vector<LiggghtsVariable> liggghts_variables;
   std::string script1_name;
   std::string script1_text;
   std::string script2_name;
   std::string script2_text;
+  bool operator==(const Setup&) const = default;
 };
 
-struct Mesh {  // server -> client; dynamic vertices first, static ones after
+// The boundary meshes of all bodies in one vertex list: the dynamic vertices (those that move
+// with the structure and travel in every Step) first, the static ones after (thesis §5.2).
+struct Mesh {  // server -> client
   static constexpr MessageType kType = MessageType::Mesh;
   std::uint32_t dimension = 2;
   std::uint32_t dynamic_vertex_count = 0;
   std::uint32_t refinement_option = 1;
-  double refinement_resolution = 0.0;
-  std::vector<double> positions;                // dimension per vertex
-  std::vector<double> velocities;               // dimension per vertex
+  double refinement_resolution = 0.0;           // > 0, finite
+  std::vector<double> positions;                // dimension values per vertex
+  std::vector<double> velocities;               // as positions
   std::vector<std::uint32_t> element_vertices;  // 2 per segment (2D), 3 per triangle (3D)
+  bool operator==(const Mesh&) const = default;
 
   std::size_t vertex_count() const { return dimension ? positions.size() / dimension : 0; }
 };
 
-struct Particles {  // server -> client
+struct Particles {  // server -> client: the fluid particles to create
   static constexpr MessageType kType = MessageType::Particles;
   std::uint32_t dimension = 2;
   std::uint32_t atom_type = 1;
   double mass = 0.0;
   double density = 0.0;
-  std::vector<double> positions;
-  std::vector<double> velocities;
+  std::vector<double> positions;   // dimension values per particle
+  std::vector<double> velocities;  // as positions
+  bool operator==(const Particles&) const = default;
 };
 
-struct Ready {  // client -> server, after script 1, equilibration and script 2
+struct Ready {  // client -> server, after script 1, insertion, equilibration and script 2
   static constexpr MessageType kType = MessageType::Ready;
   std::uint64_t particle_count = 0;
   std::string liggghts_version;
   double seconds_setup = 0.0;
   double seconds_equilibration = 0.0;
+  bool operator==(const Ready&) const = default;
 };
 
-struct Step {  // server -> client: the structure at the end of the step
+struct Step {  // server -> client: the dynamic vertices at the end of the step
   static constexpr MessageType kType = MessageType::Step;
   std::uint64_t step = 0;
-  double time = 0.0;
-  double time_step = 0.0;
-  std::vector<double> positions;  // dynamic vertices only
-  std::vector<double> velocities;
+  double time = 0.0;               // end of the step
+  double time_step = 0.0;          // > 0, finite
+  std::vector<double> positions;   // dynamic vertices only, dimension values each
+  std::vector<double> velocities;  // as positions
+  bool operator==(const Step&) const = default;
 };
 
 struct ForceDiagnostics {
@@ -114,66 +144,74 @@ struct ForceDiagnostics {
   double seconds_liggghts = 0.0;
   double seconds_contact = 0.0;
   double seconds_client_communication = 0.0;
+  bool operator==(const ForceDiagnostics&) const = default;
 };
 
 struct Forces {  // client -> server
   static constexpr MessageType kType = MessageType::Forces;
   std::uint64_t step = 0;
-  std::vector<double> forces;  // dynamic vertices only
+  std::vector<double> forces;  // dynamic vertices only, dimension values each
   ForceDiagnostics diagnostics;
+  bool operator==(const Forces&) const = default;
 };
 
 struct SnapshotRequest {  // server -> client
   static constexpr MessageType kType = MessageType::SnapshotRequest;
   std::uint64_t step = 0;
+  bool operator==(const SnapshotRequest&) const = default;
 };
 
-struct Snapshot {  // client -> server
+struct Snapshot {  // client -> server: all particles, gathered on rank 0
   static constexpr MessageType kType = MessageType::Snapshot;
   std::uint64_t step = 0;
   double time = 0.0;
   std::uint32_t dimension = 2;
   std::vector<std::uint64_t> ids;
-  std::vector<double> positions;
-  std::vector<double> velocities;
-  std::vector<double> density;
-  std::vector<double> pressure;
+  std::vector<double> positions;   // dimension values per id
+  std::vector<double> velocities;  // dimension values per id
+  std::vector<double> density;     // one per id
+  std::vector<double> pressure;    // one per id
+  bool operator==(const Snapshot&) const = default;
 };
 
 struct Shutdown {  // server -> client
   static constexpr MessageType kType = MessageType::Shutdown;
   std::string reason;
+  bool operator==(const Shutdown&) const = default;
 };
 
-struct Goodbye {  // client -> server
+struct Goodbye {  // client -> server, the last message of a session
   static constexpr MessageType kType = MessageType::Goodbye;
   std::uint64_t steps_done = 0;
   double seconds_total = 0.0;
+  bool operator==(const Goodbye&) const = default;
 };
 
 using Message = std::variant<Hello, Welcome, ErrorMessage, Setup, Mesh, Particles, Ready, Step,
                              Forces, SnapshotRequest, Snapshot, Shutdown, Goodbye>;
 
-std::vector<std::byte> encode(const Hello&);
-std::vector<std::byte> encode(const Welcome&);
-std::vector<std::byte> encode(const ErrorMessage&);
-std::vector<std::byte> encode(const Setup&);
-std::vector<std::byte> encode(const Mesh&);
-std::vector<std::byte> encode(const Particles&);
-std::vector<std::byte> encode(const Ready&);
-std::vector<std::byte> encode(const Step&);
-std::vector<std::byte> encode(const Forces&);
-std::vector<std::byte> encode(const SnapshotRequest&);
-std::vector<std::byte> encode(const Snapshot&);
-std::vector<std::byte> encode(const Shutdown&);
-std::vector<std::byte> encode(const Goodbye&);
+// Payload bytes (without the frame header).
+std::vector<std::byte> encode(const Hello& message);
+std::vector<std::byte> encode(const Welcome& message);
+std::vector<std::byte> encode(const ErrorMessage& message);
+std::vector<std::byte> encode(const Setup& message);
+std::vector<std::byte> encode(const Mesh& message);
+std::vector<std::byte> encode(const Particles& message);
+std::vector<std::byte> encode(const Ready& message);
+std::vector<std::byte> encode(const Step& message);
+std::vector<std::byte> encode(const Forces& message);
+std::vector<std::byte> encode(const SnapshotRequest& message);
+std::vector<std::byte> encode(const Snapshot& message);
+std::vector<std::byte> encode(const Shutdown& message);
+std::vector<std::byte> encode(const Goodbye& message);
+std::vector<std::byte> encode(const Message& message);
 
+// Decodes the payload of a frame of the given type. Throws ProtocolError.
 Message decode(MessageType type, std::span<const std::byte> payload);
+// Decodes a payload known to hold a T (one of the alternatives of Message).
+template <class T>
+T decode_as(std::span<const std::byte> payload);
 
 MessageType type_of(const Message& message);
-
-// Text naming two versions, for VersionMismatch errors.
-std::string version_mismatch_text(const char* peer_role, std::uint16_t peer_major,
-                                  std::uint16_t peer_minor, const char* own_role);
 
 }  // namespace fsi::protocol
