@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <csignal>
@@ -252,6 +253,8 @@ class Session {
                     "reduce the time step or the contact stiffness k (see the thesis' §6.2 rules)");
       }
     }
+    // Held for the sensors of the step these forces act in (like the point loads).
+    applied_total_force_ = {forces.diagnostics.force_on_structure[0], forces.diagnostics.force_on_structure[1]};
     loads_.assign(2 * scene_.boundary.vertex_count, 0.0);
     std::copy(forces.forces.begin(), forces.forces.end(), loads_.begin());
     scene_.model.set_point_loads(loads_);
@@ -302,6 +305,7 @@ class Session {
         case scene::SensorType::ConstraintForce:
           values.push_back(model.constraint_force(state_, sensor.body, sensor.component));
           break;
+        case scene::SensorType::TotalFluidForce: values.push_back(applied_total_force_[component]); break;
       }
     }
     return values;
@@ -487,6 +491,7 @@ class Session {
   std::unique_ptr<mbd::RadauIIA> integrator_;
   mbd::State state_;
   std::vector<double> loads_;
+  std::array<double, 2> applied_total_force_{};
   Timings timings_;
   Checks checks_;
   std::uint64_t steps_done_ = 0;

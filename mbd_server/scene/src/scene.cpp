@@ -149,9 +149,9 @@ BlockSpec make_schema() {
   BlockSpec sensor = repeated(
       block("Sensor", "A column of sensors.csv, written every Output.sensor_every_steps steps.",
             {text("name", "column name"),
-             choice(text("type", "what is measured"),
-                    {"position", "velocity", "fluid_force", "constraint_force"}),
-             body_name,
+             choice(text("type", "what is measured (total_fluid_force: on every boundary, walls included)"),
+                    {"position", "velocity", "fluid_force", "constraint_force", "total_fluid_force"}),
+             optional(text("body", "name of a RigidBody2D (not for total_fluid_force)")),
              choice(text("component", "x, y, angle (torque for forces)"),
                     {"x", "y", "angle", "torque"})}));
 
@@ -367,12 +367,12 @@ Scene build_scene(const std::string& path, const std::vector<Override>& override
     sensor.name = s.string("name");
     const std::string type = s.string("type");
     const std::string component = s.string("component");
-    sensor.type = type == "position"      ? SensorType::Position
-                  : type == "velocity"    ? SensorType::Velocity
-                  : type == "fluid_force" ? SensorType::FluidForce
-                                          : SensorType::ConstraintForce;
-    const bool force =
-        sensor.type == SensorType::FluidForce || sensor.type == SensorType::ConstraintForce;
+    sensor.type = type == "position"           ? SensorType::Position
+                  : type == "velocity"         ? SensorType::Velocity
+                  : type == "fluid_force"      ? SensorType::FluidForce
+                  : type == "constraint_force" ? SensorType::ConstraintForce
+                                               : SensorType::TotalFluidForce;
+    const bool force = sensor.type != SensorType::Position && sensor.type != SensorType::Velocity;
     if (force && component == "angle") {
       problems.push_back({s.location("component"), "a force sensor has components x, y or torque",
                           "write torque"});
@@ -392,7 +392,18 @@ Scene build_scene(const std::string& path, const std::vector<Override>& override
             {s.location("name"), "a second sensor is named '" + sensor.name + "'", "rename it"});
       }
     }
-    if (auto body = find_body(s)) {
+    if (sensor.type == SensorType::TotalFluidForce) {
+      if (s.has("body")) {
+        problems.push_back({s.location("body"), "a total_fluid_force sensor sums over all boundaries and takes no body",
+                            "remove body, or use type = \"fluid_force\""});
+      }
+      if (component == "torque") {
+        problems.push_back({s.location("component"), "total_fluid_force has components x and y", "write x or y"});
+      }
+      scene.sensors.push_back(sensor);
+    } else if (!s.has("body")) {
+      problems.push_back({s.location("name"), "sensor '" + sensor.name + "' needs a body", "add body = \"...\""});
+    } else if (auto body = find_body(s)) {
       sensor.body = *body;
       scene.sensors.push_back(sensor);
     }

@@ -19,7 +19,7 @@ TEST(Scene, BuildsTheCoarseStaticTank) {
   EXPECT_EQ(scene.boundary.vertex_count, 12u);
   EXPECT_EQ(scene.boundary.segments.size(), 2u * (4 + 4 + 1 + 1));
   EXPECT_EQ(scene.model.constraint_count(), 6);
-  EXPECT_EQ(scene.sensors.size(), 5u);
+  EXPECT_EQ(scene.sensors.size(), 6u);
   const double h = 0.0016;
   const double d = h / 1.9;
   EXPECT_DOUBLE_EQ(scene.fluid.spacing, d);

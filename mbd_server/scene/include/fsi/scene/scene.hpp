@@ -56,12 +56,13 @@ struct LiggghtsSetup {
   std::uint64_t equilibration_steps = 0;
 };
 
-enum class SensorType { Position, Velocity, FluidForce, ConstraintForce };
+// TotalFluidForce: the force of the fluid on every boundary, static walls included (no body).
+enum class SensorType { Position, Velocity, FluidForce, ConstraintForce, TotalFluidForce };
 
 struct SensorSpec {
   std::string name;
   SensorType type = SensorType::Position;
-  mbd::BodyId body = 0;
+  mbd::BodyId body = 0;  // unused for TotalFluidForce
   mbd::Coordinate component = mbd::Coordinate::X;  // Angle means the torque for force sensors
   std::string unit;
 };
