@@ -55,6 +55,7 @@ void report_liggghts_exit() {
   }
   try {
     g_exit_report.channel->send(protocol::ErrorMessage{protocol::ErrorCode::LiggghtsError, text});
+    g_exit_report.channel->close();
   } catch (...) {
     // The server may be gone already; the exit status tells the rest.
   }
@@ -121,6 +122,7 @@ class ClientSession {
     if (!channel_) return;
     try {
       channel_->send(protocol::ErrorMessage{code, text});
+      channel_->close();  // lingers until the server has read it (MPI_Abort follows)
     } catch (...) {
     }
   }
@@ -412,9 +414,11 @@ int run_client_session(MPI_Comm communicator, const ClientOptions& options) {
     // collective call forever otherwise.
     std::fprintf(stderr, "fsi-client (rank %d): error: %s\n", rank, failure.what());
     std::fflush(stderr);
-    if (rank == 0) {
+    // Tell the server unless it reported the fault itself; a malformed frame gets its own code.
+    if (rank == 0 && dynamic_cast<const protocol::PeerReportedError*>(&failure) == nullptr) {
       const bool protocol_fault = dynamic_cast<const protocol::ProtocolError*>(&failure) != nullptr;
-      if (!protocol_fault) session.report_failure(failure.what(), protocol::ErrorCode::SetupFailed);
+      session.report_failure(failure.what(), protocol_fault ? protocol::ErrorCode::MalformedMessage
+                                                            : protocol::ErrorCode::SetupFailed);
     }
     g_exit_report.active = false;
     MPI_Abort(communicator, 1);

@@ -94,9 +94,14 @@ class Session {
       status_ = "failed";
       reason_ = failure.what();
       spdlog::error("{}", failure.what());
-      if (channel_ && dynamic_cast<const protocol::ProtocolError*>(&failure) == nullptr) {
+      // Tell the client unless it reported the fault itself; a malformed frame gets its own code.
+      if (channel_ && dynamic_cast<const protocol::PeerReportedError*>(&failure) == nullptr) {
+        const bool protocol_fault = dynamic_cast<const protocol::ProtocolError*>(&failure) != nullptr;
         try {
-          channel_->send(protocol::ErrorMessage{protocol::ErrorCode::SetupFailed, failure.what()});
+          channel_->send(protocol::ErrorMessage{
+              protocol_fault ? protocol::ErrorCode::MalformedMessage : protocol::ErrorCode::SetupFailed,
+              failure.what()});
+          channel_->close();
         } catch (...) {
         }
       }
