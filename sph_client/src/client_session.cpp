@@ -71,9 +71,12 @@ class MpiContext {
   int rank() const { return rank_; }
   int size() const { return size_; }
   bool root() const { return rank_ == 0; }
+  // Wall time spent in MPI distribution and reduction of coupling data.
+  Stopwatch& mpi_time() { return mpi_time_; }
 
   // Broadcasts a message type and its payload from rank 0.
-  void broadcast(std::uint16_t& type, std::vector<std::byte>& payload) const {
+  void broadcast(std::uint16_t& type, std::vector<std::byte>& payload) {
+    ScopedTimer timer(mpi_time_);
     std::uint64_t header[2] = {type, payload.size()};
     MPI_Bcast(header, 2, MPI_UINT64_T, 0, communicator_);
     type = static_cast<std::uint16_t>(header[0]);
@@ -90,6 +93,7 @@ class MpiContext {
   MPI_Comm communicator_;
   int rank_ = 0;
   int size_ = 1;
+  Stopwatch mpi_time_;
 };
 
 std::string host_name() {
@@ -270,7 +274,7 @@ class ClientSession {
 
   // Sums this rank's vertex forces and diagnostics over all ranks; rank 0 sends them.
   void send_forces(std::uint64_t step, double seconds_liggghts, double seconds_contact) {
-    Stopwatch communication;
+    Stopwatch& communication = mpi_.mpi_time();
     communication.start();
     const std::size_t dynamic_values = boundary_->dynamic_vertex_count * 2;
     const auto& diagnostics = boundary_->diagnostics;
@@ -292,6 +296,7 @@ class ClientSession {
     double closest_total = 0.0;
     MPI_Reduce(&closest, &closest_total, 1, MPI_DOUBLE, MPI_MIN, 0, mpi_.communicator());
     const std::uint64_t particles = driver_->particle_count();
+    communication.stop();
     if (!mpi_.root()) return;
 
     protocol::Forces forces;
@@ -311,8 +316,8 @@ class ClientSession {
     out.particle_count = particles;
     out.seconds_liggghts = seconds_liggghts;
     out.seconds_contact = seconds_contact;
-    communication.stop();
-    out.seconds_client_communication = communication_seconds_ + communication.seconds();
+    out.seconds_client_communication = communication.seconds();  // since the previous Forces
+    communication.reset();
     channel_->send(forces);
   }
 
@@ -321,11 +326,7 @@ class ClientSession {
     total.start();
     std::uint64_t steps = 0;
     while (true) {
-      Stopwatch communication;
-      communication.start();
       protocol::Message message = next_message();
-      communication.stop();
-      communication_seconds_ = communication.seconds();
       if (auto* step = std::get_if<protocol::Step>(&message)) {
         apply_step(*step);
         const double fix_before = boundary_->seconds_in_fix;
@@ -397,7 +398,6 @@ class ClientSession {
   std::vector<double> initial_velocities_;
   double time_step_ = 0.0;
   double last_time_ = 0.0;
-  double communication_seconds_ = 0.0;
   int dimension_ = 2;
 };
 

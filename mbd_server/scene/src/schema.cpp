@@ -1,234 +1,259 @@
+// Declarations, validation against them, and typed access with defaults.
+
 #include "fsi/scene/schema.hpp"
 
+#include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <set>
+#include <map>
 
 #include "fsi/common/error.hpp"
+#include "schema_text.hpp"
 
 namespace fsi::scene {
 namespace {
 
-std::string format(double value) {
-  char text[40];
-  std::snprintf(text, sizeof text, "%.10g", value);
-  return text;
+std::string in_quotes(std::string_view text) {
+  return "'" + std::string(text) + "'";
 }
 
-std::string range_text(const ParameterSpec& p) {
-  std::string text;
-  if (p.minimum) text += (p.minimum_exclusive ? "> " : ">= ") + format(*p.minimum);
-  if (p.maximum) text += (text.empty() ? "" : ", ") + std::string("<= ") + format(*p.maximum);
-  if (!p.choices.empty()) {
-    for (std::size_t i = 0; i < p.choices.size(); ++i)
-      text += (i ? " | " : "") + ("\"" + p.choices[i] + "\"");
-  }
-  if (p.length)
-    text += (text.empty() ? "" : ", ") + std::to_string(*p.length) +
-            (p.kind == Kind::Matrix ? " columns" : " components");
-  return text;
-}
-
-std::string default_text(const ParameterSpec& p) {
-  if (!p.default_value) return p.optional_without_default ? "(optional)" : "(required)";
-  const Value& v = *p.default_value;
-  switch (v.kind) {
-    case ValueKind::Number:
-      return format(v.number);
-    case ValueKind::String:
-      return "\"" + v.text + "\"";
-    case ValueKind::Vector: {
-      std::string out = "[";
-      for (std::size_t i = 0; i < v.vector.size(); ++i)
-        out += (i ? ", " : "") + format(v.vector[i]);
-      return out + "]";
-    }
-    case ValueKind::Matrix:
-      return "[[...]]";
-  }
-  return "";
-}
-
-bool kind_matches(Kind kind, ValueKind value) {
+bool kind_matches(Kind kind, const Value& value) {
   switch (kind) {
     case Kind::Number:
     case Kind::Integer:
-      return value == ValueKind::Number;
+      return value.kind == ValueKind::Number;
     case Kind::String:
-      return value == ValueKind::String;
+      return value.kind == ValueKind::String;
     case Kind::Vector:
-      return value == ValueKind::Vector;
+      return value.kind == ValueKind::Vector;
     case Kind::Matrix:
-      return value == ValueKind::Matrix;
+      // `[]` reads as an empty vector; as a matrix it has no rows.
+      return value.kind == ValueKind::Matrix ||
+             (value.kind == ValueKind::Vector && value.vector.empty());
   }
   return false;
 }
 
-void check_number(const ParameterSpec& spec, double x, const std::string& what, const Parameter& p,
-                  std::vector<Problem>& problems) {
-  if (spec.kind == Kind::Integer && x != std::floor(x)) {
-    problems.push_back(
-        {p.location, what + " must be an integer, got " + format(x), "write a whole number"});
-    return;
+std::string how_to_write(const ParameterSpec& spec) {
+  switch (spec.kind) {
+    case Kind::Number:
+      return "write a number or an expression, e.g. " + spec.key + " = 0.5";
+    case Kind::Integer:
+      return "write a whole number, e.g. " + spec.key + " = 2";
+    case Kind::String:
+      return "write the text in double quotes, e.g. " + spec.key + " = \"...\"";
+    case Kind::Vector:
+      return "write a bracketed list, e.g. " + spec.key + " = [" +
+             (spec.length == 2 ? "x, y" : "a, b, c") + "]";
+    case Kind::Matrix:
+      return "write one bracketed row per line, e.g. " + spec.key + " = [[x, y], [x, y]]";
   }
-  const bool below =
-      spec.minimum && (spec.minimum_exclusive ? x <= *spec.minimum : x < *spec.minimum);
-  const bool above = spec.maximum && x > *spec.maximum;
-  if (below || above) {
-    problems.push_back({p.location,
-                        what + " = " + format(x) + (spec.unit.empty() ? "" : " " + spec.unit) +
-                            " is out of range (" + range_text(spec) + ")",
-                        "choose a value in the range; check the unit (" +
-                            (spec.unit.empty() ? std::string("dimensionless") : spec.unit) + ")"});
-  }
+  return "";
 }
 
-void validate_block(const Block& block, const BlockSpec& spec, const std::string& path,
-                    std::vector<Problem>& problems) {
-  if (spec.open) return;
-  std::vector<std::string> known;
-  for (const auto& p : spec.parameters)
-    known.push_back(p.key);
-  for (const auto& b : spec.blocks)
-    known.push_back(b.name);
+class Validator {
+ public:
+  explicit Validator(std::vector<Problem>& problems) : problems_(problems) {}
 
-  std::set<std::string> seen_keys;
-  for (const Parameter& p : block.parameters) {
-    const std::string full = path + p.key;
-    const ParameterSpec* declared = nullptr;
-    for (const auto& candidate : spec.parameters) {
-      if (candidate.key == p.key) declared = &candidate;
-    }
-    if (!declared) {
-      const std::string suggestion = nearest(p.key, known);
-      problems.push_back({p.location, "unknown parameter '" + full + "'",
-                          suggestion.empty()
-                              ? "see fsi-server --help-params for the parameters of " +
-                                    (spec.name.empty() ? std::string("the scene") : spec.name)
-                              : "did you mean '" + suggestion + "'?"});
-      continue;
-    }
-    if (!seen_keys.insert(p.key).second) continue;  // a later assignment overrides an earlier one
-    if (!kind_matches(declared->kind, p.value.kind)) {
-      problems.push_back({p.location,
-                          "'" + full + "' must be a " + std::string(name(declared->kind)) +
-                              ", got a " + std::string(name(p.value.kind)),
-                          declared->kind == Kind::String
-                              ? "write the value in double quotes"
-                              : "write a " + std::string(name(declared->kind))});
-      continue;
-    }
-    if (declared->kind == Kind::Number || declared->kind == Kind::Integer) {
-      check_number(*declared, p.value.number, "'" + full + "'", p, problems);
-    } else if (declared->kind == Kind::String && !declared->choices.empty()) {
-      bool allowed = false;
-      for (const auto& choice : declared->choices)
-        allowed = allowed || choice == p.value.text;
-      if (!allowed) {
-        problems.push_back(
-            {p.location,
-             "'" + full + "' = \"" + p.value.text + "\" is not one of " + range_text(*declared),
-             "use one of the listed values"});
+  // Problems come in textual order within a block, then what the block lacks.
+  void block(const Block& block, const BlockSpec& spec, const std::string& path) {
+    std::vector<std::string> known;
+    for (const ParameterSpec& parameter : spec.parameters)
+      known.push_back(parameter.key);
+    for (const BlockSpec& child : spec.blocks)
+      known.push_back(child.name);
+    const std::string where = spec.name.empty() ? "the top level" : "block " + in_quotes(spec.name);
+
+    std::map<std::string, std::size_t> count;
+    for (const Block& child : block.blocks)
+      ++count[child.name];
+    std::map<std::string, const Block*> first;
+    std::map<std::string, std::size_t> seen;
+    for (const BlockEntry& entry : block.entries) {
+      if (entry.type == BlockEntry::Type::Parameter) {
+        parameter(block, block.parameters[entry.index], spec, path, known, where);
+        continue;
       }
-    } else if (declared->kind == Kind::Vector && declared->length &&
-               p.value.vector.size() != *declared->length) {
-      problems.push_back({p.location,
-                          "'" + full + "' needs " + std::to_string(*declared->length) +
-                              " components, got " + std::to_string(p.value.vector.size()),
-                          "write [" + std::string(*declared->length == 2 ? "x, y" : "...") + "]"});
-    } else if (declared->kind == Kind::Matrix && declared->length && !p.value.matrix.empty() &&
-               p.value.matrix.front().size() != *declared->length) {
-      problems.push_back(
-          {p.location,
-           "'" + full + "' needs rows of " + std::to_string(*declared->length) + " values",
-           "write [[x, y], [x, y], ...]"});
-    }
-  }
-  for (const auto& declared : spec.parameters) {
-    if (!declared.default_value && !declared.optional_without_default &&
-        !block.find(declared.key)) {
-      problems.push_back(
-          {block.location, "'" + path + declared.key + "' is missing (" + declared.doc + ")",
-           "add " + declared.key + " = ... to " + (spec.name.empty() ? "the scene" : spec.name)});
-    }
-  }
-
-  std::map<std::string, int> counts;
-  for (const Block& child : block.blocks)
-    ++counts[child.name];
-  std::map<std::string, int> seen;
-  for (const Block& child : block.blocks) {
-    const BlockSpec* declared = nullptr;
-    for (const auto& candidate : spec.blocks) {
-      if (candidate.name == child.name) declared = &candidate;
-    }
-    if (!declared) {
-      const std::string suggestion = nearest(child.name, known);
-      if (spec.user_blocks_allowed &&
-          (suggestion.empty() || edit_distance(suggestion, child.name) > 2)) {
-        continue;  // the user's own parameter block
+      const Block& child = block.blocks[entry.index];
+      const BlockSpec* declared = spec.block(child.name);
+      if (!declared) {
+        unknown_block(child, spec, path, known);
+        continue;
       }
-      problems.push_back(
-          {child.location, "unknown block '" + path + child.name + "'",
-           suggestion.empty()
-               ? "see fsi-server --help-params"
-               : "did you mean '" + suggestion + "'?" +
-                     (spec.user_blocks_allowed ? " If this is your own parameter block, rename it."
-                                               : "")});
-      continue;
+      const std::size_t index = seen[child.name]++;
+      if (index == 0) first[child.name] = &child;
+      if (!declared->repeated && index == 1) {
+        add(child.location,
+            "block " + in_quotes(path + child.name) + " is given twice (first at " +
+                first[child.name]->location.text() + ")",
+            "merge the two blocks; only element lists may repeat");
+      }
+      const std::string child_path =
+          path + child.name + (count[child.name] > 1 ? "[" + std::to_string(index) + "]" : "") +
+          ".";
+      this->block(child, *declared, child_path);
     }
-    const int index = seen[child.name]++;
-    if (!declared->repeated && index == 1) {
-      problems.push_back({child.location, "block '" + path + child.name + "' is given twice",
-                          "merge the two blocks; only element lists may repeat"});
-    }
-    const std::string child_path =
-        path + child.name + (counts[child.name] > 1 ? "[" + std::to_string(index) + "]" : "") + ".";
-    validate_block(child, *declared, child_path, problems);
-  }
-  for (const auto& declared : spec.blocks) {
-    if (declared.required && counts[declared.name] == 0) {
-      problems.push_back({block.location,
-                          "block '" + path + declared.name + "' is missing (" + declared.doc + ")",
-                          "add " + declared.name + " { ... }"});
-    }
-  }
-}
 
-void help_block(const BlockSpec& spec, const std::string& path, std::string& out) {
-  if (!path.empty()) {
-    out += "\n" + path + (spec.repeated ? "  (may be repeated)" : "") +
-           (spec.required ? "  (required)" : "") + "\n";
-    out += "  " + spec.doc + "\n";
-  }
-  for (const auto& p : spec.parameters) {
-    std::string line = "  " + (path.empty() ? "" : path + ".") + p.key + "  [" +
-                       std::string(name(p.kind)) + (p.unit.empty() ? "" : ", " + p.unit) +
-                       "]  default " + default_text(p);
-    const std::string range = range_text(p);
-    if (!range.empty()) line += "  range " + range;
-    out += line + "\n      " + p.doc + "\n";
-  }
-  for (const auto& b : spec.blocks)
-    help_block(b, path.empty() ? b.name : path + "." + b.name, out);
-}
-
-void markdown_block(const BlockSpec& spec, const std::string& path, std::string& out) {
-  if (!path.empty()) {
-    out += "\n## `" + path + "`" + (spec.repeated ? " (element list)" : "") +
-           (spec.required ? " (required)" : "") + "\n\n" + spec.doc + "\n\n";
-  }
-  if (spec.open) out += "Any keys and blocks: every entry is passed on as described above.\n";
-  if (!spec.parameters.empty()) {
-    out += "| key | kind | unit | default | range | meaning |\n|---|---|---|---|---|---|\n";
-    for (const auto& p : spec.parameters) {
-      out += "| `" + p.key + "` | " + std::string(name(p.kind)) + " | " +
-             (p.unit.empty() ? "–" : p.unit) + " | " + default_text(p) + " | " + range_text(p) +
-             " | " + p.doc + " |\n";
+    for (const ParameterSpec& declared : spec.parameters) {
+      if (declared.is_required() && !block.find(declared.key)) {
+        add(block.location,
+            "required parameter " + in_quotes(path + declared.key) + " is missing (" +
+                declared.doc + ")",
+            "add " + declared.key + " = ..." +
+                (declared.unit.empty() ? "" : " (in " + declared.unit + ")") + " to " + where);
+      }
+    }
+    for (const BlockSpec& declared : spec.blocks) {
+      if (declared.required && count[declared.name] == 0) {
+        add(block.location,
+            "required block " + in_quotes(path + declared.name) + " is missing (" + declared.doc +
+                ")",
+            "add " + declared.name + " { ... } to " + where);
+      }
     }
   }
-  for (const auto& b : spec.blocks)
-    markdown_block(b, path.empty() ? b.name : path + "." + b.name, out);
+
+ private:
+  void add(const SourceLocation& where, std::string message, std::string fix) {
+    problems_.push_back({where, std::move(message), std::move(fix)});
+  }
+
+  void parameter(const Block& block, const Parameter& parameter, const BlockSpec& spec,
+                 const std::string& path, const std::vector<std::string>& known,
+                 const std::string& where) {
+    const std::string full = path + parameter.key;
+    if (const ParameterSpec* declared = spec.parameter(parameter.key)) {
+      // Only the last assignment counts, as in every look-up.
+      if (block.find(parameter.key) == &parameter) value(parameter, *declared, full);
+      return;
+    }
+    if (spec.block(parameter.key)) {
+      add(parameter.location, in_quotes(full) + " is a block, not a parameter",
+          "write " + parameter.key + " { ... }");
+      return;
+    }
+    const std::string suggestion = nearest(parameter.key, known);
+    const bool typo = !suggestion.empty() && edit_distance(suggestion, parameter.key) <= 2;
+    if (spec.open && !typo) return;  // the user's own key
+    std::string fix;
+    if (!suggestion.empty()) {
+      fix = "did you mean " + in_quotes(suggestion) + "?";
+      if (spec.open) fix += " If this is a key of your own, rename it";
+    } else if (spec.user_blocks_allowed) {
+      fix = "put parameters of your own into a block of your own, e.g. Geometry { " +
+            parameter.key + " = ... }";
+    } else {
+      fix = "remove it; fsi-server --help-params lists the parameters of " + where;
+    }
+    add(parameter.location, "unknown parameter " + in_quotes(full), fix);
+  }
+
+  void unknown_block(const Block& child, const BlockSpec& spec, const std::string& path,
+                     const std::vector<std::string>& known) {
+    if (spec.parameter(child.name)) {
+      add(child.location, in_quotes(path + child.name) + " is a parameter, not a block",
+          "write " + child.name + " = ...");
+      return;
+    }
+    const std::string suggestion = nearest(child.name, known);
+    const bool typo = !suggestion.empty() && edit_distance(suggestion, child.name) <= 2;
+    const bool own_blocks = spec.open || spec.user_blocks_allowed;
+    if (own_blocks && !typo) return;  // the user's own block, like Geometry
+    std::string fix;
+    if (!suggestion.empty()) {
+      fix = "did you mean " + in_quotes(suggestion) + "?";
+      if (own_blocks) fix += " If this is your own parameter block, rename it";
+    } else {
+      fix = "remove it; fsi-server --help-params lists the blocks";
+    }
+    add(child.location, "unknown block " + in_quotes(path + child.name), fix);
+  }
+
+  void range(const ParameterSpec& spec, double x, const std::string& what,
+             const SourceLocation& where) {
+    const bool below =
+        spec.minimum && (spec.minimum_exclusive ? x <= *spec.minimum : x < *spec.minimum);
+    const bool above = spec.maximum && x > *spec.maximum;
+    if (!below && !above) return;
+    const std::string unit = spec.unit.empty() ? "" : " " + spec.unit;
+    add(where,
+        in_quotes(what) + " = " + format_value(number_value(x)) + unit + " is out of range (" +
+            detail::range_text(spec, true) + ")",
+        "choose a value " + detail::range_text(spec, true));
+  }
+
+  void value(const Parameter& parameter, const ParameterSpec& spec, const std::string& full) {
+    const Value& value = parameter.value;
+    const SourceLocation& where = parameter.location;
+    if (!kind_matches(spec.kind, value)) {
+      add(where,
+          in_quotes(full) + " must be a" + (spec.kind == Kind::Integer ? "n " : " ") +
+              std::string(name(spec.kind)) + ", not a " + std::string(name(value.kind)) + " (" +
+              format_value(value) + ")",
+          how_to_write(spec));
+      return;
+    }
+    switch (spec.kind) {
+      case Kind::Integer:
+        if (value.number != std::floor(value.number) || std::fabs(value.number) > 9.0e15) {
+          add(where, in_quotes(full) + " must be a whole number, not " + format_value(value),
+              how_to_write(spec));
+          return;
+        }
+        [[fallthrough]];
+      case Kind::Number:
+        range(spec, value.number, full, where);
+        return;
+      case Kind::String:
+        if (!spec.choices.empty() &&
+            std::find(spec.choices.begin(), spec.choices.end(), value.text) == spec.choices.end()) {
+          const std::string suggestion = nearest(value.text, spec.choices);
+          add(where,
+              in_quotes(full) + " = \"" + value.text + "\" is not one of " +
+                  detail::choices_text(spec.choices),
+              suggestion.empty() ? "use one of the listed values"
+                                 : "did you mean \"" + suggestion + "\"?");
+        }
+        return;
+      case Kind::Vector:
+        if (spec.length && value.vector.size() != *spec.length) {
+          add(where,
+              in_quotes(full) + " has " + std::to_string(value.vector.size()) +
+                  " components, it needs " + std::to_string(*spec.length),
+              how_to_write(spec));
+          return;
+        }
+        for (std::size_t i = 0; i < value.vector.size(); ++i)
+          range(spec, value.vector[i], full + "[" + std::to_string(i) + "]", where);
+        return;
+      case Kind::Matrix:
+        for (std::size_t r = 0; r < value.matrix.size(); ++r) {
+          if (spec.length && value.matrix[r].size() != *spec.length) {
+            add(where,
+                in_quotes(full) + " has rows of " + std::to_string(value.matrix[r].size()) +
+                    " values, it needs " + std::to_string(*spec.length),
+                how_to_write(spec));
+            return;
+          }
+          for (std::size_t c = 0; c < value.matrix[r].size(); ++c) {
+            range(spec, value.matrix[r][c],
+                  full + "[" + std::to_string(r) + "][" + std::to_string(c) + "]", where);
+          }
+        }
+        return;
+    }
+  }
+
+  std::vector<Problem>& problems_;
+};
+
+// What an undeclared block of an open block is read with.
+const BlockSpec& anything() {
+  static const BlockSpec spec = [] {
+    BlockSpec open;
+    open.open = true;
+    return open;
+  }();
+  return spec;
 }
 
 }  // namespace
@@ -249,160 +274,237 @@ std::string_view name(Kind kind) {
   return "?";
 }
 
+// ---- declarations ----
+
+ParameterSpec ParameterSpec::with_default(double value) const {
+  return with_default(number_value(value));
+}
+ParameterSpec ParameterSpec::with_default(std::vector<double> value) const {
+  return with_default(vector_value(std::move(value)));
+}
+ParameterSpec ParameterSpec::with_default(NumberMatrix value) const {
+  return with_default(matrix_value(std::move(value)));
+}
+ParameterSpec ParameterSpec::with_default(Value value) const {
+  ParameterSpec copy = *this;
+  copy.default_value = std::move(value);
+  return copy;
+}
+ParameterSpec ParameterSpec::optional() const {
+  ParameterSpec copy = *this;
+  copy.optional_without_default = true;
+  return copy;
+}
+ParameterSpec ParameterSpec::positive() const {
+  return above(0.0);
+}
+ParameterSpec ParameterSpec::above(double exclusive_minimum) const {
+  ParameterSpec copy = *this;
+  copy.minimum = exclusive_minimum;
+  copy.minimum_exclusive = true;
+  return copy;
+}
+ParameterSpec ParameterSpec::at_least(double inclusive_minimum) const {
+  ParameterSpec copy = *this;
+  copy.minimum = inclusive_minimum;
+  copy.minimum_exclusive = false;
+  return copy;
+}
+ParameterSpec ParameterSpec::at_most(double inclusive_maximum) const {
+  ParameterSpec copy = *this;
+  copy.maximum = inclusive_maximum;
+  return copy;
+}
+ParameterSpec ParameterSpec::between(double inclusive_minimum, double inclusive_maximum) const {
+  return at_least(inclusive_minimum).at_most(inclusive_maximum);
+}
+ParameterSpec ParameterSpec::one_of(std::vector<std::string> allowed) const {
+  ParameterSpec copy = *this;
+  copy.choices = std::move(allowed);
+  return copy;
+}
+ParameterSpec ParameterSpec::with_length(std::size_t components) const {
+  ParameterSpec copy = *this;
+  copy.length = components;
+  return copy;
+}
+
 ParameterSpec number(std::string key, std::string unit, std::string doc) {
-  ParameterSpec p;
-  p.key = std::move(key);
-  p.kind = Kind::Number;
-  p.unit = std::move(unit);
-  p.doc = std::move(doc);
-  return p;
+  ParameterSpec spec;
+  spec.key = std::move(key);
+  spec.kind = Kind::Number;
+  spec.unit = std::move(unit);
+  spec.doc = std::move(doc);
+  return spec;
 }
+
 ParameterSpec integer(std::string key, std::string doc) {
-  ParameterSpec p = number(std::move(key), "", std::move(doc));
-  p.kind = Kind::Integer;
-  return p;
+  ParameterSpec spec = number(std::move(key), "", std::move(doc));
+  spec.kind = Kind::Integer;
+  return spec;
 }
+
 ParameterSpec text(std::string key, std::string doc) {
-  ParameterSpec p = number(std::move(key), "", std::move(doc));
-  p.kind = Kind::String;
-  return p;
+  ParameterSpec spec = number(std::move(key), "", std::move(doc));
+  spec.kind = Kind::String;
+  return spec;
 }
+
 ParameterSpec vector(std::string key, std::size_t length, std::string unit, std::string doc) {
-  ParameterSpec p = number(std::move(key), std::move(unit), std::move(doc));
-  p.kind = Kind::Vector;
-  p.length = length;
-  return p;
+  ParameterSpec spec = number(std::move(key), std::move(unit), std::move(doc));
+  spec.kind = Kind::Vector;
+  spec.length = length;
+  return spec;
 }
+
 ParameterSpec matrix(std::string key, std::size_t columns, std::string unit, std::string doc) {
-  ParameterSpec p = number(std::move(key), std::move(unit), std::move(doc));
-  p.kind = Kind::Matrix;
-  p.length = columns;
-  return p;
-}
-Value number_value(double value) {
-  Value v;
-  v.number = value;
-  return v;
-}
-Value text_value(std::string value) {
-  Value v;
-  v.kind = ValueKind::String;
-  v.text = std::move(value);
-  return v;
-}
-Value vector_value(std::vector<double> value) {
-  Value v;
-  v.kind = ValueKind::Vector;
-  v.vector = std::move(value);
-  return v;
+  ParameterSpec spec = number(std::move(key), std::move(unit), std::move(doc));
+  spec.kind = Kind::Matrix;
+  spec.length = columns;
+  return spec;
 }
 
-std::string Problem::text() const {
-  return location.text() + ": " + message + (fix.empty() ? "" : " (" + fix + ")");
+const ParameterSpec* BlockSpec::parameter(std::string_view key) const {
+  for (const ParameterSpec& spec : parameters) {
+    if (spec.key == key) return &spec;
+  }
+  return nullptr;
 }
 
-std::vector<Problem> validate(const Block& root, const BlockSpec& spec) {
+const BlockSpec* BlockSpec::block(std::string_view block_name) const {
+  for (const BlockSpec& spec : blocks) {
+    if (spec.name == block_name) return &spec;
+  }
+  return nullptr;
+}
+
+BlockSpec BlockSpec::as_list() const {
+  BlockSpec copy = *this;
+  copy.repeated = true;
+  return copy;
+}
+BlockSpec BlockSpec::as_required() const {
+  BlockSpec copy = *this;
+  copy.required = true;
+  return copy;
+}
+BlockSpec BlockSpec::as_open() const {
+  BlockSpec copy = *this;
+  copy.open = true;
+  return copy;
+}
+
+BlockSpec block_spec(std::string name, std::string doc, std::vector<ParameterSpec> parameters,
+                     std::vector<BlockSpec> blocks) {
+  BlockSpec spec;
+  spec.name = std::move(name);
+  spec.doc = std::move(doc);
+  spec.parameters = std::move(parameters);
+  spec.blocks = std::move(blocks);
+  return spec;
+}
+
+// ---- validation ----
+
+std::vector<Problem> validate(const Block& root, const BlockSpec& root_spec) {
   std::vector<Problem> problems;
-  validate_block(root, spec, "", problems);
+  Validator(problems).block(root, root_spec, "");
   return problems;
 }
 
-void throw_if_any(const std::vector<Problem>& problems, const std::string& file) {
-  if (problems.empty()) return;
-  std::string text = std::to_string(problems.size()) + " problem(s) in the scene:";
-  for (const auto& problem : problems)
-    text += "\n  " + problem.text();
-  throw Error(text, file,
-              "correct the entries listed above (fsi-server --help-params lists them all)");
-}
+// ---- typed access ----
 
 View::View(const Block& block, const BlockSpec& spec) : block_(&block), spec_(&spec) {}
 
-const ParameterSpec& View::parameter_spec(const std::string& key) const {
-  for (const auto& p : spec_->parameters) {
-    if (p.key == key) return p;
-  }
-  FSI_ASSERT(false, "parameter '" + key + "' is not declared in block '" + spec_->name + "'");
-  std::abort();
-}
-
-const BlockSpec& View::block_spec(const std::string& block_name) const {
-  for (const auto& b : spec_->blocks) {
-    if (b.name == block_name) return b;
-  }
-  FSI_ASSERT(false, "block '" + block_name + "' is not declared in block '" + spec_->name + "'");
-  std::abort();
-}
-
-bool View::has(const std::string& key) const {
+bool View::has(std::string_view key) const {
   return block_->find(key) != nullptr;
 }
 
-const Value& View::value(const std::string& key) const {
-  const ParameterSpec& declared = parameter_spec(key);
-  if (const Parameter* p = block_->find(key)) return p->value;
-  if (!declared.default_value) {
-    throw Error("'" + key + "' is missing", block_->location.text(),
-                "add " + key + " = ... (" + declared.doc + ")");
+const Value& View::value(std::string_view key) const {
+  const ParameterSpec* declared = spec_->parameter(key);
+  FSI_ASSERT(declared || spec_->open,
+             "parameter '" + std::string(key) + "' is not declared in block '" + spec_->name + "'");
+  if (const Parameter* given = block_->find(key)) return given->value;
+  if (declared && declared->default_value) return *declared->default_value;
+  throw Error("'" + std::string(key) + "' is missing in " +
+                  (block_->name.empty() ? std::string("the scene") : "block " + block_->name),
+              block_->location.text(),
+              "add " + std::string(key) + " = ..." +
+                  (declared ? " (" + declared->doc + ")" : std::string()));
+}
+
+const Value& View::typed(std::string_view key, ValueKind kind) const {
+  const Value& found = value(key);
+  const bool empty_matrix =
+      kind == ValueKind::Matrix && found.kind == ValueKind::Vector && found.vector.empty();
+  if (found.kind != kind && !empty_matrix) {
+    throw Error("'" + std::string(key) + "' must be a " + std::string(name(kind)) + ", not a " +
+                    std::string(name(found.kind)),
+                location(key).text(), "write a " + std::string(name(kind)));
   }
-  return *declared.default_value;
+  return found;
 }
 
-double View::number(const std::string& key) const {
-  return value(key).number;
-}
-long View::integer(const std::string& key) const {
-  return std::lround(value(key).number);
-}
-const std::string& View::string(const std::string& key) const {
-  return value(key).text;
-}
-std::vector<double> View::vector(const std::string& key) const {
-  return value(key).vector;
-}
-std::vector<std::vector<double>> View::matrix(const std::string& key) const {
-  return value(key).matrix;
+double View::number(std::string_view key) const {
+  return typed(key, ValueKind::Number).number;
 }
 
-SourceLocation View::location(const std::string& key) const {
-  if (const Parameter* p = block_->find(key)) return p->location;
+long View::integer(std::string_view key) const {
+  const double x = typed(key, ValueKind::Number).number;
+  if (x != std::floor(x) || std::fabs(x) > 9.0e15) {
+    throw Error(
+        "'" + std::string(key) + "' must be a whole number, not " + format_value(number_value(x)),
+        location(key).text(), "write a whole number");
+  }
+  return static_cast<long>(x);
+}
+
+const std::string& View::string(std::string_view key) const {
+  return typed(key, ValueKind::String).text;
+}
+
+std::vector<double> View::vector(std::string_view key) const {
+  return typed(key, ValueKind::Vector).vector;
+}
+
+NumberMatrix View::matrix(std::string_view key) const {
+  return typed(key, ValueKind::Matrix).matrix;
+}
+
+SourceLocation View::location(std::string_view key) const {
+  if (const Parameter* given = block_->find(key)) return given->location;
   return block_->location;
 }
 
-bool View::has_block(const std::string& block_name) const {
+const BlockSpec& View::child_spec(std::string_view block_name) const {
+  if (const BlockSpec* declared = spec_->block(block_name)) return *declared;
+  FSI_ASSERT(
+      spec_->open || spec_->user_blocks_allowed,
+      "block '" + std::string(block_name) + "' is not declared in block '" + spec_->name + "'");
+  return anything();
+}
+
+bool View::has_block(std::string_view block_name) const {
   return block_->child(block_name) != nullptr;
 }
 
-View View::block(const std::string& block_name) const {
-  const BlockSpec& declared = block_spec(block_name);
-  if (const Block* child = block_->child(block_name)) return View(*child, declared);
-  // An absent block reads as all defaults.
+View View::block(std::string_view block_name) const {
+  const BlockSpec& declared = child_spec(block_name);
+  if (const Block* given = block_->child(block_name)) return View(*given, declared);
   auto empty = std::make_shared<Block>();
-  empty->name = block_name;
+  empty->name = std::string(block_name);
   empty->location = block_->location;
   View view(*empty, declared);
   view.owned_ = std::move(empty);
   return view;
 }
 
-std::vector<View> View::blocks(const std::string& block_name) const {
-  const BlockSpec& declared = block_spec(block_name);
+std::vector<View> View::blocks(std::string_view block_name) const {
+  const BlockSpec& declared = child_spec(block_name);
   std::vector<View> views;
-  for (const Block* child : block_->children(block_name))
-    views.emplace_back(*child, declared);
+  for (const Block* given : block_->children(block_name))
+    views.emplace_back(*given, declared);
   return views;
-}
-
-std::string render_help(const BlockSpec& root) {
-  std::string out = "Parameters of a scene file (kind, unit, default, range, meaning):\n";
-  help_block(root, "", out);
-  return out;
-}
-
-std::string render_markdown(const BlockSpec& root) {
-  std::string out;
-  markdown_block(root, "", out);
-  return out;
 }
 
 }  // namespace fsi::scene

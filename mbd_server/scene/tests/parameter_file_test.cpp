@@ -1,8 +1,10 @@
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <numbers>
 
 #include "fsi/common/error.hpp"
 #include "fsi/scene/parameter_file.hpp"
@@ -12,45 +14,37 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Structure of the thesis §5.6 parameter file.
-const char* kThesisLike = R"(% model data for static consistency test
-SolverOptions
-{
-  end_time = 0.7 % total simulation time
-  Timeint
-  {
-    max_step_size = 0.5*1e-5
-    min_step_size = max_step_size
-    tableau_name = "LobattoIIIA"
+// A fresh folder per test, removed afterwards.
+class TempFolder {
+ public:
+  TempFolder() {
+    static int counter = 0;
+    path_ = fs::temp_directory_path() /
+            ("fsi_scene_test_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
+    fs::remove_all(path_);
+    fs::create_directories(path_);
   }
-}
-Newton.max_modified_newton_steps= 40
-Geometry { width = 0.05; height = 0.1 // the box
-  fill_level = 0.4*height
-  piston_thickness = 0.005
-  piston_y = 0.75*height-0.5*piston_thickness
-  offset_x = 0.0
-}
-LIGGGHTS_SPH_parameters
-{
-  smoothinglength = 0.0015
-  particlespacing = smoothinglength/1.9
-  xmin = 0. + Geometry.offset_x -0.01
-  gravity = [0, -9.81]
-  corners = [[0, 0], [Geometry.width, 0],
-             [Geometry.width, Geometry.height]]
-  name = "tank"
-  copy = gravity
-}
-Body { name = "a"; mass = 1 }
-Body { name = "b"; mass = 2*pi }
-)";
+  ~TempFolder() { fs::remove_all(path_); }
+  TempFolder(const TempFolder&) = delete;
+  TempFolder& operator=(const TempFolder&) = delete;
+
+  std::string write(const std::string& name, const std::string& text) const {
+    const fs::path file = path_ / name;
+    fs::create_directories(file.parent_path());
+    std::ofstream(file) << text;
+    return file.string();
+  }
+
+ private:
+  fs::path path_;
+};
 
 Block parse(const std::string& text, const std::vector<Override>& overrides = {}) {
-  return parse_parameter_text(text, "test.scene", overrides);
+  return parse_parameter_text(text, "t.scene", overrides);
 }
 
-std::string error_text(const std::string& text, const std::vector<Override>& overrides = {}) {
+// The message of the fsi::Error that parsing throws ("" if it does not throw).
+std::string error_of(const std::string& text, const std::vector<Override>& overrides = {}) {
   try {
     parse(text, overrides);
   } catch (const fsi::Error& error) {
@@ -59,127 +53,427 @@ std::string error_text(const std::string& text, const std::vector<Override>& ove
   return "";
 }
 
-TEST(ParameterFile, ReadsTheThesisStructure) {
-  const Block root = parse(kThesisLike);
-  EXPECT_DOUBLE_EQ(root.lookup("SolverOptions.Timeint.min_step_size")->value.number, 0.5e-5);
-  EXPECT_EQ(root.lookup("SolverOptions.Timeint.tableau_name")->value.text, "LobattoIIIA");
-  EXPECT_EQ(root.lookup("Newton.max_modified_newton_steps")->value.number, 40.0);
-  EXPECT_DOUBLE_EQ(root.lookup("Geometry.fill_level")->value.number, 0.04);
-  EXPECT_DOUBLE_EQ(root.lookup("Geometry.piston_y")->value.number, 0.0725);
-  EXPECT_DOUBLE_EQ(root.lookup("LIGGGHTS_SPH_parameters.particlespacing")->value.number,
-                   0.0015 / 1.9);
-  EXPECT_DOUBLE_EQ(root.lookup("LIGGGHTS_SPH_parameters.xmin")->value.number, -0.01);
-  const auto& corners = root.lookup("LIGGGHTS_SPH_parameters.corners")->value;
-  ASSERT_EQ(corners.kind, ValueKind::Matrix);
-  ASSERT_EQ(corners.matrix.size(), 3u);
-  EXPECT_DOUBLE_EQ(corners.matrix[2][1], 0.1);
-  EXPECT_EQ(root.lookup("LIGGGHTS_SPH_parameters.copy")->value.vector,
-            (std::vector<double>{0, -9.81}));
+#define EXPECT_CONTAINS(haystack, needle) \
+  EXPECT_NE(std::string(haystack).find(needle), std::string::npos) << (haystack)
+
+double number_at(const Block& root, const std::string& path) {
+  const Parameter* parameter = root.lookup(path);
+  EXPECT_NE(parameter, nullptr) << path;
+  if (!parameter) return std::nan("");
+  EXPECT_EQ(parameter->value.kind, ValueKind::Number) << path;
+  return parameter->value.number;
+}
+
+// The structure of the thesis §5.6 parameter file, spread over three files.
+const char* kMainFile = R"(% model data for the static consistency test
+include "parts/common.scene"
+SolverOptions
+{
+  end_time = 0.7      % total simulated time
+  Timeint { step_size = 0.5*1e-5; tableau = "RadauIIA" }
+}
+Newton.max_iterations = 40   // a dotted key creates block Newton
+Geometry
+{
+  width = 0.05; height = 0.1
+  piston_thickness = 0.005
+  offset_x = 0.002
+  piston_y = 0.75*height - 0.5*piston_thickness
+}
+LIGGGHTS_SPH_parameters {
+  xmin = 0. + Geometry.offset_x - 0.01
+  name = "piston"
+  gravity = [0, -9.81]
+  points = [[0, 0], [Geometry.width, 0],   % bottom edge
+            [Geometry.width, Geometry.height*Material.scale]]
+  copy = gravity
+}
+Body { name = "a"; mass = 1 }  Body { name = "b"; mass = 2*pi }
+heavier = Body[1].mass - Body[0].mass
+)";
+
+TEST(ParameterFile, ReadsTheStructureOfThesisSection56) {
+  TempFolder folder;
+  folder.write(
+      "parts/common.scene",
+      "% shared material data\nMaterial { density = 1000\n  include \"more/scale.scene\"\n}\n");
+  folder.write("parts/more/scale.scene", "scale = 2  // relative to parts/\n");
+  const Block root = load_parameter_file(folder.write("main.scene", kMainFile));
+
+  EXPECT_DOUBLE_EQ(number_at(root, "SolverOptions.end_time"), 0.7);
+  EXPECT_DOUBLE_EQ(number_at(root, "SolverOptions.Timeint.step_size"), 0.5e-5);
+  EXPECT_EQ(root.lookup("SolverOptions.Timeint.tableau")->value.text, "RadauIIA");
+  EXPECT_EQ(number_at(root, "Newton.max_iterations"), 40.0);
+  EXPECT_DOUBLE_EQ(number_at(root, "Geometry.piston_y"), 0.75 * 0.1 - 0.5 * 0.005);
+  EXPECT_DOUBLE_EQ(number_at(root, "LIGGGHTS_SPH_parameters.xmin"), 0.002 - 0.01);
+  EXPECT_EQ(root.lookup("LIGGGHTS_SPH_parameters.name")->value.text, "piston");
+  const Value& points = root.lookup("LIGGGHTS_SPH_parameters.points")->value;
+  ASSERT_EQ(points.kind, ValueKind::Matrix);
+  EXPECT_EQ(points.matrix, (NumberMatrix{{0, 0}, {0.05, 0}, {0.05, 0.2}}));
+  EXPECT_EQ(root.lookup("LIGGGHTS_SPH_parameters.copy")->value, vector_value({0, -9.81}));
   ASSERT_EQ(root.children("Body").size(), 2u);
-  EXPECT_DOUBLE_EQ(root.lookup("Body[1].mass")->value.number, 2 * M_PI);
+  EXPECT_EQ(root.lookup("Body[1].name")->value.text, "b");
+  EXPECT_DOUBLE_EQ(number_at(root, "heavier"), 2 * std::numbers::pi - 1);
+  EXPECT_EQ(number_at(root, "Material.density"), 1000.0);
+  EXPECT_EQ(number_at(root, "Material.scale"), 2.0);
+
+  // Locations: line:column of the key, in the file that holds it.
   const Parameter* end_time = root.lookup("SolverOptions.end_time");
-  EXPECT_EQ(end_time->location.line, 4);
+  EXPECT_EQ(end_time->location.line, 5);
   EXPECT_EQ(end_time->location.column, 3);
+  EXPECT_EQ(end_time->expression, "0.7");
+  const Parameter* height = root.lookup("Geometry.height");
+  EXPECT_EQ(height->location.line, 11);
+  EXPECT_EQ(height->location.column, 17);
+  const Parameter* density = root.lookup("Material.density");
+  EXPECT_EQ(fs::path(density->location.file).filename(), "common.scene");
+  EXPECT_EQ(density->location.line, 2);
+  EXPECT_EQ(density->location.column, 12);
+  EXPECT_EQ(fs::path(root.lookup("Material.scale")->location.file).filename(), "scale.scene");
+  // A matrix over two lines keeps its expression on one line, without the comment.
+  EXPECT_EQ(root.lookup("LIGGGHTS_SPH_parameters.points")->expression,
+            "[[0, 0], [Geometry.width, 0], [Geometry.width, Geometry.height*Material.scale]]");
+  // The included block comes first in textual order.
+  ASSERT_FALSE(root.entries.empty());
+  EXPECT_EQ(root.entries.front().type, BlockEntry::Type::Block);
+  EXPECT_EQ(root.blocks[root.entries.front().index].name, "Material");
 }
 
-TEST(ParameterFile, OverridesPropagateToLaterParameters) {
-  const Block root = parse(kThesisLike, {{"Geometry.height", "0.2"}, {"Body[0].mass", "3"}});
-  EXPECT_DOUBLE_EQ(root.lookup("Geometry.fill_level")->value.number, 0.08);
-  EXPECT_DOUBLE_EQ(root.lookup("Geometry.piston_y")->value.number, 0.75 * 0.2 - 0.0025);
-  EXPECT_DOUBLE_EQ(root.lookup("LIGGGHTS_SPH_parameters.corners")->value.matrix[2][1], 0.2);
-  EXPECT_EQ(root.lookup("Body[0].mass")->value.number, 3.0);
-  EXPECT_EQ(root.lookup("Geometry.height")->location.file, "--set Geometry.height=0.2");
-}
-
-TEST(ParameterFile, OverrideErrorsSuggest) {
-  const std::string unknown = error_text(kThesisLike, {{"Geometry.widht", "1"}});
-  EXPECT_NE(unknown.find("no parameter 'Geometry.widht'"), std::string::npos) << unknown;
-  EXPECT_NE(unknown.find("did you mean 'Geometry.width'"), std::string::npos) << unknown;
-  const std::string ambiguous = error_text(kThesisLike, {{"Body.mass", "1"}});
-  EXPECT_NE(ambiguous.find("list of 2 blocks"), std::string::npos) << ambiguous;
-  const std::string bad = error_text(kThesisLike, {{"Geometry.width", "1+"}});
-  EXPECT_NE(bad.find("--set Geometry.width=1+"), std::string::npos) << bad;
-  EXPECT_THROW(parse_override("no_equals"), fsi::Error);
-  const Override ok = parse_override("SolverOptions.end_time = 0.05");
-  EXPECT_EQ(ok.path, "SolverOptions.end_time");
-  EXPECT_EQ(ok.expression, "0.05");
-}
-
-TEST(ParameterFile, UndefinedAndLaterReferencesAreLocated) {
-  const std::string undefined = error_text("Geometry {\n  width = 0.05\n  height = 2*widht\n}\n");
-  EXPECT_NE(undefined.find("test.scene:3:12"), std::string::npos) << undefined;
-  EXPECT_NE(undefined.find("'widht' is not defined; did you mean 'width'?"), std::string::npos)
-      << undefined;
-  const std::string later = error_text("a = b + 1\nb = 2\n");
-  EXPECT_NE(later.find("test.scene:1:5"), std::string::npos) << later;
-  EXPECT_NE(later.find("is defined later at test.scene:2:1; move it above line 1"),
-            std::string::npos)
-      << later;
-}
-
-TEST(ParameterFile, AllEvaluationErrorsAreReportedTogether) {
-  const std::string text =
-      error_text("a = 1 +\nb = undefined_thing\nc = \"text\"\nd = c * 2\ne = [1, 2\n");
-  // e is a syntax error ([ not closed) and stops at once; drop it to see the evaluation errors.
-  EXPECT_NE(text.find("'[' is not closed"), std::string::npos) << text;
-  const std::string many = error_text("a = 1 +\nb = undefined_thing\nc = \"text\"\nd = c * 2\n");
-  EXPECT_NE(many.find("3 problem(s)"), std::string::npos) << many;
-  EXPECT_NE(many.find("test.scene:1:5"), std::string::npos) << many;
-  EXPECT_NE(many.find("test.scene:2:5"), std::string::npos) << many;
-  EXPECT_NE(many.find("'c' is a string, arithmetic needs numbers"), std::string::npos) << many;
-}
-
-TEST(ParameterFile, SyntaxErrorsAreLocated) {
-  EXPECT_NE(error_text("Block {\n  a = 1\n")
-                .find("test.scene:1:1: block 'Block' opened here is not closed"),
-            std::string::npos);
-  EXPECT_NE(error_text("a = 1\n}\n").find("test.scene:2:1: '}' without an open block"),
-            std::string::npos);
-  EXPECT_NE(error_text("a 1\n").find("expected '=' or '{' after 'a'"), std::string::npos);
-  EXPECT_NE(error_text("a =\n").find("'a' has no value"), std::string::npos);
-  EXPECT_NE(error_text("s = \"open\n").find("string not closed"), std::string::npos);
-  EXPECT_NE(error_text("3 = 4\n").find("unexpected '3'"), std::string::npos);
-}
-
-TEST(ParameterFile, IncludesAreTextualAndRelative) {
-  const fs::path folder = fs::temp_directory_path() / "fsi_scene_include_test";
-  fs::create_directories(folder / "sub");
-  std::ofstream(folder / "sub" / "common.scene") << "Geometry { width = base * 2 }\n";
-  std::ofstream(folder / "main.scene")
-      << "base = 0.5\ninclude \"sub/common.scene\"\nafter = Geometry.width + 1\n";
-  const Block root = load_parameter_file((folder / "main.scene").string());
-  EXPECT_DOUBLE_EQ(root.lookup("Geometry.width")->value.number, 1.0);
-  EXPECT_DOUBLE_EQ(root.lookup("after")->value.number, 2.0);
-  EXPECT_NE(root.lookup("Geometry.width")->location.file.find("common.scene"), std::string::npos);
-  std::ofstream(folder / "loop.scene") << "include \"loop.scene\"\n";
-  try {
-    load_parameter_file((folder / "loop.scene").string());
-    FAIL();
-  } catch (const fsi::Error& error) {
-    EXPECT_NE(std::string(error.what()).find("include cycle"), std::string::npos);
+TEST(ParameterFile, ReferencesResolveInnermostBlockFirst) {
+  const Block root = parse(R"(width = 1
+top = 5
+Outer {
+  width = 2
+  Inner {
+    a = width            % Outer.width: the nearest enclosing definition
+    b = top              % found at the root
+    width = width * 10   % the right side sees Outer.width
+    c = width            % Inner's own width now
   }
-  std::ofstream(folder / "missing.scene") << "include \"nothere.scene\"\n";
-  EXPECT_THROW(load_parameter_file((folder / "missing.scene").string()), fsi::Error);
-  fs::remove_all(folder);
+  d = Inner.c
+}
+name = "tank"
+v = [1, 2]
+m = [[1, 2], [3, 4]]
+copied_name = name
+copied_v = v
+copied_m = m
+Body { mass = 1 }
+Body { mass = 2 }
+twice = 2*Body[1].mass + Outer.Inner.c
+)");
+  EXPECT_EQ(number_at(root, "Outer.Inner.a"), 2.0);
+  EXPECT_EQ(number_at(root, "Outer.Inner.b"), 5.0);
+  EXPECT_EQ(number_at(root, "Outer.Inner.width"), 20.0);
+  EXPECT_EQ(number_at(root, "Outer.Inner.c"), 20.0);
+  EXPECT_EQ(number_at(root, "Outer.d"), 20.0);
+  EXPECT_EQ(root.lookup("copied_name")->value, text_value("tank"));
+  EXPECT_EQ(root.lookup("copied_v")->value, vector_value({1, 2}));
+  EXPECT_EQ(root.lookup("copied_m")->value, matrix_value({{1, 2}, {3, 4}}));
+  EXPECT_EQ(number_at(root, "twice"), 24.0);
 }
 
-TEST(ParameterFile, TextRoundTripKeepsEveryValue) {
-  const Block first = parse(kThesisLike);
-  const Block second = parse(to_text(first));
-  EXPECT_EQ(flatten_numbers(first), flatten_numbers(second));
-  EXPECT_EQ(to_json(first), to_json(second));
+TEST(ParameterFile, LaterDefinitionInInnerBlockFallsBackToEarlierOuterOne) {
+  const Block root = parse("width = 1\nG {\n  half = width/2\n  width = 4\n}\n");
+  EXPECT_EQ(number_at(root, "G.half"), 0.5);
+  EXPECT_EQ(number_at(root, "G.width"), 4.0);
+}
+
+TEST(ParameterFile, DottedKeysAssignInsideBlocks) {
+  const Block root = parse(R"(Newton.max_iterations = 40
+Newton { tolerance = 1e-8 }
+SolverOptions { end_time = 1 }
+SolverOptions.Timeint.step_size = 1e-5
+Body { mass = 1 }
+Body { mass = 2 }
+Body[1].mass = 3
+)");
+  // The dotted key and the later block are one block, not a list of two.
+  ASSERT_EQ(root.children("Newton").size(), 1u);
+  EXPECT_EQ(number_at(root, "Newton.max_iterations"), 40.0);
+  EXPECT_EQ(number_at(root, "Newton.tolerance"), 1e-8);
+  EXPECT_EQ(root.children("SolverOptions").size(), 1u);
+  EXPECT_EQ(number_at(root, "SolverOptions.Timeint.step_size"), 1e-5);
+  EXPECT_EQ(number_at(root, "Body[1].mass"), 3.0);  // the last assignment counts
+  EXPECT_EQ(root.lookup_block("Body[1]")->parameters.size(), 2u);
+}
+
+TEST(ParameterFile, ReferenceToALaterParameterNamesBothPlaces) {
+  const std::string message = error_of("a = b + 1\nb = 2\n");
+  EXPECT_CONTAINS(
+      message, "t.scene:1:5: in 'a': 'b' is defined later, at t.scene:2:1; move it above line 1");
+}
+
+TEST(ParameterFile, UndefinedNameSuggestsTheNearestOne) {
+  const std::string message = error_of("Geometry {\n  width = 0.05\n  height = 2*widht\n}\n");
+  EXPECT_CONTAINS(message,
+                  "t.scene:3:14: in 'Geometry.height': 'widht' is not defined; did you mean "
+                  "'width'?");
+  const std::string dotted = error_of("G { width = 1 }\nx = 1 + G.widht\n");
+  EXPECT_CONTAINS(dotted, "t.scene:2:9: in 'x': block 'G' has no parameter 'widht'");
+  EXPECT_CONTAINS(dotted, "did you mean 'G.width'?");
+  // Only the dotted path exists: suggest it.
+  EXPECT_CONTAINS(error_of("Geometry { offset_x = 1 }\nx = offset_x\n"),
+                  "t.scene:2:5: in 'x': 'offset_x' is not defined; did you mean "
+                  "'Geometry.offset_x'?");
+}
+
+TEST(ParameterFile, EvaluationErrorsAreLocatedAtTheirToken) {
+  EXPECT_CONTAINS(error_of("c = \"text\"\nd = 1 + c * 2\n"),
+                  "t.scene:2:9: in 'd': 'c' is a string: arithmetic needs numbers");
+  EXPECT_CONTAINS(error_of("v = [1, 2]\nx = v * 2\n"),
+                  "t.scene:2:5: in 'x': 'v' is a vector: arithmetic needs numbers");
+  EXPECT_CONTAINS(error_of("a = 1 +\n"), "t.scene:1:8: in 'a': cannot evaluate '1 +'");
+  EXPECT_CONTAINS(error_of("a = 1\ny = sqrt(-a)\n"),
+                  "t.scene:2:5: in 'y': 'sqrt(-a)' evaluates to nan");
+  EXPECT_CONTAINS(error_of("m = [[1, 2],\n     [3]]\n"),
+                  "t.scene:2:6: in 'm': matrix row 2 has 1 value, row 1 has 2 values");
+  EXPECT_CONTAINS(error_of("v = [1, [2]]\n"),
+                  "t.scene:1:9: in 'v': the list mixes numbers and bracketed rows");
+  EXPECT_CONTAINS(error_of("v = [1, 2] + 1\n"),
+                  "t.scene:1:11: in 'v': unexpected text after the closing ']'");
+  EXPECT_CONTAINS(error_of("v = [1, , 2]\n"), "t.scene:1:9: in 'v': empty element");
+  EXPECT_CONTAINS(error_of("s = \"a\" \"b\"\n"),
+                  "t.scene:1:8: in 's': unexpected text after the string");
+  EXPECT_CONTAINS(error_of("G { a = 1 }\nx = G\n"), "t.scene:2:5: in 'x': 'G' is a block");
+  EXPECT_CONTAINS(error_of("e = 2\nx = 3*e\n"),
+                  "t.scene:2:7: in 'x': 'e' is the built-in constant and also a parameter "
+                  "(t.scene:1:1)");
+  const std::string list = error_of("Body { m = 1 }\nBody { m = 2 }\nx = Body.m\ny = Body[2].m\n");
+  EXPECT_CONTAINS(list,
+                  "t.scene:3:5: in 'x': 'Body' is a list of 2 blocks; pick one: Body[0].m ... "
+                  "Body[1].m");
+  EXPECT_CONTAINS(list, "t.scene:4:5: in 'y': 'Body[2]' does not exist: there are 2 'Body' blocks");
+}
+
+TEST(ParameterFile, AllEvaluationErrorsComeInOneMessageOneLineEach) {
+  const std::string message = error_of(
+      "a = 1 +\n"
+      "b = undefined_thing\n"
+      "c = \"text\"\n"
+      "d = c * 2\n"
+      "e2 = a * 2     % depends on the broken a: no second message\n"
+      "f = [1, widht]\n");
+  EXPECT_CONTAINS(message, "4 problem(s)");
+  EXPECT_CONTAINS(message, "\n  t.scene:1:8: in 'a'");
+  EXPECT_CONTAINS(message, "\n  t.scene:2:5: in 'b'");
+  EXPECT_CONTAINS(message, "\n  t.scene:4:5: in 'd'");
+  EXPECT_CONTAINS(message, "\n  t.scene:6:9: in 'f'");
+  EXPECT_EQ(message.find("'e2'"), std::string::npos) << message;
+  EXPECT_CONTAINS(message, "how to fix:");
+}
+
+TEST(ParameterFile, SyntaxErrorsStopAtTheFirstWithItsLocation) {
+  EXPECT_CONTAINS(error_of("Block {\n  a = 1\n"), "t.scene:1:1: block 'Block' is not closed");
+  EXPECT_CONTAINS(error_of("a = 1\n}\n"), "t.scene:2:1: '}' without an open block");
+  EXPECT_CONTAINS(error_of("a 1\n"), "t.scene:1:1: 'a' is followed by neither '=' nor '{'");
+  EXPECT_CONTAINS(error_of("a = 1\ns = \"open\n"), "t.scene:2:5: the string is not closed");
+  EXPECT_CONTAINS(error_of("v = [1,\n  2\n"), "t.scene:1:5: '[' is not closed");
+  EXPECT_CONTAINS(error_of("a = (1 + 2]\n"),
+                  "t.scene:1:11: ']' does not match the '(' opened at t.scene:1:5");
+  EXPECT_CONTAINS(error_of("B { a = [1, 2 }\n"), "t.scene:1:9: '[' is not closed before '}'");
+  EXPECT_CONTAINS(error_of("x = 2]\n"), "t.scene:1:6: ']' without a matching '['");
+  EXPECT_CONTAINS(error_of("x = { 1 }\n"), "t.scene:1:5: '{' inside an expression");
+  EXPECT_CONTAINS(error_of("a =   % nothing\n"), "t.scene:1:1: 'a' has no value after '='");
+  EXPECT_CONTAINS(error_of("  3 = 4\n"), "t.scene:1:3: unexpected '3'");
+  EXPECT_CONTAINS(error_of("x.y. = 1\n"), "t.scene:1:1: 'x.y.' is not a valid name");
+  EXPECT_CONTAINS(error_of("a[1] = 2\n"), "t.scene:1:1: only blocks take an index");
+  EXPECT_CONTAINS(error_of("A.B { }\n"), "t.scene:1:1: a block name cannot contain '.'");
+  EXPECT_CONTAINS(error_of("include common.scene\n"),
+                  "t.scene:1:9: include needs a file name in double quotes");
+  EXPECT_CONTAINS(error_of("G = 1\nG { }\n"),
+                  "t.scene:2:1: 'G' is already a parameter of this block (t.scene:1:1)");
+  EXPECT_CONTAINS(error_of("Body { m = 1 }\nBody { m = 2 }\nBody.m = 3\n"),
+                  "t.scene:3:1: 'Body' is a list of 2 blocks, so 'Body.m' is ambiguous");
+  // A syntax error wins over evaluation errors before it: nothing is evaluated.
+  const std::string message = error_of("a = undefined\nb = (\n");
+  EXPECT_CONTAINS(message, "t.scene:2:5: '(' is not closed");
+  EXPECT_EQ(message.find("undefined"), std::string::npos) << message;
+}
+
+TEST(ParameterFile, IncludeErrorsNameTheIncludingLine) {
+  TempFolder folder;
+  const std::string missing = folder.write("missing.scene", "a = 1\n  include \"nothere.scene\"\n");
+  try {
+    load_parameter_file(missing);
+    FAIL() << "a missing include was accepted";
+  } catch (const fsi::Error& error) {
+    EXPECT_CONTAINS(error.what(), "missing.scene:2:3: cannot read the included file");
+    EXPECT_CONTAINS(error.what(), "nothere.scene");
+  }
+  folder.write("a.scene", "x = 1\ninclude \"b.scene\"\n");
+  folder.write("b.scene", "include \"a.scene\"\n");
+  try {
+    load_parameter_file(folder.write("loop.scene", "include \"a.scene\"\n"));
+    FAIL() << "an include cycle was accepted";
+  } catch (const fsi::Error& error) {
+    EXPECT_CONTAINS(error.what(), "b.scene:1:1");
+    EXPECT_CONTAINS(error.what(), "include cycle: a.scene -> b.scene -> a.scene");
+  }
+  folder.write("broken.scene", "ok = 1\nbad = [1\n");
+  try {
+    load_parameter_file(folder.write("top.scene", "\n\ninclude \"broken.scene\"\n"));
+    FAIL() << "a syntax error in an included file was accepted";
+  } catch (const fsi::Error& error) {
+    EXPECT_CONTAINS(error.what(), "broken.scene:2:7 (included from ");
+    EXPECT_CONTAINS(error.what(), "top.scene:3:1)");
+  }
+}
+
+TEST(ParameterFile, OverridesReplaceTheExpressionInPlace) {
+  const std::string text = R"(Geometry { width = 0.05; height = 2*width }
+points = [[0, 0], [Geometry.width, Geometry.height]]
+Body { mass = 1 }
+Body { mass = 2 }
+name = "tank"
+later = Body[1].mass + 1
+)";
+  const Block root = parse(
+      text,
+      {{"Geometry.width", "0.06"}, {"Body[1].mass", "3*Geometry.width"}, {"name", "\"other\""}});
+  EXPECT_DOUBLE_EQ(number_at(root, "Geometry.height"), 0.12);
+  EXPECT_DOUBLE_EQ(root.lookup("points")->value.matrix[1][1], 0.12);
+  EXPECT_DOUBLE_EQ(number_at(root, "Body[1].mass"), 0.18);
+  EXPECT_DOUBLE_EQ(number_at(root, "later"), 1.18);
+  EXPECT_EQ(number_at(root, "Body[0].mass"), 1.0);
+  EXPECT_EQ(root.lookup("name")->value.text, "other");
+  const Parameter* width = root.lookup("Geometry.width");
+  EXPECT_EQ(width->location.text(), "--set Geometry.width=0.06");
+  EXPECT_EQ(width->expression, "0.06");
+  // Still at its original place: first entry of Geometry.
+  EXPECT_EQ(root.lookup_block("Geometry")->parameters.front().key, "width");
+}
+
+TEST(ParameterFile, OverrideErrorsNameTheOverride) {
+  const std::string text =
+      "Geometry { width = 0.05 }\nBody { mass = 1 }\nBody { mass = 2 }\nz = 1\n";
+  const std::string unknown = error_of(text, {{"Geometry.widht", "1"}});
+  EXPECT_CONTAINS(unknown,
+                  "--set Geometry.widht=1: the scene file has no parameter 'Geometry.widht'");
+  EXPECT_CONTAINS(unknown, "did you mean 'Geometry.width'?");
+  EXPECT_CONTAINS(error_of(text, {{"Body.mass", "1"}}),
+                  "--set Body.mass=1: 'Body' is a list of 2 blocks\n  how to fix: pick one: "
+                  "Body[0].mass ... Body[1].mass");
+  EXPECT_CONTAINS(error_of(text, {{"Body[2].mass", "1"}}),
+                  "--set Body[2].mass=1: there are only 2 'Body' blocks");
+  EXPECT_CONTAINS(error_of(text, {{"Geometry", "1"}}),
+                  "--set Geometry=1: 'Geometry' is a block, not a parameter");
+  EXPECT_CONTAINS(error_of(text, {{"Geometry.width", "1+"}}),
+                  "--set Geometry.width=1+: in 'Geometry.width': cannot evaluate '1+'");
+  EXPECT_CONTAINS(error_of(text, {{"Geometry.width", "[1, 2"}}),
+                  "--set Geometry.width=[1, 2: in 'Geometry.width': '[' is not closed");
+  EXPECT_CONTAINS(error_of(text, {{"Geometry.width", "z"}}),
+                  "--set Geometry.width=z: in 'Geometry.width': 'z' is defined later, at "
+                  "t.scene:4:1; an override sees only parameters defined above the overridden "
+                  "one (t.scene:1:12)");
+  EXPECT_CONTAINS(error_of(text, {{"Geometry.width", ""}}), "the override has no value");
+
+  EXPECT_THROW(parse_override("no_equals_sign"), fsi::Error);
+  EXPECT_THROW(parse_override("=3"), fsi::Error);
+  const Override parsed = parse_override(" SolverOptions.end_time = 0.05 ");
+  EXPECT_EQ(parsed.path, "SolverOptions.end_time");
+  EXPECT_EQ(parsed.expression, "0.05");
+  EXPECT_EQ(parse_override("name=\"a=b\"").expression, "\"a=b\"");
+}
+
+void expect_same_values(const Block& a, const Block& b) {
+  ASSERT_EQ(a.name, b.name);
+  ASSERT_EQ(a.entries.size(), b.entries.size()) << a.name;
+  for (std::size_t i = 0; i < a.entries.size(); ++i) {
+    ASSERT_EQ(a.entries[i].type, b.entries[i].type) << a.name;
+    if (a.entries[i].type == BlockEntry::Type::Block) {
+      expect_same_values(a.blocks[a.entries[i].index], b.blocks[b.entries[i].index]);
+    } else {
+      const Parameter& left = a.parameters[a.entries[i].index];
+      const Parameter& right = b.parameters[b.entries[i].index];
+      EXPECT_EQ(left.key, right.key);
+      EXPECT_EQ(left.value, right.value) << left.key;  // bit-exact doubles
+    }
+  }
+}
+
+TEST(ParameterFile, PrintedTextParsesBackToTheSameValues) {
+  TempFolder folder;
+  folder.write("parts/common.scene", "Material { density = 1000; scale = 2 }\n");
+  const Block first = load_parameter_file(folder.write("main.scene", std::string(kMainFile) + R"(
+Tricky {
+  third = 1/3
+  sum = 0.1 + 0.2
+  tiny = 1e-300
+  huge = 2^70 + 1
+  negative = -0.0
+  text = "50% full; {x} // not a comment"
+  empty = []
+  twice = 1
+  twice = twice + 1
+}
+)"));
+  const std::string printed = to_text(first);
+  const Block second = parse_parameter_text(printed, "printed.scene");
+  expect_same_values(first, second);
+  // Evaluated values carry their expression as a comment.
+  EXPECT_CONTAINS(printed, "step_size = 5e-06  % 0.5*1e-5");
+  EXPECT_CONTAINS(printed, "third = 0.3333333333333333  % 1/3");
+  // Printing the reparsed tree gives the same values again (a fixed point up to comments).
+  expect_same_values(second, parse_parameter_text(to_text(second), "again.scene"));
+}
+
+TEST(ParameterFile, JsonMirrorsTheTree) {
+  const Block root = parse(
+      "S { end_time = 0.5; T { tableau = \"RadauIIA\" } }\nBody { m = 1 }\nBody { m = 2 }\n"
+      "One { v = [1, 2] }\nm = [[1, 2], [3, 4]]\n");
+  const nlohmann::json json = to_json(root);
+  EXPECT_EQ(json["S"]["end_time"], 0.5);
+  EXPECT_EQ(json["S"]["T"]["tableau"], "RadauIIA");
+  ASSERT_TRUE(json["Body"].is_array());
+  EXPECT_EQ(json["Body"][1]["m"], 2.0);
+  EXPECT_TRUE(json["One"].is_object());
+  EXPECT_EQ(json["One"]["v"], nlohmann::json({1.0, 2.0}));
+  EXPECT_EQ(json["m"][1][0], 3.0);
+  const auto flat = flatten_numbers(root);
+  EXPECT_EQ(flat.at("Body[1].m"), 2.0);
+  EXPECT_EQ(flat.at("S.end_time"), 0.5);
+}
+
+TEST(ParameterFile, SceneFormatVersionIsExposed) {
+  EXPECT_EQ(scene_format_version(parse("SceneFormat { version = 1 }\n")), 1L);
+  EXPECT_EQ(scene_format_version(parse("a = 1\n")), std::nullopt);
+  EXPECT_THROW(scene_format_version(parse("SceneFormat { version = 1.5 }\n")), fsi::Error);
+  EXPECT_THROW(scene_format_version(parse("SceneFormat { version = \"1\" }\n")), fsi::Error);
+}
+
+TEST(ParameterFile, LookupHelpers) {
+  const Block root = parse("A { B { c = 1 } }\nBody { m = 1 }\nBody { m = 2 }\nk = 1\nk = 2\n");
+  EXPECT_EQ(root.lookup("A.B.c")->value.number, 1.0);
+  EXPECT_EQ(root.lookup("Body[1].m")->value.number, 2.0);
+  EXPECT_EQ(root.lookup("Body.m")->value.number, 1.0);  // no index: the first
+  EXPECT_EQ(root.lookup("Body[2].m"), nullptr);
+  EXPECT_EQ(root.lookup("A.X.c"), nullptr);
+  EXPECT_EQ(root.lookup("not a path"), nullptr);
+  EXPECT_EQ(root.lookup_block("A.B")->name, "B");
+  EXPECT_EQ(root.find("k")->value.number, 2.0);  // the last assignment
+  EXPECT_EQ(root.children("Body").size(), 2u);
+  EXPECT_EQ(root.child("Missing"), nullptr);
+
+  Block built;
+  built.add_parameter({"x", number_value(1), "1", {}});
+  built.add_block(Block{"Child", {}, {}, {}, {}});
+  ASSERT_EQ(built.entries.size(), 2u);
+  EXPECT_EQ(built.entries[1].type, BlockEntry::Type::Block);
+  EXPECT_EQ(to_text(built), "x = 1\nChild\n{\n}\n");
 }
 
 TEST(ParameterFile, LoadsTheStaticTankExample) {
   const Block root = load_parameter_file(FSI_EXAMPLES_DIR "/static_tank/static_tank_coarse.scene");
-  EXPECT_DOUBLE_EQ(root.lookup("Geometry.width")->value.number, 0.05);
-  EXPECT_DOUBLE_EQ(root.lookup("LIGGGHTS_SPH_parameters.particlespacing")->value.number,
-                   0.0016 / 1.9);
+  EXPECT_DOUBLE_EQ(number_at(root, "Geometry.width"), 0.05);
+  EXPECT_DOUBLE_EQ(number_at(root, "LIGGGHTS_SPH_parameters.particlespacing"), 0.0016 / 1.9);
   EXPECT_EQ(root.children("RigidBody2D").size(), 2u);
+  EXPECT_EQ(scene_format_version(root), 1L);
 }
 
 TEST(EditDistance, SuggestsTheNearestName) {
   EXPECT_EQ(edit_distance("width", "widht"), 2u);
+  EXPECT_EQ(edit_distance("Solveroptions", "SolverOptions"), 0u);  // case does not count
   EXPECT_EQ(nearest("SolverOption", {"SolverOptions", "Output"}), "SolverOptions");
   EXPECT_EQ(nearest("zzz", {"SolverOptions", "Output"}), "");
 }

@@ -1,91 +1,128 @@
 #pragma once
-// The parameter-file language of thesis §5.6 (HOTINT-like), docs/parameters.md:
+// The parameter-file language of thesis §5.6 (HOTINT-like); the reference is docs/parameters.md.
 //
 //   % comment            // comment
-//   Block { key = expression; other = "text" }   nested blocks, ';' or newline between entries
+//   Block { key = expression; other = "text" }   nested blocks; ';' or a new line between entries
 //   Newton.max_iterations = 40                    dotted key: assigns inside block Newton
 //   y = 0.75*height - 0.5*thickness               references to EARLIER parameters
-//   x = Geometry.offset_x                         dotted references into other blocks
+//   x = Geometry.offset_x + Body[1].mass          dotted (and indexed) references
 //   v = [0, -9.81]     m = [[0, 0], [1, 0]]       vectors and matrices (may span lines)
 //   include "other.scene"                         textual include, relative to this file
 //   Body { ... } Body { ... }                     repeated blocks form element lists
 //
-// Expressions are evaluated with muParser (sin, cos, sqrt, exp, ln, min, max, ^, pi, e, ...).
-// A name resolves in the innermost enclosing block first, then outwards; only parameters defined
-// earlier in the text are visible. `--set KEY=EXPR` overrides replace a parameter's expression at
-// its original place, so later parameters that use it see the new value.
+// Expressions are evaluated with muParser (sin, cos, sqrt, exp, ln, log10, abs, min, max, ^, pi,
+// e, ...). A name resolves in the innermost enclosing block first, then outwards, and only to
+// parameters defined earlier in the text, so there are no cycles. `--set KEY=EXPR` overrides
+// replace a parameter's expression at its original place: later parameters that use it follow.
 
 #include <nlohmann/json.hpp>
 
+#include <cstddef>
 #include <map>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
-namespace fsi::scene {
+#include "fsi/scene/problem.hpp"
 
-struct SourceLocation {
-  std::string file;  // or "--set KEY=EXPR" for overrides
-  int line = 0;
-  int column = 0;
-  std::string text() const;  // "file:line:column"
-};
+namespace fsi::scene {
 
 enum class ValueKind { Number, String, Vector, Matrix };
 std::string_view name(ValueKind kind);
 
+using NumberMatrix = std::vector<std::vector<double>>;  // rows of equal length
+
+// An evaluated value; only the member named by `kind` is meaningful.
 struct Value {
   ValueKind kind = ValueKind::Number;
   double number = 0.0;
   std::string text;
   std::vector<double> vector;
-  std::vector<std::vector<double>> matrix;
+  NumberMatrix matrix;
+
+  friend bool operator==(const Value&, const Value&) = default;
 };
+
+Value number_value(double value);
+Value text_value(std::string value);
+Value vector_value(std::vector<double> value);
+Value matrix_value(NumberMatrix value);
+
+// The value in the language's own syntax; numbers in the shortest form that reads back exactly.
+std::string format_value(const Value& value);
 
 struct Parameter {
   std::string key;
   Value value;
-  std::string expression;  // as written (or as overridden)
-  SourceLocation location;
+  std::string expression;   // as written (comments dropped, line breaks joined), or as overridden
+  SourceLocation location;  // of the key; "--set KEY=EXPR" when overridden
+};
+
+struct Block;
+
+// One entry of a block in textual order: an index into Block::parameters or Block::blocks.
+struct BlockEntry {
+  enum class Type { Parameter, Block };
+  Type type = Type::Parameter;
+  std::size_t index = 0;
 };
 
 struct Block {
-  std::string name;
+  std::string name;  // "" for the root (the file itself)
   SourceLocation location;
   std::vector<Parameter> parameters;
   std::vector<Block> blocks;
-  // Textual order of entries: (true, index into blocks) or (false, index into parameters).
-  std::vector<std::pair<bool, std::size_t>> order;
+  std::vector<BlockEntry> entries;  // parameters and blocks interleaved as in the text
 
+  // The parameter `key` of this block (the last assignment if it is assigned twice), or nullptr.
   const Parameter* find(std::string_view key) const;
+  // The child blocks named `name`, in textual order (several form an element list).
   std::vector<const Block*> children(std::string_view name) const;
-  const Block* child(std::string_view name) const;  // the first one, or nullptr
-  // "A.B.c" or "Body[1].mass"; nullptr if absent.
+  // The first child block named `name`, or nullptr.
+  const Block* child(std::string_view name) const;
+  // A parameter by path: "A.B.c", "Body[1].mass" (0-based; an index-less name means [0]).
   const Parameter* lookup(std::string_view path) const;
+  // A block by path: "A.B", "Body[1]".
+  const Block* lookup_block(std::string_view path) const;
+
+  // Append an entry, keeping `entries` in step (for building trees in code).
+  Parameter& add_parameter(Parameter parameter);
+  Block& add_block(Block block);
 };
 
+// A command-line override `--set KEY=EXPR`.
 struct Override {
-  std::string path;
-  std::string expression;
+  std::string path;        // "Geometry.width", "Body[1].mass"
+  std::string expression;  // any expression the file could hold at that place
 };
 
-// Parses "KEY=EXPR"; throws fsi::Error if there is no '='.
+// Splits "KEY=EXPR"; throws fsi::Error if it is not of that form.
 Override parse_override(std::string_view text);
 
-// Reads, includes, overrides and evaluates a file. Throws fsi::Error: a syntax error stops at
-// once; evaluation errors are collected and reported together, one per line.
+// Reads `path` with its includes, applies the overrides and evaluates every expression. Throws
+// fsi::Error: a syntax error stops at once; evaluation errors (undefined names, bad arithmetic,
+// references to later parameters) are collected and reported together, one per line.
 Block load_parameter_file(const std::string& path, const std::vector<Override>& overrides = {});
-// The same from text (file name used for messages and includes relative to its directory).
+// The same for text in memory; `file_name` appears in messages and anchors relative includes.
 Block parse_parameter_text(const std::string& text, const std::string& file_name,
                            const std::vector<Override>& overrides = {});
 
-// The evaluated tree in the same syntax, numbers with 17 significant digits.
+// The top-level `SceneFormat { version = N }` of a file, if present. Refusing a version is the
+// caller's job. Throws fsi::Error if the version is given but is not a whole number.
+std::optional<long> scene_format_version(const Block& root);
+
+// The evaluated tree in the language's syntax (for `fsi-server --print-params`); parsing it again
+// gives the same values. Each entry whose expression differs from its value carries the
+// expression as a comment.
 std::string to_text(const Block& root);
-// {"entries": [{"kind": "parameter", "key", "value"}, {"kind": "block", "name", "entries"}]}
+// Blocks as objects, parameters as numbers/strings/arrays, repeated blocks as arrays of objects
+// (for the run manifest).
 nlohmann::json to_json(const Block& root);
-// Every parameter by dotted path (repeated blocks as Name[i]); numbers only.
+// Every number parameter by dotted path (repeated blocks as Name[i]).
 std::map<std::string, double> flatten_numbers(const Block& root);
 
+// Case-insensitive Levenshtein distance, for "did you mean ...?".
 std::size_t edit_distance(std::string_view a, std::string_view b);
 // The candidate closest to `word` within distance max(2, |word|/3), or "".
 std::string nearest(std::string_view word, const std::vector<std::string>& candidates);

@@ -1,0 +1,84 @@
+// The baseline of the coupling benchmark: the scene's fluid in plain LIGGGHTS, driven exactly
+// like fsi-client does (same variables, scripts, particles, equilibration, time step), but with
+// the structure replaced by LIGGGHTS' own `fix wall/region/sph` walls around a block region, and
+// the measured steps done in one `run M`. Prints one JSON line with the loop wall time.
+//
+//   mpirun -np N bench_plain_liggghts SCENE --steps M --region XLO XHI YLO YHI [--set KEY=EXPR]...
+#include <CLI/CLI.hpp>
+#include <mpi.h>
+
+#include <chrono>
+#include <cstdio>
+#include <regex>
+#include <string>
+
+#include "fsi/common/error.hpp"
+#include "fsi/scene/scene.hpp"
+#include "liggghts_driver.hpp"
+
+int main(int argc, char** argv) {
+  MPI_Init(&argc, &argv);
+  int rank = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  CLI::App app{"Plain-LIGGGHTS baseline of a scene (wall/region/sph walls instead of fix fsi/sph)"};
+  std::string scene_file;
+  long steps = 1000;
+  std::vector<double> region;
+  std::vector<std::string> overrides;
+  app.add_option("scene", scene_file)->required();
+  app.add_option("--steps", steps)->required();
+  app.add_option("--region", region, "block XLO XHI YLO YHI of the walls")->expected(4)->required();
+  app.add_option("--set", overrides);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& error) {
+    const int status = rank == 0 ? app.exit(error) : 2;
+    MPI_Finalize();
+    return status;
+  }
+  try {
+    std::vector<fsi::scene::Override> parsed;
+    for (const auto& item : overrides) parsed.push_back(fsi::scene::parse_override(item));
+    const fsi::scene::Scene scene = fsi::scene::build_scene(scene_file, parsed);
+    auto boundary = std::make_shared<fsi::contact::CouplingBoundary>();
+    fsi::client::LiggghtsDriver driver(MPI_COMM_WORLD, {}, boundary);
+    driver.define_variables(scene.liggghts.variables);
+    // The structure becomes LIGGGHTS walls: same cut-off as our fix, LIGGGHTS' own force law.
+    char walls[512];
+    std::snprintf(walls, sizeof walls,
+                  "region fsi_bench_tank block %.17g %.17g %.17g %.17g -1 1 units box\n"
+                  "fix fsi_bench_walls all wall/region/sph fsi_bench_tank ${SPH_wall_cutoff} 5.0",
+                  region[0], region[1], region[2], region[3]);
+    const std::string script1 =
+        std::regex_replace(scene.liggghts.script1_text, std::regex(R"(fix\s+\S+\s+\S+\s+fsi/sph[^\n]*(&\s*\n[^\n]*)*)"), walls);
+    fsi::client::ParticleBlock particles;
+    particles.mass = scene.fluid.mass;
+    particles.density = scene.fluid.density;
+    particles.atom_type = scene.fluid.atom_type;
+    particles.positions = scene.fluid.positions;
+    particles.velocities = scene.fluid.velocities;
+    driver.run_script(scene.liggghts.script1_name + " (walls: wall/region/sph)", script1,
+                      [&] { driver.insert_particles(particles); });
+    driver.set_time_step(scene.solver.step_size);
+    driver.run_with_setup(0);
+    if (scene.liggghts.equilibration_steps > 0) driver.run_with_setup(scene.liggghts.equilibration_steps);
+    driver.run_script(scene.liggghts.script2_name, scene.liggghts.script2_text);
+    driver.run_with_setup(0);
+    MPI_Barrier(MPI_COMM_WORLD);
+    const auto start = std::chrono::steady_clock::now();
+    driver.run_with_setup(static_cast<std::uint64_t>(steps));
+    MPI_Barrier(MPI_COMM_WORLD);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    int ranks = 1;
+    MPI_Comm_size(MPI_COMM_WORLD, &ranks);
+    if (rank == 0) {
+      std::printf("{\"particles\": %llu, \"steps\": %ld, \"ranks\": %d, \"seconds_loop\": %.6f}\n",
+                  static_cast<unsigned long long>(driver.particle_count()), steps, ranks, seconds);
+    }
+  } catch (const std::exception& failure) {
+    std::fprintf(stderr, "bench_plain_liggghts (rank %d): %s\n", rank, failure.what());
+    MPI_Abort(MPI_COMM_WORLD, 1);
+  }
+  MPI_Finalize();
+  return 0;
+}

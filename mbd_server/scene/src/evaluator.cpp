@@ -1,0 +1,656 @@
+// Raw tree -> values. Parameters are evaluated in textual order, so every reference either finds
+// an earlier, already evaluated parameter or is an error; all errors are collected. Numbers go
+// through muParser, whose variable factory resolves names against the tree.
+
+#include <muParser.h>
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <numbers>
+
+#include "fsi/common/error.hpp"
+#include "raw_tree.hpp"
+
+namespace fsi::scene::detail {
+namespace {
+
+constexpr const char* kFunctionsHint =
+    "check operators, parentheses and function names (sin, cos, tan, asin, acos, atan, sqrt, exp, "
+    "ln, log10, abs, min, max, ...)";
+
+std::string in_quotes(std::string_view text) {
+  return "'" + std::string(text) + "'";
+}
+
+std::string count(std::size_t n, const std::string& noun) {
+  return std::to_string(n) + " " + noun + (n == 1 ? "" : "s");
+}
+
+bool is_blank(char c) {
+  return c == ' ' || c == '\t' || c == '\n' || c == '\r';
+}
+
+// Characters muParser accepts in a variable name once '.' and indices are allowed.
+bool is_name_char(char c) {
+  return is_identifier_char(c) || c == '.' || c == '[' || c == ']';
+}
+
+// The end of a reference path starting at `begin` (Name, Name[2], A.B.c), or `begin` if none.
+std::size_t reference_end(const std::string& text, std::size_t begin, std::size_t end) {
+  std::size_t i = begin;
+  while (i < end && is_identifier_start(text[i])) {
+    while (i < end && is_identifier_char(text[i]))
+      ++i;
+    if (i < end && text[i] == '[') {
+      std::size_t j = i + 1;
+      while (j < end && std::isdigit(static_cast<unsigned char>(text[j])))
+        ++j;
+      if (j == i + 1 || j >= end || text[j] != ']') return begin;
+      i = j + 1;
+    }
+    if (i + 1 < end && text[i] == '.' && is_identifier_start(text[i + 1])) {
+      ++i;
+      continue;
+    }
+    return i;
+  }
+  return begin;
+}
+
+// The index of the bracket closing the one at `open`, or npos.
+std::size_t matching_bracket(const std::string& text, std::size_t open, std::size_t end) {
+  int depth = 0;
+  bool in_string = false;
+  for (std::size_t i = open; i < end; ++i) {
+    const char c = text[i];
+    if (c == '"') in_string = !in_string;
+    if (in_string) continue;
+    if (c == '[' || c == '(') ++depth;
+    if (c == ']' || c == ')') {
+      if (--depth == 0) return i;
+    }
+  }
+  return std::string::npos;
+}
+
+struct Range {
+  std::size_t begin = 0;
+  std::size_t end = 0;
+  bool empty() const { return begin == end; }
+};
+
+Range trimmed(const std::string& text, std::size_t begin, std::size_t end) {
+  while (begin < end && is_blank(text[begin]))
+    ++begin;
+  while (end > begin && is_blank(text[end - 1]))
+    --end;
+  return {begin, end};
+}
+
+// The comma-separated items between the brackets at `open` and `close`.
+std::vector<Range> split_items(const std::string& text, std::size_t open, std::size_t close) {
+  std::vector<Range> items;
+  int depth = 0;
+  std::size_t start = open + 1;
+  for (std::size_t i = open + 1; i < close; ++i) {
+    if (text[i] == '[' || text[i] == '(') ++depth;
+    if (text[i] == ']' || text[i] == ')') --depth;
+    if (text[i] == ',' && depth == 0) {
+      items.push_back(trimmed(text, start, i));
+      start = i + 1;
+    }
+  }
+  items.push_back(trimmed(text, start, close));
+  return items;
+}
+
+// Dotted path of a parameter for messages, with [i] for blocks that repeat.
+std::string path_of(const RawParameter& parameter) {
+  std::string path = parameter.key;
+  for (const RawBlock* block = parameter.block; block && block->parent; block = block->parent) {
+    const std::vector<RawBlock*> siblings = block->parent->children(block->name);
+    std::string name = block->name;
+    if (siblings.size() > 1) {
+      const auto index = std::find(siblings.begin(), siblings.end(), block) - siblings.begin();
+      name += "[" + std::to_string(index) + "]";
+    }
+    path = name + "." + path;
+  }
+  return path;
+}
+
+class Evaluator {
+ public:
+  explicit Evaluator(RawBlock& root) : root_(root) {
+    parser_.DefineNameChars("0123456789_abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ.[]");
+    parser_.DefineConst("pi", std::numbers::pi);
+    parser_.DefineConst("e", std::numbers::e);
+    parser_.SetVarFactory(&Evaluator::on_variable, this);
+  }
+
+  std::vector<Problem> run() {
+    std::vector<RawParameter*> all;
+    collect(root_, all);
+    std::sort(all.begin(), all.end(), [](const RawParameter* a, const RawParameter* b) {
+      return a->sequence < b->sequence;
+    });
+    for (RawParameter* parameter : all)
+      evaluate(*parameter);
+    return std::move(problems_);
+  }
+
+ private:
+  struct Resolution {
+    RawParameter* parameter = nullptr;  // set when found
+    std::string message;                // otherwise why not
+    std::string fix;
+  };
+
+  static void collect(RawBlock& block, std::vector<RawParameter*>& all) {
+    for (auto& parameter : block.parameters)
+      all.push_back(parameter.get());
+    for (auto& child : block.blocks)
+      collect(*child, all);
+  }
+
+  void report(const RawParameter& parameter, std::size_t offset, const std::string& message,
+              const std::string& fix) {
+    problems_.push_back({parameter.location_at(offset),
+                         "in " + in_quotes(path_of(parameter)) + ": " + message, fix});
+  }
+
+  // ---- name resolution ----
+
+  // What `parts` names when seen from `scope`; an empty Resolution means "not in this scope".
+  Resolution resolve_in(RawBlock& scope, const std::vector<PathPart>& parts,
+                        const RawParameter& from, const RawParameter*& later) {
+    RawBlock* block = &scope;
+    for (std::size_t i = 0; i + 1 < parts.size(); ++i) {
+      const std::vector<RawBlock*> candidates = block->children(parts[i].name);
+      const std::string prefix = to_string(parts, i + 1);
+      if (candidates.empty()) {
+        if (i == 0) return {};
+        std::vector<std::string> names;
+        for (const auto& child : block->blocks)
+          names.push_back(child->name);
+        const std::string suggestion = nearest(parts[i].name, names);
+        return {
+            nullptr,
+            "block " + in_quotes(to_string(parts, i)) + " has no block " + in_quotes(parts[i].name),
+            suggestion.empty() ? "check the path" : "did you mean " + in_quotes(suggestion) + "?"};
+      }
+      if (parts[i].index >= static_cast<int>(candidates.size())) {
+        return {nullptr,
+                in_quotes(prefix) + " does not exist: there are " +
+                    std::to_string(candidates.size()) + " " + in_quotes(parts[i].name) + " blocks",
+                "use an index from 0 to " + std::to_string(candidates.size() - 1) + " (0-based)"};
+      }
+      if (parts[i].index < 0 && candidates.size() > 1) {
+        const std::string rest = to_string(parts, parts.size()).substr(prefix.size());
+        return {nullptr,
+                in_quotes(parts[i].name) + " is a list of " + std::to_string(candidates.size()) +
+                    " blocks",
+                "pick one: " + parts[i].name + "[0]" + rest + " ... " + parts[i].name + "[" +
+                    std::to_string(candidates.size() - 1) + "]" + rest};
+      }
+      block = candidates[parts[i].index < 0 ? 0 : static_cast<std::size_t>(parts[i].index)];
+    }
+    const PathPart& last = parts.back();
+    if (last.index >= 0) {
+      return {nullptr,
+              "only blocks take an index, not " + in_quotes(to_string(parts, parts.size())),
+              "remove the [...] after " + in_quotes(last.name)};
+    }
+    RawParameter* found = nullptr;
+    for (auto& candidate : block->parameters) {
+      if (candidate->key != last.name || candidate.get() == &from) continue;
+      if (candidate->sequence < from.sequence) {
+        found = candidate.get();  // the latest assignment before the reference counts
+      } else if (!later) {
+        later = candidate.get();
+      }
+    }
+    if (found) return {found, "", ""};
+    if (parts.size() == 1) {
+      if (!block->children(last.name).empty()) {
+        return {nullptr, in_quotes(last.name) + " is a block, not a number",
+                "reference one of its parameters, e.g. " + last.name + ".key"};
+      }
+      return {};
+    }
+    if (later) return {};
+    std::vector<std::string> keys;
+    for (const auto& candidate : block->parameters) {
+      if (candidate->sequence < from.sequence) keys.push_back(candidate->key);
+    }
+    const std::string suggestion = nearest(last.name, keys);
+    return {nullptr,
+            "block " + in_quotes(to_string(parts, parts.size() - 1)) + " has no parameter " +
+                in_quotes(last.name) + " defined before this line",
+            suggestion.empty()
+                ? "check the name"
+                : "did you mean " +
+                      in_quotes(to_string(parts, parts.size() - 1) + "." + suggestion) + "?"};
+  }
+
+  // Whether `from`'s key has an earlier assignment in `block` (then suggesting it makes sense).
+  static bool assigned_before(const RawBlock& block, const RawParameter& from) {
+    return std::any_of(block.parameters.begin(), block.parameters.end(), [&](const auto& other) {
+      return other->key == from.key && other->sequence < from.sequence;
+    });
+  }
+
+  // Parameters visible from `from`, as the paths one would write there, for suggestions.
+  std::vector<std::string> visible_names(const RawParameter& from) const {
+    std::vector<std::string> names;
+    for (const RawBlock* scope = from.block; scope; scope = scope->parent) {
+      std::vector<std::string> paths;
+      collect_paths(*scope, "", paths);
+      for (std::string& path : paths) {
+        if (scope == from.block && path == from.key && !assigned_before(*scope, from)) continue;
+        names.push_back(std::move(path));
+      }
+    }
+    return names;
+  }
+
+  Resolution resolve(std::string_view path, const RawParameter& from) {
+    std::vector<PathPart> parts;
+    if (!parse_path(path, parts)) {
+      return {nullptr, in_quotes(path) + " is not a parameter name",
+              "vectors and matrices cannot take part in arithmetic; names are letters, digits, "
+              "'_' and '.'"};
+    }
+    const RawParameter* later = nullptr;
+    Resolution first_problem;
+    for (RawBlock* scope = from.block; scope; scope = scope->parent) {
+      Resolution found = resolve_in(*scope, parts, from, later);
+      if (found.parameter) return found;
+      if (first_problem.message.empty()) first_problem = std::move(found);
+    }
+    if (later) {
+      const bool same_file = later->location.file == from.location.file;
+      const std::string use =
+          same_file ? "line " + std::to_string(from.location.line) : from.location.text();
+      return {nullptr, in_quotes(path) + " is defined later, at " + later->location.text(),
+              from.override_label.empty()
+                  ? "move it above " + use + ": a reference sees only parameters defined earlier"
+                  : "an override sees only parameters defined above the overridden one (" +
+                        from.location.text() + ")"};
+    }
+    if (!first_problem.message.empty()) return first_problem;
+    const std::vector<std::string> names = visible_names(from);
+    std::string suggestion = nearest(path, names);
+    if (suggestion.empty()) {
+      // "offset_x" when only "Geometry.offset_x" exists.
+      for (const auto& name : names) {
+        const std::size_t dot = name.rfind('.');
+        if (dot != std::string::npos && name.substr(dot + 1) == parts.back().name) {
+          suggestion = name;
+          break;
+        }
+      }
+    }
+    return {nullptr, in_quotes(path) + " is not defined",
+            suggestion.empty()
+                ? "define it above this line (a name is looked up in its block, then in the "
+                  "blocks around it)"
+                : "did you mean " + in_quotes(suggestion) + "?"};
+  }
+
+  // ---- numbers through muParser ----
+
+  // Where the name `name` occurs in the expression being evaluated, as muParser splits names.
+  std::size_t locate(std::string_view name) {
+    const std::string& text = *text_;
+    for (int pass = 0; pass < 2; ++pass) {
+      std::size_t i = pass == 0 ? cursor_ : scalar_.begin;
+      while (i < scalar_.end) {
+        if (!is_name_char(text[i])) {
+          ++i;
+          continue;
+        }
+        std::size_t j = i;
+        while (j < scalar_.end && is_name_char(text[j]))
+          ++j;
+        if (std::string_view(text).substr(i, j - i) == name) {
+          cursor_ = j;
+          return i;
+        }
+        i = j;
+      }
+    }
+    return scalar_.begin;
+  }
+
+  static double* on_variable(const char* name, void* self) {
+    return static_cast<Evaluator*>(self)->variable(name);
+  }
+
+  double* variable(std::string_view name) {
+    slots_.push_back(std::nan(""));
+    double* slot = &slots_.back();
+    const std::size_t offset = locate(name);
+    const Resolution found = resolve(name, *current_);
+    if (!found.parameter) {
+      pending_.push_back({offset, found.message, found.fix});
+    } else if (found.parameter->state != RawParameter::State::Done) {
+      dependency_failed_ = true;  // its own error is reported already
+    } else if (found.parameter->value.kind != ValueKind::Number) {
+      const std::string kind(fsi::scene::name(found.parameter->value.kind));
+      pending_.push_back({offset, in_quotes(name) + " is a " + kind + ": arithmetic needs numbers",
+                          "reference a number here; to copy the " + kind +
+                              ", make the reference the whole expression"});
+    } else {
+      *slot = found.parameter->value.number;
+    }
+    return slot;
+  }
+
+  // `e` and `pi` are muParser constants and never reach the factory: a parameter of that name
+  // would be ignored silently.
+  void check_constant_names(RawParameter& parameter) {
+    const std::string& text = *text_;
+    for (std::size_t i = scalar_.begin; i < scalar_.end;) {
+      if (!is_name_char(text[i])) {
+        ++i;
+        continue;
+      }
+      std::size_t j = i;
+      while (j < scalar_.end && is_name_char(text[j]))
+        ++j;
+      const std::string token = text.substr(i, j - i);
+      std::size_t next = j;
+      while (next < scalar_.end && is_blank(text[next]))
+        ++next;
+      const bool call = next < scalar_.end && text[next] == '(';
+      if ((token == "e" || token == "pi") && !call) {
+        const Resolution found = resolve(token, parameter);
+        if (found.parameter) {
+          pending_.push_back({i,
+                              in_quotes(token) +
+                                  " is the built-in constant and also a parameter (" +
+                                  found.parameter->location.text() + ")",
+                              "rename the parameter, e.g. " + token + "_value"});
+        }
+      }
+      i = j;
+    }
+  }
+
+  bool number(RawParameter& parameter, Range range, double& out) {
+    text_ = &normalized_;
+    scalar_ = range;
+    cursor_ = range.begin;
+    current_ = &parameter;
+    pending_.clear();
+    dependency_failed_ = false;
+    check_constant_names(parameter);
+    const std::string expression = normalized_.substr(range.begin, range.end - range.begin);
+    bool parsed = true;
+    std::size_t error_offset = range.begin;
+    std::string error_message;
+    try {
+      parser_.ClearVar();
+      parser_.SetExpr(expression);
+      out = parser_.Eval();
+    } catch (const mu::Parser::exception_type& error) {
+      parsed = false;
+      error_offset =
+          range.begin + std::min<std::size_t>(static_cast<std::size_t>(std::max(error.GetPos(), 0)),
+                                              expression.size());
+      error_message = error.GetMsg();
+    }
+    for (const auto& problem : pending_)
+      report(parameter, problem.offset, problem.message, problem.fix);
+    if (!pending_.empty() || dependency_failed_) return false;
+    if (!parsed) {
+      report(parameter, error_offset,
+             "cannot evaluate " + in_quotes(expression) + ": " + error_message, kFunctionsHint);
+      return false;
+    }
+    if (!std::isfinite(out)) {
+      report(parameter, range.begin,
+             in_quotes(expression) + " evaluates to " + (std::isnan(out) ? "nan" : "infinity"),
+             "check for a division by zero, or sqrt/ln/asin of a value outside their domain");
+      return false;
+    }
+    return true;
+  }
+
+  // ---- vectors and matrices ----
+
+  bool items_of(RawParameter& parameter, Range range, std::vector<Range>& items) {
+    const std::string& text = normalized_;
+    const std::size_t close = matching_bracket(text, range.begin, range.end);
+    if (close == std::string::npos) {
+      report(parameter, range.begin, "'[' is not closed", "add the missing ']'");
+      return false;
+    }
+    if (close + 1 != range.end) {
+      report(parameter, close + 1, "unexpected text after the closing ']'",
+             "a vector is [a, b, c] and a matrix [[a, b], [c, d]], each alone as the value; "
+             "arithmetic on vectors is not supported");
+      return false;
+    }
+    items = split_items(text, range.begin, close);
+    if (items.size() == 1 && items.front().empty()) {
+      items.clear();  // []
+      return true;
+    }
+    bool ok = true;
+    for (const Range& item : items) {
+      if (item.empty()) {
+        report(parameter, item.begin, "empty element", "remove the extra ',' or add the value");
+        ok = false;
+      }
+    }
+    return ok;
+  }
+
+  bool numbers_of(RawParameter& parameter, const std::vector<Range>& items,
+                  std::vector<double>& out) {
+    bool ok = true;
+    for (const Range& item : items) {
+      if (normalized_[item.begin] == '[') {
+        report(parameter, item.begin, "a bracket inside a matrix row",
+               "a matrix has exactly two levels of brackets: [[a, b], [c, d]]");
+        ok = false;
+        continue;
+      }
+      double value = 0.0;
+      if (number(parameter, item, value)) {
+        out.push_back(value);
+      } else {
+        ok = false;
+      }
+    }
+    return ok;
+  }
+
+  bool list(RawParameter& parameter, Range range, Value& value) {
+    std::vector<Range> items;
+    if (!items_of(parameter, range, items)) return false;
+    const auto rows =
+        static_cast<std::size_t>(std::count_if(items.begin(), items.end(), [&](const Range& item) {
+          return normalized_[item.begin] == '[';
+        }));
+    if (rows == 0) {
+      value.kind = ValueKind::Vector;
+      return numbers_of(parameter, items, value.vector);
+    }
+    if (rows != items.size()) {
+      const auto odd = std::find_if(items.begin(), items.end(), [&](const Range& item) {
+        return (normalized_[item.begin] == '[') != (normalized_[items.front().begin] == '[');
+      });
+      report(parameter, odd->begin, "the list mixes numbers and bracketed rows",
+             "a vector is [a, b, c]; a matrix is [[a, b], [c, d]]");
+      return false;
+    }
+    value.kind = ValueKind::Matrix;
+    bool ok = true;
+    for (std::size_t r = 0; r < items.size(); ++r) {
+      std::vector<Range> row_items;
+      std::vector<double> row;
+      if (!items_of(parameter, items[r], row_items) || !numbers_of(parameter, row_items, row)) {
+        ok = false;
+        continue;
+      }
+      if (ok && r > 0 && row.size() != value.matrix.front().size()) {
+        report(parameter, items[r].begin,
+               "matrix row " + std::to_string(r + 1) + " has " + count(row.size(), "value") +
+                   ", row 1 has " + count(value.matrix.front().size(), "value"),
+               "give every row the same number of values");
+        ok = false;
+      }
+      value.matrix.push_back(std::move(row));
+    }
+    return ok;
+  }
+
+  // ---- one parameter ----
+
+  void evaluate(RawParameter& parameter) {
+    normalized_ = parameter.expression;
+    for (char& c : normalized_) {
+      if (is_blank(c)) c = ' ';
+    }
+    const Range whole = trimmed(normalized_, 0, normalized_.size());
+    Value value;
+    bool ok = true;
+    if (whole.empty()) {
+      report(parameter, 0, "no value", "write KEY=EXPR");
+      ok = false;
+    } else if (normalized_[whole.begin] == '"') {
+      const std::size_t close = normalized_.find('"', whole.begin + 1);
+      if (close == std::string::npos) {
+        report(parameter, whole.begin, "the string is not closed", "add the closing '\"'");
+        ok = false;
+      } else if (close + 1 != whole.end) {
+        report(parameter, close + 1, "unexpected text after the string",
+               "a string value is one \"...\" and nothing else");
+        ok = false;
+      } else {
+        value = text_value(normalized_.substr(whole.begin + 1, close - whole.begin - 1));
+      }
+    } else if (normalized_[whole.begin] == '[') {
+      ok = list(parameter, whole, value);
+    } else {
+      const std::string name = normalized_.substr(whole.begin, whole.end - whole.begin);
+      const bool is_reference = reference_end(normalized_, whole.begin, whole.end) == whole.end &&
+                                name != "e" && name != "pi";
+      Resolution found;
+      if (is_reference) found = resolve(name, parameter);
+      if (found.parameter && found.parameter->state == RawParameter::State::Failed) {
+        ok = false;  // the referenced parameter's error says it all
+      } else if (found.parameter) {
+        value = found.parameter->value;  // numbers, strings, vectors and matrices alike
+      } else if (is_reference) {
+        report(parameter, whole.begin, found.message, found.fix);
+        ok = false;
+      } else {
+        ok = number(parameter, whole, value.number);
+      }
+    }
+    parameter.value = std::move(value);
+    parameter.state = ok ? RawParameter::State::Done : RawParameter::State::Failed;
+  }
+
+  struct Pending {
+    std::size_t offset;
+    std::string message;
+    std::string fix;
+  };
+
+  RawBlock& root_;
+  mu::Parser parser_;
+  std::string normalized_;  // the current expression, every blank turned into ' '
+  // State of the expression muParser is parsing, for the variable factory.
+  const std::string* text_ = nullptr;
+  Range scalar_;
+  std::size_t cursor_ = 0;
+  RawParameter* current_ = nullptr;
+  std::deque<double> slots_;  // stable addresses for muParser's variables
+  std::vector<Pending> pending_;
+  bool dependency_failed_ = false;
+  std::vector<Problem> problems_;
+};
+
+}  // namespace
+
+void apply_overrides(RawBlock& root, const std::vector<Override>& overrides) {
+  for (const Override& item : overrides) {
+    const std::string label = "--set " + item.path + "=" + item.expression;
+    std::vector<PathPart> parts;
+    if (!parse_path(item.path, parts)) {
+      throw Error(in_quotes(item.path) + " is not a parameter path", label,
+                  "write e.g. --set Geometry.width=0.06 or --set Body[1].mass=2");
+    }
+    RawBlock* block = &root;
+    bool missing = false;
+    for (std::size_t i = 0; i + 1 < parts.size() && !missing; ++i) {
+      const std::vector<RawBlock*> candidates = block->children(parts[i].name);
+      if (candidates.empty()) {
+        missing = true;
+      } else if (parts[i].index < 0 && candidates.size() > 1) {
+        const std::string rest =
+            to_string(parts, parts.size()).substr(to_string(parts, i + 1).size());
+        throw Error(in_quotes(parts[i].name) + " is a list of " +
+                        std::to_string(candidates.size()) + " blocks",
+                    label,
+                    "pick one: " + parts[i].name + "[0]" + rest + " ... " + parts[i].name + "[" +
+                        std::to_string(candidates.size() - 1) + "]" + rest);
+      } else if (parts[i].index >= static_cast<int>(candidates.size())) {
+        throw Error(
+            "there are only " + std::to_string(candidates.size()) + " " + in_quotes(parts[i].name) +
+                " blocks",
+            label,
+            "use an index from 0 to " + std::to_string(candidates.size() - 1) + " (0-based)");
+      } else {
+        block = candidates[parts[i].index < 0 ? 0 : static_cast<std::size_t>(parts[i].index)];
+      }
+    }
+    RawParameter* target = nullptr;
+    if (!missing && parts.back().index < 0) {
+      for (auto& parameter : block->parameters) {
+        if (parameter->key == parts.back().name) target = parameter.get();  // the last one counts
+      }
+      if (!target && !block->children(parts.back().name).empty()) {
+        throw Error(in_quotes(item.path) + " is a block, not a parameter", label,
+                    "set one of its parameters, e.g. --set " + item.path + ".key=...");
+      }
+    }
+    if (!target) {
+      std::vector<std::string> paths;
+      collect_paths(root, "", paths);
+      std::string suggestion = nearest(item.path, paths);
+      if (suggestion.empty()) {
+        for (const auto& path : paths) {
+          const std::size_t dot = path.rfind('.');
+          if (path.substr(dot == std::string::npos ? 0 : dot + 1) == parts.back().name) {
+            suggestion = path;
+            break;
+          }
+        }
+      }
+      throw Error("the scene file has no parameter " + in_quotes(item.path), label,
+                  suggestion.empty()
+                      ? "--set changes parameters the file defines; add it to the file first"
+                      : "did you mean " + in_quotes(suggestion) + "?");
+    }
+    if (trimmed(item.expression, 0, item.expression.size()).empty()) {
+      throw Error("the override has no value", label, "write --set KEY=EXPR");
+    }
+    target->expression = item.expression;
+    target->override_label = label;
+    target->expression_location = {label, 0, 0};
+  }
+}
+
+std::vector<Problem> evaluate(RawBlock& root) {
+  Evaluator evaluator(root);
+  return evaluator.run();
+}
+
+}  // namespace fsi::scene::detail
