@@ -26,7 +26,8 @@ void BM_ContactTank(benchmark::State& state) {
   fsi::contact::ContactSettings settings;
   settings.law = {17500.0, 1000.0, 2 * h, 2 * h};
   settings.refinement_resolution = 2 * h;
-  fsi::contact::BoundaryMesh2D mesh{{0, 0.1, 0, 0, 0.05, 0, 0.05, 0.1}, std::vector<double>(8, 0.0), {0, 1, 1, 2, 2, 3}};
+  fsi::contact::BoundaryMesh2D mesh{
+      {0, 0.1, 0, 0, 0.05, 0, 0.05, 0.1}, std::vector<double>(8, 0.0), {0, 1, 1, 2, 2, 3}};
   fsi::contact::ParticleArrays particles;
   particles.count = x.size() / 3;
   particles.positions = x.data();
@@ -50,7 +51,8 @@ void BM_RadauStepStaticTank(benchmark::State& state) {
     spec.mass = 0.1;
     spec.inertia = 2e-5;
     const auto body = model.add_rigid_body(spec);
-    for (int k = 0; k < 4; ++k) model.add_marker(body, {0.01 * k, 0.001});
+    for (int k = 0; k < 4; ++k)
+      model.add_marker(body, {0.01 * k, 0.001});
   }
   model.add_coordinate_constraint(0, fsi::mbd::Coordinate::X);
   model.add_coordinate_constraint(0, fsi::mbd::Coordinate::Y);
@@ -64,7 +66,8 @@ void BM_RadauStepStaticTank(benchmark::State& state) {
   std::uniform_real_distribution<double> load(-1.0, 1.0);
   std::vector<double> loads(16);
   for (auto _ : state) {
-    for (double& value : loads) value = load(rng);
+    for (double& value : loads)
+      value = load(rng);
     model.set_point_loads(loads);
     integrator.step(model, s, 5e-6);
   }

@@ -4,8 +4,8 @@
 // the measured steps done in one `run M`. Prints one JSON line with the loop wall time.
 //
 //   mpirun -np N bench_plain_liggghts SCENE --steps M --region XLO XHI YLO YHI [--set KEY=EXPR]...
-#include <CLI/CLI.hpp>
 #include <mpi.h>
+#include <CLI/CLI.hpp>
 
 #include <chrono>
 #include <cstdio>
@@ -38,7 +38,8 @@ int main(int argc, char** argv) {
   }
   try {
     std::vector<fsi::scene::Override> parsed;
-    for (const auto& item : overrides) parsed.push_back(fsi::scene::parse_override(item));
+    for (const auto& item : overrides)
+      parsed.push_back(fsi::scene::parse_override(item));
     const fsi::scene::Scene scene = fsi::scene::build_scene(scene_file, parsed);
     auto boundary = std::make_shared<fsi::contact::CouplingBoundary>();
     fsi::client::LiggghtsDriver driver(MPI_COMM_WORLD, {}, boundary);
@@ -49,8 +50,9 @@ int main(int argc, char** argv) {
                   "region fsi_bench_tank block %.17g %.17g %.17g %.17g -1 1 units box\n"
                   "fix fsi_bench_walls all wall/region/sph fsi_bench_tank ${SPH_wall_cutoff} 5.0",
                   region[0], region[1], region[2], region[3]);
-    const std::string script1 =
-        std::regex_replace(scene.liggghts.script1_text, std::regex(R"(fix\s+\S+\s+\S+\s+fsi/sph[^\n]*(&\s*\n[^\n]*)*)"), walls);
+    const std::string script1 = std::regex_replace(
+        scene.liggghts.script1_text,
+        std::regex(R"(fix\s+\S+\s+\S+\s+fsi/sph(?:[^\n&]*&[ \t]*\n)*[^\n]*)"), walls);
     fsi::client::ParticleBlock particles;
     particles.mass = scene.fluid.mass;
     particles.density = scene.fluid.density;
@@ -61,14 +63,16 @@ int main(int argc, char** argv) {
                       [&] { driver.insert_particles(particles); });
     driver.set_time_step(scene.solver.step_size);
     driver.run_with_setup(0);
-    if (scene.liggghts.equilibration_steps > 0) driver.run_with_setup(scene.liggghts.equilibration_steps);
+    if (scene.liggghts.equilibration_steps > 0)
+      driver.run_with_setup(scene.liggghts.equilibration_steps);
     driver.run_script(scene.liggghts.script2_name, scene.liggghts.script2_text);
     driver.run_with_setup(0);
     MPI_Barrier(MPI_COMM_WORLD);
     const auto start = std::chrono::steady_clock::now();
     driver.run_with_setup(static_cast<std::uint64_t>(steps));
     MPI_Barrier(MPI_COMM_WORLD);
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     int ranks = 1;
     MPI_Comm_size(MPI_COMM_WORLD, &ranks);
     if (rank == 0) {

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "atom.h"
+#include "comm.h"
 #include "domain.h"
 #include "fix.h"
 #include "group.h"
@@ -64,7 +65,48 @@ class FixFsiSph : public LAMMPS_NS::Fix {
   std::shared_ptr<CouplingBoundary> boundary_;
 };
 
+constexpr const char* kGhostSyncId = "fsi_ghost_sync";
+
+class FixGhostSync : public LAMMPS_NS::Fix {
+ public:
+  FixGhostSync(LAMMPS_NS::LAMMPS* lammps, int argc, char** argv) : Fix(lammps, argc, argv) {}
+  int setmask() override { return LAMMPS_NS::FixConst::PRE_FORCE; }
+  void setup_pre_force(int /*vflag*/) override { comm->forward_comm(); }
+  void pre_force(int /*vflag*/) override { comm->forward_comm(); }
+};
+
+// Appends a constructed fix to the fix list the way Modify::add_fix does for a new ID.
+void append_fix(LAMMPS_NS::LAMMPS& lammps, LAMMPS_NS::Fix* fix) {
+  LAMMPS_NS::Modify& modify = *lammps.modify;
+  if (modify.nfix == modify.maxfix) {
+    constexpr int kGrowth = 4;
+    modify.maxfix += kGrowth;
+    modify.fix = static_cast<LAMMPS_NS::Fix**>(
+        lammps.memory->srealloc(modify.fix, modify.maxfix * sizeof(LAMMPS_NS::Fix*), "modify:fix"));
+    lammps.memory->grow(modify.fmask, modify.maxfix, "modify:fmask");
+  }
+  const int slot = modify.nfix;
+  modify.fix[slot] = fix;
+  modify.fmask[slot] = fix->setmask();
+  ++modify.nfix;
+  fix->post_create_pre_restart();
+  fix->post_create();
+}
+
 }  // namespace
+
+void ensure_ghost_sync_last(LAMMPS_NS::LAMMPS& lammps) {
+  LAMMPS_NS::Modify& modify = *lammps.modify;
+  const int slot = modify.find_fix(kGhostSyncId);
+  if (slot >= 0 && slot == modify.nfix - 1) return;
+  if (slot >= 0) modify.delete_fix(kGhostSyncId);
+  if (lammps.group->find("all") < 0 || lammps.domain->box_exist == 0) {
+    throw std::invalid_argument("fsi/ghost_sync needs the simulation box; create it in script 1");
+  }
+  std::string words[] = {kGhostSyncId, "all", "fsi/ghost_sync"};
+  char* argv[] = {words[0].data(), words[1].data(), words[2].data()};
+  append_fix(lammps, new FixGhostSync(&lammps, 3, argv));
+}
 
 bool is_fix_fsi_sph_command(std::span<const std::string> words) {
   return words.size() >= 4 && words[0] == "fix" && words[3] == kStyle;
@@ -111,21 +153,13 @@ void add_fix_fsi_sph(LAMMPS_NS::LAMMPS& lammps, std::span<const std::string> wor
     modify.fix[slot]->pre_delete(true);
     delete modify.fix[slot];
     modify.fix[slot] = nullptr;
-  } else {
-    if (modify.nfix == modify.maxfix) {
-      constexpr int kGrowth = 4;
-      modify.maxfix += kGrowth;
-      modify.fix = static_cast<LAMMPS_NS::Fix**>(lammps.memory->srealloc(
-          modify.fix, modify.maxfix * sizeof(LAMMPS_NS::Fix*), "modify:fix"));
-      lammps.memory->grow(modify.fmask, modify.maxfix, "modify:fmask");
-    }
-    slot = modify.nfix;
+    modify.fix[slot] = new FixFsiSph(&lammps, argc, argv.data(), settings, std::move(boundary));
+    modify.fmask[slot] = modify.fix[slot]->setmask();
+    modify.fix[slot]->post_create_pre_restart();
+    modify.fix[slot]->post_create();
+    return;
   }
-  modify.fix[slot] = new FixFsiSph(&lammps, argc, argv.data(), settings, std::move(boundary));
-  modify.fmask[slot] = modify.fix[slot]->setmask();
-  if (slot == modify.nfix) ++modify.nfix;
-  modify.fix[slot]->post_create_pre_restart();
-  modify.fix[slot]->post_create();
+  append_fix(lammps, new FixFsiSph(&lammps, argc, argv.data(), settings, std::move(boundary)));
 }
 
 }  // namespace fsi::contact

@@ -182,6 +182,9 @@ void LiggghtsDriver::run_script(const std::string& name, const std::string& text
       if (raw.front() == "create_box" && after_create_box) after_create_box();
     }
   }
+  // Ghost atoms must carry this step's pressure when the pair forces are computed (see
+  // ensure_ghost_sync_last); the sync has to follow every fix the script defined.
+  if (lammps_->domain->box_exist) contact::ensure_ghost_sync_last(*lammps_);
 }
 
 void LiggghtsDriver::insert_particles(const ParticleBlock& particles) {

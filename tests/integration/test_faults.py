@@ -36,7 +36,7 @@ log = read(run_dir, "server.stderr")
 if status is None:
     kill_group(server)
     fail("fsi-server still runs 10 s after the client was killed")
-check(status != 0, f"server exits non-zero ({status}) {elapsed:.2f} s after the client was killed")
+check(status > 0, f"server exits non-zero without crashing ({status}) {elapsed:.2f} s after the client was killed")
 check("connection closed by peer" in log, "server says the connection was closed by the client")
 check('"status": "failed"' in read(run_dir, "run.json"), "run.json records the failure")
 
@@ -50,7 +50,7 @@ log = read(run_dir, "client.stderr")
 if status is None:
     kill_group(client)
     fail("fsi-client still runs 10 s after the server was killed")
-check(status != 0, f"client exits non-zero ({status}) {elapsed:.2f} s after the server was killed")
+check(status > 0, f"client exits non-zero without crashing ({status}) {elapsed:.2f} s after the server was killed")
 check("connection closed by peer" in log, "client says the connection was closed by the server")
 
 # 3. A client speaking protocol 2.0 is refused by the server.
@@ -62,7 +62,7 @@ status = wait(server, 10)
 log = read(run_dir, "server.stderr")
 check(fake.returncode == 1 and "server refused" in fake.stdout, f"fake client refused: {fake.stdout.strip()}")
 check("protocol 2.0" in fake.stdout and "1.0" in fake.stdout, "the refusal names both versions")
-check(status is not None and status != 0, f"server exits non-zero ({status})")
+check(status is not None and status > 0, f"server exits non-zero without crashing ({status})")
 check("protocol 2.0" in log and "1.0" in log, "the server's message names both versions")
 
 # 4. A server speaking protocol 2.0 is refused by the client.
@@ -81,7 +81,7 @@ log = read(run_dir, "client.stderr")
 if status is None:
     kill_group(client)
     fail("fsi-client still runs 10 s after meeting a protocol 2.0 server")
-check(status != 0, f"client exits non-zero ({status})")
+check(status > 0, f"client exits non-zero without crashing ({status})")
 check("protocol 2.0" in log and "1.0" in log, "the client's message names both versions")
 fake_server.wait(timeout=30)
 cleanup(output)

@@ -96,11 +96,13 @@ class Session {
       spdlog::error("{}", failure.what());
       // Tell the client unless it reported the fault itself; a malformed frame gets its own code.
       if (channel_ && dynamic_cast<const protocol::PeerReportedError*>(&failure) == nullptr) {
-        const bool protocol_fault = dynamic_cast<const protocol::ProtocolError*>(&failure) != nullptr;
+        const bool protocol_fault =
+            dynamic_cast<const protocol::ProtocolError*>(&failure) != nullptr;
         try {
-          channel_->send(protocol::ErrorMessage{
-              protocol_fault ? protocol::ErrorCode::MalformedMessage : protocol::ErrorCode::SetupFailed,
-              failure.what()});
+          channel_->send(protocol::ErrorMessage{protocol_fault
+                                                    ? protocol::ErrorCode::MalformedMessage
+                                                    : protocol::ErrorCode::SetupFailed,
+                                                failure.what()});
           channel_->close();
         } catch (...) {
         }
@@ -259,7 +261,8 @@ class Session {
       }
     }
     // Held for the sensors of the step these forces act in (like the point loads).
-    applied_total_force_ = {forces.diagnostics.force_on_structure[0], forces.diagnostics.force_on_structure[1]};
+    applied_total_force_ = {forces.diagnostics.force_on_structure[0],
+                            forces.diagnostics.force_on_structure[1]};
     loads_.assign(2 * scene_.boundary.vertex_count, 0.0);
     std::copy(forces.forces.begin(), forces.forces.end(), loads_.begin());
     scene_.model.set_point_loads(loads_);
@@ -310,7 +313,9 @@ class Session {
         case scene::SensorType::ConstraintForce:
           values.push_back(model.constraint_force(state_, sensor.body, sensor.component));
           break;
-        case scene::SensorType::TotalFluidForce: values.push_back(applied_total_force_[component]); break;
+        case scene::SensorType::TotalFluidForce:
+          values.push_back(applied_total_force_[component]);
+          break;
       }
     }
     return values;
@@ -465,7 +470,13 @@ class Session {
                                    {"communication", communication},
                                    {"client_mpi_communication", timings_.client_communication},
                                    {"output", timings_.output.seconds()}};
-    const auto& stats = integrator_ ? integrator_->statistics() : mbd::IntegratorStatistics{};
+    const mbd::IntegratorStatistics stats =
+        integrator_ ? integrator_->statistics() : mbd::IntegratorStatistics{};
+    // A run that failed before the set-up has no state yet.
+    const bool have_state = state_.q.size() == scene_.model.coordinate_count();
+    auto drift = [&](double (mbd::Model::*measure)(const mbd::State&) const) {
+      return have_state ? json((scene_.model.*measure)(state_)) : json(nullptr);
+    };
     manifest["newton"] = {{"steps", stats.steps},
                           {"iterations", stats.newton_iterations},
                           {"jacobian_evaluations", stats.jacobian_evaluations},
@@ -477,8 +488,8 @@ class Session {
                                          : json(nullptr)},
         {"particles_initial", checks_.particles_initial},
         {"particles_final", checks_.particles_final},
-        {"position_constraint_drift", scene_.model.position_constraint_drift(state_)},
-        {"velocity_constraint_drift", scene_.model.velocity_constraint_drift(state_)}};
+        {"position_constraint_drift", drift(&mbd::Model::position_constraint_drift)},
+        {"velocity_constraint_drift", drift(&mbd::Model::velocity_constraint_drift)}};
     manifest["status"] = status_;
     if (!reason_.empty()) manifest["reason"] = reason_;
     const fs::path path = fs::path(options_.output_dir) / "run.json";

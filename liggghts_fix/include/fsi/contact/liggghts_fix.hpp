@@ -44,4 +44,11 @@ bool is_fix_fsi_sph_command(std::span<const std::string> words);
 void add_fix_fsi_sph(LAMMPS_NS::LAMMPS& lammps, std::span<const std::string> words,
                      std::shared_ptr<CouplingBoundary> boundary);
 
+// Appends (or moves) our internal fix `fsi/ghost_sync` to the end of the fix list. In pre_force
+// it forward-communicates ghost atoms after every other pre_force fix has run. Reason: LIGGGHTS
+// 3.8's `fix sph/pressure` recomputes the pressure of local atoms in pre_force but not of ghost
+// atoms, so a pair across two MPI subdomains would use last step's ghost pressure and a 2-rank
+// run would drift from the 1-rank run by ~1e-5 per step (measured). Call it after every script.
+void ensure_ghost_sync_last(LAMMPS_NS::LAMMPS& lammps);
+
 }  // namespace fsi::contact
