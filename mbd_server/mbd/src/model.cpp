@@ -1,7 +1,13 @@
 #include "fsi/mbd/model.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <limits>
+#include <vector>
 
+#include "body.hpp"
+#include "constraint.hpp"
 #include "fsi/common/error.hpp"
 
 namespace fsi::mbd {
@@ -12,17 +18,11 @@ struct Marker {
   Eigen::Vector2d local;  // body frame, or world frame for kGround
 };
 
-// dr/dphi for a body-fixed point p at angle phi: R'(phi) p.
-Eigen::Vector2d rotated_derivative(double phi, const Eigen::Vector2d& p) {
-  const double c = std::cos(phi);
-  const double s = std::sin(phi);
-  return {-s * p.x() - c * p.y(), c * p.x() - s * p.y()};
-}
-
-Eigen::Vector2d rotated(double phi, const Eigen::Vector2d& p) {
-  const double c = std::cos(phi);
-  const double s = std::sin(phi);
-  return {c * p.x() - s * p.y(), s * p.x() + c * p.y()};
+// Nine significant digits: enough to see a residual, short enough to read.
+std::string number(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.9g", value);
+  return text;
 }
 
 }  // namespace
@@ -40,40 +40,42 @@ std::string_view name(Coordinate coordinate) {
 }
 
 struct Model::Data {
-  std::vector<RigidBody2DSpec> bodies;
+  std::vector<std::unique_ptr<detail::Body>> bodies;
+  std::vector<int> offsets;  // index of each body's first coordinate in q
+  int coordinates = 0;
   std::vector<Marker> markers;
-  std::vector<ConstraintInfo> constraints;
+  std::vector<std::unique_ptr<detail::Constraint>> constraints;
   std::vector<std::unique_ptr<ForceElement>> force_elements;
   Eigen::Vector2d gravity = Eigen::Vector2d::Zero();
-  std::vector<double> point_loads;
-  // Derived when the structure changes.
-  mutable bool dirty = true;
-  mutable Eigen::MatrixXd mass;
-  mutable Eigen::MatrixXd jacobian;
+  std::vector<double> point_loads;  // x, y per marker
+  mutable Eigen::MatrixXd mass;     // assembled on first use after a structural change
+  mutable bool mass_valid = false;
 
-  void refresh() const {
-    if (!dirty) return;
-    const int n = static_cast<int>(bodies.size()) * 3;
-    mass = Eigen::MatrixXd::Zero(n, n);
-    for (std::size_t b = 0; b < bodies.size(); ++b) {
-      const int i = static_cast<int>(b) * 3;
-      mass(i, i) = bodies[b].mass;
-      mass(i + 1, i + 1) = bodies[b].mass;
-      mass(i + 2, i + 2) = bodies[b].inertia;
-    }
-    jacobian = Eigen::MatrixXd::Zero(static_cast<int>(constraints.size()), n);
-    for (std::size_t k = 0; k < constraints.size(); ++k) {
-      jacobian(static_cast<int>(k), constraints[k].coordinate) = 1.0;
-    }
-    dirty = false;
-  }
-
-  void check_body(BodyId body, const char* what) const {
+  void check_body(BodyId body, const std::string& user) const {
     if (body < 0 || body >= static_cast<BodyId>(bodies.size())) {
-      throw Error(std::string(what) + " refers to body index " + std::to_string(body) +
-                      ", the model has " + std::to_string(bodies.size()) + " bodies",
-                  "model", "refer to a body that exists");
+      throw Error(user + " refers to body index " + std::to_string(body) + " but the model has " +
+                      std::to_string(bodies.size()) + " bodies",
+                  "multibody model", "refer to a body that has been added");
     }
+  }
+  void check_marker(int marker) const {
+    if (marker < 0 || marker >= static_cast<int>(markers.size())) {
+      throw Error("marker index " + std::to_string(marker) + " out of range (the model has " +
+                      std::to_string(markers.size()) + " markers)",
+                  "multibody model", "refer to a marker that has been added");
+    }
+  }
+  const detail::RigidBody2D& rigid_body(BodyId body, const std::string& user) const {
+    check_body(body, user);
+    const auto* rigid = dynamic_cast<const detail::RigidBody2D*>(bodies[body].get());
+    if (rigid == nullptr) {
+      throw Error(user + " needs a planar rigid body but '" + bodies[body]->name() + "' is not one",
+                  "multibody model", "use the coordinates of a RigidBody2D");
+    }
+    return *rigid;
+  }
+  auto segment(const Eigen::VectorXd& x, BodyId body) const {
+    return x.segment(offsets[body], bodies[body]->coordinate_count());
   }
 };
 
@@ -82,77 +84,75 @@ Model::~Model() = default;
 Model::Model(Model&&) noexcept = default;
 Model& Model::operator=(Model&&) noexcept = default;
 
+// --- building ---
+
 BodyId Model::add_rigid_body(const RigidBody2DSpec& spec) {
-  const std::string where = "rigid body '" + spec.name + "'";
-  auto finite = [](double x) { return std::isfinite(x); };
-  if (!(finite(spec.mass) && spec.mass > 0.0)) {
-    throw Error("mass must be positive and finite, got " + std::to_string(spec.mass), where,
-                "give the body a positive mass (2D: per unit depth)");
-  }
-  if (!(finite(spec.inertia) && spec.inertia > 0.0)) {
-    throw Error("inertia must be positive and finite, got " + std::to_string(spec.inertia), where,
-                "give the moment of inertia about the centre of mass");
-  }
-  if (!spec.position.allFinite() || !spec.velocity.allFinite() || !finite(spec.angle) ||
-      !finite(spec.angular_velocity)) {
-    throw Error("initial position, angle or velocity is not finite", where, "check the values");
-  }
+  auto body = std::make_unique<detail::RigidBody2D>(spec);
   for (const auto& other : data_->bodies) {
-    if (other.name == spec.name) {
-      throw Error("a second body is named '" + spec.name + "'", where,
+    if (other->name() == spec.name) {
+      throw Error("a second body is named '" + spec.name + "'", "rigid body '" + spec.name + "'",
                   "give every body its own name");
     }
   }
-  data_->bodies.push_back(spec);
-  data_->dirty = true;
+  data_->offsets.push_back(data_->coordinates);
+  data_->coordinates += body->coordinate_count();
+  data_->bodies.push_back(std::move(body));
+  data_->mass_valid = false;
   return static_cast<BodyId>(data_->bodies.size()) - 1;
 }
 
 void Model::set_gravity(const Eigen::Vector2d& acceleration) {
+  if (!acceleration.allFinite()) {
+    throw Error("gravity is not finite", "multibody model", "give a finite acceleration vector");
+  }
   data_->gravity = acceleration;
 }
 
-int Model::add_marker(BodyId body, const Eigen::Vector2d& coordinates) {
+int Model::add_marker(BodyId body, const Eigen::Vector2d& local_coordinates) {
   if (body != kGround) data_->check_body(body, "a marker");
-  data_->markers.push_back({body, coordinates});
-  data_->point_loads.resize(data_->markers.size() * 2, 0.0);
+  if (!local_coordinates.allFinite()) {
+    throw Error("marker coordinates are not finite", "multibody model", "check the mesh points");
+  }
+  data_->markers.push_back({body, local_coordinates});
+  data_->point_loads.resize(2 * data_->markers.size(), 0.0);
   return static_cast<int>(data_->markers.size()) - 1;
 }
 
 int Model::add_coordinate_constraint(BodyId body, Coordinate coordinate,
                                      std::optional<double> value) {
-  data_->check_body(body, "a coordinate constraint");
-  const int index = coordinate_index(body, coordinate);
-  const auto& spec = data_->bodies[body];
-  const double initial = coordinate == Coordinate::X   ? spec.position.x()
-                         : coordinate == Coordinate::Y ? spec.position.y()
-                                                       : spec.angle;
-  data_->constraints.push_back(
-      {"coordinate constraint on " + spec.name + "." + std::string(name(coordinate)),
-       ConstraintLevel::Position, index, value.value_or(initial)});
-  data_->dirty = true;
+  const auto& rigid = data_->rigid_body(body, "a coordinate constraint");
+  const double held = value.value_or(rigid.initial_coordinate(coordinate));
+  const std::string target = rigid.name() + "." + std::string(name(coordinate));
+  if (!std::isfinite(held)) {
+    throw Error("the prescribed value is not finite", "coordinate constraint on " + target,
+                "give a finite value or none (the initial coordinate is held)");
+  }
+  data_->constraints.push_back(std::make_unique<detail::CoordinateConstraint>(
+      "coordinate constraint on " + target, coordinate_index(body, coordinate), held));
   return static_cast<int>(data_->constraints.size()) - 1;
 }
 
 int Model::add_velocity_constraint(BodyId body, Coordinate coordinate, double velocity) {
-  data_->check_body(body, "a velocity constraint");
+  const auto& rigid = data_->rigid_body(body, "a velocity constraint");
+  const std::string target = rigid.name() + "." + std::string(name(coordinate));
   if (!std::isfinite(velocity)) {
-    throw Error("prescribed velocity is not finite", "velocity constraint", "check the value");
+    throw Error("the prescribed velocity is not finite", "velocity constraint on " + target,
+                "give a finite velocity");
   }
-  const auto& spec = data_->bodies[body];
-  data_->constraints.push_back(
-      {"velocity constraint on " + spec.name + "." + std::string(name(coordinate)),
-       ConstraintLevel::Velocity, coordinate_index(body, coordinate), velocity});
-  data_->dirty = true;
+  data_->constraints.push_back(std::make_unique<detail::VelocityConstraint>(
+      "velocity constraint on " + target, coordinate_index(body, coordinate), velocity));
   return static_cast<int>(data_->constraints.size()) - 1;
 }
 
 void Model::add_force_element(std::unique_ptr<ForceElement> element) {
+  FSI_ASSERT(element != nullptr, "add_force_element got no element");
   data_->force_elements.push_back(std::move(element));
 }
 
+// --- structure ---
+
 int Model::coordinate_count() const {
-  return static_cast<int>(data_->bodies.size()) * 3;
+  return data_->coordinates;
 }
 int Model::constraint_count() const {
   return static_cast<int>(data_->constraints.size());
@@ -163,68 +163,150 @@ int Model::body_count() const {
 int Model::marker_count() const {
   return static_cast<int>(data_->markers.size());
 }
+
 const RigidBody2DSpec& Model::body(BodyId body) const {
-  data_->check_body(body, "a body lookup");
-  return data_->bodies[body];
+  return data_->rigid_body(body, "a body lookup").spec();
 }
 
 BodyId Model::find_body(std::string_view body_name) const {
   std::string known;
   for (std::size_t b = 0; b < data_->bodies.size(); ++b) {
-    if (data_->bodies[b].name == body_name) return static_cast<BodyId>(b);
-    known += (known.empty() ? "" : ", ") + data_->bodies[b].name;
+    if (data_->bodies[b]->name() == body_name) return static_cast<BodyId>(b);
+    known += (known.empty() ? "" : ", ") + data_->bodies[b]->name();
   }
-  throw Error("no body named '" + std::string(body_name) + "'", "model",
+  throw Error("no body named '" + std::string(body_name) + "'", "multibody model",
               known.empty() ? "define the body first" : "known bodies: " + known);
 }
 
 int Model::coordinate_index(BodyId body, Coordinate coordinate) const {
-  return body * 3 + static_cast<int>(coordinate);
+  (void)data_->rigid_body(body, "a coordinate index");
+  return data_->offsets[body] + static_cast<int>(coordinate);
 }
+
 BodyId Model::marker_body(int marker) const {
-  return data_->markers.at(marker).body;
+  data_->check_marker(marker);
+  return data_->markers[marker].body;
 }
-const std::vector<ConstraintInfo>& Model::constraints() const {
-  return data_->constraints;
+
+const Eigen::Vector2d& Model::marker_local_coordinates(int marker) const {
+  data_->check_marker(marker);
+  return data_->markers[marker].local;
 }
+
+std::string Model::constraint_description(int constraint) const {
+  FSI_ASSERT(constraint >= 0 && constraint < constraint_count(), "constraint index out of range");
+  return data_->constraints[constraint]->description();
+}
+
+ConstraintLevel Model::constraint_level(int constraint) const {
+  FSI_ASSERT(constraint >= 0 && constraint < constraint_count(), "constraint index out of range");
+  return data_->constraints[constraint]->level();
+}
+
 const Eigen::Vector2d& Model::gravity() const {
   return data_->gravity;
 }
 
+// --- initial state and its consistency ---
+
 State Model::initial_state() const {
   const int n = coordinate_count();
+  const int m = constraint_count();
   State state;
   state.q.resize(n);
   state.v.resize(n);
-  state.lambda = Eigen::VectorXd::Zero(constraint_count());
+  state.lambda = Eigen::VectorXd::Zero(m);
   for (std::size_t b = 0; b < data_->bodies.size(); ++b) {
-    const auto& spec = data_->bodies[b];
-    const int i = static_cast<int>(b) * 3;
-    state.q.segment<3>(i) << spec.position.x(), spec.position.y(), spec.angle;
-    state.v.segment<3>(i) << spec.velocity.x(), spec.velocity.y(), spec.angular_velocity;
+    const int nb = data_->bodies[b]->coordinate_count();
+    data_->bodies[b]->initial_state(state.q.segment(data_->offsets[b], nb),
+                                    state.v.segment(data_->offsets[b], nb));
   }
-  std::string problems;
-  for (const auto& constraint : data_->constraints) {
-    const double actual = constraint.level == ConstraintLevel::Position
-                              ? state.q(constraint.coordinate)
-                              : state.v(constraint.coordinate);
-    const double tolerance = 1e-12 * (1.0 + std::abs(constraint.value));
-    if (std::abs(actual - constraint.value) > tolerance) {
-      problems += "\n  " + constraint.description + ": initial " +
-                  (constraint.level == ConstraintLevel::Position ? "coordinate " : "velocity ") +
-                  std::to_string(actual) + " but the constraint prescribes " +
-                  std::to_string(constraint.value);
-    }
-  }
-  if (!problems.empty()) {
-    throw Error("the initial state violates constraints:" + problems, "model",
-                "set the bodies' initial position/velocity to what the constraints prescribe");
-  }
+  check_consistency(state);
+  if (m == 0) return state;
+
+  // Multipliers consistent with the accelerations: M a + G^T lambda = F, G a = -remainder.
+  Eigen::VectorXd force;
+  applied_force(state.time, state.q, state.v, force);
+  Eigen::MatrixXd jacobian;
+  constraint_jacobian(state.time, state.q, jacobian);
+  Eigen::MatrixXd system = Eigen::MatrixXd::Zero(n + m, n + m);
+  system.topLeftCorner(n, n) = mass_matrix();
+  system.topRightCorner(n, m) = jacobian.transpose();
+  system.bottomLeftCorner(m, n) = jacobian;
+  Eigen::VectorXd right(n + m);
+  right.head(n) = force;
+  for (int k = 0; k < m; ++k)
+    right(n + k) = -data_->constraints[k]->acceleration_remainder(state.time, state.q, state.v);
+  state.lambda = Eigen::PartialPivLU<Eigen::MatrixXd>(system).solve(right).tail(m);
   return state;
 }
 
+void Model::check_consistency(const State& state) const {
+  const int n = coordinate_count();
+  const int m = constraint_count();
+  FSI_ASSERT(state.q.size() == n && state.v.size() == n, "state does not match the model");
+  std::string problems;
+  if (!state.q.allFinite() || !state.v.allFinite()) {
+    problems += "\n  the state has non-finite coordinates or velocities";
+  }
+  const double position_tolerance = 1e-12 * (1.0 + state.q.lpNorm<Eigen::Infinity>());
+  const double velocity_tolerance = 1e-12 * (1.0 + state.v.lpNorm<Eigen::Infinity>());
+  Eigen::MatrixXd jacobian;
+  constraint_jacobian(state.time, state.q, jacobian);
+  for (int k = 0; k < m; ++k) {
+    const auto& constraint = *data_->constraints[k];
+    const double residual = constraint.residual(state.time, state.q, state.v);
+    if (constraint.level() == ConstraintLevel::Position) {
+      if (!(std::abs(residual) <= position_tolerance)) {
+        problems += "\n  " + constraint.description() +
+                    ": position residual C = " + number(residual) + " at t = " + number(state.time);
+      }
+      const double rate =
+          jacobian.row(k).dot(state.v) + constraint.explicit_time_derivative(state.time, state.q);
+      if (!(std::abs(rate) <= velocity_tolerance)) {
+        problems += "\n  " + constraint.description() +
+                    ": velocity residual dC/dt = " + number(rate) +
+                    " (the constrained coordinate has a velocity)";
+      }
+    } else if (!(std::abs(residual) <= velocity_tolerance)) {
+      problems += "\n  " + constraint.description() + ": velocity residual = " + number(residual) +
+                  " at t = " + number(state.time);
+    }
+  }
+  // Incremental rank: a row that does not raise the rank of the rows before it is redundant
+  // and makes the Newton matrix singular.
+  int rank = 0;
+  for (int k = 0; k < m; ++k) {
+    const int with_row =
+        static_cast<int>(Eigen::FullPivLU<Eigen::MatrixXd>(jacobian.topRows(k + 1)).rank());
+    if (with_row == rank) {
+      problems += "\n  " + data_->constraints[k]->description() +
+                  ": redundant (linearly dependent on the constraints before it)";
+    }
+    rank = with_row;
+  }
+  if (!problems.empty()) {
+    throw Error("the initial state is inconsistent with the constraints:" + problems,
+                "multibody model",
+                "set the bodies' initial positions and velocities to what the constraints "
+                "prescribe (a held coordinate needs zero velocity, a driven one the drive's "
+                "velocity) and constrain each coordinate once");
+  }
+}
+
+// --- assembly ---
+
 const Eigen::MatrixXd& Model::mass_matrix() const {
-  data_->refresh();
+  if (!data_->mass_valid) {
+    const int n = coordinate_count();
+    data_->mass = Eigen::MatrixXd::Zero(n, n);
+    for (std::size_t b = 0; b < data_->bodies.size(); ++b) {
+      const int nb = data_->bodies[b]->coordinate_count();
+      const int o = data_->offsets[b];
+      data_->bodies[b]->mass_matrix(data_->mass.block(o, o, nb, nb));
+    }
+    data_->mass_valid = true;
+  }
   return data_->mass;
 }
 
@@ -232,46 +314,102 @@ void Model::applied_force(double time, const Eigen::VectorXd& q, const Eigen::Ve
                           Eigen::VectorXd& force) const {
   force.setZero(coordinate_count());
   for (std::size_t b = 0; b < data_->bodies.size(); ++b) {
-    const int i = static_cast<int>(b) * 3;
-    force(i) += data_->bodies[b].mass * data_->gravity.x();
-    force(i + 1) += data_->bodies[b].mass * data_->gravity.y();
+    const auto& body = *data_->bodies[b];
+    body.add_gravity_force(data_->gravity,
+                           force.segment(data_->offsets[b], body.coordinate_count()));
   }
+  Eigen::MatrixXd point_jacobian;
   for (std::size_t k = 0; k < data_->markers.size(); ++k) {
     const Marker& marker = data_->markers[k];
-    if (marker.body == kGround) continue;
-    const double fx = data_->point_loads[2 * k];
-    const double fy = data_->point_loads[2 * k + 1];
-    if (fx == 0.0 && fy == 0.0) continue;
-    const int i = marker.body * 3;
-    const Eigen::Vector2d arm = rotated_derivative(q(i + 2), marker.local);
-    force(i) += fx;
-    force(i + 1) += fy;
-    force(i + 2) += arm.x() * fx + arm.y() * fy;
+    const Eigen::Vector2d load(data_->point_loads[2 * k], data_->point_loads[2 * k + 1]);
+    if (marker.body == kGround || (load.x() == 0.0 && load.y() == 0.0)) continue;
+    const auto& body = *data_->bodies[marker.body];
+    const int nb = body.coordinate_count();
+    point_jacobian.resize(2, nb);
+    body.position_jacobian(data_->segment(q, marker.body), marker.local, point_jacobian);
+    force.segment(data_->offsets[marker.body], nb) += point_jacobian.transpose() * load;
   }
   for (const auto& element : data_->force_elements)
     element->add_force(time, q, v, force);
 }
 
-void Model::constraint_residual(double /*time*/, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
-                                Eigen::VectorXd& residual) const {
-  residual.resize(constraint_count());
-  for (std::size_t k = 0; k < data_->constraints.size(); ++k) {
-    const auto& c = data_->constraints[k];
-    const double actual = c.level == ConstraintLevel::Position ? q(c.coordinate) : v(c.coordinate);
-    residual(static_cast<int>(k)) = actual - c.value;
+void Model::applied_force_derivatives(double time, const Eigen::VectorXd& q,
+                                      const Eigen::VectorXd& v, Eigen::MatrixXd& by_position,
+                                      Eigen::MatrixXd& by_velocity) const {
+  const int n = coordinate_count();
+  by_position.setZero(n, n);
+  by_velocity.setZero(n, n);
+  for (std::size_t k = 0; k < data_->markers.size(); ++k) {
+    const Marker& marker = data_->markers[k];
+    const Eigen::Vector2d load(data_->point_loads[2 * k], data_->point_loads[2 * k + 1]);
+    if (marker.body == kGround || (load.x() == 0.0 && load.y() == 0.0)) continue;
+    const auto& body = *data_->bodies[marker.body];
+    const int nb = body.coordinate_count();
+    const int o = data_->offsets[marker.body];
+    body.add_point_load_derivative(data_->segment(q, marker.body), marker.local, load,
+                                   by_position.block(o, o, nb, nb));
+  }
+  // Central differences for elements without analytic derivatives; the step balances
+  // truncation (~step^2) against cancellation (~eps/step).
+  const double step_factor = std::cbrt(std::numeric_limits<double>::epsilon());
+  Eigen::VectorXd plus(n), minus(n), shifted_q, shifted_v;
+  for (const auto& element : data_->force_elements) {
+    if (element->add_jacobians(time, q, v, by_position, by_velocity)) continue;
+    shifted_q = q;
+    shifted_v = v;
+    for (int j = 0; j < n; ++j) {
+      const double dq = step_factor * std::max(1.0, std::abs(q(j)));
+      plus.setZero();
+      minus.setZero();
+      shifted_q(j) = q(j) + dq;
+      element->add_force(time, shifted_q, v, plus);
+      shifted_q(j) = q(j) - dq;
+      element->add_force(time, shifted_q, v, minus);
+      shifted_q(j) = q(j);
+      by_position.col(j) += (plus - minus) / (2.0 * dq);
+
+      const double dv = step_factor * std::max(1.0, std::abs(v(j)));
+      plus.setZero();
+      minus.setZero();
+      shifted_v(j) = v(j) + dv;
+      element->add_force(time, q, shifted_v, plus);
+      shifted_v(j) = v(j) - dv;
+      element->add_force(time, q, shifted_v, minus);
+      shifted_v(j) = v(j);
+      by_velocity.col(j) += (plus - minus) / (2.0 * dv);
+    }
   }
 }
 
-const Eigen::MatrixXd& Model::constraint_jacobian() const {
-  data_->refresh();
-  return data_->jacobian;
+void Model::constraint_residual(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                                Eigen::VectorXd& residual) const {
+  residual.resize(constraint_count());
+  for (int k = 0; k < constraint_count(); ++k)
+    residual(k) = data_->constraints[k]->residual(time, q, v);
 }
+
+void Model::constraint_jacobian(double time, const Eigen::VectorXd& q,
+                                Eigen::MatrixXd& jacobian) const {
+  jacobian.setZero(constraint_count(), coordinate_count());
+  for (int k = 0; k < constraint_count(); ++k)
+    data_->constraints[k]->jacobian_row(time, q, jacobian.row(k));
+}
+
+void Model::constraint_force_derivative(double time, const Eigen::VectorXd& q,
+                                        const Eigen::VectorXd& lambda,
+                                        Eigen::MatrixXd& derivative) const {
+  derivative.setZero(coordinate_count(), coordinate_count());
+  for (int k = 0; k < constraint_count(); ++k)
+    data_->constraints[k]->add_force_derivative(time, q, lambda(k), derivative);
+}
+
+// --- point loads ---
 
 void Model::set_point_loads(std::span<const double> loads) {
   if (loads.size() != data_->point_loads.size()) {
-    throw Error("got " + std::to_string(loads.size() / 2) + " point loads for " +
+    throw Error("got " + std::to_string(loads.size()) + " point-load values for " +
                     std::to_string(data_->markers.size()) + " markers",
-                "model", "pass one (x, y) load per marker");
+                "multibody model", "pass one (x, y) pair per marker, in marker order");
   }
   std::copy(loads.begin(), loads.end(), data_->point_loads.begin());
 }
@@ -280,57 +418,82 @@ std::span<const double> Model::point_loads() const {
   return data_->point_loads;
 }
 
+// --- markers ---
+
+Eigen::Vector2d Model::marker_position(const State& state, int marker) const {
+  data_->check_marker(marker);
+  const Marker& m = data_->markers[marker];
+  if (m.body == kGround) return m.local;
+  return data_->bodies[m.body]->position(data_->segment(state.q, m.body), m.local);
+}
+
+Eigen::Vector2d Model::marker_velocity(const State& state, int marker) const {
+  data_->check_marker(marker);
+  const Marker& m = data_->markers[marker];
+  if (m.body == kGround) return Eigen::Vector2d::Zero();
+  return data_->bodies[m.body]->velocity(data_->segment(state.q, m.body),
+                                         data_->segment(state.v, m.body), m.local);
+}
+
+Eigen::MatrixXd Model::marker_jacobian(const Eigen::VectorXd& q, int marker) const {
+  data_->check_marker(marker);
+  Eigen::MatrixXd jacobian = Eigen::MatrixXd::Zero(2, coordinate_count());
+  const Marker& m = data_->markers[marker];
+  if (m.body == kGround) return jacobian;
+  const auto& body = *data_->bodies[m.body];
+  body.position_jacobian(data_->segment(q, m.body), m.local,
+                         jacobian.middleCols(data_->offsets[m.body], body.coordinate_count()));
+  return jacobian;
+}
+
 void Model::marker_positions(const State& state, std::span<double> xy) const {
-  for (std::size_t k = 0; k < data_->markers.size(); ++k) {
-    const Marker& marker = data_->markers[k];
-    Eigen::Vector2d r = marker.local;
-    if (marker.body != kGround) {
-      const int i = marker.body * 3;
-      r = state.q.segment<2>(i) + rotated(state.q(i + 2), marker.local);
-    }
+  FSI_ASSERT(xy.size() >= 2 * data_->markers.size(), "marker position buffer too small");
+  for (int k = 0; k < marker_count(); ++k) {
+    const Eigen::Vector2d r = marker_position(state, k);
     xy[2 * k] = r.x();
     xy[2 * k + 1] = r.y();
   }
 }
 
 void Model::marker_velocities(const State& state, std::span<double> xy) const {
-  for (std::size_t k = 0; k < data_->markers.size(); ++k) {
-    const Marker& marker = data_->markers[k];
-    Eigen::Vector2d u = Eigen::Vector2d::Zero();
-    if (marker.body != kGround) {
-      const int i = marker.body * 3;
-      u = state.v.segment<2>(i) + state.v(i + 2) * rotated_derivative(state.q(i + 2), marker.local);
-    }
+  FSI_ASSERT(xy.size() >= 2 * data_->markers.size(), "marker velocity buffer too small");
+  for (int k = 0; k < marker_count(); ++k) {
+    const Eigen::Vector2d u = marker_velocity(state, k);
     xy[2 * k] = u.x();
     xy[2 * k + 1] = u.y();
   }
 }
 
+// --- readouts ---
+
 double Model::coordinate(const State& state, BodyId body, Coordinate c) const {
   return state.q(coordinate_index(body, c));
 }
+
 double Model::velocity(const State& state, BodyId body, Coordinate c) const {
   return state.v(coordinate_index(body, c));
 }
 
+Eigen::VectorXd Model::generalised_constraint_force(const State& state) const {
+  Eigen::MatrixXd jacobian;
+  constraint_jacobian(state.time, state.q, jacobian);
+  return -jacobian.transpose() * state.lambda;
+}
+
 double Model::constraint_force(const State& state, BodyId body, Coordinate c) const {
-  const int index = coordinate_index(body, c);
-  double force = 0.0;
-  const Eigen::MatrixXd& jacobian = constraint_jacobian();
-  for (int k = 0; k < constraint_count(); ++k)
-    force -= jacobian(k, index) * state.lambda(k);
-  return force;
+  return generalised_constraint_force(state)(coordinate_index(body, c));
 }
 
 Eigen::Vector3d Model::point_load_resultant(const State& state, BodyId body) const {
+  data_->check_body(body, "a point-load resultant");
+  const Eigen::Vector2d centre =
+      data_->bodies[body]->reference_point(data_->segment(state.q, body));
   Eigen::Vector3d resultant = Eigen::Vector3d::Zero();
-  const int i = body * 3;
-  for (std::size_t k = 0; k < data_->markers.size(); ++k) {
+  for (int k = 0; k < marker_count(); ++k) {
     if (data_->markers[k].body != body) continue;
-    const double fx = data_->point_loads[2 * k];
-    const double fy = data_->point_loads[2 * k + 1];
-    const Eigen::Vector2d arm = rotated(state.q(i + 2), data_->markers[k].local);
-    resultant += Eigen::Vector3d(fx, fy, arm.x() * fy - arm.y() * fx);
+    const Eigen::Vector2d load(data_->point_loads[2 * k], data_->point_loads[2 * k + 1]);
+    const Eigen::Vector2d arm = marker_position(state, k) - centre;
+    resultant += Eigen::Vector3d(load.x(), load.y(), arm.x() * load.y() - arm.y() * load.x());
   }
   return resultant;
 }
@@ -341,29 +504,32 @@ double Model::kinetic_energy(const State& state) const {
 
 double Model::potential_energy(const State& state) const {
   double energy = 0.0;
-  for (std::size_t b = 0; b < data_->bodies.size(); ++b) {
-    const int i = static_cast<int>(b) * 3;
-    energy -= data_->bodies[b].mass * data_->gravity.dot(state.q.segment<2>(i));
-  }
+  for (int b = 0; b < body_count(); ++b)
+    energy += data_->bodies[b]->gravity_potential(data_->segment(state.q, b), data_->gravity);
   return energy;
 }
 
 double Model::position_constraint_drift(const State& state) const {
   double drift = 0.0;
-  for (const auto& c : data_->constraints) {
-    if (c.level == ConstraintLevel::Position) {
-      drift = std::max(drift, std::abs(state.q(c.coordinate) - c.value));
+  for (const auto& constraint : data_->constraints) {
+    if (constraint->level() == ConstraintLevel::Position) {
+      drift = std::max(drift, std::abs(constraint->residual(state.time, state.q, state.v)));
     }
   }
   return drift;
 }
 
 double Model::velocity_constraint_drift(const State& state) const {
+  Eigen::MatrixXd jacobian;
+  constraint_jacobian(state.time, state.q, jacobian);
   double drift = 0.0;
-  for (const auto& c : data_->constraints) {
-    if (c.level == ConstraintLevel::Velocity) {
-      drift = std::max(drift, std::abs(state.v(c.coordinate) - c.value));
-    }
+  for (int k = 0; k < constraint_count(); ++k) {
+    const auto& constraint = *data_->constraints[k];
+    const double residual = constraint.level() == ConstraintLevel::Position
+                                ? jacobian.row(k).dot(state.v) +
+                                      constraint.explicit_time_derivative(state.time, state.q)
+                                : constraint.residual(state.time, state.q, state.v);
+    drift = std::max(drift, std::abs(residual));
   }
   return drift;
 }

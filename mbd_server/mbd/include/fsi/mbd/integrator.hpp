@@ -1,8 +1,10 @@
 #pragma once
-// Implicit Runge-Kutta integration of the constrained equations of motion (thesis §2.1.3.3).
-// Radau IIA with s = 1, 2, 3 stages (orders 1, 3, 5; stiffly accurate, L-stable) on the
-// index-3 DAE, solved by (modified) Newton iterations with dense LU, structured as named stages:
-// initialise, predict, Newton increment, accept/reject, finalise.
+// Implicit Runge-Kutta integration of the constrained equations of motion (thesis §2.1.3.3):
+// Radau IIA with s = 1, 2, 3 stages (orders 1, 3, 5; stiffly accurate, L-stable) applied
+// directly to the index-3 DAE of fsi::mbd::Model, with a fixed step given per call. The stage
+// equations are solved by (modified) Newton iterations with a dense LU factorisation; a step runs
+// the named stages initialise, predict, Newton increment, accept/reject, finalise.
+// Equations, unknowns and their scaling: mbd_server/mbd/README.md.
 
 #include <Eigen/Dense>
 
@@ -14,29 +16,39 @@
 namespace fsi::mbd {
 
 struct ButcherTableau {
-  Eigen::MatrixXd a;
-  Eigen::VectorXd b;
-  Eigen::VectorXd c;
-  int order = 0;
+  Eigen::MatrixXd a;  // s x s
+  Eigen::VectorXd b;  // weights (= last row of a: stiffly accurate)
+  Eigen::VectorXd c;  // nodes (c_s = 1)
+  int order = 0;      // classical order 2s - 1
 };
 
 // Radau IIA tableau with 1, 2 or 3 stages; throws fsi::Error otherwise.
 ButcherTableau radau_iia(int stages);
 
 struct NewtonOptions {
-  double relative_tolerance = 1e-10;  // on the Newton increment, relative to the stage values
+  // Convergence: every block of the Newton increment (positions, velocities, multipliers) is
+  // below absolute_tolerance + relative_tolerance * (size of that block), in SI units.
+  double relative_tolerance = 1e-10;
   int max_iterations = 12;
-  // Reuse of a factorised Jacobian across steps (HOTINT's max_modified_newton_steps):
-  // 0 = full Newton (new Jacobian every iteration).
+  // How many steps a factorised Newton matrix may be reused (HOTINT's
+  // max_modified_newton_steps); 0 = full Newton, a fresh matrix in every iteration.
   int max_modified_newton_steps = 20;
-  // A contraction rate above this triggers a fresh Jacobian.
+  // A reused matrix is replaced when the contraction rate |dx_k| / |dx_k-1| exceeds this.
   double max_contraction = 0.5;
+  // Matters only where a whole block is zero and stays zero (e.g. no forces at all).
+  double absolute_tolerance = 1e-14;
+};
+
+struct RadauOptions {
+  int stages = 3;  // 1, 2 or 3 (orders 1, 3, 5)
+  NewtonOptions newton;
 };
 
 struct StepStatistics {
   int newton_iterations = 0;
   int jacobian_evaluations = 0;
   int factorisations = 0;
+  int retries = 0;  // attempts restarted from the prediction with a fresh Newton matrix
 };
 
 struct IntegratorStatistics {
@@ -44,27 +56,33 @@ struct IntegratorStatistics {
   std::uint64_t newton_iterations = 0;
   std::uint64_t jacobian_evaluations = 0;
   std::uint64_t factorisations = 0;
+  std::uint64_t retries = 0;
   void add(const StepStatistics& step);
 };
 
 class RadauIIA {
  public:
-  RadauIIA(int stages, const NewtonOptions& options = {});
+  // Throws fsi::Error for an unavailable stage count or invalid Newton options.
+  explicit RadauIIA(const RadauOptions& options);
+  explicit RadauIIA(int stages, const NewtonOptions& newton = {});
   ~RadauIIA();
   RadauIIA(RadauIIA&&) noexcept;
+  RadauIIA& operator=(RadauIIA&&) noexcept;
 
-  // Advances `state` by `step_size`. Point loads of the model are held constant over the step.
-  // Throws fsi::Error if Newton does not converge (the state is left unchanged).
+  // Advances `state` from state.time by `step_size`. The model's point loads are held constant
+  // over the step (thesis Fig. 4.10). Throws fsi::Error naming time, step size and residual if
+  // Newton does not converge; `state` is then left unchanged.
   StepStatistics step(const Model& model, State& state, double step_size);
 
+  // Drops the kept factorisation; needed only after changing the model's structure in place.
+  void reset();
+
   const ButcherTableau& tableau() const;
+  const NewtonOptions& options() const;
   const IntegratorStatistics& statistics() const;
 
  private:
   struct Workspace;
-  ButcherTableau tableau_;
-  NewtonOptions options_;
-  IntegratorStatistics statistics_;
   std::unique_ptr<Workspace> work_;
 };
 

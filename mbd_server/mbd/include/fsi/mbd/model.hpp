@@ -1,14 +1,24 @@
 #pragma once
-// The multibody model (thesis §2.1.2): generalised coordinates q, velocities v = dq/dt and
-// Lagrange multipliers lambda of the constraints, with the equations of motion
-//     M(q) dv/dt = F(t, q, v) - C_q^T lambda,      C(q, t) = 0  (position level, index 3)
-//                                                   B v - g(t) = 0 (velocity level, index 2)
-// Sign convention: the generalised constraint force acting on the bodies is -C_q^T lambda.
+// The multibody model (thesis §2.1.2): generalised coordinates q (n), velocities v = dq/dt (n)
+// and one Lagrange multiplier per constraint row (m), with the equations of motion
 //
-// This version has planar rigid bodies (x, y, phi of the centre of mass), gravity, point loads on
-// material points ("markers": the boundary-mesh vertices of the coupling), force elements, and
-// coordinate constraints on position or velocity level. Point loads become generalised forces
-// by virtual work, Q = (dr/dq)^T f (thesis eq. 2.6-2.8).
+//     M dv/dt = F(t, q, v) - G(q)^T lambda
+//     C(q, t) = 0                 position-level constraint rows (index 3), G = dC/dq
+//     G v - g(t) = 0              velocity-level constraint rows (index 2)
+//
+// SIGN CONVENTION: the generalised force the constraints exert on the bodies is -G^T lambda
+// (thesis eq. 2.2 with lambda C_q on the left-hand side). For a body held at rest this force
+// balances the applied forces, so -(constraint force) = gravity + loads: that is how the coupled
+// run weighs the fluid through lambda (thesis §6.3).
+//
+// Applied forces F: gravity, point loads on markers and force elements. A point load f (world
+// frame) on a material point r(q) contributes Q = (dr/dq)^T f (virtual work, thesis eq. 2.6-2.8).
+//
+// This version has planar rigid bodies (x, y, phi of the centre of mass, mass matrix
+// diag(m, m, J)), coordinate constraints on position or velocity level, and force elements.
+// Bodies and constraints are internal element classes behind narrow interfaces
+// (src/body.hpp, src/constraint.hpp) so that later element types plug in without changing the
+// integrator.
 
 #include <Eigen/Dense>
 
@@ -17,50 +27,37 @@
 #include <span>
 #include <string>
 #include <string_view>
-#include <vector>
+
+#include "fsi/mbd/force_element.hpp"
 
 namespace fsi::mbd {
 
 using BodyId = int;
+// Markers on the ground are fixed in the inertial frame (static geometry).
 inline constexpr BodyId kGround = -1;
 
+// Coordinates of a planar rigid body: the centre of mass (x, y) and the rotation angle phi.
 enum class Coordinate { X = 0, Y = 1, Angle = 2 };
 std::string_view name(Coordinate coordinate);
 
 struct State {
   double time = 0.0;
-  Eigen::VectorXd q;
-  Eigen::VectorXd v;
-  Eigen::VectorXd lambda;
+  Eigen::VectorXd q;       // generalised coordinates
+  Eigen::VectorXd v;       // their time derivatives
+  Eigen::VectorXd lambda;  // one multiplier per constraint row (see the sign convention above)
 };
 
 struct RigidBody2DSpec {
   std::string name;
-  double mass = 0.0;     // [kg] (2D: per unit depth)
-  double inertia = 0.0;  // about the centre of mass [kg m^2]
-  Eigen::Vector2d position = Eigen::Vector2d::Zero();
-  double angle = 0.0;
-  Eigen::Vector2d velocity = Eigen::Vector2d::Zero();
-  double angular_velocity = 0.0;
-};
-
-// A generalised force that depends on t, q and v (springs, dampers; later issues).
-class ForceElement {
- public:
-  virtual ~ForceElement() = default;
-  // Adds this element's generalised force to `force` (size n).
-  virtual void add_force(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
-                         Eigen::VectorXd& force) const = 0;
+  double mass = 0.0;     // [kg] (2D: per unit depth, kg/m)
+  double inertia = 0.0;  // about the centre of mass [kg m^2] (2D: kg m)
+  Eigen::Vector2d position = Eigen::Vector2d::Zero();  // centre of mass [m]
+  double angle = 0.0;                                  // [rad]
+  Eigen::Vector2d velocity = Eigen::Vector2d::Zero();  // [m/s]
+  double angular_velocity = 0.0;                       // [rad/s]
 };
 
 enum class ConstraintLevel { Position, Velocity };
-
-struct ConstraintInfo {
-  std::string description;  // e.g. "coordinate constraint on piston.y"
-  ConstraintLevel level;
-  int coordinate;  // index into q
-  double value;    // prescribed coordinate (position level) or velocity (velocity level)
-};
 
 class Model {
  public:
@@ -70,15 +67,17 @@ class Model {
   Model& operator=(Model&&) noexcept;
 
   // --- building ---
-  BodyId add_rigid_body(const RigidBody2DSpec& spec);  // throws fsi::Error on bad values
+  // Throws fsi::Error naming the body if mass or inertia are not positive and finite, a value is
+  // not finite, or the name is taken.
+  BodyId add_rigid_body(const RigidBody2DSpec& spec);
   void set_gravity(const Eigen::Vector2d& acceleration);
-  // A material point fixed in the body frame (local coordinates), or in the inertial frame for
-  // kGround. Returns the marker index.
-  int add_marker(BodyId body, const Eigen::Vector2d& coordinates);
-  // Holds q at `value` (default: the initial coordinate).
+  // A material point at body-fixed local coordinates p, r = x + R(phi) p; for kGround, p is the
+  // fixed world position. Returns the marker index (the boundary-mesh vertex index).
+  int add_marker(BodyId body, const Eigen::Vector2d& local_coordinates);
+  // Position level: q_i - value = 0; value defaults to the body's initial coordinate.
   int add_coordinate_constraint(BodyId body, Coordinate coordinate,
                                 std::optional<double> value = std::nullopt);
-  // Prescribes dq/dt = velocity.
+  // Velocity level: dq_i/dt - velocity = 0 (thesis §6.3: the piston's dy/dt = v0).
   int add_velocity_constraint(BodyId body, Coordinate coordinate, double velocity);
   void add_force_element(std::unique_ptr<ForceElement> element);
 
@@ -88,47 +87,76 @@ class Model {
   int body_count() const;
   int marker_count() const;
   const RigidBody2DSpec& body(BodyId body) const;
-  // Body index by name; throws fsi::Error listing the known names.
+  // Throws fsi::Error listing the known names.
   BodyId find_body(std::string_view name) const;
   int coordinate_index(BodyId body, Coordinate coordinate) const;
   BodyId marker_body(int marker) const;
-  const std::vector<ConstraintInfo>& constraints() const;
+  const Eigen::Vector2d& marker_local_coordinates(int marker) const;
+  std::string constraint_description(int constraint) const;  // "velocity constraint on piston.y"
+  ConstraintLevel constraint_level(int constraint) const;
   const Eigen::Vector2d& gravity() const;
 
-  // Initial state from the body specs; throws fsi::Error naming every constraint the initial
-  // state violates.
+  // --- initial state and its consistency ---
+  // q and v from the body specs; lambda consistent with the accelerations at t = 0 (solves
+  // [M G^T; G 0] [a; lambda] = [F; -remainder] with the current point loads). Calls
+  // check_consistency first.
   State initial_state() const;
+  // Throws one fsi::Error listing every problem: position constraints C(q, t) != 0, their time
+  // derivative G v + C_t != 0 (a held coordinate with a velocity), velocity constraints violated,
+  // and constraint rows that are redundant (linearly dependent on earlier rows). Velocities are
+  // CHECKED, never projected: a silent change of the user's initial velocity would hide a
+  // mistake in the scene. Tolerance: 1e-12 (1 + |q|_inf) on position level, 1e-12 (1 + |v|_inf)
+  // on velocity level.
+  void check_consistency(const State& state) const;
 
-  // --- evaluation (used by the integrator) ---
-  // Mass matrix (constant and diagonal for rigid bodies).
+  // --- assembly of the DAE (used by the integrators) ---
+  // Constant for all current element types.
   const Eigen::MatrixXd& mass_matrix() const;
-  // Applied generalised forces: gravity, point loads and force elements.
+  // F(t, q, v): gravity, point loads (held constant) and force elements.
   void applied_force(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
                      Eigen::VectorXd& force) const;
-  // Rows of position-level constraints and velocity-level constraints.
+  // dF/dq and dF/dv: analytic for gravity and point loads, analytic or central differences for
+  // force elements (ForceElement::add_jacobians).
+  void applied_force_derivatives(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                                 Eigen::MatrixXd& by_position, Eigen::MatrixXd& by_velocity) const;
+  // C(q, t) for position-level rows, G v - g(t) for velocity-level rows (size m).
   void constraint_residual(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
                            Eigen::VectorXd& residual) const;
-  // C_q: constant for coordinate constraints (one unit entry per row).
-  const Eigen::MatrixXd& constraint_jacobian() const;
+  // G (m x n): dC/dq for position-level rows, d(G v - g)/dv for velocity-level rows.
+  void constraint_jacobian(double time, const Eigen::VectorXd& q, Eigen::MatrixXd& jacobian) const;
+  // d/dq (G(q)^T lambda) (n x n); zero while all constraints are linear in q.
+  void constraint_force_derivative(double time, const Eigen::VectorXd& q,
+                                   const Eigen::VectorXd& lambda,
+                                   Eigen::MatrixXd& derivative) const;
 
-  // --- point loads (held constant over a step) ---
+  // --- point loads: world-frame forces on markers, held constant over a step ---
   // Two values (x, y) per marker, in marker order. Loads on ground markers are ignored.
   void set_point_loads(std::span<const double> loads);
   std::span<const double> point_loads() const;
 
-  // --- readouts ---
+  // --- markers ---
+  Eigen::Vector2d marker_position(const State& state, int marker) const;
+  Eigen::Vector2d marker_velocity(const State& state, int marker) const;
+  // dr/dq (2 x n); zero for ground markers.
+  Eigen::MatrixXd marker_jacobian(const Eigen::VectorXd& q, int marker) const;
+  // All markers at once: x0, y0, x1, y1, ... (size 2 * marker_count()).
   void marker_positions(const State& state, std::span<double> xy) const;
   void marker_velocities(const State& state, std::span<double> xy) const;
+
+  // --- readouts for sensors ---
   double coordinate(const State& state, BodyId body, Coordinate coordinate) const;
   double velocity(const State& state, BodyId body, Coordinate coordinate) const;
-  // Component of -C_q^T lambda on the body coordinate (sum over all constraints).
+  // -G^T lambda, the generalised force of all constraints on the bodies (size n).
+  Eigen::VectorXd generalised_constraint_force(const State& state) const;
+  // One component of it: the constraint force (x, y) or torque (angle) on a body.
   double constraint_force(const State& state, BodyId body, Coordinate coordinate) const;
   // Resultant of the point loads on a body: force x, force y, torque about the centre of mass.
   Eigen::Vector3d point_load_resultant(const State& state, BodyId body) const;
   double kinetic_energy(const State& state) const;
-  double potential_energy(const State& state) const;  // gravity
-  // Largest |C| of position-level and |B v - g| of velocity-level constraints.
+  double potential_energy(const State& state) const;  // of gravity, zero at the origin
+  // Largest |C| over position-level rows.
   double position_constraint_drift(const State& state) const;
+  // Largest velocity-level residual: |G v - g| of velocity rows and |G v + C_t| of position rows.
   double velocity_constraint_drift(const State& state) const;
 
  private:

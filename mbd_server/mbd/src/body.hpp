@@ -1,0 +1,78 @@
+#pragma once
+// Body element interface (internal): what the model needs from a body to assemble the equations
+// of motion and to move its material points. A body owns a contiguous block of n_b generalised
+// coordinates; every function receives only that block. Later element types (3D rigid bodies,
+// ANCF beams) implement this interface; the integrator never sees it.
+
+#include <Eigen/Dense>
+
+#include <string>
+
+#include "fsi/mbd/model.hpp"
+
+namespace fsi::mbd::detail {
+
+using ConstVector = Eigen::Ref<const Eigen::VectorXd>;
+
+class Body {
+ public:
+  virtual ~Body() = default;
+
+  virtual const std::string& name() const = 0;
+  virtual int coordinate_count() const = 0;
+  virtual void initial_state(Eigen::Ref<Eigen::VectorXd> q,
+                             Eigen::Ref<Eigen::VectorXd> v) const = 0;
+  // Constant mass matrix block (n_b x n_b); a coordinate-dependent one needs a different stage
+  // formulation in the integrator.
+  virtual void mass_matrix(Eigen::Ref<Eigen::MatrixXd> block) const = 0;
+  // Generalised force of a uniform acceleration field (gravity), added to `force`.
+  virtual void add_gravity_force(const Eigen::Vector2d& acceleration,
+                                 Eigen::Ref<Eigen::VectorXd> force) const = 0;
+  virtual double gravity_potential(const ConstVector& q,
+                                   const Eigen::Vector2d& acceleration) const = 0;
+
+  // Material point with body-fixed local coordinates.
+  virtual Eigen::Vector2d position(const ConstVector& q, const Eigen::Vector2d& local) const = 0;
+  virtual Eigen::Vector2d velocity(const ConstVector& q, const ConstVector& v,
+                                   const Eigen::Vector2d& local) const = 0;
+  // dr/dq (2 x n_b), written.
+  virtual void position_jacobian(const ConstVector& q, const Eigen::Vector2d& local,
+                                 Eigen::Ref<Eigen::MatrixXd> jacobian) const = 0;
+  // d/dq [(dr/dq)^T f] for a constant world-frame force f (n_b x n_b), added.
+  virtual void add_point_load_derivative(const ConstVector& q, const Eigen::Vector2d& local,
+                                         const Eigen::Vector2d& force,
+                                         Eigen::Ref<Eigen::MatrixXd> derivative) const = 0;
+  // The point torques of resultants are taken about (the centre of mass of a rigid body).
+  virtual Eigen::Vector2d reference_point(const ConstVector& q) const = 0;
+};
+
+class RigidBody2D final : public Body {
+ public:
+  explicit RigidBody2D(const RigidBody2DSpec& spec);  // throws fsi::Error for invalid values
+
+  const RigidBody2DSpec& spec() const { return spec_; }
+  double initial_coordinate(Coordinate coordinate) const;
+
+  const std::string& name() const override { return spec_.name; }
+  int coordinate_count() const override { return 3; }
+  void initial_state(Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::VectorXd> v) const override;
+  void mass_matrix(Eigen::Ref<Eigen::MatrixXd> block) const override;
+  void add_gravity_force(const Eigen::Vector2d& acceleration,
+                         Eigen::Ref<Eigen::VectorXd> force) const override;
+  double gravity_potential(const ConstVector& q,
+                           const Eigen::Vector2d& acceleration) const override;
+  Eigen::Vector2d position(const ConstVector& q, const Eigen::Vector2d& local) const override;
+  Eigen::Vector2d velocity(const ConstVector& q, const ConstVector& v,
+                           const Eigen::Vector2d& local) const override;
+  void position_jacobian(const ConstVector& q, const Eigen::Vector2d& local,
+                         Eigen::Ref<Eigen::MatrixXd> jacobian) const override;
+  void add_point_load_derivative(const ConstVector& q, const Eigen::Vector2d& local,
+                                 const Eigen::Vector2d& force,
+                                 Eigen::Ref<Eigen::MatrixXd> derivative) const override;
+  Eigen::Vector2d reference_point(const ConstVector& q) const override;
+
+ private:
+  RigidBody2DSpec spec_;
+};
+
+}  // namespace fsi::mbd::detail

@@ -1,0 +1,86 @@
+#pragma once
+// The nonlinear stage equations of one Radau IIA step on the index-3 DAE of fsi::mbd::Model,
+// in scaled unknowns (internal; the Newton driver is radau_iia.cpp).
+//
+// Physical stage values at t_i = t_n + c_i h: positions Q_i, velocities V_i, multipliers Lambda_i.
+// Unknowns per stage i, in this order:
+//     Z_i = (Q_i - q_n) / h   (n)   mean velocity over the stage, O(v)
+//     V_i                     (n)
+//     L_i = h Lambda_i        (m)   constraint impulse, O(h F)
+// Equations per stage i (rows in the same order):
+//     kinematic   Z_i - sum_j a_ij V_j = 0                                        [m/s]
+//     dynamic     M (V_i - v_n) - sum_j a_ij (h F(t_j, Q_j, V_j) - G(Q_j)^T L_j) = 0   [N s]
+//     constraint  C(Q_i, t_i) / h = 0 (position level),  G V_i - g(t_i) = 0 (velocity level)
+// Why: with unknowns (Q, V, Lambda) the constraint rows and multiplier columns scale with h and
+// 1/h, so for the coupled steps (h ~ 5e-6 s) the Newton matrix has entries from h to 1/h and
+// Lambda loses digits. In these unknowns every block of the Newton matrix is O(1) as h -> 0:
+//     d kinematic = [I, -a_ij I, 0]
+//     d dynamic   = [-a_ij (h^2 dF/dq - h d(G^T L)/dq), M delta_ij - h a_ij dF/dv, a_ij G^T]
+//     d constraint = [G, 0, 0] (position) or [0, G, 0] (velocity)
+// and its limit h -> 0 is non-singular whenever M is and G has full rank.
+
+#include <Eigen/Dense>
+
+#include <vector>
+
+#include "fsi/mbd/integrator.hpp"
+#include "fsi/mbd/model.hpp"
+
+namespace fsi::mbd::detail {
+
+class RadauStageEquations {
+ public:
+  explicit RadauStageEquations(const ButcherTableau& tableau);
+
+  // Binds the model and the start of the step (t_n, q_n, v_n, lambda_n) and the step size.
+  void begin_step(const Model& model, const State& start, double step_size);
+
+  int stages() const { return stages_; }
+  int size() const { return stages_ * block_; }
+
+  // Constant-velocity prediction with the multipliers of the step start: Z_i = c_i v_n,
+  // V_i = v_n, L_i = h lambda_n. A held coordinate (v = 0) starts exactly on its constraint.
+  void predict(Eigen::VectorXd& unknowns) const;
+  void residual(const Eigen::VectorXd& unknowns, Eigen::VectorXd& residual);
+  // The exact derivative of residual() with respect to the unknowns.
+  void jacobian(const Eigen::VectorXd& unknowns, Eigen::MatrixXd& jacobian);
+
+  // Weighted max norm of a Newton increment; <= 1 means converged. Each block (positions
+  // h dZ, velocities dV, multipliers dL / h) is measured against
+  //     absolute_tolerance + relative_tolerance * scale + 100 eps * round-off scale,
+  // where scale is the block's size over the start and all stages (for velocities at least
+  // h |F| / min diag M, for multipliers at least |F|), and the round-off term keeps the
+  // criterion reachable in floating point (multipliers: L / h carries the rounding of M V / h).
+  // Uses the stage forces of the last residual() call.
+  double increment_norm(const Eigen::VectorXd& unknowns, const Eigen::VectorXd& increment,
+                        const NewtonOptions& options) const;
+
+  // Physical stage values.
+  Eigen::VectorXd position(const Eigen::VectorXd& unknowns, int stage) const;
+  Eigen::VectorXd velocity(const Eigen::VectorXd& unknowns, int stage) const;
+  Eigen::VectorXd multiplier(const Eigen::VectorXd& unknowns, int stage) const;
+
+ private:
+  int z_offset(int stage) const { return stage * block_; }
+  int v_offset(int stage) const { return stage * block_ + n_; }
+  int l_offset(int stage) const { return stage * block_ + 2 * n_; }
+  double stage_time(int stage) const { return start_.time + c_(stage) * step_size_; }
+
+  Eigen::MatrixXd a_;
+  Eigen::VectorXd c_;
+  int stages_;
+  const Model* model_ = nullptr;
+  State start_;
+  double step_size_ = 0.0;
+  int n_ = 0;
+  int m_ = 0;
+  int block_ = 0;
+  std::vector<bool> position_level_;
+  // Scratch, per stage where needed.
+  std::vector<Eigen::VectorXd> stage_force_;
+  std::vector<Eigen::MatrixXd> stage_constraint_jacobian_;
+  Eigen::VectorXd q_, v_, lambda_, constraint_;
+  Eigen::MatrixXd by_position_, by_velocity_, constraint_force_derivative_;
+};
+
+}  // namespace fsi::mbd::detail

@@ -1,0 +1,47 @@
+#include <cmath>
+#include <string>
+
+#include "fsi/common/error.hpp"
+#include "fsi/mbd/integrator.hpp"
+
+namespace fsi::mbd {
+
+// Radau IIA: collocation at the right Radau points (zeros of d^(s-1)/dx^(s-1) [x^(s-1) (x-1)^s]
+// on [0, 1]), so c_s = 1 and the last row of a equals b (Hairer & Wanner, Solving ODEs II,
+// §IV.5, Table 5.5 for s = 3).
+ButcherTableau radau_iia(int stages) {
+  ButcherTableau tableau;
+  switch (stages) {
+    case 1:
+      tableau.a = Eigen::MatrixXd::Constant(1, 1, 1.0);
+      tableau.c = Eigen::VectorXd::Constant(1, 1.0);
+      break;
+    case 2:
+      tableau.a.resize(2, 2);
+      tableau.a << 5.0 / 12.0, -1.0 / 12.0,  //
+          3.0 / 4.0, 1.0 / 4.0;
+      tableau.c.resize(2);
+      tableau.c << 1.0 / 3.0, 1.0;
+      break;
+    case 3: {
+      const double root6 = std::sqrt(6.0);
+      tableau.a.resize(3, 3);
+      tableau.a << (88.0 - 7.0 * root6) / 360.0, (296.0 - 169.0 * root6) / 1800.0,
+          (-2.0 + 3.0 * root6) / 225.0,  //
+          (296.0 + 169.0 * root6) / 1800.0, (88.0 + 7.0 * root6) / 360.0,
+          (-2.0 - 3.0 * root6) / 225.0,  //
+          (16.0 - root6) / 36.0, (16.0 + root6) / 36.0, 1.0 / 9.0;
+      tableau.c.resize(3);
+      tableau.c << (4.0 - root6) / 10.0, (4.0 + root6) / 10.0, 1.0;
+      break;
+    }
+    default:
+      throw Error("Radau IIA with " + std::to_string(stages) + " stages is not available",
+                  "integrator options", "choose 1, 2 or 3 stages (orders 1, 3, 5)");
+  }
+  tableau.b = tableau.a.row(stages - 1).transpose();
+  tableau.order = 2 * stages - 1;
+  return tableau;
+}
+
+}  // namespace fsi::mbd
