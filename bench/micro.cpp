@@ -76,6 +76,9 @@ BENCHMARK(BM_RadauStepStaticTank)->Arg(1)->Arg(3)->Unit(benchmark::kMicrosecond)
 
 void BM_StepMessageRoundTrip(benchmark::State& state) {
   fsi::protocol::Step step;
+  step.step = 1;
+  step.time = 2.5e-6;
+  step.time_step = 2.5e-6;
   step.positions.assign(static_cast<std::size_t>(2 * state.range(0)), 0.5);
   step.velocities = step.positions;
   for (auto _ : state) {
