@@ -21,6 +21,9 @@ struct ForceLaw {
   // Throws std::invalid_argument naming the offending parameter and its admissible range.
   void validate() const;
 
+  // Largest distance at which any part of the law acts: the radius for neighbour search.
+  double range() const { return cutoff; }
+
   // Magnitude of the repulsive density at distance d (negative = attraction); 0 beyond r_c.
   double repulsion(double distance) const;
   // Factor w(d) such that the viscous density is -viscous_scale * w(d) * v_rel; 0 beyond r_c.
