@@ -80,7 +80,7 @@ class PairKernel {
   PairKernel(const ForceLaw& law, const ParticleArrays& particles, std::span<double> vertex_forces,
              std::vector<std::uint8_t>& in_range, ContactDiagnostics& diagnostics)
       : law_(law),
-        cutoff2_(law.cutoff * law.cutoff),
+        cutoff2_(law.range() * law.range()),
         particles_(particles),
         vertex_forces_(vertex_forces.data()),
         in_range_(in_range),
@@ -172,6 +172,20 @@ void check_particles(const ParticleArrays& particles) {
   if (particles.count > std::numeric_limits<std::uint32_t>::max()) {
     throw std::invalid_argument("more than 2^32 particles on one process");
   }
+  // A non-finite particle would poison the cell grid and the force array: refuse it before any
+  // force is written.
+  for (std::size_t i = 0; i < particles.count; ++i) {
+    if (!takes_part(particles, i)) continue;
+    const double* x = particles.positions + 3 * i;
+    const double* u = particles.velocities + 3 * i;
+    if (!std::isfinite(x[0]) || !std::isfinite(x[1]) || !std::isfinite(x[2]) ||
+        !std::isfinite(u[0]) || !std::isfinite(u[1]) || !std::isfinite(u[2])) {
+      throw NonFiniteParticle(
+          i, "particle " + std::to_string(i) +
+                 " (local index) has a non-finite position or velocity; the fluid "
+                 "has blown up: reduce the time step or raise the wall repulsion k");
+    }
+  }
 }
 
 }  // namespace
@@ -241,7 +255,7 @@ WallContact2D::WallContact2D(const ContactSettings& settings) : settings_(settin
 }
 
 void WallContact2D::build_grid(const ParticleArrays& particles) {
-  const double cutoff = settings_.law.cutoff;
+  const double cutoff = settings_.law.range();
   double low[2] = {kInfinity, kInfinity};
   double high[2] = {-kInfinity, -kInfinity};
   std::size_t members = 0;

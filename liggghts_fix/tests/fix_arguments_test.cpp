@@ -46,9 +46,51 @@ TEST(FixArguments, ErrorsNameTheProblem) {
             std::string::npos);
   EXPECT_NE(error_of({"k", "1", "t", "0", "r0", "2", "cutoff", "1"}).find("r0"), std::string::npos);
   EXPECT_NE(error_of({"k", "1", "t"}).find("has no value"), std::string::npos);
-  EXPECT_NE(error_of({"k", "1", "t", "0", "r0", "1", "cutoff", "1", "kernel", "cubic"})
-                .find("kernel 'cubic'"),
+  EXPECT_NE(error_of({"k", "1", "t", "0", "r0", "1", "cutoff", "1", "kernel", "gauss"})
+                .find("'kernel' needs 'spiky' or 'cubic', got 'gauss'"),
             std::string::npos);
+  EXPECT_NE(
+      error_of({"k", "1", "t", "0", "r0", "1", "cutoff", "1", "law", "lj", "p1", "2", "p2", "3"})
+          .find("p2 < p1"),
+      std::string::npos);
+  EXPECT_NE(error_of({"k", "1", "t", "0", "r0", "1", "cutoff", "1", "p1", "12"}).find("law lj"),
+            std::string::npos);
+  EXPECT_NE(error_of({"k", "1", "t", "0", "r0", "1", "cutoff", "1", "triangle", "4"})
+                .find("'triangle' needs one of 1, 3, 7"),
+            std::string::npos);
+  EXPECT_NE(error_of({"k", "1", "t", "0", "r0", "1", "cutoff", "1", "k", "2"}).find("twice"),
+            std::string::npos);
+  EXPECT_NE(error_of({"k", "1", "t", "0", "r0", "1", "cutoff", "1", "cutoff_visc", "-1"})
+                .find("'cutoff_visc' needs a positive length"),
+            std::string::npos);
+  EXPECT_NE(error_of({"k", "1", "t", "0", "r0", "1", "cutoff", "1", "warn", "1"}).find("'warn'"),
+            std::string::npos);
+}
+
+TEST(FixArguments, ParsesLawKernelAndCutoffs) {
+  const auto parsed = parse_fix_fsi_sph_arguments(std::vector<std::string>{
+      "k",           "1",   "t",        "2",  "r0",   "0.5", "cutoff", "1",
+      "law",         "lj",  "p1",       "12", "p2",   "6",   "kernel", "cubic",
+      "cutoff_visc", "1.5", "triangle", "3",  "warn", "0.25"});
+  EXPECT_EQ(parsed.law.repulsion_law, RepulsionLaw::LennardJones);
+  EXPECT_EQ(parsed.law.lj_p1, 12);
+  EXPECT_EQ(parsed.law.lj_p2, 6);
+  EXPECT_EQ(parsed.law.viscous_kernel, ViscousKernel::CubicSpline);
+  EXPECT_EQ(parsed.law.effective_viscous_cutoff(), 1.5);
+  EXPECT_EQ(parsed.law.range(), 1.5);
+  EXPECT_EQ(parsed.triangle_points, 3);
+  EXPECT_EQ(parsed.warn_fraction, 0.25);
+}
+
+TEST(FixArguments, DocumentationListsEveryKeyword) {
+  // docs/fix_fsi_sph.md embeds this table; the keyword list and the usage agree with the parser.
+  const std::string table = fix_fsi_sph_keyword_table_markdown();
+  const std::string usage = fix_fsi_sph_usage();
+  for (const char* keyword : {"k", "t", "r0", "cutoff", "cutoff_visc", "law", "p1", "p2", "kernel",
+                              "gauss", "triangle", "warn"}) {
+    EXPECT_NE(table.find(std::string("| `") + keyword + "` |"), std::string::npos) << keyword;
+    EXPECT_NE(usage.find(std::string("  ") + keyword + " "), std::string::npos) << keyword;
+  }
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <stdexcept>
 
 namespace fsi::contact {
@@ -74,6 +75,77 @@ TEST(ForceLaw, ValidationNamesTheParameter) {
   law = thesis_law(2.0);
   law.repulsion_scale = -1.0;
   EXPECT_THROW(law.validate(), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace fsi::contact
+
+namespace fsi::contact {
+namespace {
+
+TEST(ForceLaw, LennardJonesIsThesisEquation43WithAFiniteCore) {
+  ForceLaw law = thesis_law(0.5);
+  law.repulsion_law = RepulsionLaw::LennardJones;
+  law.lj_p1 = 12;
+  law.lj_p2 = 6;
+  ASSERT_NO_THROW(law.validate());
+  for (double d = 0.05; d < 2.0; d += 0.05) {
+    const double q = 0.5 / d;
+    EXPECT_NEAR(law.repulsion(d), 1000.0 * (std::pow(q, 12) - std::pow(q, 6)),
+                1e-12 * std::abs(1000.0 * std::pow(q, 12)))
+        << "d = " << d;
+  }
+  EXPECT_NEAR(law.repulsion(0.5), 0.0, 1e-12);
+  EXPECT_LT(law.repulsion(1.0), 0.0);  // attractive beyond r0
+  EXPECT_EQ(law.repulsion(2.0), 0.0);  // truncated at the cut-off
+  // Below r0/10 the law is held at its value there: finite at zero distance.
+  EXPECT_EQ(law.repulsion(0.0), law.repulsion(0.05));
+  EXPECT_EQ(law.repulsion(1e-300), law.repulsion(0.05));
+  EXPECT_TRUE(std::isfinite(law.repulsion(0.0)));
+  law.lj_p2 = 12;
+  EXPECT_THROW(law.validate(), std::invalid_argument);
+}
+
+TEST(ForceLaw, CubicSplineViscousWeightIsSmoothAndMatchesSpikyAtContact) {
+  ForceLaw law = thesis_law(2.0);
+  law.viscous_kernel = ViscousKernel::CubicSpline;
+  EXPECT_EQ(law.viscous_weight(0.0), 1.0);
+  ForceLaw spiky = thesis_law(2.0);
+  EXPECT_EQ(spiky.viscous_weight(0.0), law.viscous_weight(0.0));
+  // (3.22) with R = d/h, h = 1: 1 - 1.5 R^2 + 0.75 R^3 for R < 1, 0.25 (2 - R)^3 for R < 2.
+  EXPECT_NEAR(law.viscous_weight(0.5), 1.0 - 1.5 * 0.25 + 0.75 * 0.125, 1e-15);
+  EXPECT_NEAR(law.viscous_weight(1.5), 0.25 * 0.125, 1e-15);
+  // Continuous with continuous slope at R = 1 and at the support.
+  const double e = 1e-7;
+  EXPECT_NEAR(law.viscous_weight(1.0 - e), law.viscous_weight(1.0 + e), 1e-6);
+  EXPECT_NEAR((law.viscous_weight(1.0) - law.viscous_weight(1.0 - e)) / e,
+              (law.viscous_weight(1.0 + e) - law.viscous_weight(1.0)) / e, 1e-5);
+  EXPECT_NEAR(law.viscous_weight(2.0 - e), 0.0, 1e-12);
+  EXPECT_EQ(law.viscous_weight(2.0), 0.0);
+  for (double d = 0.0; d < 2.0; d += 0.01)
+    EXPECT_GE(law.viscous_weight(d), 0.0);
+}
+
+TEST(ForceLaw, SeparateViscousCutoff) {
+  ForceLaw law = thesis_law(2.0);
+  law.viscous_cutoff = 3.0;
+  ASSERT_NO_THROW(law.validate());
+  EXPECT_EQ(law.range(), 3.0);
+  EXPECT_EQ(law.repulsion(2.5), 0.0);
+  EXPECT_NEAR(law.viscous_weight(1.5), 0.5, 1e-15);  // 1 - 1.5/3
+  EXPECT_EQ(law.viscous_weight(3.0), 0.0);
+  law.viscous_cutoff = 1.0;  // shorter than the repulsion: the search radius stays r_c
+  EXPECT_EQ(law.range(), 2.0);
+  EXPECT_EQ(law.viscous_weight(1.5), 0.0);
+  EXPECT_GT(law.repulsion(1.5), 0.0);
+  law.viscous_cutoff = -1.0;
+  EXPECT_THROW(law.validate(), std::invalid_argument);
+}
+
+TEST(ForceLaw, NonFiniteDistancesGiveNoForce) {
+  const ForceLaw law = thesis_law(1.0);
+  EXPECT_EQ(law.repulsion(std::nan("")), 0.0);
+  EXPECT_EQ(law.viscous_weight(std::nan("")), 0.0);
 }
 
 }  // namespace

@@ -1,35 +1,57 @@
 #pragma once
-// SPH–wall force densities of thesis eq. (4.2) with the renormalised spiky-kernel Laplacian (5.5).
+// SPH–wall force densities of thesis §4.2, per unit surface measure (per unit length of a 2D
+// segment, per unit area of a 3D triangle).
 //
-// With the cut-off r_c = 2h, a particle at distance d from a surface point feels, per unit surface
-// measure (per unit length of a 2D segment),
-//   repulsion  f_rep(d)  = k [(r_c - d)^4 - (r_c - r_0)^2 (r_c - d)^2] / [r_c^2 r_0 (2 r_c - r_0)]
-//   viscosity  f_visc    = -(t/2) (2 - d/h) v_rel = -t (1 - d/r_c) v_rel
-// for 0 <= d <= r_c and zero beyond. f_rep(0) = k, f_rep(r_0) = 0 and, for r_0 < r_c, the law is
-// attractive (adhesion) between r_0 and r_c. The repulsion acts along (r_particle - r_surface).
+// Repulsion, acting along (r_particle - r_surface), 0 beyond the repulsive cut-off r_c:
+//   thesis (4.2)        f_rep(d) = k [(r_c - d)^4 - (r_c - r_0)^2 (r_c - d)^2] / [r_c^2 r_0 (2 r_c
+//   - r_0)]
+//                       f_rep(0) = k, f_rep(r_0) = 0, adhesion between r_0 and r_c when r_0 < r_c.
+//   Lennard-Jones (4.3) f_rep(d) = k [(r_0/d)^p1 - (r_0/d)^p2], p1 > p2 >= 1; below the core
+//                       radius r_0/10 the law is held at its value there so that it stays finite.
+// Viscosity, f_visc = -t w(d) v_rel for d < r_v (the viscous cut-off, = r_c by default):
+//   spiky (5.5)         w(d) = (1/2)(1/alpha) Laplacian W = 1 - d/r_v   (= (2 - d/h)/2 with r_v =
+//   2h) cubic               w(d) = W_cubic(d)/W_cubic(0): the shape of the cubic spline kernel
+//   (3.22)
+//                       with support r_v, equal to the spiky weight at contact. (The literal
+//                       Laplacian of (3.22) changes sign at d = 0.44 r_v in 2D and would push
+//                       particles along the wall; it is not offered.)
 
 #include <string>
 
 namespace fsi::contact {
 
+enum class RepulsionLaw { Thesis, LennardJones };
+enum class ViscousKernel { Spiky, CubicSpline };
+
 struct ForceLaw {
-  double repulsion_scale = 0.0;       // k [N/m^2 in 2D]: force density at zero distance
-  double viscous_scale = 0.0;         // t [N s/m^3 in 2D]: wall friction scale (thesis eq. 6.4)
+  double repulsion_scale = 0.0;  // k [N/m^2 in 2D]: force density at zero distance (thesis law)
+  double viscous_scale = 0.0;    // t [N s/m^3 in 2D]: wall friction scale (thesis eq. 6.4)
   double equilibrium_distance = 0.0;  // r_0 [m], 0 < r_0 <= r_c
-  double cutoff = 0.0;                // r_c = 2h [m]
+  double cutoff = 0.0;                // r_c = 2h [m]: range of the repulsion
+  double viscous_cutoff = 0.0;        // r_v [m]: range of the viscous term; 0 = same as r_c
+  RepulsionLaw repulsion_law = RepulsionLaw::Thesis;
+  ViscousKernel viscous_kernel = ViscousKernel::Spiky;
+  int lj_p1 = 4;  // Lennard-Jones exponents (thesis: 4/2 or 12/6)
+  int lj_p2 = 2;
 
   // Throws std::invalid_argument naming the offending parameter and its admissible range.
   void validate() const;
 
+  double effective_viscous_cutoff() const { return viscous_cutoff > 0.0 ? viscous_cutoff : cutoff; }
   // Largest distance at which any part of the law acts: the radius for neighbour search.
-  double range() const { return cutoff; }
+  double range() const {
+    const double viscous = effective_viscous_cutoff();
+    return viscous > cutoff ? viscous : cutoff;
+  }
 
   // Magnitude of the repulsive density at distance d (negative = attraction); 0 beyond r_c.
   double repulsion(double distance) const;
-  // Factor w(d) such that the viscous density is -viscous_scale * w(d) * v_rel; 0 beyond r_c.
+  // Factor w(d) such that the viscous density is -viscous_scale * w(d) * v_rel; 0 beyond r_v.
   double viscous_weight(double distance) const;
 };
 
 std::string describe(const ForceLaw& law);
+const char* name(RepulsionLaw law);
+const char* name(ViscousKernel kernel);
 
 }  // namespace fsi::contact

@@ -13,6 +13,8 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "fsi/contact/force_law.hpp"
@@ -30,6 +32,14 @@ struct BoundaryMesh2D {
   std::size_t segment_count() const { return segments.size() / 2; }
   // Throws std::invalid_argument on inconsistent sizes, bad indices or non-finite coordinates.
   void validate() const;
+};
+
+// Thrown when a participating particle has a non-finite position or velocity. Nothing has been
+// written to any force array. index is the particle's index in ParticleArrays.
+struct NonFiniteParticle : std::invalid_argument {
+  NonFiniteParticle(std::size_t particle, const std::string& message)
+      : std::invalid_argument(message), index(particle) {}
+  std::size_t index;
 };
 
 // Particles owned by this process. forces is accumulated into (+=). A particle takes part if
