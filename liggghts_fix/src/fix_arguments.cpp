@@ -120,7 +120,7 @@ const std::vector<Keyword>& keywords() {
          a.triangle_points = integer(key, v, {1, 3, 7});
        }},
       {"warn", "0 <= f < 1",
-       "warn when a particle comes closer to a wall than f * r0 (0 = never warn)", "0.5",
+       "warn when a particle comes closer to a wall than f * r0 (0 = never warn)", "0.25",
        [](auto& a, const auto& key, const auto& v) {
          a.warn_fraction = number(key, v);
          if (a.warn_fraction < 0.0 || a.warn_fraction >= 1.0) reject(key, v, "0 <= f < 1");

@@ -1,5 +1,6 @@
 // The LAMMPS Fix adapter: maps LIGGGHTS' per-atom arrays onto the contact core.
 #include <chrono>
+#include <cstdio>
 #include <cstring>
 #include <stdexcept>
 #include <vector>
@@ -7,11 +8,13 @@
 #include "atom.h"
 #include "comm.h"
 #include "domain.h"
+#include "error.h"
 #include "fix.h"
 #include "group.h"
 #include "lammps.h"
 #include "memory.h"
 #include "modify.h"
+#include "update.h"
 
 #include "fsi/contact/fix_arguments.hpp"
 #include "fsi/contact/liggghts_fix.hpp"
@@ -24,8 +27,11 @@ constexpr const char* kStyle = "fsi/sph";
 class FixFsiSph : public LAMMPS_NS::Fix {
  public:
   FixFsiSph(LAMMPS_NS::LAMMPS* lammps, int argc, char** argv, const ContactSettings& settings,
-            std::shared_ptr<CouplingBoundary> boundary)
-      : Fix(lammps, argc, argv), contact_(settings), boundary_(std::move(boundary)) {}
+            double warn_fraction, std::shared_ptr<CouplingBoundary> boundary)
+      : Fix(lammps, argc, argv),
+        contact_(settings),
+        warn_distance_(warn_fraction * settings.law.equilibrium_distance),
+        boundary_(std::move(boundary)) {}
 
   int setmask() override { return LAMMPS_NS::FixConst::POST_FORCE; }
 
@@ -54,14 +60,47 @@ class FixFsiSph : public LAMMPS_NS::Fix {
       particles.group_bit = groupbit;
     }
     boundary.vertex_forces.resize(boundary.mesh.positions.size());
-    boundary.diagnostics = contact_.compute(boundary.mesh, particles, boundary.vertex_forces);
+    try {
+      boundary.diagnostics = contact_.compute(boundary.mesh, particles, boundary.vertex_forces);
+    } catch (const NonFiniteParticle& bad) {
+      const double* x = atom->x[bad.index];
+      const double* v = atom->v[bad.index];
+      char text[320];
+      std::snprintf(text, sizeof text,
+                    "fix fsi/sph: atom %d has a non-finite position (%g, %g, %g) or velocity "
+                    "(%g, %g, %g) at step " BIGINT_FORMAT
+                    ": the fluid has blown up; reduce the time step or raise the wall repulsion k",
+                    atom->tag[bad.index], x[0], x[1], x[2], v[0], v[1], v[2], update->ntimestep);
+      throw std::runtime_error(text);
+    }
     ++boundary.evaluations;
+    warn_if_too_close(boundary.diagnostics.closest_distance);
     boundary.seconds_in_fix +=
         std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   }
 
  private:
+  // A particle closer to a wall than warn_fraction * r0 means the wall repulsion is losing:
+  // warn on the rank that sees it, at most once per kWarnEvery steps.
+  void warn_if_too_close(double closest) {
+    constexpr LAMMPS_NS::bigint kWarnEvery = 1000;
+    if (!(closest < warn_distance_)) return;
+    if (last_warning_ >= 0 && update->ntimestep - last_warning_ < kWarnEvery) return;
+    last_warning_ = update->ntimestep;
+    char text[320];
+    std::snprintf(text, sizeof text,
+                  "fix fsi/sph: a particle is %.3g r0 from a wall at step " BIGINT_FORMAT
+                  " (warn below %.3g r0): raise k or reduce the time step; repeats at most every "
+                  "%d steps",
+                  closest / contact_.settings().law.equilibrium_distance, update->ntimestep,
+                  warn_distance_ / contact_.settings().law.equilibrium_distance,
+                  static_cast<int>(kWarnEvery));
+    error->warning(FLERR, text);
+  }
+
   WallContact2D contact_;
+  double warn_distance_;
+  LAMMPS_NS::bigint last_warning_ = -1;
   std::shared_ptr<CouplingBoundary> boundary_;
 };
 
@@ -153,13 +192,15 @@ void add_fix_fsi_sph(LAMMPS_NS::LAMMPS& lammps, std::span<const std::string> wor
     modify.fix[slot]->pre_delete(true);
     delete modify.fix[slot];
     modify.fix[slot] = nullptr;
-    modify.fix[slot] = new FixFsiSph(&lammps, argc, argv.data(), settings, std::move(boundary));
+    modify.fix[slot] = new FixFsiSph(&lammps, argc, argv.data(), settings, arguments.warn_fraction,
+                                     std::move(boundary));
     modify.fmask[slot] = modify.fix[slot]->setmask();
     modify.fix[slot]->post_create_pre_restart();
     modify.fix[slot]->post_create();
     return;
   }
-  append_fix(lammps, new FixFsiSph(&lammps, argc, argv.data(), settings, std::move(boundary)));
+  append_fix(lammps, new FixFsiSph(&lammps, argc, argv.data(), settings, arguments.warn_fraction,
+                                   std::move(boundary)));
 }
 
 }  // namespace fsi::contact

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "atom.h"
 #include "fsi/common/error.hpp"
 
 namespace fsi::client {
@@ -160,6 +161,37 @@ TEST(LiggghtsDriver, FixLineErrorsNameScriptAndLine) {
     FAIL() << "unknown group accepted";
   } catch (const fsi::Error& error) {
     EXPECT_NE(error.fault().find("group 'nogroup'"), std::string::npos);
+  }
+}
+
+TEST(LiggghtsDriver, FixWarnsWhenAParticleComesTooCloseToAWall) {
+  Tank tank;
+  auto warned = [&] {
+    for (const std::string& line : tank.driver.output().recent_lines())
+      if (line.find("fix fsi/sph: a particle is") != std::string::npos) return true;
+    return false;
+  };
+  tank.driver.step();
+  EXPECT_FALSE(warned()) << "no particle is within 0.25 r0 of a wall at rest";
+  // Lift the bottom (vertices 1 and 2) onto the first particle row at y = h.
+  tank.boundary->mesh.positions[3] = kSmoothingLength;
+  tank.boundary->mesh.positions[5] = kSmoothingLength;
+  tank.driver.step();
+  EXPECT_TRUE(warned()) << "a particle on the wall must be reported";
+}
+
+TEST(LiggghtsDriver, NonFiniteAtomStopsTheFixWithItsId) {
+  Tank tank;
+  // LIGGGHTS' `set` refuses NaN; poison atom ID 7 directly, as a blown-up integration would.
+  LAMMPS_NS::Atom& atom = *tank.driver.lammps().atom;
+  for (int i = 0; i < atom.nlocal; ++i)
+    if (atom.tag[i] == 7) atom.v[i][0] = std::nan("");
+  try {
+    tank.driver.step();
+    FAIL() << "a NaN velocity went through the fix";
+  } catch (const std::exception& error) {
+    EXPECT_NE(std::string(error.what()).find("atom 7 has a non-finite"), std::string::npos)
+        << error.what();
   }
 }
 

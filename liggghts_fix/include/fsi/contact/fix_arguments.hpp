@@ -12,9 +12,9 @@ namespace fsi::contact {
 
 struct FixFsiSphArguments {
   ForceLaw law;
-  int gauss_points = 3;        // 2D: Gauss–Legendre points per (sub-)segment, 1..5
-  int triangle_points = 7;     // 3D: symmetric triangle rule, 1, 3 or 7 points
-  double warn_fraction = 0.5;  // penetration warning below warn_fraction * r0
+  int gauss_points = 3;         // 2D: Gauss–Legendre points per (sub-)segment, 1..5
+  int triangle_points = 7;      // 3D: symmetric triangle rule, 1, 3 or 7 points
+  double warn_fraction = 0.25;  // penetration warning below warn_fraction * r0
 };
 
 // words: everything after the style name, with LIGGGHTS variables already substituted.
