@@ -71,7 +71,9 @@ double distance_to_segment(const double* p, const double* a, const double* b) {
   const double length2 = ex * ex + ey * ey;
   double t = 0.0;
   if (length2 > 0.0) t = std::clamp(((p[0] - a[0]) * ex + (p[1] - a[1]) * ey) / length2, 0.0, 1.0);
-  return std::hypot(p[0] - a[0] - t * ex, p[1] - a[1] - t * ey);
+  const double dx = p[0] - a[0] - t * ex;
+  const double dy = p[1] - a[1] - t * ey;
+  return std::sqrt(dx * dx + dy * dy);
 }
 
 // Accumulates everything of one evaluation; the pair kernel is the only place forces are made.
@@ -120,7 +122,7 @@ class PairKernel {
 
     diagnostics_.force_on_particles[0] += fx;
     diagnostics_.force_on_particles[1] += fy;
-    diagnostics_.pair_force_magnitude_sum += std::hypot(fx, fy);
+    diagnostics_.pair_force_magnitude_sum += std::sqrt(fx * fx + fy * fy);
     ++diagnostics_.pair_count;
     if (!in_range_[i]) {
       in_range_[i] = 1;
@@ -234,6 +236,7 @@ void ContactDiagnostics::merge(const ContactDiagnostics& other) {
   pair_force_magnitude_sum += other.pair_force_magnitude_sum;
   particles_in_range += other.particles_in_range;
   pair_count += other.pair_count;
+  candidate_pairs += other.candidate_pairs;
   sampling_points += other.sampling_points;
   closest_distance = std::min(closest_distance, other.closest_distance);
 }
@@ -343,6 +346,7 @@ ContactDiagnostics WallContact2D::compute(const BoundaryMesh2D& mesh,
     for (int cy = y_begin; cy <= y_end; ++cy) {
       for (int cx = x_begin; cx <= x_end; ++cx) {
         const std::size_t cell = static_cast<std::size_t>(cy) * cells_[0] + cx;
+        diagnostics.candidate_pairs += cell_start_[cell + 1] - cell_start_[cell];
         for (std::uint32_t k = cell_start_[cell]; k < cell_start_[cell + 1]; ++k) {
           kernel(s, cell_particles_[k]);
         }

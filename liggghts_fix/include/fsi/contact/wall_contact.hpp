@@ -66,7 +66,8 @@ struct ContactDiagnostics {
   std::array<double, 3> force_on_structure{};   // sum over all vertex forces
   double pair_force_magnitude_sum = 0.0;        // sum of |pair force|: scale for balance checks
   std::size_t particles_in_range = 0;           // distinct particles within the cut-off
-  std::size_t pair_count = 0;                   // evaluated (particle, sampling point) pairs
+  std::size_t pair_count = 0;                   // (particle, sampling point) pairs within range
+  std::size_t candidate_pairs = 0;              // pairs examined (cell-list candidates)
   std::size_t sampling_points = 0;              // sampling points of this evaluation
   double closest_distance = 0.0;                // smallest particle–segment distance in range;
                                                 // +inf when no particle is in range
