@@ -1,0 +1,154 @@
+#include "fsi/output/vtk_files.hpp"
+
+#include <cstdio>
+
+#include "fsi/common/error.hpp"
+#include "vtk_document.hpp"
+
+namespace fsi::output {
+namespace {
+
+using detail::to_three_components;
+using detail::VtkDocument;
+
+std::string count_text(std::size_t count) {
+  return std::to_string(count);
+}
+
+void check_vectors(std::span<const double> values, std::size_t count, int dimension,
+                   const char* what) {
+  FSI_ASSERT(values.size() == count * static_cast<std::size_t>(dimension),
+             std::string(what) + ": " + std::to_string(values.size()) + " values for " +
+                 std::to_string(count) + " items of dimension " + std::to_string(dimension));
+}
+
+// ParaView shows a single file's time from this field (the .pvd carries it for a series).
+void write_time(VtkDocument& document, double time) {
+  document.open("FieldData");
+  const double value[1] = {time};
+  document.field_array<double>("TimeValue", value);
+  document.close();
+}
+
+}  // namespace
+
+std::string encode_particles(const ParticleFrame& frame) {
+  const std::size_t count = frame.ids.size();
+  check_vectors(frame.positions, count, frame.dimension, "particle positions");
+  check_vectors(frame.velocities, count, frame.dimension, "particle velocities");
+  FSI_ASSERT(frame.density.size() == count && frame.pressure.size() == count,
+             "one density and one pressure per particle");
+
+  VtkDocument document("UnstructuredGrid");
+  write_time(document, frame.time);
+  document.open("Piece", "NumberOfPoints=\"" + count_text(count) + "\" NumberOfCells=\"" +
+                             count_text(count) + "\"");
+  std::vector<std::int64_t> ids(frame.ids.begin(), frame.ids.end());
+  document.open("PointData", "Scalars=\"density\" Vectors=\"velocity\"");
+  document.data_array<std::int64_t>("id", 1, ids);
+  document.data_array<double>("velocity", 3,
+                              to_three_components(frame.velocities, frame.dimension));
+  document.data_array<double>("density", 1, frame.density);
+  document.data_array<double>("pressure", 1, frame.pressure);
+  document.close();
+  document.open("Points");
+  document.data_array<double>("Points", 3, to_three_components(frame.positions, frame.dimension));
+  document.close();
+  // One VTK_VERTEX per particle: connectivity i, offsets i + 1.
+  std::vector<std::int64_t> connectivity(count), offsets(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    connectivity[i] = static_cast<std::int64_t>(i);
+    offsets[i] = static_cast<std::int64_t>(i + 1);
+  }
+  const std::vector<std::uint8_t> types(count, kVtkVertex);
+  document.open("Cells");
+  document.data_array<std::int64_t>("connectivity", 1, connectivity);
+  document.data_array<std::int64_t>("offsets", 1, offsets);
+  document.data_array<std::uint8_t>("types", 1, types);
+  return document.finish();
+}
+
+std::string encode_boundary(const BoundaryFrame& frame) {
+  FSI_ASSERT(frame.dimension == 2 || frame.dimension == 3, "dimension must be 2 or 3");
+  const auto dimension = static_cast<std::size_t>(frame.dimension);
+  const std::size_t vertex_count = frame.positions.size() / dimension;
+  check_vectors(frame.positions, vertex_count, frame.dimension, "boundary positions");
+  check_vectors(frame.velocities, vertex_count, frame.dimension, "boundary velocities");
+  check_vectors(frame.fluid_forces, vertex_count, frame.dimension, "boundary fluid forces");
+  FSI_ASSERT(frame.dynamic_vertex_count <= vertex_count, "more dynamic vertices than vertices");
+  // 2D elements are segments (2 vertices), 3D ones triangles (3 vertices).
+  const std::size_t per_element = dimension;
+  FSI_ASSERT(frame.elements.size() % per_element == 0,
+             "element vertex list is not a whole number of elements");
+  for (std::uint32_t vertex : frame.elements)
+    FSI_ASSERT(vertex < vertex_count, "element vertex index " + std::to_string(vertex) +
+                                          " out of range (" + std::to_string(vertex_count) +
+                                          " vertices)");
+  const std::size_t element_count = frame.elements.size() / per_element;
+
+  VtkDocument document("UnstructuredGrid");
+  write_time(document, frame.time);
+  document.open("Piece", "NumberOfPoints=\"" + count_text(vertex_count) + "\" NumberOfCells=\"" +
+                             count_text(element_count) + "\"");
+  std::vector<std::uint8_t> dynamic(vertex_count, 0);
+  for (std::size_t i = 0; i < frame.dynamic_vertex_count; ++i)
+    dynamic[i] = 1;
+  document.open("PointData", "Vectors=\"fluid_force\"");
+  document.data_array<double>("velocity", 3,
+                              to_three_components(frame.velocities, frame.dimension));
+  document.data_array<double>("fluid_force", 3,
+                              to_three_components(frame.fluid_forces, frame.dimension));
+  document.data_array<std::uint8_t>("dynamic", 1, dynamic);
+  document.close();
+  document.open("Points");
+  document.data_array<double>("Points", 3, to_three_components(frame.positions, frame.dimension));
+  document.close();
+  std::vector<std::int64_t> connectivity(frame.elements.begin(), frame.elements.end());
+  std::vector<std::int64_t> offsets(element_count);
+  for (std::size_t e = 0; e < element_count; ++e)
+    offsets[e] = static_cast<std::int64_t>((e + 1) * per_element);
+  const std::vector<std::uint8_t> types(element_count,
+                                        frame.dimension == 2 ? kVtkLine : kVtkTriangle);
+  document.open("Cells");
+  document.data_array<std::int64_t>("connectivity", 1, connectivity);
+  document.data_array<std::int64_t>("offsets", 1, offsets);
+  document.data_array<std::uint8_t>("types", 1, types);
+  return document.finish();
+}
+
+std::string encode_bodies(const BodyFrame& frame) {
+  const std::size_t count = frame.names.size();
+  check_vectors(frame.positions, count, frame.dimension, "body positions");
+  check_vectors(frame.velocities, count, frame.dimension, "body velocities");
+  FSI_ASSERT(frame.angles.size() == count, "one angle per body");
+
+  VtkDocument document("PolyData");
+  document.open("FieldData");
+  const double time[1] = {frame.time};
+  document.field_array<double>("TimeValue", time);
+  document.field_strings("body_name", frame.names);
+  document.close();
+  document.open("Piece", "NumberOfPoints=\"" + count_text(count) + "\" NumberOfVerts=\"" +
+                             count_text(count) +
+                             "\" NumberOfLines=\"0\" NumberOfStrips=\"0\" NumberOfPolys=\"0\"");
+  std::vector<std::int64_t> index(count), offsets(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    index[i] = static_cast<std::int64_t>(i);
+    offsets[i] = static_cast<std::int64_t>(i + 1);
+  }
+  document.open("PointData", "Vectors=\"velocity\"");
+  document.data_array<std::int64_t>("body_index", 1, index);
+  document.data_array<double>("angle", 1, frame.angles);
+  document.data_array<double>("velocity", 3,
+                              to_three_components(frame.velocities, frame.dimension));
+  document.close();
+  document.open("Points");
+  document.data_array<double>("Points", 3, to_three_components(frame.positions, frame.dimension));
+  document.close();
+  document.open("Verts");
+  document.data_array<std::int64_t>("connectivity", 1, index);
+  document.data_array<std::int64_t>("offsets", 1, offsets);
+  return document.finish();
+}
+
+}  // namespace fsi::output
