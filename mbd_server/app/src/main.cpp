@@ -65,7 +65,7 @@ int main(int argc, char** argv) {
   std::string log_level = "info";
   app.add_option("scene", scene_file, "Scene parameter file (*.scene)");
   app.add_option("--output", output,
-                 "Output folder of the run (created): sensors.csv, run.json, snapshots/");
+                 "Output folder of the run (created): sensors.csv, run.json, snapshots/, vtk/");
   app.add_option("--port", port, "TCP port to listen on (0: the system chooses)")
       ->capture_default_str()
       ->check(CLI::Range(0, 65535));

@@ -18,6 +18,7 @@
 #include "fsi/common/stopwatch.hpp"
 #include "fsi/common/version.hpp"
 #include "fsi/coupling/output.hpp"
+#include "fsi/coupling/vtk_output.hpp"
 #include "fsi/protocol/channel.hpp"
 
 namespace fsi::coupling {
@@ -142,8 +143,10 @@ class Session {
     sensors_ =
         std::make_unique<SensorFile>((fs::path(options_.output_dir) / "sensors.csv").string(),
                                      "fsi-server sensors of " + scene_.file, names, units);
-    if (scene_.output.snapshot_every_steps > 0)
+    if (scene_.output.snapshot_every_steps > 0) {
       fs::create_directories(fs::path(options_.output_dir) / "snapshots");
+      vtk_ = std::make_unique<VtkOutput>(fs::path(options_.output_dir) / "vtk");
+    }
     std::signal(SIGINT, on_stop_signal);
     std::signal(SIGTERM, on_stop_signal);
   }
@@ -400,6 +403,7 @@ class Session {
     char name[64];
     std::snprintf(name, sizeof name, "particles_%09llu.csv", static_cast<unsigned long long>(n));
     write_snapshot_csv((fs::path(options_.output_dir) / "snapshots" / name).string(), snapshot);
+    vtk_->write(snapshot, scene_.model, state_, scene_.boundary, loads_);
     ++snapshots_;
   }
 
@@ -501,6 +505,7 @@ class Session {
   scene::Scene& scene_;
   ServerOptions options_;
   std::unique_ptr<SensorFile> sensors_;
+  std::unique_ptr<VtkOutput> vtk_;
   std::unique_ptr<protocol::Channel> channel_;
   std::optional<protocol::Hello> client_;
   protocol::Ready ready_;

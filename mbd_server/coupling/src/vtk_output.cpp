@@ -1,0 +1,74 @@
+#include "fsi/coupling/vtk_output.hpp"
+
+#include <vector>
+
+#include "fsi/common/error.hpp"
+#include "fsi/output/vtk_files.hpp"
+
+namespace fsi::coupling {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+fs::path created(const fs::path& directory) {
+  std::error_code error;
+  fs::create_directories(directory, error);
+  if (error) {
+    throw Error("cannot create " + directory.string() + ": " + error.message(), "VTK output",
+                "choose a writable --output folder");
+  }
+  return directory;
+}
+
+}  // namespace
+
+VtkOutput::VtkOutput(const fs::path& directory)
+    : fluid_(created(directory), "fluid", "vtu"),
+      boundary_(directory, "boundary", "vtu"),
+      bodies_(directory, "bodies", "vtp") {}
+
+void VtkOutput::write(const ParticleSnapshot& particles, const mbd::Model& model,
+                      const mbd::State& state, const scene::BoundaryMesh& boundary,
+                      std::span<const double> fluid_forces) {
+  output::ParticleFrame fluid;
+  fluid.dimension = 2;
+  fluid.time = particles.time;
+  fluid.ids = particles.ids;
+  fluid.positions = particles.positions;
+  fluid.velocities = particles.velocities;
+  fluid.density = particles.density;
+  fluid.pressure = particles.pressure;
+  fluid_.write(particles.step, particles.time, output::encode_particles(fluid));
+
+  std::vector<double> positions(2 * boundary.vertex_count), velocities(positions.size());
+  model.marker_positions(state, positions);
+  model.marker_velocities(state, velocities);
+  output::BoundaryFrame mesh;
+  mesh.dimension = 2;
+  mesh.time = state.time;
+  mesh.positions = positions;
+  mesh.velocities = velocities;
+  mesh.fluid_forces = fluid_forces;
+  mesh.dynamic_vertex_count = boundary.dynamic_vertex_count;
+  mesh.elements = boundary.segments;
+  boundary_.write(particles.step, state.time, output::encode_boundary(mesh));
+
+  output::BodyFrame frames;
+  frames.time = state.time;
+  std::vector<double> body_positions, body_velocities, angles;
+  for (mbd::BodyId b = 0; b < model.body_count(); ++b) {
+    frames.names.push_back(model.body(b).name);
+    body_positions.push_back(model.coordinate(state, b, mbd::Coordinate::X));
+    body_positions.push_back(model.coordinate(state, b, mbd::Coordinate::Y));
+    body_velocities.push_back(model.velocity(state, b, mbd::Coordinate::X));
+    body_velocities.push_back(model.velocity(state, b, mbd::Coordinate::Y));
+    angles.push_back(model.coordinate(state, b, mbd::Coordinate::Angle));
+  }
+  frames.positions = body_positions;
+  frames.velocities = body_velocities;
+  frames.angles = angles;
+  bodies_.write(particles.step, state.time, output::encode_bodies(frames));
+}
+
+}  // namespace fsi::coupling
