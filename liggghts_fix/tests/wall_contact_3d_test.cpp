@@ -613,18 +613,22 @@ double weakest_path(double edge) {
   return weakest;
 }
 
-// Thesis §4.3 asks for a closed iso-surface of |F_rep| at 20 % of the largest repulsive force. In
-// 2D that largest force is 0.1993 k (an infinite straight wall, at d = 0.118 r_c), hence the
-// thesis' 0.2 k. In 3D an infinite plane pushes a particle at height d with
-// F(d) = 2 pi k d (r_c - d)^5 / (5 r_c^4), at most 0.0842 k r_c^2 at d = r_c/6, so 0.2 k can never
-// be reached and the 3D criterion is 20 % of that maximum: 16.8 for k = 1000, r_c = 1.
+// Thesis §4.3 (2D) asks for a closed iso-line of |F_rep| at "20 % of the maximum repulsive force,
+// i.e. 0.2 k", k being the largest force density. A whole straight 2D wall pushes a particle with
+// at most 0.1993 k (r_c = 1, at d = 0.118). In 3D a whole plane pushes with
+// F(d) = 2 pi k d (r_c - d)^5 / (5 r_c^4), at most 0.0842 k r_c^2 (at d = r_c/6), so 0.2 k cannot
+// be reached even by a perfect wall (a single triangle reaches at most 0.038 k on its weakest
+// path). The 3D criterion keeps the 20 % but of the largest force a flat wall can exert: 16.8 for
+// k = 1000, r_c = 1.
 constexpr double kPlaneMaximum = 2.0 * M_PI * 1000.0 * (1.0 / 6.0) * 3125.0 / 7776.0 / 5.0;
 constexpr double kHoleThreshold = 0.2 * kPlaneMaximum;
 // Found by scanning the edge length in steps of 0.01 r_c with weakest_path(): edges up to
-// 2.65 r_c pass (weakest path 17.05), 2.66 r_c fails (16.82); the weakest path then runs between
-// the centroid and a near-vertex sampling point. Small triangles fail too (below ~0.3 r_c the
-// whole triangle is too small to push with 16.8), and up to ~1.7 r_c the weakest path is through
-// a vertex. The 2D analogue (thesis figs. 4.5-4.8, 3 points): l = 2h passes, 4 * 2h has holes.
+// 2.65 r_c pass (weakest path 17.05), 2.66 r_c fails (16.82). Small triangles fail too: below
+// 0.29 r_c the whole triangle is too small to push with 16.8. The weakest path runs through a
+// vertex up to ~1.6 r_c, then through an edge between two sampling points, and near the threshold
+// between the centroid and a near-vertex sampling point: a hole of the sampling, as in 2D (thesis
+// figs. 4.5-4.8, 3 points: l = 2h passes, 4 * 2h has holes). The default refinement resolution
+// r_c keeps every sub-triangle far below the threshold.
 constexpr double kThresholdEdge = 2.65;
 
 TEST(WallContact3D, NoHolesUpToTheThresholdEdgeLength) {
