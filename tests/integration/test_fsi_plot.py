@@ -1,0 +1,78 @@
+#!/usr/bin/python3
+"""fsi-plot on a real short run (coarse static tank, a snapshot every 250 steps): one valid PNG of
+non-trivial size per sensor, the stacked sensors.png, one frame per snapshot by default and one per
+requested time with --frames; a folder without sensors.csv is refused with what/where/how and a
+non-zero status; --help works."""
+import os
+import struct
+import subprocess
+
+from fsi_test import binary, check, cleanup, example, fail, read, run_pair, work_dir
+
+PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
+
+
+def png_size(path):
+    """(width, height) from the IHDR chunk, after checking the PNG signature."""
+    with open(path, "rb") as handle:
+        head = handle.read(24)
+    if head[:8] != PNG_SIGNATURE or head[12:16] != b"IHDR":
+        fail(f"{path} is not a PNG file")
+    return struct.unpack(">II", head[16:24])
+
+
+def check_png(path, min_bytes):
+    if not os.path.exists(path):
+        fail(f"{path} was not written")
+    width, height = png_size(path)
+    size = os.path.getsize(path)
+    check(width >= 300 and height >= 300 and size >= min_bytes,
+          f"{os.path.relpath(path, run_dir)}: PNG {width}x{height}, {size} bytes")
+
+
+def fsi_plot(*arguments):
+    return subprocess.run([binary("fsi-plot"), *arguments], capture_output=True, text=True, timeout=120)
+
+
+output = work_dir("fsi_plot")
+run_dir = os.path.join(output, "run")
+server_status, client_status = run_pair(
+    example("static_tank", "static_tank_coarse.scene"), run_dir, 2,
+    overrides=["Resolution.end_time=1000*1e-5", "Resolution.equilibration_steps=500",
+               "Resolution.snapshot_every_steps=250"], timeout=120)
+if server_status != 0 or client_status != 0:
+    fail(f"the run failed ({server_status}, {client_status}):\n{read(run_dir, 'server.stderr')[-3000:]}")
+
+result = fsi_plot("--help")
+check(result.returncode == 0 and "--frames" in result.stdout and "--color" in result.stdout,
+      "fsi-plot --help lists --frames and --color")
+
+result = fsi_plot(run_dir)
+print(result.stdout, result.stderr)
+check(result.returncode == 0, f"fsi-plot DIR exits 0 (got {result.returncode})")
+with open(os.path.join(run_dir, "sensors.csv")) as handle:
+    header = [line for line in handle if not line.startswith("#")][0].strip().split(",")
+for name in header[1:]:
+    check_png(os.path.join(run_dir, "plots", "sensors", f"{name}.png"), 10_000)
+check_png(os.path.join(run_dir, "plots", "sensors.png"), 30_000)
+frames = sorted(os.listdir(os.path.join(run_dir, "plots", "frames")))
+check(frames == [f"frame_{step:09d}.png" for step in (250, 500, 750, 1000)], f"one frame per snapshot: {frames}")
+for frame in frames:
+    # About 2 000 coloured particles: a frame with one particle and the walls has ~29 kB.
+    check_png(os.path.join(run_dir, "plots", "frames", frame), 60_000)
+
+chosen_dir = os.path.join(output, "chosen")
+result = fsi_plot(run_dir, "--frames", "0.0024,0.0099", "--color", "pressure", "--output", chosen_dir)
+check(result.returncode == 0, f"fsi-plot --frames --color pressure exits 0 (got {result.returncode}: {result.stderr})")
+chosen = sorted(os.listdir(os.path.join(chosen_dir, "frames")))
+check(chosen == ["frame_000000250.png", "frame_000001000.png"], f"--frames picks the nearest snapshots: {chosen}")
+
+empty = os.path.join(output, "empty")
+os.makedirs(empty)
+result = fsi_plot(empty)
+print(result.stderr)
+check(result.returncode != 0, f"a folder without sensors.csv is refused (status {result.returncode})")
+check("no sensors.csv" in result.stderr and empty in result.stderr and "how to fix" in result.stderr,
+      "the message says what is missing, where, and how to fix it")
+check(not os.path.exists(os.path.join(empty, "plots")), "nothing is written for a refused folder")
+cleanup(output)
