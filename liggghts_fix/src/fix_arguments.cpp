@@ -78,7 +78,7 @@ const std::vector<Keyword>& keywords() {
          a.law.viscous_cutoff = number(key, v);
          if (a.law.viscous_cutoff <= 0.0) reject(key, v, "a positive length");
        }},
-      {"law", "thesis | lj", "repulsive law: thesis eq. (4.2) or Lennard-Jones-like eq. (4.3)",
+      {"law", "thesis or lj", "repulsive law: thesis eq. (4.2) or Lennard-Jones-like eq. (4.3)",
        "thesis",
        [](auto& a, const auto& key, const auto& v) {
          if (v == "thesis") {
@@ -99,7 +99,7 @@ const std::vector<Keyword>& keywords() {
          a.law.lj_p2 = integer(key, v, {1,  2,  3,  4,  5,  6,  7,  8,  9,  10, 11, 12,
                                         13, 14, 15, 16, 17, 18, 19, 20, 21, 22, 23});
        }},
-      {"kernel", "spiky | cubic",
+      {"kernel", "spiky or cubic",
        "weight of the viscous term: renormalised spiky Laplacian (eq. 5.5) or cubic-spline shape",
        "spiky",
        [](auto& a, const auto& key, const auto& v) {
@@ -115,7 +115,7 @@ const std::vector<Keyword>& keywords() {
        [](auto& a, const auto& key, const auto& v) {
          a.gauss_points = integer(key, v, {1, 2, 3, 4, 5});
        }},
-      {"triangle", "1 | 3 | 7", "3D: points of the symmetric triangle rule (thesis §4.3: 7)", "7",
+      {"triangle", "1, 3 or 7", "3D: points of the symmetric triangle rule (thesis §4.3: 7)", "7",
        [](auto& a, const auto& key, const auto& v) {
          a.triangle_points = integer(key, v, {1, 3, 7});
        }},

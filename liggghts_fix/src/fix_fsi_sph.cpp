@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <cstring>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "atom.h"
@@ -27,17 +28,22 @@ constexpr const char* kStyle = "fsi/sph";
 class FixFsiSph : public LAMMPS_NS::Fix {
  public:
   FixFsiSph(LAMMPS_NS::LAMMPS* lammps, int argc, char** argv, const ContactSettings& settings,
-            double warn_fraction, std::shared_ptr<CouplingBoundary> boundary)
+            const ContactSettings3D& settings3d, double warn_fraction,
+            std::shared_ptr<CouplingBoundary> boundary)
       : Fix(lammps, argc, argv),
         contact_(settings),
+        contact3d_(settings3d),
         warn_distance_(warn_fraction * settings.law.equilibrium_distance),
         boundary_(std::move(boundary)) {}
 
   int setmask() override { return LAMMPS_NS::FixConst::POST_FORCE; }
 
   void init() override {
-    if (domain->dimension != 2) {
-      throw std::invalid_argument("fix fsi/sph: this version handles 2D only (dimension 2)");
+    if (domain->dimension != boundary_->dimension) {
+      throw std::invalid_argument(
+          "fix fsi/sph: LIGGGHTS runs in dimension " + std::to_string(domain->dimension) +
+          " but the structure's mesh is " + std::to_string(boundary_->dimension) +
+          "D; use a script with `dimension " + std::to_string(boundary_->dimension) + "`");
     }
     if (atom->v == nullptr) {
       throw std::invalid_argument("fix fsi/sph: the atom style has no velocities");
@@ -59,9 +65,12 @@ class FixFsiSph : public LAMMPS_NS::Fix {
       particles.group_mask = std::span<const int>(atom->mask, static_cast<std::size_t>(local));
       particles.group_bit = groupbit;
     }
-    boundary.vertex_forces.resize(boundary.mesh.positions.size());
+    boundary.vertex_forces.resize(boundary.positions().size());
     try {
-      boundary.diagnostics = contact_.compute(boundary.mesh, particles, boundary.vertex_forces);
+      boundary.diagnostics =
+          boundary.dimension == 3
+              ? contact3d_.compute(boundary.mesh3d, particles, boundary.vertex_forces)
+              : contact_.compute(boundary.mesh, particles, boundary.vertex_forces);
     } catch (const NonFiniteParticle& bad) {
       const double* x = atom->x[bad.index];
       const double* v = atom->v[bad.index];
@@ -99,6 +108,7 @@ class FixFsiSph : public LAMMPS_NS::Fix {
   }
 
   WallContact2D contact_;
+  WallContact3D contact3d_;
   double warn_distance_;
   LAMMPS_NS::bigint last_warning_ = -1;
   std::shared_ptr<CouplingBoundary> boundary_;
@@ -134,6 +144,29 @@ void append_fix(LAMMPS_NS::LAMMPS& lammps, LAMMPS_NS::Fix* fix) {
 
 }  // namespace
 
+void CouplingBoundary::assign(int mesh_dimension, std::vector<double> vertex_positions,
+                              std::vector<double> vertex_velocities,
+                              std::vector<std::uint32_t> elements) {
+  if (mesh_dimension != 2 && mesh_dimension != 3) {
+    throw std::invalid_argument("mesh dimension must be 2 or 3, got " +
+                                std::to_string(mesh_dimension));
+  }
+  dimension = mesh_dimension;
+  mesh = BoundaryMesh2D{};
+  mesh3d = BoundaryMesh3D{};
+  if (dimension == 3) {
+    mesh3d.positions = std::move(vertex_positions);
+    mesh3d.velocities = std::move(vertex_velocities);
+    mesh3d.triangles = std::move(elements);
+    mesh3d.validate();
+  } else {
+    mesh.positions = std::move(vertex_positions);
+    mesh.velocities = std::move(vertex_velocities);
+    mesh.segments = std::move(elements);
+    mesh.validate();
+  }
+}
+
 void ensure_ghost_sync_last(LAMMPS_NS::LAMMPS& lammps) {
   LAMMPS_NS::Modify& modify = *lammps.modify;
   const int slot = modify.find_fix(kGhostSyncId);
@@ -163,7 +196,17 @@ void add_fix_fsi_sph(LAMMPS_NS::LAMMPS& lammps, std::span<const std::string> wor
   settings.gauss_points = arguments.gauss_points;
   settings.refinement_resolution = boundary->refinement_resolution;
   settings.validate();
-  boundary->mesh.validate();
+  ContactSettings3D settings3d;
+  settings3d.law = arguments.law;
+  settings3d.quadrature_points = arguments.triangle_points;
+  settings3d.refinement_option = boundary->refinement_option;
+  settings3d.refinement_resolution = boundary->refinement_resolution;
+  settings3d.validate();
+  if (boundary->dimension == 3) {
+    boundary->mesh3d.validate();
+  } else {
+    boundary->mesh.validate();
+  }
   boundary->law = settings.law;
 
   // Checks LIGGGHTS would make with error->all(), which ends the process: fail softly instead.
@@ -192,15 +235,15 @@ void add_fix_fsi_sph(LAMMPS_NS::LAMMPS& lammps, std::span<const std::string> wor
     modify.fix[slot]->pre_delete(true);
     delete modify.fix[slot];
     modify.fix[slot] = nullptr;
-    modify.fix[slot] = new FixFsiSph(&lammps, argc, argv.data(), settings, arguments.warn_fraction,
-                                     std::move(boundary));
+    modify.fix[slot] = new FixFsiSph(&lammps, argc, argv.data(), settings, settings3d,
+                                     arguments.warn_fraction, std::move(boundary));
     modify.fmask[slot] = modify.fix[slot]->setmask();
     modify.fix[slot]->post_create_pre_restart();
     modify.fix[slot]->post_create();
     return;
   }
-  append_fix(lammps, new FixFsiSph(&lammps, argc, argv.data(), settings, arguments.warn_fraction,
-                                   std::move(boundary)));
+  append_fix(lammps, new FixFsiSph(&lammps, argc, argv.data(), settings, settings3d,
+                                   arguments.warn_fraction, std::move(boundary)));
 }
 
 }  // namespace fsi::contact

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -91,6 +93,16 @@ TEST(FixArguments, DocumentationListsEveryKeyword) {
     EXPECT_NE(table.find(std::string("| `") + keyword + "` |"), std::string::npos) << keyword;
     EXPECT_NE(usage.find(std::string("  ") + keyword + " "), std::string::npos) << keyword;
   }
+}
+
+TEST(FixArguments, DocumentationEmbedsTheGeneratedKeywordTable) {
+  std::ifstream in(FSI_SOURCE_DIR "/docs/fix_fsi_sph.md");
+  ASSERT_TRUE(in) << "docs/fix_fsi_sph.md not found";
+  std::stringstream text;
+  text << in.rdbuf();
+  EXPECT_NE(text.str().find(fix_fsi_sph_keyword_table_markdown()), std::string::npos)
+      << "docs/fix_fsi_sph.md is out of date; paste this table into its Syntax section:\n"
+      << fix_fsi_sph_keyword_table_markdown();
 }
 
 }  // namespace

@@ -110,6 +110,7 @@ class ClientSession {
   int run() {
     if (mpi_.root()) connect();
     const SetupData data = receive_setup();
+    dimension_ = static_cast<int>(data.setup.dimension);
     configure_boundary(data.mesh);
     DriverOptions driver_options;
     driver_options.log_file = mpi_.root() ? options_.liggghts_log : std::string();
@@ -179,23 +180,26 @@ class ClientSession {
     data.setup = expect_message<protocol::Setup>("set-up");
     data.mesh = expect_message<protocol::Mesh>("set-up (mesh)");
     data.particles = expect_message<protocol::Particles>("set-up (particles)");
-    if (data.setup.dimension != 2 || data.mesh.dimension != 2) {
-      throw Error("this fsi-client handles 2D scenes only (got dimension " +
-                      std::to_string(data.setup.dimension) + ")",
-                  "set-up", "use a 2D scene");
+    if ((data.setup.dimension != 2 && data.setup.dimension != 3) ||
+        data.mesh.dimension != data.setup.dimension ||
+        data.particles.dimension != data.setup.dimension) {
+      throw Error("inconsistent dimensions from fsi-server: scene " +
+                      std::to_string(data.setup.dimension) + ", mesh " +
+                      std::to_string(data.mesh.dimension) + ", particles " +
+                      std::to_string(data.particles.dimension) + " (2 or 3, all equal)",
+                  "set-up", "use matching fsi-server and fsi-client releases");
     }
     return data;
   }
 
   void configure_boundary(const protocol::Mesh& mesh) {
     boundary_ = std::make_shared<contact::CouplingBoundary>();
-    boundary_->mesh.positions = mesh.positions;
-    boundary_->mesh.velocities = mesh.velocities;
-    boundary_->mesh.segments = mesh.element_vertices;
     boundary_->dynamic_vertex_count = mesh.dynamic_vertex_count;
     boundary_->refinement_resolution = mesh.refinement_resolution;
+    boundary_->refinement_option = static_cast<int>(mesh.refinement_option);
     try {
-      boundary_->mesh.validate();
+      boundary_->assign(static_cast<int>(mesh.dimension), mesh.positions, mesh.velocities,
+                        mesh.element_vertices);
     } catch (const std::invalid_argument& bad) {
       throw Error(std::string("boundary mesh from the server is inconsistent: ") + bad.what(),
                   "set-up (mesh)", "check the scene's meshes");
@@ -240,7 +244,7 @@ class ClientSession {
           data.setup.script1_name, "add the fix (docs/fix_fsi_sph.md)");
     }
     // Equilibration (thesis §5.4.2): the structure rests in its initial configuration.
-    std::fill(boundary_->mesh.velocities.begin(), boundary_->mesh.velocities.end(), 0.0);
+    std::fill(boundary_->velocities().begin(), boundary_->velocities().end(), 0.0);
     driver_->set_time_step(data.setup.time_step);
     driver_->run_with_setup(0);
     const double seconds_setup = setup_watch.stop();
@@ -253,7 +257,7 @@ class ClientSession {
     driver_->run_script(data.setup.script2_name, data.setup.script2_text);
     // The coupled phase starts from the structure's initial velocities; a run with set-up makes
     // script 2's changes effective and evaluates the wall forces f(0).
-    boundary_->mesh.velocities = initial_velocities_;
+    boundary_->velocities() = initial_velocities_;
     driver_->set_time_step(data.setup.time_step);
     driver_->run_with_setup(0);
     const double seconds_equilibration = equilibration_watch.stop();
@@ -276,7 +280,7 @@ class ClientSession {
   void send_forces(std::uint64_t step, double seconds_liggghts, double seconds_contact) {
     Stopwatch& communication = mpi_.mpi_time();
     communication.start();
-    const std::size_t dynamic_values = boundary_->dynamic_vertex_count * 2;
+    const std::size_t dynamic_values = boundary_->dynamic_vertex_count * dimension_;
     const auto& diagnostics = boundary_->diagnostics;
     // Layout: dynamic vertex forces, force on fluid (3), on structure (3), magnitude sum,
     // particles in range.
@@ -372,15 +376,15 @@ class ClientSession {
   }
 
   void apply_step(const protocol::Step& step) {
-    const std::size_t values = boundary_->dynamic_vertex_count * 2;
+    const std::size_t values = boundary_->dynamic_vertex_count * dimension_;
     if (step.positions.size() != values || step.velocities.size() != values) {
-      throw Error("Step message carries " + std::to_string(step.positions.size() / 2) +
+      throw Error("Step message carries " + std::to_string(step.positions.size() / dimension_) +
                       " vertices, the mesh has " + std::to_string(boundary_->dynamic_vertex_count) +
                       " dynamic ones",
                   "step " + std::to_string(step.step), "use matching server and client releases");
     }
-    std::copy(step.positions.begin(), step.positions.end(), boundary_->mesh.positions.begin());
-    std::copy(step.velocities.begin(), step.velocities.end(), boundary_->mesh.velocities.begin());
+    std::copy(step.positions.begin(), step.positions.end(), boundary_->positions().begin());
+    std::copy(step.velocities.begin(), step.velocities.end(), boundary_->velocities().begin());
     if (step.time_step != time_step_) {
       // A changed step size needs a run with set-up so that every fix uses it.
       driver_->set_time_step(step.time_step);

@@ -195,6 +195,108 @@ TEST(LiggghtsDriver, NonFiniteAtomStopsTheFixWithItsId) {
   }
 }
 
+// 3D: a cube of SPH water resting on a floor of two triangles (refined by the fix), gravity -z.
+const char* const kScript3d = R"(dimension 3
+atom_style sph
+atom_modify map array sort 0 0
+communicate single vel yes
+boundary f f f
+newton off
+units si
+region domain block -0.004 0.024 -0.004 0.024 -0.004 0.02 units box
+create_box 1 domain
+neighbor 0.0005 bin
+fix m1 all property/global speedOfSound peratomtype 20
+fix m2 all property/global sl peratomtype 0.002
+fix m3 all property/global artViscAlpha peratomtype 0.1
+fix m4 all property/global artViscBeta peratomtype 0.0
+fix m5 all property/global artViscEta scalar 4e-8
+pair_style sph/artVisc/tensCorr spiky 0.002 artVisc
+pair_coeff * *
+fix density all sph/density/continuity
+fix pressure all sph/pressure Tait 57142.857 1000 7
+fix fsi all fsi/sph k 2000 t 0.5 r0 0.004 cutoff 0.004 triangle 7
+fix integrate all nve/sph
+fix gravity all gravity 9.81 vector 0.0 0.0 -1.0
+set group all sphkernel spiky
+)";
+
+std::shared_ptr<contact::CouplingBoundary> floor_boundary(int refinement_option) {
+  auto boundary = std::make_shared<contact::CouplingBoundary>();
+  boundary->assign(3, {0.0, 0.0, 0.0, 0.02, 0.0, 0.0, 0.02, 0.02, 0.0, 0.0, 0.02, 0.0},
+                   std::vector<double>(12, 0.0), {0, 1, 2, 0, 2, 3});
+  boundary->dynamic_vertex_count = 4;
+  boundary->refinement_resolution = 0.004;
+  boundary->refinement_option = refinement_option;
+  return boundary;
+}
+
+ParticleBlock cube_particles() {
+  ParticleBlock block;
+  block.dimension = 3;
+  const double spacing = 0.001;
+  block.mass = 1000.0 * spacing * spacing * spacing;
+  block.density = 1000.0;
+  for (double z = 0.002; z < 0.008; z += spacing)
+    for (double y = 0.004; y < 0.016; y += spacing)
+      for (double x = 0.004; x < 0.016; x += spacing) {
+        block.positions.insert(block.positions.end(), {x, y, z});
+        block.velocities.insert(block.velocities.end(), {0.0, 0.0, 0.0});
+      }
+  return block;
+}
+
+TEST(LiggghtsDriver, ThreeDimensionalFluidRestsOnATriangleFloor) {
+  for (int option : {1, 2, 3}) {
+    auto boundary = floor_boundary(option);
+    LiggghtsDriver driver(MPI_COMM_WORLD, DriverOptions{}, boundary);
+    const ParticleBlock particles = cube_particles();
+    driver.run_script("cube3d.in", kScript3d, [&] { driver.insert_particles(particles); });
+    driver.set_time_step(2e-5);
+    driver.run_with_setup(0);
+    ASSERT_TRUE(driver.has_fsi_fix());
+    for (int i = 0; i < 300; ++i)
+      driver.step();
+    const std::size_t count = particles.positions.size() / 3;
+    EXPECT_EQ(driver.particle_count(), count) << "option " << option;
+    const auto& d = boundary->diagnostics;
+    ASSERT_GT(d.particles_in_range, 0u) << "option " << option;
+    EXPECT_GT(d.force_on_particles[2], 0.0) << "the floor must push the fluid up";
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_LE(std::abs(d.force_on_particles[k] + d.force_on_structure[k]),
+                1e-12 * d.pair_force_magnitude_sum)
+          << "option " << option << " axis " << k;
+    }
+    // Vertex forces: 3 per vertex; their sum is the force on the structure.
+    ASSERT_EQ(boundary->vertex_forces.size(), 12u);
+    double fz = 0.0;
+    for (int v = 0; v < 4; ++v)
+      fz += boundary->vertex_forces[3 * v + 2];
+    EXPECT_NEAR(fz, d.force_on_structure[2], 1e-12 * d.pair_force_magnitude_sum);
+    EXPECT_LT(fz, 0.0);
+    const Snapshot snapshot = driver.gather_snapshot(3);
+    for (std::size_t i = 0; i < count; ++i)
+      ASSERT_GT(snapshot.positions[3 * i + 2], 0.0)
+          << "particle " << i << " went through the floor";
+  }
+}
+
+TEST(LiggghtsDriver, MeshDimensionMustMatchTheScript) {
+  auto boundary = tank_boundary();  // a 2D mesh
+  LiggghtsDriver driver(MPI_COMM_WORLD, DriverOptions{}, boundary);
+  const ParticleBlock particles = cube_particles();
+  driver.run_script("cube3d.in", kScript3d, [&] { driver.insert_particles(particles); });
+  try {
+    driver.set_time_step(2e-5);
+    driver.run_with_setup(0);
+    FAIL() << "a 2D mesh was accepted in a 3D run";
+  } catch (const std::exception& error) {
+    EXPECT_NE(std::string(error.what()).find("dimension 3 but the structure's mesh is 2D"),
+              std::string::npos)
+        << error.what();
+  }
+}
+
 }  // namespace
 }  // namespace fsi::client
 

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "fsi/contact/wall_contact.hpp"
+#include "fsi/contact/wall_contact_3d.hpp"
 
 namespace LAMMPS_NS {
 class LAMMPS;
@@ -22,10 +23,20 @@ class LAMMPS;
 namespace fsi::contact {
 
 struct CouplingBoundary {
-  BoundaryMesh2D mesh;  // all vertices, dynamic ones first
+  int dimension = 2;      // 2: segments in `mesh`; 3: triangles in `mesh3d`
+  BoundaryMesh2D mesh;    // all vertices, dynamic ones first
+  BoundaryMesh3D mesh3d;  // likewise, in 3D
   std::size_t dynamic_vertex_count = 0;
   double refinement_resolution = 0.0;
-  ForceLaw law;  // set when the fix is created from the script
+  int refinement_option = 1;  // thesis Table 5.1; 3D only (2D always refines every step)
+  ForceLaw law;               // set when the fix is created from the script
+
+  // The vertex arrays of the active mesh (dimension values per vertex).
+  std::vector<double>& positions() { return dimension == 3 ? mesh3d.positions : mesh.positions; }
+  std::vector<double>& velocities() { return dimension == 3 ? mesh3d.velocities : mesh.velocities; }
+  // Sets the mesh from the server's arrays; throws std::invalid_argument naming the problem.
+  void assign(int mesh_dimension, std::vector<double> vertex_positions,
+              std::vector<double> vertex_velocities, std::vector<std::uint32_t> elements);
 
   // Results of the latest evaluation on this rank (not yet summed over ranks).
   std::vector<double> vertex_forces;
