@@ -241,6 +241,32 @@ void ContactDiagnostics::merge(const ContactDiagnostics& other) {
   closest_distance = std::min(closest_distance, other.closest_distance);
 }
 
+void mark_particles_near_mesh(const ParticleArrays& particles,
+                              std::span<const double> vertex_positions, int dimension, double range,
+                              std::vector<std::uint8_t>& near) {
+  near.assign(particles.count, 0);
+  if (vertex_positions.empty()) return;
+  double low[3] = {kInfinity, kInfinity, kInfinity};
+  double high[3] = {-kInfinity, -kInfinity, -kInfinity};
+  for (std::size_t v = 0; v < vertex_positions.size(); v += static_cast<std::size_t>(dimension)) {
+    for (int k = 0; k < dimension; ++k) {
+      low[k] = std::min(low[k], vertex_positions[v + k]);
+      high[k] = std::max(high[k], vertex_positions[v + k]);
+    }
+  }
+  // A relative margin so that a particle exactly at the range is not lost to round-off.
+  const double reach = range * (1.0 + 1e-9);
+  for (std::size_t i = 0; i < particles.count; ++i) {
+    if (!takes_part(particles, i)) continue;
+    bool inside = true;
+    for (int k = 0; k < dimension && inside; ++k) {
+      const double x = particles.positions[3 * i + k];
+      inside = x >= low[k] - reach && x <= high[k] + reach;
+    }
+    near[i] = inside ? 1 : 0;
+  }
+}
+
 int bisection_levels(double length, double resolution) {
   // 2^60 pieces would be absurd: it means the resolution is far too small for the mesh.
   constexpr int kMaxLevels = 40;
@@ -263,7 +289,7 @@ void WallContact2D::build_grid(const ParticleArrays& particles) {
   double high[2] = {-kInfinity, -kInfinity};
   std::size_t members = 0;
   for (std::size_t i = 0; i < particles.count; ++i) {
-    if (!takes_part(particles, i)) continue;
+    if (!near_[i]) continue;
     ++members;
     for (int k = 0; k < 2; ++k) {
       low[k] = std::min(low[k], particles.positions[3 * i + k]);
@@ -299,7 +325,7 @@ void WallContact2D::build_grid(const ParticleArrays& particles) {
   cell_start_.assign(cell_count + 1, 0);
   particle_cell_.resize(particles.count);
   for (std::size_t i = 0; i < particles.count; ++i) {
-    if (!takes_part(particles, i)) continue;
+    if (!near_[i]) continue;
     int index[2];
     for (int k = 0; k < 2; ++k) {
       const double offset = (particles.positions[3 * i + k] - grid_origin_[k]) / cell_size_[k];
@@ -314,7 +340,7 @@ void WallContact2D::build_grid(const ParticleArrays& particles) {
   cell_particles_.resize(members);
   std::vector<std::uint32_t> fill(cell_start_.begin(), cell_start_.end() - 1);
   for (std::size_t i = 0; i < particles.count; ++i) {
-    if (!takes_part(particles, i)) continue;
+    if (!near_[i]) continue;
     cell_particles_[fill[particle_cell_[i]]++] = static_cast<std::uint32_t>(i);
   }
 }
@@ -325,6 +351,7 @@ ContactDiagnostics WallContact2D::compute(const BoundaryMesh2D& mesh,
   check_particles(particles);
   ContactDiagnostics diagnostics;
   prepare_outputs(mesh, vertex_forces, diagnostics);
+  mark_particles_near_mesh(particles, mesh.positions, 2, settings_.law.range(), near_);
   build_grid(particles);
   in_range_.assign(particles.count, 0);
   PairKernel kernel(settings_.law, particles, vertex_forces, in_range_, diagnostics);

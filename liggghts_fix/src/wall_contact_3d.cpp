@@ -418,7 +418,7 @@ void WallContact3D::build_grid(const ParticleArrays& particles) {
   double high[3] = {-kInfinity, -kInfinity, -kInfinity};
   std::size_t members = 0;
   for (std::size_t i = 0; i < particles.count; ++i) {
-    if (!takes_part(particles, i)) continue;
+    if (!near_[i]) continue;
     ++members;
     for (int k = 0; k < 3; ++k) {
       low[k] = std::min(low[k], particles.positions[3 * i + k]);
@@ -453,7 +453,7 @@ void WallContact3D::build_grid(const ParticleArrays& particles) {
   cell_start_.assign(cell_count + 1, 0);
   particle_cell_.resize(particles.count);
   for (std::size_t i = 0; i < particles.count; ++i) {
-    if (!takes_part(particles, i)) continue;
+    if (!near_[i]) continue;
     std::size_t index[3];
     for (int k = 0; k < 3; ++k) {
       const double offset = (particles.positions[3 * i + k] - grid_.origin[k]) / grid_.cell_size[k];
@@ -472,7 +472,7 @@ void WallContact3D::build_grid(const ParticleArrays& particles) {
   cell_particles_.resize(members);
   std::vector<std::uint32_t> fill(cell_start_.begin(), cell_start_.end() - 1);
   for (std::size_t i = 0; i < particles.count; ++i) {
-    if (!takes_part(particles, i)) continue;
+    if (!near_[i]) continue;
     cell_particles_[fill[particle_cell_[i]]++] = static_cast<std::uint32_t>(i);
   }
 }
@@ -500,6 +500,7 @@ ContactDiagnostics WallContact3D::compute(const BoundaryMesh3D& mesh,
 
   ContactDiagnostics diagnostics;
   start_outputs(vertex_forces, diagnostics);
+  mark_particles_near_mesh(particles, mesh.positions, 3, settings_.law.range(), near_);
   build_grid(particles);
   in_range_.assign(particles.count, 0);
   PairKernel kernel(settings_.law, particles, vertex_forces, in_range_, diagnostics);

@@ -354,7 +354,11 @@ TEST(WallContact3D, CellListEqualsAllPairs) {
     for (int trial = 0; trial < 2; ++trial) {
       const ContactSettings3D s = settings(option);
       const double cutoff = s.law.cutoff;  // 2^-6: the lattice below is exact in binary
-      const BoundaryMesh3D mesh = random_closed_mesh(rng, trial % 2 == 1);
+      BoundaryMesh3D mesh = random_closed_mesh(rng, trial % 2 == 1);
+      // Only particles within the range of the mesh's bounding box enter the grid. Two vertices
+      // of no triangle at the corners of the lattice below make that box the whole lattice.
+      mesh.positions.insert(mesh.positions.end(), {-0.125, -0.125, -0.125, 0.125, 0.125, 0.125});
+      mesh.velocities.insert(mesh.velocities.end(), 6, 0.0);
       Particles p = random_particles(rng, 2000, 0.12);
       // A lattice of particles exactly on the cell borders: the cloud spans [-0.125, 0.125]^3 =
       // 16 cut-offs, so the grid has 16 cells of exactly one cut-off per axis starting at -0.125.

@@ -74,6 +74,14 @@ struct ContactDiagnostics {
   void merge(const ContactDiagnostics& other);  // sum/min of two partial results
 };
 
+// Marks (near[i] = 1) the particles of the group that lie within `range` of the bounding box of
+// the mesh vertices (`dimension` coordinates per vertex in vertex_positions): only they can
+// interact with the mesh, so only they enter the cell grid. Far-away particles (a large fluid
+// domain around a small structure, a stray particle) then cost one comparison each.
+void mark_particles_near_mesh(const ParticleArrays& particles,
+                              std::span<const double> vertex_positions, int dimension, double range,
+                              std::vector<std::uint8_t>& near);
+
 // Number of bisection levels so that a segment of the given length is cut into pieces shorter
 // than the resolution: smallest k with length / 2^k < resolution.
 int bisection_levels(double length, double resolution);
@@ -95,6 +103,7 @@ class WallContact2D {
   void build_grid(const ParticleArrays& particles);
 
   ContactSettings settings_;
+  std::vector<std::uint8_t> near_;  // particles that can reach the mesh (grid members)
   // Cell grid in compressed-row form: particles of cell c are cell_particles_[cell_start_[c] ..
   // cell_start_[c+1]).
   double grid_origin_[2] = {0.0, 0.0};

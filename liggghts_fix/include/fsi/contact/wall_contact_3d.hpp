@@ -111,6 +111,7 @@ class WallContact3D {
   std::vector<std::uint32_t> cell_particles_;
   std::vector<std::uint32_t> particle_cell_;
   std::vector<std::uint8_t> in_range_;
+  std::vector<std::uint8_t> near_;  // particles that can reach the mesh (grid members)
 };
 
 // All-pairs reference of WallContact3D::compute (same sampling, no cell grid), for tests. For
