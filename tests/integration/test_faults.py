@@ -2,6 +2,7 @@
 """Faults end both sides cleanly: a killed client ends the server within 10 s with a clear
 message and non-zero status, and the other way round; a peer of another protocol major version
 is refused with a message naming both versions, by the server and by the client."""
+import json
 import os
 import subprocess
 import time
@@ -39,6 +40,22 @@ if status is None:
 check(status > 0, f"server exits non-zero without crashing ({status}) {elapsed:.2f} s after the client was killed")
 check("connection closed by peer" in log, "server says the connection was closed by the client")
 check('"status": "failed"' in read(run_dir, "run.json"), "run.json records the failure")
+manifest = json.loads(read(run_dir, "run.json"))
+check("connection" in manifest.get("reason", ""), f"run.json says why: {manifest.get('reason', '')[:120]}")
+# The sensors written before the crash stay readable: a header, then complete numeric rows with
+# strictly increasing times (flushed every second, so at most the last second can be missing).
+text = read(run_dir, "sensors.csv")
+lines = [line for line in text.splitlines() if line and not line.startswith("#")]
+header = lines[0].split(",")
+rows = []
+for number, line in enumerate(lines[1:], start=2):
+    fields = line.split(",")
+    if len(fields) != len(header):
+        fail(f"sensors.csv line {number} after the crash has {len(fields)} fields, the header {len(header)}")
+    rows.append([float(field) for field in fields])
+times = [row[0] for row in rows]
+check(len(rows) >= 200 and all(b > a for a, b in zip(times, times[1:])),
+      f"sensors.csv after kill -9 of the client: {len(rows)} complete rows up to t = {times[-1]:.5f} s")
 
 # 2. The server dies mid-run.
 run_dir, server, client = start_running_pair("kill_server")
