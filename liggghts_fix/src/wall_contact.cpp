@@ -283,102 +283,23 @@ WallContact2D::WallContact2D(const ContactSettings& settings) : settings_(settin
   settings_.validate();
 }
 
-void WallContact2D::build_grid(const ParticleArrays& particles) {
-  const double cutoff = settings_.law.range();
-  double low[2] = {kInfinity, kInfinity};
-  double high[2] = {-kInfinity, -kInfinity};
-  std::size_t members = 0;
-  for (std::size_t i = 0; i < particles.count; ++i) {
-    if (!near_[i]) continue;
-    ++members;
-    for (int k = 0; k < 2; ++k) {
-      low[k] = std::min(low[k], particles.positions[3 * i + k]);
-      high[k] = std::max(high[k], particles.positions[3 * i + k]);
-    }
-  }
-  if (members == 0) {
-    cells_[0] = cells_[1] = 0;
-    cell_start_.assign(1, 0);
-    cell_particles_.clear();
-    return;
-  }
-  // Cells at least one cut-off wide, so all partners of a point lie in its 3x3 neighbourhood.
-  // A far-away stray particle must not blow up memory: cap the cell count by coarsening.
-  const double max_cells = std::max<double>(1024.0, 4.0 * static_cast<double>(members));
-  double counts[2];
-  for (int k = 0; k < 2; ++k) {
-    const double extent = high[k] - low[k];
-    counts[k] = std::max(1.0, std::floor(extent / cutoff));
-  }
-  while (counts[0] * counts[1] > max_cells) {
-    const int larger = counts[0] >= counts[1] ? 0 : 1;
-    counts[larger] = std::max(1.0, std::floor(counts[larger] / 2.0));
-  }
-  for (int k = 0; k < 2; ++k) {
-    cells_[k] = static_cast<int>(counts[k]);
-    grid_origin_[k] = low[k];
-    const double extent = high[k] - low[k];
-    cell_size_[k] = std::max(cutoff, extent / counts[k]);
-  }
-
-  const std::size_t cell_count = static_cast<std::size_t>(cells_[0]) * cells_[1];
-  cell_start_.assign(cell_count + 1, 0);
-  particle_cell_.resize(particles.count);
-  for (std::size_t i = 0; i < particles.count; ++i) {
-    if (!near_[i]) continue;
-    int index[2];
-    for (int k = 0; k < 2; ++k) {
-      const double offset = (particles.positions[3 * i + k] - grid_origin_[k]) / cell_size_[k];
-      index[k] = std::clamp(static_cast<int>(offset), 0, cells_[k] - 1);
-    }
-    const auto cell = static_cast<std::uint32_t>(index[1] * cells_[0] + index[0]);
-    particle_cell_[i] = cell;
-    ++cell_start_[cell + 1];
-  }
-  for (std::size_t c = 0; c < cell_count; ++c)
-    cell_start_[c + 1] += cell_start_[c];
-  cell_particles_.resize(members);
-  std::vector<std::uint32_t> fill(cell_start_.begin(), cell_start_.end() - 1);
-  for (std::size_t i = 0; i < particles.count; ++i) {
-    if (!near_[i]) continue;
-    cell_particles_[fill[particle_cell_[i]]++] = static_cast<std::uint32_t>(i);
-  }
-}
-
 ContactDiagnostics WallContact2D::compute(const BoundaryMesh2D& mesh,
                                           const ParticleArrays& particles,
                                           std::span<double> vertex_forces) {
   check_particles(particles);
   ContactDiagnostics diagnostics;
   prepare_outputs(mesh, vertex_forces, diagnostics);
-  mark_particles_near_mesh(particles, mesh.positions, 2, settings_.law.range(), near_);
-  build_grid(particles);
+  const double range = settings_.law.range();
+  mark_particles_near_mesh(particles, mesh.positions, 2, range, near_);
+  grid_.build(particles.positions, near_, range);
+  const double reach = range * (1.0 + 1e-9);  // round-off must not lose a pair at the range
   in_range_.assign(particles.count, 0);
   PairKernel kernel(settings_.law, particles, vertex_forces, in_range_, diagnostics);
 
   for_each_sampling_point(settings_, mesh, [&](const SamplingPoint& s) {
     ++diagnostics.sampling_points;
-    if (cells_[0] == 0) return;
-    int centre[2];
-    for (int k = 0; k < 2; ++k) {
-      const double offset = std::floor((s.position[k] - grid_origin_[k]) / cell_size_[k]);
-      // More than one cell outside the grid: no particle can be within the cut-off.
-      if (offset < -1.0 || offset > static_cast<double>(cells_[k])) return;
-      centre[k] = static_cast<int>(offset);
-    }
-    const int x_begin = std::max(centre[0] - 1, 0);
-    const int x_end = std::min(centre[0] + 1, cells_[0] - 1);
-    const int y_begin = std::max(centre[1] - 1, 0);
-    const int y_end = std::min(centre[1] + 1, cells_[1] - 1);
-    for (int cy = y_begin; cy <= y_end; ++cy) {
-      for (int cx = x_begin; cx <= x_end; ++cx) {
-        const std::size_t cell = static_cast<std::size_t>(cy) * cells_[0] + cx;
-        diagnostics.candidate_pairs += cell_start_[cell + 1] - cell_start_[cell];
-        for (std::uint32_t k = cell_start_[cell]; k < cell_start_[cell + 1]; ++k) {
-          kernel(s, cell_particles_[k]);
-        }
-      }
-    }
+    diagnostics.candidate_pairs +=
+        grid_.visit_near(s.position, reach, [&](std::uint32_t i) { kernel(s, i); });
   });
   finish_diagnostics(vertex_forces, diagnostics);
   return diagnostics;

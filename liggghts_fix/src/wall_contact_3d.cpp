@@ -412,71 +412,6 @@ void WallContact3D::prepare(const BoundaryMesh3D& mesh) {
   prepared_ = true;
 }
 
-void WallContact3D::build_grid(const ParticleArrays& particles) {
-  const double range = settings_.law.range();
-  double low[3] = {kInfinity, kInfinity, kInfinity};
-  double high[3] = {-kInfinity, -kInfinity, -kInfinity};
-  std::size_t members = 0;
-  for (std::size_t i = 0; i < particles.count; ++i) {
-    if (!near_[i]) continue;
-    ++members;
-    for (int k = 0; k < 3; ++k) {
-      low[k] = std::min(low[k], particles.positions[3 * i + k]);
-      high[k] = std::max(high[k], particles.positions[3 * i + k]);
-    }
-  }
-  if (members == 0) {
-    grid_ = CellGrid3D{};
-    cell_start_.assign(1, 0);
-    cell_particles_.clear();
-    return;
-  }
-  // Cells at least one range wide, so all partners of a point lie in its 3x3x3 neighbourhood.
-  // A far-away stray particle must not blow up memory: cap the cell count by coarsening.
-  const double max_cells = std::max<double>(4096.0, 4.0 * static_cast<double>(members));
-  double counts[3];
-  for (int k = 0; k < 3; ++k)
-    counts[k] = std::max(1.0, std::floor((high[k] - low[k]) / range));
-  while (counts[0] * counts[1] * counts[2] > max_cells) {
-    const int largest = static_cast<int>(std::max_element(counts, counts + 3) - counts);
-    counts[largest] = std::max(1.0, std::floor(counts[largest] / 2.0));
-  }
-  for (int k = 0; k < 3; ++k) {
-    grid_.cells[k] = static_cast<int>(counts[k]);
-    grid_.origin[k] = low[k];
-    grid_.cell_size[k] = std::max(range, (high[k] - low[k]) / counts[k]);
-  }
-
-  const std::size_t cell_count = static_cast<std::size_t>(grid_.cells[0]) *
-                                 static_cast<std::size_t>(grid_.cells[1]) *
-                                 static_cast<std::size_t>(grid_.cells[2]);
-  cell_start_.assign(cell_count + 1, 0);
-  particle_cell_.resize(particles.count);
-  for (std::size_t i = 0; i < particles.count; ++i) {
-    if (!near_[i]) continue;
-    std::size_t index[3];
-    for (int k = 0; k < 3; ++k) {
-      const double offset = (particles.positions[3 * i + k] - grid_.origin[k]) / grid_.cell_size[k];
-      index[k] =
-          static_cast<std::size_t>(std::clamp(static_cast<int>(offset), 0, grid_.cells[k] - 1));
-    }
-    const auto cell = static_cast<std::uint32_t>(
-        (index[2] * static_cast<std::size_t>(grid_.cells[1]) + index[1]) *
-            static_cast<std::size_t>(grid_.cells[0]) +
-        index[0]);
-    particle_cell_[i] = cell;
-    ++cell_start_[cell + 1];
-  }
-  for (std::size_t c = 0; c < cell_count; ++c)
-    cell_start_[c + 1] += cell_start_[c];
-  cell_particles_.resize(members);
-  std::vector<std::uint32_t> fill(cell_start_.begin(), cell_start_.end() - 1);
-  for (std::size_t i = 0; i < particles.count; ++i) {
-    if (!near_[i]) continue;
-    cell_particles_[fill[particle_cell_[i]]++] = static_cast<std::uint32_t>(i);
-  }
-}
-
 ContactDiagnostics WallContact3D::compute(const BoundaryMesh3D& mesh,
                                           const ParticleArrays& particles,
                                           std::span<double> vertex_forces) {
@@ -501,41 +436,15 @@ ContactDiagnostics WallContact3D::compute(const BoundaryMesh3D& mesh,
   ContactDiagnostics diagnostics;
   start_outputs(vertex_forces, diagnostics);
   mark_particles_near_mesh(particles, mesh.positions, 3, settings_.law.range(), near_);
-  build_grid(particles);
+  grid_.build(particles.positions, near_, settings_.law.range());
   in_range_.assign(particles.count, 0);
   PairKernel kernel(settings_.law, particles, vertex_forces, in_range_, diagnostics);
   const double reach = settings_.law.range() * (1.0 + kSearchMargin);
 
   for_each_sampling_point(settings_, mesh, levels, [&](const SamplingPoint& s) {
     ++diagnostics.sampling_points;
-    if (grid_.cells[0] == 0) return;
-    int begin[3];
-    int end[3];
-    for (int k = 0; k < 3; ++k) {
-      // The cells overlapping [s - reach, s + reach]: at most three, as the cells are at least
-      // one range wide.
-      const double relative = s.position[k] - grid_.origin[k];
-      const double first = std::floor((relative - reach) / grid_.cell_size[k]);
-      const double last = std::floor((relative + reach) / grid_.cell_size[k]);
-      if (last < 0.0 || first > static_cast<double>(grid_.cells[k] - 1)) return;
-      begin[k] = static_cast<int>(std::max(first, 0.0));
-      end[k] = static_cast<int>(std::min(last, static_cast<double>(grid_.cells[k] - 1)));
-    }
-    for (int cz = begin[2]; cz <= end[2]; ++cz) {
-      for (int cy = begin[1]; cy <= end[1]; ++cy) {
-        const std::size_t row =
-            (static_cast<std::size_t>(cz) * static_cast<std::size_t>(grid_.cells[1]) +
-             static_cast<std::size_t>(cy)) *
-            static_cast<std::size_t>(grid_.cells[0]);
-        for (int cx = begin[0]; cx <= end[0]; ++cx) {
-          const std::size_t cell = row + static_cast<std::size_t>(cx);
-          diagnostics.candidate_pairs += cell_start_[cell + 1] - cell_start_[cell];
-          for (std::uint32_t k = cell_start_[cell]; k < cell_start_[cell + 1]; ++k) {
-            kernel(s, cell_particles_[k]);
-          }
-        }
-      }
-    }
+    diagnostics.candidate_pairs +=
+        grid_.visit_near(s.position, reach, [&](std::uint32_t i) { kernel(s, i); });
   });
   finish_diagnostics(vertex_forces, diagnostics);
   return diagnostics;

@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "fsi/contact/cell_grid.hpp"
 #include "fsi/contact/force_law.hpp"
 
 namespace fsi::contact {
@@ -100,18 +101,9 @@ class WallContact2D {
                              std::span<double> vertex_forces);
 
  private:
-  void build_grid(const ParticleArrays& particles);
-
   ContactSettings settings_;
   std::vector<std::uint8_t> near_;  // particles that can reach the mesh (grid members)
-  // Cell grid in compressed-row form: particles of cell c are cell_particles_[cell_start_[c] ..
-  // cell_start_[c+1]).
-  double grid_origin_[2] = {0.0, 0.0};
-  double cell_size_[2] = {1.0, 1.0};
-  int cells_[2] = {0, 0};
-  std::vector<std::uint32_t> cell_start_;
-  std::vector<std::uint32_t> cell_particles_;
-  std::vector<std::uint32_t> particle_cell_;
+  CellGrid<2> grid_;
   std::vector<std::uint8_t> in_range_;
 };
 

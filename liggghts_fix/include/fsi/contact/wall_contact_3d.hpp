@@ -29,6 +29,7 @@
 #include <span>
 #include <vector>
 
+#include "fsi/contact/cell_grid.hpp"
 #include "fsi/contact/force_law.hpp"
 #include "fsi/contact/wall_contact.hpp"
 
@@ -69,13 +70,9 @@ struct ContactSettings3D {
 // triangle index given here and says how to fix it).
 int triangle_refinement_level(double longest_edge, double resolution, std::size_t triangle);
 
-// The regular cell grid over the particles (thesis §5.5.2): cells[k] cells of width cell_size[k]
-// from origin[k] along axis k. Every cell is at least ForceLaw::range() wide.
-struct CellGrid3D {
-  std::array<double, 3> origin{};
-  std::array<double, 3> cell_size{1.0, 1.0, 1.0};
-  std::array<int, 3> cells{};
-};
+// The geometry of the cell grid (thesis §5.5.2): cells[k] cells of width cell_size[k] from
+// origin[k] along axis k. Every cell is at least ForceLaw::range() wide.
+using CellGrid3D = GridGeometry<3>;
 
 // Evaluates the contact forces with a cell grid over the particles. Keeps the pre-refinement of
 // options 2 and 3 and reuses its buffers between calls; not thread-safe.
@@ -97,19 +94,13 @@ class WallContact3D {
                              std::span<double> vertex_forces);
 
   // The grid of the latest compute(), for tests and diagnostics.
-  const CellGrid3D& grid() const { return grid_; }
+  const CellGrid3D& grid() const { return grid_.geometry(); }
 
  private:
-  void build_grid(const ParticleArrays& particles);
-
   ContactSettings3D settings_;
   std::vector<std::uint8_t> pre_refinement_;  // level per triangle (options 2, 3)
   bool prepared_ = false;
-  CellGrid3D grid_;
-  // Particles of cell c are cell_particles_[cell_start_[c] .. cell_start_[c+1]).
-  std::vector<std::uint32_t> cell_start_;
-  std::vector<std::uint32_t> cell_particles_;
-  std::vector<std::uint32_t> particle_cell_;
+  CellGrid<3> grid_;
   std::vector<std::uint8_t> in_range_;
   std::vector<std::uint8_t> near_;  // particles that can reach the mesh (grid members)
 };
