@@ -23,6 +23,14 @@ check(run["checks"]["max_action_reaction_relative"] <= 1e-12,
 check(run["checks"]["particles_final"] == run["checks"]["particles_initial"], "no particle lost")
 for key in ("mbd", "liggghts", "contact_fix", "communication", "output"):
     check(run["timings_seconds"][key] > 0, f"timing '{key}' recorded ({run['timings_seconds'][key]:.3f} s)")
+# Fluid health from the snapshots: a fluid at rest in a tank stays within a few per cent of rho0
+# (weakly compressible, c = 20 m/s: rho g H / (rho0 c^2) ~ 1e-3) and creeps slowly.
+checks = run["checks"]
+check(checks["snapshots_checked"] == run["snapshots"] > 0, f"health of {checks['snapshots_checked']} snapshots recorded")
+check(0.0 < checks["max_density_deviation_at_snapshots"] < 0.02,
+      f"max |rho/rho0 - 1| at the snapshots = {checks['max_density_deviation_at_snapshots']:.2e} (< 2 %)")
+check(0.0 < checks["max_particle_speed_at_snapshots"] < 0.1,
+      f"max particle speed at the snapshots = {checks['max_particle_speed_at_snapshots']:.3g} m/s (fluid at rest)")
 # Measured, not asserted (a timing bound would make the suite flaky): quoted in docs/performance.md.
 t = run["timings_seconds"]
 print(f"measured: output {t['output']:.3f} s = {100 * t['output'] / t['total']:.2f} % of the total "

@@ -74,6 +74,13 @@ struct Checks {
   std::uint64_t particles_final = 0;
   bool lost_warned = false;
   bool balance_warned = false;
+  // Fluid health from the particle snapshots (the only time the server sees every particle).
+  std::uint64_t health_samples = 0;
+  double last_snapshot_time = 0.0;
+  double last_density_deviation = 0.0;  // max |rho/rho0 - 1| in the latest snapshot
+  double last_max_speed = 0.0;          // max |v| in the latest snapshot [m/s]
+  double max_density_deviation = 0.0;   // over all snapshots
+  double max_speed = 0.0;
 };
 
 class Session {
@@ -376,12 +383,18 @@ class Session {
         const double rate =
             static_cast<double>(n) /
             std::max(1e-9, std::chrono::duration<double>(now - coupled_begin_).count());
+        std::string health;
+        if (checks_.health_samples > 0) {
+          health = fmt::format(
+              "; snapshot t = {:.5f} s: max |rho/rho0 - 1| = {:.2e}, max speed {:.3g} m/s",
+              checks_.last_snapshot_time, checks_.last_density_deviation, checks_.last_max_speed);
+        }
         spdlog::info(
             "t = {:.5f} s ({:.1f} %), {:.0f} steps/s, ETA {:.0f} s, closest wall approach {:.3f} "
-            "r0",
+            "r0{}",
             state_.time, 100.0 * static_cast<double>(n) / static_cast<double>(steps), rate,
             static_cast<double>(steps - n) / std::max(rate, 1e-9),
-            forces.diagnostics.closest_approach_over_r0);
+            forces.diagnostics.closest_approach_over_r0, health);
         last_report = now;
       }
     }
@@ -402,9 +415,33 @@ class Session {
     snapshot.pressure = std::move(reply.pressure);
     char name[64];
     std::snprintf(name, sizeof name, "particles_%09llu.csv", static_cast<unsigned long long>(n));
+    record_health(snapshot);
     write_snapshot_csv((fs::path(options_.output_dir) / "snapshots" / name).string(), snapshot);
     vtk_->write(snapshot, scene_.model, state_, scene_.boundary, loads_);
     ++snapshots_;
+  }
+
+  void record_health(const ParticleSnapshot& snapshot) {
+    const double rho0 = scene_.fluid.density;
+    double deviation = 0.0;
+    if (rho0 > 0.0) {
+      for (double rho : snapshot.density)
+        deviation = std::max(deviation, std::abs(rho / rho0 - 1.0));
+    }
+    const std::size_t dimension = static_cast<std::size_t>(scene_.fluid.dimension);
+    double speed2 = 0.0;
+    for (std::size_t i = 0; i + dimension <= snapshot.velocities.size(); i += dimension) {
+      double v2 = 0.0;
+      for (std::size_t k = 0; k < dimension; ++k)
+        v2 += snapshot.velocities[i + k] * snapshot.velocities[i + k];
+      speed2 = std::max(speed2, v2);
+    }
+    ++checks_.health_samples;
+    checks_.last_snapshot_time = snapshot.time;
+    checks_.last_density_deviation = deviation;
+    checks_.last_max_speed = std::sqrt(speed2);
+    checks_.max_density_deviation = std::max(checks_.max_density_deviation, deviation);
+    checks_.max_speed = std::max(checks_.max_speed, checks_.last_max_speed);
   }
 
   void finish() {
@@ -492,6 +529,11 @@ class Session {
                                          : json(nullptr)},
         {"particles_initial", checks_.particles_initial},
         {"particles_final", checks_.particles_final},
+        {"snapshots_checked", checks_.health_samples},
+        {"max_density_deviation_at_snapshots",
+         checks_.health_samples > 0 ? json(checks_.max_density_deviation) : json(nullptr)},
+        {"max_particle_speed_at_snapshots",
+         checks_.health_samples > 0 ? json(checks_.max_speed) : json(nullptr)},
         {"position_constraint_drift", drift(&mbd::Model::position_constraint_drift)},
         {"velocity_constraint_drift", drift(&mbd::Model::velocity_constraint_drift)}};
     manifest["status"] = status_;
