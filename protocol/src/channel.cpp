@@ -112,6 +112,7 @@ struct Channel::Impl {
   std::uint16_t peer_minor = 0;
   std::array<std::byte, kHeaderSize> header_bytes{};
   std::vector<std::byte> payload_buffer;  // reused from frame to frame
+  std::vector<std::byte> send_buffer;     // reused for every encoded message
   std::string unusable_because;           // set once the incoming stream can no longer be trusted
   std::string send_unusable_because;      // set once a frame went out only in part
 
@@ -212,12 +213,15 @@ struct Channel::Impl {
 
     const std::size_t length = header.payload_length;
     std::size_t filled = 0;
+    // The CRC runs over each piece as it arrives, while the peer still sends the rest.
+    std::uint32_t crc = crc32c(std::span<const std::byte>(header_bytes).first(16));
     while (filled < length) {
       const std::size_t target =
           std::min(length, std::max({payload_buffer.size(), 2 * filled, kFirstPayloadPiece}));
       if (payload_buffer.size() < target) payload_buffer.resize(target);
       const Transfer piece =
           read(std::span(payload_buffer).subspan(filled, target - filled), deadline);
+      crc = crc32c(std::span<const std::byte>(payload_buffer).subspan(filled, piece.bytes), crc);
       filled += piece.bytes;
       if (piece.error || piece.timed_out) {
         fail_read(piece, timeout, waiting_for, kHeaderSize + filled - piece.bytes,
@@ -226,7 +230,7 @@ struct Channel::Impl {
       }
     }
     try {
-      verify_crc(header_bytes, header, std::span(payload_buffer).first(length));
+      check_crc(header, crc, length);
     } catch (const ProtocolError& error) {
       fail_frame(error, waiting_for);
     }
@@ -393,7 +397,11 @@ void Channel::send(MessageType type, std::span<const std::byte> payload) {
 }
 
 void Channel::send(const Message& message) {
-  send(type_of(message), encode(message));
+  std::visit([this](const auto& alternative) { send(alternative); }, message);
+}
+
+std::vector<std::byte>& Channel::send_buffer() {
+  return impl_->send_buffer;
 }
 
 Frame Channel::receive(std::optional<Milliseconds> timeout, std::string_view waiting_for) {

@@ -180,12 +180,15 @@ FrameHeader decode_header(std::span<const std::byte, kHeaderSize> bytes, std::si
 
 void verify_crc(std::span<const std::byte, kHeaderSize> header_bytes, const FrameHeader& header,
                 std::span<const std::byte> payload) {
-  const std::uint32_t computed = crc32c(payload, crc32c(header_bytes.first(16)));
+  check_crc(header, crc32c(payload, crc32c(header_bytes.first(16))), payload.size());
+}
+
+void check_crc(const FrameHeader& header, std::uint32_t computed, std::size_t payload_size) {
   if (computed != header.crc) {
     throw ProtocolError(
         "CRC-32C mismatch in " + name(header.type) + " frame: computed " + hex32(computed) +
             ", received " + hex32(header.crc),
-        name(header.type) + " frame with " + std::to_string(payload.size()) + " payload bytes",
+        name(header.type) + " frame with " + std::to_string(payload_size) + " payload bytes",
         "the data was damaged on the way or the peer is faulty; check the "
         "network and the peer's version");
   }

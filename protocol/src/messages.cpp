@@ -166,7 +166,7 @@ class SizeCounter {
 
 class Writer {
  public:
-  Writer(MessageType type, std::size_t size) : type_(type), bytes_(size) {}
+  Writer(MessageType type, std::span<std::byte> bytes) : type_(type), bytes_(bytes) {}
 
   template <class T>
   void scalar(const char*, const T& value) {
@@ -196,9 +196,8 @@ class Writer {
     for (const T& item : items)
       each(*this, item);
   }
-  std::vector<std::byte> take() {
+  void finish() const {
     FSI_ASSERT(offset_ == bytes_.size(), "size counter and writer disagree on " + name(type_));
-    return std::move(bytes_);
   }
 
  private:
@@ -209,7 +208,7 @@ class Writer {
   }
 
   MessageType type_;
-  std::vector<std::byte> bytes_;
+  std::span<std::byte> bytes_;
   std::size_t offset_ = 0;
 };
 
@@ -459,13 +458,25 @@ void check(const Reader& in, const Snapshot& m) {
   check_count(in, "pressure", m.pressure.size(), count, "one per id");
 }
 
+// Encodes into the first bytes of buffer, which grows when it is too small but never shrinks
+// (a channel reuses it: no allocation, zeroing or page faults for messages of a known size).
 template <class T>
-std::vector<std::byte> encode_message(const T& message) {
+std::span<const std::byte> encode_message_into(const T& message, std::vector<std::byte>& buffer) {
   SizeCounter counter;
   layout(counter, message);
-  Writer writer(T::kType, counter.size());
+  if (buffer.size() < counter.size()) buffer.resize(counter.size());
+  const auto bytes = std::span(buffer).first(counter.size());
+  Writer writer(T::kType, bytes);
   layout(writer, message);
-  return writer.take();
+  writer.finish();
+  return bytes;
+}
+
+template <class T>
+std::vector<std::byte> encode_message(const T& message) {
+  std::vector<std::byte> bytes;
+  encode_message_into(message, bytes);
+  return bytes;
 }
 
 }  // namespace
@@ -539,6 +550,25 @@ std::vector<std::byte> encode(const Goodbye& message) {
 std::vector<std::byte> encode(const Message& message) {
   return std::visit([](const auto& alternative) { return encode_message(alternative); }, message);
 }
+
+template <class T>
+std::span<const std::byte> encode_into(const T& message, std::vector<std::byte>& buffer) {
+  return encode_message_into(message, buffer);
+}
+
+template std::span<const std::byte> encode_into(const Hello&, std::vector<std::byte>&);
+template std::span<const std::byte> encode_into(const Welcome&, std::vector<std::byte>&);
+template std::span<const std::byte> encode_into(const ErrorMessage&, std::vector<std::byte>&);
+template std::span<const std::byte> encode_into(const Setup&, std::vector<std::byte>&);
+template std::span<const std::byte> encode_into(const Mesh&, std::vector<std::byte>&);
+template std::span<const std::byte> encode_into(const Particles&, std::vector<std::byte>&);
+template std::span<const std::byte> encode_into(const Ready&, std::vector<std::byte>&);
+template std::span<const std::byte> encode_into(const Step&, std::vector<std::byte>&);
+template std::span<const std::byte> encode_into(const Forces&, std::vector<std::byte>&);
+template std::span<const std::byte> encode_into(const SnapshotRequest&, std::vector<std::byte>&);
+template std::span<const std::byte> encode_into(const Snapshot&, std::vector<std::byte>&);
+template std::span<const std::byte> encode_into(const Shutdown&, std::vector<std::byte>&);
+template std::span<const std::byte> encode_into(const Goodbye&, std::vector<std::byte>&);
 
 template <class T>
 T decode_as(std::span<const std::byte> payload) {

@@ -52,7 +52,7 @@ class Channel {
   void send(MessageType type, std::span<const std::byte> payload);
   template <class T>
   requires requires { T::kType; }
-  void send(const T& message) { send(T::kType, encode(message)); }
+  void send(const T& message) { send(T::kType, encode_into(message, send_buffer())); }
   void send(const Message& message);
 
   // Receives one complete frame with a checked header and CRC. No timeout waits for ever;
@@ -83,6 +83,8 @@ class Channel {
 
  private:
   friend class Listener;
+  // Reused for every message this channel encodes (keeps the largest size it has needed).
+  std::vector<std::byte>& send_buffer();
   struct Impl;
   explicit Channel(std::unique_ptr<Impl> impl);
   [[noreturn]] void throw_unexpected(MessageType expected, const Message& received) const;

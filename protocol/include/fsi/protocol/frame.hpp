@@ -89,6 +89,9 @@ FrameHeader decode_header(std::span<const std::byte, kHeaderSize> bytes,
 // Throws ProtocolError "CRC-32C mismatch in <type> frame: computed 0x..., received 0x...".
 void verify_crc(std::span<const std::byte, kHeaderSize> header_bytes, const FrameHeader& header,
                 std::span<const std::byte> payload);
+// The same check for a CRC the caller computed itself (e.g. piece by piece while receiving):
+// computed = crc32c(payload, crc32c(first 16 header bytes)). Throws ProtocolError on mismatch.
+void check_crc(const FrameHeader& header, std::uint32_t computed, std::size_t payload_size);
 // Decodes and verifies one complete frame held in one buffer; extra or missing bytes are errors.
 Frame decode_frame(std::span<const std::byte> bytes, std::size_t max_payload = kDefaultMaxPayload,
                    std::uint16_t expected_major = kMajorVersion);

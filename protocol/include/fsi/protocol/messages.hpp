@@ -205,6 +205,10 @@ std::vector<std::byte> encode(const Snapshot& message);
 std::vector<std::byte> encode(const Shutdown& message);
 std::vector<std::byte> encode(const Goodbye& message);
 std::vector<std::byte> encode(const Message& message);
+// Encodes into the first bytes of buffer (grown when too small, never shrunk) and returns them:
+// no allocation when the buffer is reused for messages of similar size. Any message type.
+template <class T>
+std::span<const std::byte> encode_into(const T& message, std::vector<std::byte>& buffer);
 
 // Decodes the payload of a frame of the given type. Throws ProtocolError.
 Message decode(MessageType type, std::span<const std::byte> payload);
