@@ -115,6 +115,7 @@ class ClientSession {
     DriverOptions driver_options;
     driver_options.log_file = mpi_.root() ? options_.liggghts_log : std::string();
     driver_options.echo_output = options_.echo_liggghts;
+    driver_options.allow_unsafe_commands = options_.allow_unsafe_commands;
     driver_ = std::make_unique<LiggghtsDriver>(mpi_.communicator(), driver_options, boundary_);
     g_exit_report.driver = driver_.get();
     prepare_fluid(data);

@@ -17,6 +17,7 @@ struct ClientOptions {
   std::chrono::milliseconds connect_timeout{60000};
   std::string liggghts_log;  // LIGGGHTS log file (rank 0); empty: none
   bool echo_liggghts = false;
+  bool allow_unsafe_commands = false;  // run `shell` and files outside the run directory
 };
 
 // Runs the session; returns the process exit status. Faults end the whole MPI job: rank 0 tells

@@ -19,6 +19,7 @@
 #include "update.h"
 #include "variable.h"
 
+#include "command_policy.hpp"
 #include "fsi/common/error.hpp"
 
 namespace fsi::client {
@@ -88,7 +89,7 @@ std::vector<std::string> referenced_variables(const std::string& line) {
 
 LiggghtsDriver::LiggghtsDriver(MPI_Comm communicator, const DriverOptions& options,
                                std::shared_ptr<contact::CouplingBoundary> boundary)
-    : communicator_(communicator), boundary_(std::move(boundary)) {
+    : communicator_(communicator), options_(options), boundary_(std::move(boundary)) {
   MPI_Comm_rank(communicator_, &rank_);
   capture_ = std::make_unique<OutputCapture>(options.echo_output && rank_ == 0);
   std::vector<std::string> arguments{"fsi-client", "-screen", "none", "-log",
@@ -178,6 +179,13 @@ void LiggghtsDriver::run_script(const std::string& name, const std::string& text
       }
       ++fsi_fix_count_;
     } else {
+      if (!options_.allow_unsafe_commands) {
+        if (const auto why = refused_command(substituted_words(code))) {
+          throw Error("LIGGGHTS command refused: " + *why, name + ":" + std::to_string(first_line),
+                      "remove it from the script, or start fsi-client with "
+                      "--allow-unsafe-commands if you trust the scene's author");
+        }
+      }
       lammps_->input->one(code.c_str());
       if (raw.front() == "create_box" && after_create_box) after_create_box();
     }

@@ -26,6 +26,8 @@ namespace fsi::client {
 struct DriverOptions {
   std::string log_file;      // LIGGGHTS log file; empty: none
   bool echo_output = false;  // echo LIGGGHTS' screen output to stdout (rank 0)
+  // Run script commands the command policy refuses (`shell`, files outside the run directory).
+  bool allow_unsafe_commands = false;
 };
 
 struct ParticleBlock {
@@ -91,6 +93,7 @@ class LiggghtsDriver {
   std::vector<std::string> substituted_words(const std::string& line);
 
   MPI_Comm communicator_;
+  DriverOptions options_;
   int rank_ = 0;
   std::unique_ptr<OutputCapture> capture_;
   LAMMPS_NS::LAMMPS* lammps_ = nullptr;

@@ -30,6 +30,9 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   app.add_option("--liggghts-log", options.liggghts_log, "Write LIGGGHTS' log to this file");
   app.add_flag("--echo", options.echo_liggghts, "Show LIGGGHTS' screen output (rank 0)");
+  app.add_flag("--allow-unsafe-commands", options.allow_unsafe_commands,
+               "Run script commands that are refused by default: 'shell' and file names outside "
+               "the run directory (absolute, ~ or ..). Only for scenes you trust");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {

@@ -59,4 +59,16 @@ check(status == 1 and client > 0, f"LIGGGHTS error: server {status}, client {cli
       ("" if status == 1 and client > 0 else logs))
 ok = "Invalid pair style" in log and "bad_pair.in1:" in log
 check(ok, "LIGGGHTS' own error message and the script line reach the server" + ("" if ok else logs))
+# The client runs text that arrives over the network: `shell` is refused (issue 5, safe commands).
+marker = os.path.join(output, "shell_ran")
+bad_shell = os.path.join(output, "bad_shell.in1")
+with open(bad_shell, "w") as handle:
+    handle.write(script + f"\nshell touch {marker}\n")
+run_dir = os.path.join(output, "bad_shell")
+status, client = run_pair(scene, run_dir, 1, [f'LIGGGHTS.script1="{bad_shell}"'], timeout=120)
+log = read(run_dir, "server.stderr")
+logs = f"\n--- server ---\n{log[-3000:]}\n--- client ---\n{read(run_dir, 'client.stderr')[-3000:]}"
+ok = status == 1 and client > 0 and "command refused: 'shell'" in log and "bad_shell.in1:" in log
+check(ok, "a 'shell' command is refused with script and line, both sides non-zero" + ("" if ok else logs))
+check(not os.path.exists(marker), "the refused shell command did not run")
 cleanup(output)
