@@ -157,7 +157,8 @@ class ClientSession {
     std::uint16_t type = 0;
     std::vector<std::byte> payload;
     if (mpi_.root()) {
-      protocol::Frame frame = channel_->receive(std::nullopt);
+      protocol::Frame frame =
+          channel_->receive(options_.peer_timeout, "the next message from fsi-server");
       type = static_cast<std::uint16_t>(frame.header.type);
       payload = std::move(frame.payload);
     }

@@ -15,6 +15,9 @@ struct ClientOptions {
   std::string host = "127.0.0.1";
   std::uint16_t port = 0;
   std::chrono::milliseconds connect_timeout{60000};
+  // Longest wait for the next message from the server once connected: a server that hangs ends
+  // the client after this long.
+  std::chrono::milliseconds peer_timeout{std::chrono::minutes(5)};
   std::string liggghts_log;  // LIGGGHTS log file (rank 0); empty: none
   bool echo_liggghts = false;
   bool allow_unsafe_commands = false;  // run `shell` and files outside the run directory

@@ -28,6 +28,12 @@ int main(int argc, char** argv) {
                  "Seconds to keep retrying while the server does not listen yet")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
+  double peer_timeout = 300.0;
+  app.add_option("--peer-timeout", peer_timeout,
+                 "Seconds to wait for the next message from fsi-server before giving up (a "
+                 "stopped or hung server)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   app.add_option("--liggghts-log", options.liggghts_log, "Write LIGGGHTS' log to this file");
   app.add_flag("--echo", options.echo_liggghts, "Show LIGGGHTS' screen output (rank 0)");
   app.add_flag("--allow-unsafe-commands", options.allow_unsafe_commands,
@@ -57,6 +63,7 @@ int main(int argc, char** argv) {
   options.host = server.substr(0, colon);
   options.port = static_cast<std::uint16_t>(port);
   options.connect_timeout = std::chrono::milliseconds(static_cast<long>(connect_timeout * 1000));
+  options.peer_timeout = std::chrono::milliseconds(static_cast<long>(peer_timeout * 1000));
 
   const int status = fsi::client::run_client_session(MPI_COMM_WORLD, options);
   MPI_Finalize();

@@ -78,6 +78,12 @@ int main(int argc, char** argv) {
   app.add_option("--accept-timeout", accept_timeout, "Seconds to wait for fsi-client to connect")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
+  double peer_timeout = 300.0;
+  app.add_option("--peer-timeout", peer_timeout,
+                 "Seconds to wait for fsi-client's answer to one step or snapshot before giving "
+                 "up (a stopped or hung client); the equilibration wait is not bounded")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
   app.add_flag("--check", check_only, "Validate the scene (all problems at once) and exit");
   app.add_flag("--print-params", print_params, "Print the evaluated parameter tree and exit");
   app.add_flag("--help-params", help_params, "List every scene parameter and exit");
@@ -140,6 +146,7 @@ int main(int argc, char** argv) {
   options.port_file = port_file;
   options.output_dir = output;
   options.accept_timeout = std::chrono::milliseconds(static_cast<long>(accept_timeout * 1000));
+  options.peer_timeout = std::chrono::milliseconds(static_cast<long>(peer_timeout * 1000));
   for (int i = 0; i < argc; ++i)
     options.command_line += (i ? " " : "") + std::string(argv[i]);
   try {

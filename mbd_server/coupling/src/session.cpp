@@ -244,7 +244,7 @@ class Session {
           "particles)",
           ready_.particle_count, scene_.fluid.count());
     }
-    apply_forces(channel_->expect<protocol::Forces>(std::nullopt), 0);
+    apply_forces(channel_->expect<protocol::Forces>(options_.peer_timeout), 0);
     timings_.setup.stop();
   }
 
@@ -369,7 +369,7 @@ class Session {
                              velocities.begin() + static_cast<long>(dynamic_values));
       timings_.round_trip.start();
       channel_->send(step);
-      const auto forces = channel_->expect<protocol::Forces>(std::nullopt);
+      const auto forces = channel_->expect<protocol::Forces>(options_.peer_timeout);
       timings_.round_trip.stop();
       apply_forces(forces, n);
       steps_done_ = n;
@@ -404,7 +404,7 @@ class Session {
   void take_snapshot(std::uint64_t n) {
     ScopedTimer timer(timings_.output);
     channel_->send(protocol::SnapshotRequest{n});
-    auto reply = channel_->expect<protocol::Snapshot>(std::nullopt);
+    auto reply = channel_->expect<protocol::Snapshot>(options_.peer_timeout);
     ParticleSnapshot snapshot;
     snapshot.step = reply.step;
     snapshot.time = reply.time;

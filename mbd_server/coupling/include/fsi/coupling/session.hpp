@@ -19,6 +19,10 @@ struct ServerOptions {
   std::string output_dir;
   std::chrono::milliseconds accept_timeout{std::chrono::minutes(2)};
   std::chrono::milliseconds handshake_timeout{std::chrono::seconds(30)};
+  // Longest wait for the client's answer to one step or snapshot request: a client that hangs
+  // (stopped, deadlocked) ends the run after this long. The wait for Ready, which includes the
+  // LIGGGHTS-only equilibration, is not bounded (no heartbeat yet).
+  std::chrono::milliseconds peer_timeout{std::chrono::minutes(5)};
   std::string command_line;  // recorded in run.json
 };
 
