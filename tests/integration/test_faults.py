@@ -4,6 +4,7 @@ message and non-zero status, and the other way round; a peer of another protocol
 is refused with a message naming both versions, by the server and by the client."""
 import json
 import os
+import signal
 import subprocess
 import time
 
@@ -15,10 +16,20 @@ long_run = ["Resolution.end_time=10", "Resolution.equilibration_steps=100"]
 output = work_dir("faults")
 
 
-def start_running_pair(name):
+ports = {}
+
+
+def signal_client_ranks(run_dir, sig):
+    """mpirun starts the ranks outside its process group: signal the fsi-client processes."""
+    subprocess.run(["pkill", f"-{int(sig)}", "-f", f"fsi-client --server 127.0.0.1:{ports[run_dir]}( |$)"],
+                   check=False)
+
+
+def start_running_pair(name, server_extra=(), client_extra=()):
     run_dir = os.path.join(output, name)
-    server, port = start_server(scene, run_dir, long_run)
-    client = start_client(port, 2, run_dir)
+    server, port = start_server(scene, run_dir, long_run, server_extra)
+    ports[run_dir] = port
+    client = start_client(port, 2, run_dir, client_extra)
     deadline = time.time() + 300
     while len(sensor_rows(run_dir)) < 200:
         if time.time() > deadline or server.poll() is not None or client.poll() is not None:
@@ -69,6 +80,35 @@ if status is None:
     fail("fsi-client still runs 10 s after the server was killed")
 check(status > 0, f"client exits non-zero without crashing ({status}) {elapsed:.2f} s after the server was killed")
 check("connection closed by peer" in log, "client says the connection was closed by the server")
+
+# 2b. A hung client (stopped with SIGSTOP: alive, socket open, silent) ends the server after its
+# --peer-timeout, and a hung server ends the client after the client's --peer-timeout.
+run_dir, server, client = start_running_pair("hang_client", server_extra=["--peer-timeout", "3"])
+signal_client_ranks(run_dir, signal.SIGSTOP)
+started = time.time()
+status = wait(server, 15)
+elapsed = time.time() - started
+signal_client_ranks(run_dir, signal.SIGKILL)
+kill_group(client, signal.SIGKILL)
+log = read(run_dir, "server.stderr")
+if status is None:
+    kill_group(server)
+    fail("fsi-server still runs 15 s after the client stopped answering (--peer-timeout 3)")
+check(status > 0 and elapsed < 10, f"server exits non-zero ({status}) {elapsed:.2f} s after the client hung (timeout 3 s)")
+check("timed out" in log, "the server says it timed out waiting for the client")
+
+run_dir, server, client = start_running_pair("hang_server", client_extra=["--peer-timeout", "3"])
+kill_group(server, signal.SIGSTOP)
+started = time.time()
+status = wait(client, 15)
+elapsed = time.time() - started
+kill_group(server, signal.SIGKILL)
+log = read(run_dir, "client.stderr")
+if status is None:
+    kill_group(client)
+    fail("fsi-client still runs 15 s after the server stopped answering (--peer-timeout 3)")
+check(status > 0 and elapsed < 10, f"client exits non-zero ({status}) {elapsed:.2f} s after the server hung (timeout 3 s)")
+check("timed out" in log, "the client says it timed out waiting for the server")
 
 # 3. A client speaking protocol 2.0 is refused by the server.
 run_dir = os.path.join(output, "client_version")
