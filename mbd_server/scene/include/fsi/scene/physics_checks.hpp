@@ -1,0 +1,51 @@
+#pragma once
+// Physics sanity checks of a built scene: the rules of thumb of thesis §6.2 and one measured limit
+// of this code, as diagnostics that state the numbers, the rule, its source and a fix. They never
+// stop a run (a scene may have its reasons to break a rule of thumb); `fsi-server --check` prints
+// them and a run logs them at start-up. The formulas are in docs/user-guide.md ("Physics checks").
+//
+// LIGGGHTS_SPH_parameters has no schema. Declared values are used where the schema has them
+// (FluidRegion spacing, density and particle mass, Gravity, SolverOptions.Timeint.step_size,
+// VelocityConstraint); everything else is read under the variable names of thesis §5.6 and the
+// examples: smoothinglength, cAB, viscosity, SPH_wall_rep, SPH_wall_visc,
+// SPH_wall_equilibriumdist, SPH_wall_cutoff (and SPHdensity, particlespacing, SPHparticlemass,
+// gravity without a FluidRegion or Gravity block). A check whose inputs are missing is skipped
+// with one Info diagnostic saying which inputs.
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "fsi/scene/problem.hpp"
+#include "fsi/scene/scene.hpp"
+
+namespace fsi::scene {
+
+enum class Severity { Warning, Info };
+std::string_view name(Severity severity);  // "warning", "info"
+
+struct Diagnostic {
+  Severity severity = Severity::Warning;
+  std::string check;         // one of kPhysicsCheckNames
+  SourceLocation location;   // the parameter the finding is about
+  std::string message;       // the numbers, the rule and where it comes from
+  std::string fix;           // what to change (empty for Info)
+  std::string text() const;  // "file:line:column: warning (check): message; fix"
+};
+
+// The checks in the order physics_checks reports them.
+inline constexpr std::string_view kPhysicsCheckNames[] = {
+    "acoustic_time_step",  // dt c / h <= 0.25 (thesis §6.2) and <= 0.125 (measured here)
+    "contact_time_step",   // dt <= sqrt(m / k_eff) / 10 for the wall repulsion
+    "speed_of_sound",      // c >= 10 x the expected flow speed (thesis §6.2)
+    "wall_repulsion",      // k within 2-20 rho0 g h_max (thesis §6.2)
+    "kernel_neighbours",   // 30-100 particles within the support radius 2h (thesis §3.1.2)
+    "wall_viscosity",      // t within a factor 3 of nu rho / h (thesis eq. 6.4)
+    "fluid_overlap",       // fluid box clear of every mesh by r0 / 2
+};
+
+// Every check over `scene`: warnings for broken rules, infos for checks skipped. Pure: reads the
+// scene only.
+std::vector<Diagnostic> physics_checks(const Scene& scene);
+
+}  // namespace fsi::scene

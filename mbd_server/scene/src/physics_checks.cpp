@@ -1,0 +1,607 @@
+#include "fsi/scene/physics_checks.hpp"
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <numbers>
+#include <optional>
+#include <sstream>
+
+namespace fsi::scene {
+namespace {
+
+constexpr double kAcousticLimit = 0.25;  // thesis §6.2: dt <= 0.25 h / c
+// Largest dt c / h measured stable with this code's wall force law (docs/validation.md).
+constexpr double kMeasuredStableRatio = 0.125;
+constexpr double kContactStepFraction = 0.1;  // dt <= sqrt(m / k_eff) / 10
+constexpr double kSoundToFlowSpeed = 10.0;
+constexpr double kRepulsionLow = 2.0;
+constexpr double kRepulsionHigh = 20.0;
+constexpr double kNeighboursLow = 30.0;
+constexpr double kNeighboursHigh = 100.0;
+constexpr double kWallViscosityFactor = 3.0;
+// A value that meets a limit exactly (the coarse tank's dt c / h = 0.125) is not beyond it.
+constexpr double kTolerance = 1e-9;
+
+constexpr std::string_view kSphBlock = "LIGGGHTS_SPH_parameters";
+
+using Point = Eigen::Vector2d;
+
+// Three significant digits; thousands up to millions without an exponent (17500, not 1.75e+04).
+std::string number(double value) {
+  char text[32];
+  const double size = std::abs(value);
+  if (size >= 1e3 && size < 1e7) {
+    const double unit = std::pow(10.0, std::floor(std::log10(size)) - 2.0);
+    std::snprintf(text, sizeof text, "%.0f", std::round(value / unit) * unit);
+  } else {
+    std::snprintf(text, sizeof text, "%.3g", value);
+  }
+  return text;
+}
+
+std::string point_text(const Point& point) {
+  return "(" + number(point.x()) + ", " + number(point.y()) + ")";
+}
+
+struct Quantity {
+  double value = 0.0;
+  SourceLocation location;
+};
+
+struct GravityInput {
+  double magnitude = 0.0;
+  std::optional<Point> direction;  // unit vector; unknown when only |g| is given
+  SourceLocation location;
+};
+
+// The inputs of one check, each from its declaration or, failing that, from the conventional
+// LIGGGHTS variable; remembers why an input is missing.
+class Inputs {
+ public:
+  explicit Inputs(const Scene& scene) : scene_(scene), root_(scene.parameters) {}
+
+  bool complete() const { return missing_.empty(); }
+  const std::vector<std::string>& missing() const { return missing_; }
+  void add_missing(std::string reason) { missing_.push_back(std::move(reason)); }
+
+  // A positive number of LIGGGHTS_SPH_parameters.
+  std::optional<Quantity> sph(std::string_view key) {
+    const Parameter* parameter = find_sph(key);
+    const std::string quoted = "'" + std::string(key) + "'";
+    if (parameter == nullptr) {
+      add_missing("no " + quoted + " in LIGGGHTS_SPH_parameters");
+    } else if (parameter->value.kind != ValueKind::Number) {
+      add_missing(quoted + " in LIGGGHTS_SPH_parameters is not a number");
+    } else if (!(parameter->value.number > 0.0)) {
+      add_missing(quoted + " in LIGGGHTS_SPH_parameters is not positive");
+    } else {
+      return Quantity{parameter->value.number, parameter->location};
+    }
+    return std::nullopt;
+  }
+
+  Quantity time_step() const {
+    return {scene_.solver.step_size, where("SolverOptions.Timeint.step_size")};
+  }
+  bool has_fluid_region() const { return root_.child("FluidRegion") != nullptr; }
+
+  std::optional<Quantity> density() {
+    if (has_fluid_region()) return Quantity{scene_.fluid.density, where("FluidRegion.density")};
+    return sph("SPHdensity");
+  }
+  std::optional<Quantity> spacing() {
+    if (has_fluid_region()) return Quantity{scene_.fluid.spacing, where("FluidRegion.spacing")};
+    return sph("particlespacing");
+  }
+  // Per particle; 2D: per unit depth.
+  std::optional<Quantity> particle_mass() {
+    if (has_fluid_region()) return Quantity{scene_.fluid.mass, where("FluidRegion.density")};
+    if (const Parameter* mass = find_sph("SPHparticlemass")) return sph(mass->key);
+    const auto rho = density();
+    const auto d = spacing();
+    if (!rho || !d) return std::nullopt;
+    return Quantity{rho->value * std::pow(d->value, scene_.fluid.dimension), d->location};
+  }
+
+  // The Gravity block if the scene has one, else the LIGGGHTS variable 'gravity'.
+  std::optional<GravityInput> gravity() {
+    if (const Block* block = root_.child("Gravity")) {
+      const Parameter* acceleration = block->find("acceleration");
+      if (acceleration == nullptr) return GravityInput{0.0, std::nullopt, block->location};
+      const Point g(acceleration->value.vector.at(0), acceleration->value.vector.at(1));
+      GravityInput input{g.norm(), std::nullopt, acceleration->location};
+      if (input.magnitude > 0.0) input.direction = g / input.magnitude;
+      return input;
+    }
+    if (const Parameter* g = find_sph("gravity"); g && g->value.kind == ValueKind::Number)
+      return GravityInput{std::abs(g->value.number), std::nullopt, g->location};
+    add_missing("no Gravity block and no 'gravity' in LIGGGHTS_SPH_parameters");
+    return std::nullopt;
+  }
+
+  // Height of the fluid box along gravity (along y when only |g| is known).
+  std::optional<Quantity> fluid_height(const GravityInput& gravity) {
+    if (!has_fluid_region()) {
+      add_missing("no FluidRegion (the height of the fluid is not known)");
+      return std::nullopt;
+    }
+    const auto& lower = root_.lookup("FluidRegion.lower")->value.vector;
+    const auto& upper = root_.lookup("FluidRegion.upper")->value.vector;
+    const Point extent(upper.at(0) - lower.at(0), upper.at(1) - lower.at(1));
+    const double height =
+        gravity.direction ? extent.cwiseAbs().dot(gravity.direction->cwiseAbs()) : extent.y();
+    return Quantity{height, where("FluidRegion.upper")};
+  }
+
+  SourceLocation where(std::string_view path) const {
+    if (const Parameter* parameter = root_.lookup(path)) return parameter->location;
+    return root_.location;
+  }
+
+ private:
+  const Parameter* find_sph(std::string_view key) const {
+    const Block* block = root_.child(kSphBlock);
+    return block ? block->find(key) : nullptr;
+  }
+
+  const Scene& scene_;
+  const Block& root_;
+  std::vector<std::string> missing_;
+};
+
+class Report {
+ public:
+  explicit Report(const Scene& scene) : scene_(scene) {}
+
+  void warn(std::string_view check, SourceLocation location, std::string message, std::string fix) {
+    diagnostics_.push_back({Severity::Warning, std::string(check), std::move(location),
+                            std::move(message), std::move(fix)});
+  }
+  void skip(std::string_view check, std::string_view title, const std::vector<std::string>& why) {
+    std::string reasons;
+    for (const std::string& reason : why)
+      reasons += (reasons.empty() ? "" : "; ") + reason;
+    diagnostics_.push_back({Severity::Info, std::string(check), SourceLocation{scene_.file, 0, 0},
+                            reasons + ": " + std::string(title) + " check skipped", ""});
+  }
+  std::vector<Diagnostic> take() { return std::move(diagnostics_); }
+
+ private:
+  const Scene& scene_;
+  std::vector<Diagnostic> diagnostics_;
+};
+
+bool above(double value, double limit) {
+  return value > limit * (1.0 + kTolerance);
+}
+bool below(double value, double limit) {
+  return value < limit * (1.0 - kTolerance);
+}
+
+// --- 1. time step against the acoustic limit -------------------------------------------------
+
+void check_acoustic_time_step(const Scene& scene, Report& report) {
+  Inputs in(scene);
+  const Quantity dt = in.time_step();
+  const auto h = in.sph("smoothinglength");
+  const auto c = in.sph("cAB");
+  if (!in.complete()) return report.skip("acoustic_time_step", "acoustic time-step", in.missing());
+  const double ratio = dt.value * c->value / h->value;
+  if (!above(ratio, kMeasuredStableRatio)) return;
+  const double measured_step = kMeasuredStableRatio * h->value / c->value;
+  std::string message = "time step dt = " + number(dt.value) +
+                        " s gives dt c/h = " + number(ratio) + " (h = " + number(h->value) +
+                        " m, c = " + number(c->value) + " m/s): ";
+  if (above(ratio, kAcousticLimit)) {
+    message += "above the acoustic CFL limit dt <= 0.25 h/c = " +
+               number(kAcousticLimit * h->value / c->value) + " s (thesis §6.2), and ";
+  } else {
+    message += "within the acoustic CFL limit 0.25 h/c of thesis §6.2, but ";
+  }
+  message += "above 0.125 h/c = " + number(measured_step) +
+             " s, the largest ratio measured stable with this code (docs/validation.md, 'Time "
+             "step': the thesis-resolution static tank blew up at dt c/h = 0.163 and ran stably "
+             "at 0.081 and 0.125)";
+  report.warn("acoustic_time_step", dt.location, message,
+              "use SolverOptions.Timeint.step_size <= " + number(measured_step) + " s");
+}
+
+// --- 2. time step against the stiffness of the wall contact ----------------------------------
+
+// The value after `keyword` on a `fix ID group fsi/sph ...` command of `script` ("" if none).
+std::string fsi_fix_keyword(const std::string& script, std::string_view keyword) {
+  std::istringstream lines(script);
+  std::string line;
+  std::string command;
+  while (std::getline(lines, line)) {
+    line = line.substr(0, line.find('#'));
+    const auto last = line.find_last_not_of(" \t\r");
+    line = last == std::string::npos ? "" : line.substr(0, last + 1);
+    if (!line.empty() && line.back() == '&') {
+      command += line.substr(0, line.size() - 1) + " ";
+      continue;
+    }
+    command += line;
+    std::istringstream words(command);
+    command.clear();
+    std::vector<std::string> tokens;
+    for (std::string token; words >> token;)
+      tokens.push_back(token);
+    if (tokens.size() < 4 || tokens[0] != "fix" || tokens[3] != "fsi/sph") continue;
+    for (std::size_t i = 4; i + 1 < tokens.size(); ++i) {
+      if (tokens[i] == keyword) return tokens[i + 1];
+    }
+  }
+  return "";
+}
+
+void check_contact_time_step(const Scene& scene, Report& report) {
+  constexpr std::string_view kCheck = "contact_time_step";
+  constexpr std::string_view kTitle = "contact time-step";
+  Inputs in(scene);
+  for (const std::string* script : {&scene.liggghts.script1_text, &scene.liggghts.script2_text}) {
+    const std::string law = fsi_fix_keyword(*script, "law");
+    if (!law.empty() && law != "thesis")
+      in.add_missing("fix fsi/sph uses law " + law + ", the estimate covers the thesis law only");
+  }
+  const Quantity dt = in.time_step();
+  const auto m = in.particle_mass();
+  const auto k = in.sph("SPH_wall_rep");
+  const auto r0 = in.sph("SPH_wall_equilibriumdist");
+  const auto rc = in.sph("SPH_wall_cutoff");
+  if (r0 && rc && above(r0->value, rc->value))
+    in.add_missing("SPH_wall_equilibriumdist exceeds SPH_wall_cutoff (fix fsi/sph refuses it)");
+  if (!in.complete()) return report.skip(kCheck, kTitle, in.missing());
+  // Thesis law (eq. 4.2): f(d) = k [(rc - d)^4 - (rc - r0)^2 (rc - d)^2] / [rc^2 r0 (2 rc - r0)];
+  // its steepest slope is at d = 0. Over a wall piece of length rc (2D) that gives the stiffness
+  // k_eff = rc max|f'| = k (4 rc^2 - 2 (rc - r0)^2) / (r0 (2 rc - r0)), 4k for r0 = rc.
+  const double gap = rc->value - r0->value;
+  const double stiffness = k->value * (4.0 * rc->value * rc->value - 2.0 * gap * gap) /
+                           (r0->value * (2.0 * rc->value - r0->value));
+  const double time_scale = std::sqrt(m->value / stiffness);
+  const double limit = kContactStepFraction * time_scale;
+  if (!above(dt.value, limit)) return;
+  report.warn(
+      kCheck, dt.location,
+      "time step dt = " + number(dt.value) + " s is " + number(dt.value / time_scale) +
+          " sqrt(m/k_eff), above 1/10 of the wall-contact time scale sqrt(m/k_eff) = " +
+          number(time_scale) + " s (particle mass m = " + number(m->value) +
+          " kg/m; contact stiffness k_eff = r_c max|df/dd| = k (4 r_c^2 - 2 (r_c - r0)^2) / (r0 "
+          "(2 r_c - r0)) = " +
+          number(stiffness) + " N/m^2 with k = " + number(k->value) +
+          " N/m^2, r0 = " + number(r0->value) + " m, r_c = " + number(rc->value) +
+          " m): a stiff contact needs small steps (thesis §6.2)",
+      "use SolverOptions.Timeint.step_size <= " + number(limit) +
+          " s, or a smaller SPH_wall_rep if the walls hold with it");
+}
+
+// --- 3. speed of sound against the expected flow speed ---------------------------------------
+
+struct FlowSpeed {
+  double value = 0.0;
+  std::string source;
+};
+
+// Largest distance of a body's mesh points from its centre of mass (body coordinates).
+double body_radius(const View& body) {
+  double radius = 0.0;
+  for (const View& mesh : body.blocks("Mesh")) {
+    for (const auto& point : mesh.matrix("points"))
+      radius = std::max(radius, std::hypot(point.at(0), point.at(1)));
+  }
+  return radius;
+}
+
+// Prescribed velocities (VelocityConstraint; angular ones times the body's radius) and the initial
+// velocity of the fluid.
+FlowSpeed prescribed_speed(const Scene& scene) {
+  const View root(scene.parameters, scene_schema());
+  FlowSpeed fastest;
+  for (const View& constraint : root.blocks("VelocityConstraint")) {
+    const std::string body_name = constraint.string("body");
+    const std::string coordinate = constraint.string("coordinate");
+    double speed = std::abs(constraint.number("velocity"));
+    if (coordinate == "angle") {
+      for (const View& body : root.blocks("RigidBody2D")) {
+        if (body.string("name") == body_name) speed *= body_radius(body);
+      }
+    }
+    if (speed > fastest.value) {
+      fastest = {speed, "VelocityConstraint on " + body_name + "." + coordinate};
+    }
+  }
+  if (root.has_block("FluidRegion")) {
+    const auto velocity = root.block("FluidRegion").vector("velocity");
+    const double speed = std::hypot(velocity.at(0), velocity.at(1));
+    if (speed > fastest.value) fastest = {speed, "initial velocity of the FluidRegion"};
+  }
+  return fastest;
+}
+
+void check_speed_of_sound(const Scene& scene, Report& report) {
+  constexpr std::string_view kCheck = "speed_of_sound";
+  constexpr std::string_view kTitle = "speed-of-sound";
+  Inputs in(scene);
+  const auto c = in.sph("cAB");
+  if (!in.complete()) return report.skip(kCheck, kTitle, in.missing());
+  FlowSpeed flow = prescribed_speed(scene);
+  Inputs fall(scene);  // free fall from the top of the fluid, if gravity and a FluidRegion exist
+  if (const auto g = fall.gravity()) {
+    if (const auto height = fall.fluid_height(*g)) {
+      const double speed = std::sqrt(2.0 * g->magnitude * height->value);
+      if (speed >= flow.value) {
+        flow = {speed, "free fall from the top of the fluid, sqrt(2 g H) with g = " +
+                           number(g->magnitude) + " m/s^2, H = " + number(height->value) + " m"};
+      }
+    }
+  }
+  if (!(flow.value > 0.0)) {
+    std::vector<std::string> why = fall.missing();
+    why.push_back(
+        "no gravity, no VelocityConstraint and no initial fluid velocity give a flow speed");
+    return report.skip(kCheck, kTitle, why);
+  }
+  const double wanted = kSoundToFlowSpeed * flow.value;
+  if (!below(c->value, wanted)) return;
+  const double variation = (flow.value / c->value) * (flow.value / c->value);
+  report.warn(
+      kCheck, c->location,
+      "speed of sound c = " + number(c->value) +
+          " m/s is below 10x the expected flow "
+          "speed U = " +
+          number(flow.value) + " m/s (" + flow.source +
+          "): density "
+          "variations of about (U/c)^2 = " +
+          number(100.0 * variation) +
+          " %, more than the 1 % of c = 10 U (thesis §6.2, 'Equation of state': c about "
+          "10x the expected bulk flow speed, density variations of a few percent)",
+      "raise cAB to >= " + number(wanted) + " m/s (and the time step with it: dt <= 0.125 h/c)");
+}
+
+// --- 4. repulsion scale against the hydrostatic pressure -------------------------------------
+
+void check_wall_repulsion(const Scene& scene, Report& report) {
+  constexpr std::string_view kCheck = "wall_repulsion";
+  constexpr std::string_view kTitle = "wall-repulsion";
+  Inputs in(scene);
+  const auto k = in.sph("SPH_wall_rep");
+  const auto rho = in.density();
+  const auto g = in.gravity();
+  const auto height = g ? in.fluid_height(*g) : std::nullopt;
+  if (g && !(g->magnitude > 0.0))
+    in.add_missing("gravity is zero (the rule scales k with the hydrostatic pressure)");
+  if (!in.complete()) return report.skip(kCheck, kTitle, in.missing());
+  const double pressure = rho->value * g->magnitude * height->value;
+  const double ratio = k->value / pressure;
+  const double low = kRepulsionLow * pressure;
+  const double high = kRepulsionHigh * pressure;
+  const bool too_soft = below(ratio, kRepulsionLow);
+  if (!too_soft && !above(ratio, kRepulsionHigh)) return;
+  report.warn(kCheck, k->location,
+              "wall repulsion k = " + number(k->value) + " N/m^2 is " + number(ratio) +
+                  " rho0 g h_max, " + (too_soft ? "below" : "above") +
+                  " the thesis' 2-20 rho0 g h_max = " + number(low) + "-" + number(high) +
+                  " N/m^2 (rho0 = " + number(rho->value) + " kg/m^3, g = " + number(g->magnitude) +
+                  " m/s^2, fluid height h_max = " + number(height->value) + " m; thesis §6.2)" +
+                  (too_soft ? ": particles may pass through the walls"
+                            : ": a stiffer contact than needed, which needs smaller time steps "
+                              "and disturbs the density next to the walls (thesis Fig. 6.2)"),
+              "set SPH_wall_rep between " + number(low) + " and " + number(high) +
+                  " N/m^2, as small as keeps the particles out of the walls");
+}
+
+// --- 5. particles per kernel support ----------------------------------------------------------
+
+void check_kernel_neighbours(const Scene& scene, Report& report) {
+  Inputs in(scene);
+  const auto h = in.sph("smoothinglength");
+  const auto d = in.spacing();
+  if (!in.complete())
+    return report.skip("kernel_neighbours", "particles-per-kernel-support", in.missing());
+  const double pi = std::numbers::pi;
+  const double support = 2.0 * h->value;
+  const bool planar = scene.fluid.dimension == 2;
+  const double count = planar ? pi * std::pow(support / d->value, 2)
+                              : 4.0 / 3.0 * pi * std::pow(support / d->value, 3);
+  if (!below(count, kNeighboursLow) && !above(count, kNeighboursHigh)) return;
+  // The spacing that gives N particles: d = 2h (pi/N)^(1/2) in 2D, 2h (4 pi/(3 N))^(1/3) in 3D.
+  auto spacing_for = [&](double particles) {
+    return planar ? support * std::sqrt(pi / particles)
+                  : support * std::cbrt(4.0 * pi / (3.0 * particles));
+  };
+  report.warn("kernel_neighbours", d->location,
+              std::string(planar ? "pi (2h)^2 / d^2" : "4/3 pi (2h)^3 / d^3") + " = " +
+                  number(count) + " particles lie within the kernel support radius 2h (h = " +
+                  number(h->value) + " m, lattice spacing d = " + number(d->value) +
+                  " m), outside the thesis' 30-100 (§3.1.2; §6.2: h = 1.6-2.6 d in 2D)",
+              "choose the spacing between " + number(spacing_for(kNeighboursHigh)) + " and " +
+                  number(spacing_for(kNeighboursLow)) + " m");
+}
+
+// --- 6. viscous wall scale --------------------------------------------------------------------
+
+void check_wall_viscosity(const Scene& scene, Report& report) {
+  constexpr std::string_view kCheck = "wall_viscosity";
+  constexpr std::string_view kTitle = "wall-viscosity";
+  Inputs in(scene);
+  const auto nu = in.sph("viscosity");
+  const auto rho = in.density();
+  const auto h = in.sph("smoothinglength");
+  if (!in.complete()) return report.skip(kCheck, kTitle, in.missing());
+  const double suggested = nu->value * rho->value / h->value;
+  const auto t = in.sph("SPH_wall_visc");
+  if (!t) {
+    std::vector<std::string> why = in.missing();
+    why.back() += " (thesis eq. 6.4 suggests t = nu rho / h = " + number(suggested) + " N s/m^3)";
+    return report.skip(kCheck, kTitle, why);
+  }
+  const double ratio = t->value / suggested;
+  if (!above(ratio, kWallViscosityFactor) && !below(ratio, 1.0 / kWallViscosityFactor)) return;
+  report.warn(
+      kCheck, t->location,
+      "wall viscosity t = " + number(t->value) + " N s/m^3 is " + number(ratio) +
+          "x the estimate t = nu rho / h = " + number(suggested) +
+          " N s/m^3 of thesis eq. (6.4) (nu = " + number(nu->value) + " m^2/s, rho = " +
+          number(rho->value) + " kg/m^3, h = " + number(h->value) + " m), more than a factor 3 off",
+      "set SPH_wall_visc = " + number(suggested) + " (SPHdensity*viscosity/smoothinglength)");
+}
+
+// --- 7. fluid regions overlapping a mesh ------------------------------------------------------
+
+struct Box {
+  Point lower;
+  Point upper;
+};
+
+double point_segment_distance(const Point& point, const Point& a, const Point& b) {
+  const Point ab = b - a;
+  const double length2 = ab.squaredNorm();
+  const double s = length2 > 0.0 ? std::clamp((point - a).dot(ab) / length2, 0.0, 1.0) : 0.0;
+  return (a + s * ab - point).norm();
+}
+
+double point_box_distance(const Point& point, const Box& box) {
+  const Point outside = (box.lower - point).cwiseMax(point - box.upper).cwiseMax(0.0);
+  return outside.norm();
+}
+
+// Liang-Barsky clipping: does the segment a-b touch the box?
+bool segment_hits_box(const Point& a, const Point& b, const Box& box) {
+  double enter = 0.0;
+  double leave = 1.0;
+  for (int axis = 0; axis < 2; ++axis) {
+    const double delta = b[axis] - a[axis];
+    if (delta == 0.0) {
+      if (a[axis] < box.lower[axis] || a[axis] > box.upper[axis]) return false;
+      continue;
+    }
+    double t_lower = (box.lower[axis] - a[axis]) / delta;
+    double t_upper = (box.upper[axis] - a[axis]) / delta;
+    if (t_lower > t_upper) std::swap(t_lower, t_upper);
+    enter = std::max(enter, t_lower);
+    leave = std::min(leave, t_upper);
+    if (enter > leave) return false;
+  }
+  return true;
+}
+
+// Between two disjoint convex sets the shortest distance joins a vertex of one to the other.
+double box_segment_distance(const Box& box, const Point& a, const Point& b) {
+  if (segment_hits_box(a, b, box)) return 0.0;
+  double distance = std::min(point_box_distance(a, box), point_box_distance(b, box));
+  for (const Point& corner : {box.lower, Point(box.upper.x(), box.lower.y()), box.upper,
+                              Point(box.lower.x(), box.upper.y())})
+    distance = std::min(distance, point_segment_distance(corner, a, b));
+  return distance;
+}
+
+struct WorldMesh {
+  std::string owner;  // "body 'piston'", "Ground[1]"
+  std::vector<Point> points;
+  bool closed = false;
+};
+
+std::vector<WorldMesh> world_meshes(const Scene& scene) {
+  const View root(scene.parameters, scene_schema());
+  std::vector<WorldMesh> meshes;
+  auto add = [&](const View& mesh, const std::string& owner, const Point& origin, double angle) {
+    const Eigen::Rotation2Dd rotation(angle);
+    WorldMesh world{owner, {}, mesh.integer("closed") == 1};
+    for (const auto& point : mesh.matrix("points"))
+      world.points.push_back(origin + rotation * Point(point.at(0), point.at(1)));
+    meshes.push_back(std::move(world));
+  };
+  for (const View& body : root.blocks("RigidBody2D")) {
+    const auto position = body.vector("position");
+    for (const View& mesh : body.blocks("Mesh"))
+      add(mesh, "body '" + body.string("name") + "'", Point(position.at(0), position.at(1)),
+          body.number("angle"));
+  }
+  int ground_index = 0;
+  for (const View& ground : root.blocks("Ground")) {
+    for (const View& mesh : ground.blocks("Mesh"))
+      add(mesh, "Ground[" + std::to_string(ground_index) + "]", Point::Zero(), 0.0);
+    ++ground_index;
+  }
+  return meshes;
+}
+
+void check_fluid_overlap(const Scene& scene, Report& report) {
+  constexpr std::string_view kCheck = "fluid_overlap";
+  Inputs in(scene);
+  if (!in.has_fluid_region()) {
+    return report.skip(kCheck, "fluid-overlap",
+                       {"no FluidRegion (particles made by the LIGGGHTS script)"});
+  }
+  const auto& lower = scene.parameters.lookup("FluidRegion.lower")->value.vector;
+  const auto& upper = scene.parameters.lookup("FluidRegion.upper")->value.vector;
+  const Box box{Point(lower.at(0), lower.at(1)), Point(upper.at(0), upper.at(1))};
+  const auto r0 = in.sph("SPH_wall_equilibriumdist");
+  if (!r0) report.skip(kCheck, "fluid-to-mesh distance", in.missing());
+  const SourceLocation where = in.where("FluidRegion.lower");
+  const std::string box_text =
+      "the fluid box " + point_text(box.lower) + "-" + point_text(box.upper);
+  for (const WorldMesh& mesh : world_meshes(scene)) {
+    const std::size_t count = mesh.points.size();
+    if (count < 2) continue;
+    const std::size_t segments = mesh.closed && count > 2 ? count : count - 1;
+    double closest = std::numeric_limits<double>::infinity();
+    std::size_t closest_segment = 0;
+    for (std::size_t i = 0; i < segments; ++i) {
+      const double distance =
+          box_segment_distance(box, mesh.points[i], mesh.points[(i + 1) % count]);
+      if (distance < closest) {
+        closest = distance;
+        closest_segment = i;
+      }
+    }
+    const std::string segment = point_text(mesh.points[closest_segment]) + "-" +
+                                point_text(mesh.points[(closest_segment + 1) % count]);
+    if (closest == 0.0) {
+      report.warn(kCheck, where,
+                  box_text + " overlaps the mesh of " + mesh.owner + " (segment " + segment +
+                      "): particles start on or inside the structure",
+                  "move FluidRegion.lower/upper clear of the mesh" +
+                      (r0 ? ", by at least r0/2 = " + number(0.5 * r0->value) + " m" : ""));
+    } else if (r0 && below(closest, 0.5 * r0->value)) {
+      report.warn(
+          kCheck, where,
+          box_text + " comes within " + number(closest) + " m of the mesh of " + mesh.owner +
+              " (segment " + segment + "), closer than r0/2 = " + number(0.5 * r0->value) +
+              " m (r0 = SPH_wall_equilibriumdist): its outer "
+              "particles start deep in the wall repulsion (a wall keeps the fluid about h "
+              "= r0/2 away, thesis eq. 6.6 with r0 = r_c = 2h)",
+          "leave at least " + number(0.5 * r0->value) + " m between the fluid box and the mesh");
+    }
+  }
+}
+
+}  // namespace
+
+std::string_view name(Severity severity) {
+  return severity == Severity::Warning ? "warning" : "info";
+}
+
+std::string Diagnostic::text() const {
+  return location.text() + ": " + std::string(name(severity)) + " (" + check + "): " + message +
+         (fix.empty() ? "" : "; " + fix);
+}
+
+std::vector<Diagnostic> physics_checks(const Scene& scene) {
+  Report report(scene);
+  check_acoustic_time_step(scene, report);
+  check_contact_time_step(scene, report);
+  check_speed_of_sound(scene, report);
+  check_wall_repulsion(scene, report);
+  check_kernel_neighbours(scene, report);
+  check_wall_viscosity(scene, report);
+  check_fluid_overlap(scene, report);
+  return report.take();
+}
+
+}  // namespace fsi::scene

@@ -1,0 +1,331 @@
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "fsi/scene/physics_checks.hpp"
+#include "fsi/scene/scene.hpp"
+
+namespace fsi::scene {
+namespace {
+
+namespace fs = std::filesystem;
+
+#define EXPECT_CONTAINS(haystack, needle) \
+  EXPECT_NE(std::string(haystack).find(needle), std::string::npos) << (haystack)
+
+const std::string kCoarseTank = FSI_EXAMPLES_DIR "/static_tank/static_tank_coarse.scene";
+const std::string kThesisTank = FSI_EXAMPLES_DIR "/static_tank/static_tank.scene";
+
+std::vector<Diagnostic> of(const std::vector<Diagnostic>& diagnostics, std::string_view check,
+                           Severity severity = Severity::Warning) {
+  std::vector<Diagnostic> found;
+  for (const Diagnostic& diagnostic : diagnostics) {
+    if (diagnostic.check == check && diagnostic.severity == severity) found.push_back(diagnostic);
+  }
+  return found;
+}
+
+std::string listing(const std::vector<Diagnostic>& diagnostics) {
+  std::string text;
+  for (const Diagnostic& diagnostic : diagnostics)
+    text += diagnostic.text() + "\n";
+  return text;
+}
+
+// The one warning of `check` on the coarse tank with `overrides`.
+Diagnostic coarse_warning(std::string_view check, const std::vector<Override>& overrides) {
+  const std::vector<Diagnostic> found =
+      of(physics_checks(build_scene(kCoarseTank, overrides)), check);
+  EXPECT_EQ(found.size(), 1u) << check << "\n" << listing(found);
+  return found.empty() ? Diagnostic{} : found.front();
+}
+
+std::vector<Diagnostic> coarse_diagnostics(const std::vector<Override>& overrides) {
+  return physics_checks(build_scene(kCoarseTank, overrides));
+}
+
+// A small scene of our own in a temporary folder: a floor from x = 0 to 0.1 at y = 0, a fluid box
+// above it, the LIGGGHTS variables `sph` and any `extra` blocks.
+class SmallScene : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    folder_ = fs::temp_directory_path() /
+              ("fsi_physics_checks_" +
+               std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::create_directories(folder_);
+    std::ofstream(folder_ / "setup.in") << "# set-up\n";
+    std::ofstream(folder_ / "after.in") << "# after the equilibration\n";
+  }
+  void TearDown() override { fs::remove_all(folder_); }
+
+  Scene build(const std::string& sph, const std::string& extra) {
+    std::ofstream(folder_ / "small.scene")
+        << "SolverOptions { end_time = 0.1; Timeint { step_size = 5e-6 } }\n"
+           "Gravity { acceleration = [0, -9.81] }\n"
+           "Ground { Mesh { points = [[0, 0], [0.1, 0]] } }\n"
+           "LIGGGHTS { script1 = \"setup.in\"; script2 = \"after.in\" }\n"
+           "Coupling { refinement_resolution = 0.002 }\n"
+           "LIGGGHTS_SPH_parameters {\n"
+        << sph << "\n}\n"
+        << extra << "\n";
+    return build_scene((folder_ / "small.scene").string());
+  }
+
+  fs::path folder_;
+};
+
+// h = 0.001 m, d = h/1.9, c = 20 m/s, a fluid box 0.02 m high starting h above the floor.
+const std::string kGoodSph =
+    "smoothinglength = 0.001; cAB = 20; viscosity = 1e-3\n"
+    "SPH_wall_rep = 2000; SPH_wall_visc = 1000; SPH_wall_equilibriumdist = 0.002\n"
+    "SPH_wall_cutoff = 0.002";
+const std::string kGoodFluid =
+    "FluidRegion { shape = \"box\"; lower = [0.01, 0.001]; upper = [0.09, 0.021]; "
+    "spacing = 0.001/1.9; density = 1000 }";
+
+TEST(PhysicsChecks, TheStaticTanksGetOnlyTheExplainedRepulsionWarning) {
+  // k = 17500 N/m^2 is the thesis' own value (§5.6), 58 rho0 g h_max: explained in the README.
+  for (const std::string& file : {kCoarseTank, kThesisTank}) {
+    const std::vector<Diagnostic> diagnostics = physics_checks(build_scene(file));
+    ASSERT_EQ(diagnostics.size(), 1u) << file << ":\n" << listing(diagnostics);
+    EXPECT_EQ(diagnostics.front().check, "wall_repulsion");
+    EXPECT_CONTAINS(diagnostics.front().message, "k = 17500 N/m^2 is 57.9 rho0 g h_max, above");
+    EXPECT_CONTAINS(diagnostics.front().text(), "static_tank_model.scene:");
+  }
+}
+
+TEST(PhysicsChecks, AcousticTimeStepAboveTheMeasuredLimit) {
+  const Diagnostic warning =
+      coarse_warning("acoustic_time_step", {{"Resolution.time_step", "1.5e-5"}});
+  EXPECT_CONTAINS(warning.message, "dt c/h = 0.188 (h = 0.0016 m, c = 20 m/s)");
+  EXPECT_CONTAINS(warning.message, "within the acoustic CFL limit 0.25 h/c of thesis §6.2");
+  EXPECT_CONTAINS(warning.message, "above 0.125 h/c = 1e-05 s");
+  EXPECT_CONTAINS(warning.message, "blew up at dt c/h = 0.163");
+  EXPECT_EQ(warning.fix, "use SolverOptions.Timeint.step_size <= 1e-05 s");
+  EXPECT_CONTAINS(warning.location.text(), "static_tank_model.scene:");
+}
+
+TEST(PhysicsChecks, AcousticTimeStepAboveTheThesisLimit) {
+  const Diagnostic warning =
+      coarse_warning("acoustic_time_step", {{"Resolution.time_step", "3e-5"}});
+  EXPECT_CONTAINS(warning.message, "dt c/h = 0.375");
+  EXPECT_CONTAINS(warning.message, "above the acoustic CFL limit dt <= 0.25 h/c = 2e-05 s");
+}
+
+TEST(PhysicsChecks, TheBlownUpThesisRunIsFlaggedTwice) {
+  // docs/validation.md: dt = 5e-6 s at h = 0.000614 m blew up at t = 0.636 s.
+  const std::vector<Diagnostic> diagnostics =
+      physics_checks(build_scene(kThesisTank, {{"Resolution.time_step", "5e-6"}}));
+  ASSERT_EQ(of(diagnostics, "acoustic_time_step").size(), 1u);
+  EXPECT_CONTAINS(of(diagnostics, "acoustic_time_step")[0].message, "dt c/h = 0.163");
+  ASSERT_EQ(of(diagnostics, "contact_time_step").size(), 1u);
+  const std::string contact = of(diagnostics, "contact_time_step")[0].message;
+  // m = 1000 (0.000614/1.9)^2 = 1.04e-4 kg/m, k_eff = 4k = 7e4 N/m^2: sqrt(m/k_eff) = 3.86e-5 s.
+  EXPECT_CONTAINS(contact, "sqrt(m/k_eff) = 3.86e-05 s");
+  EXPECT_CONTAINS(contact, "= 70000 N/m^2 with k = 17500 N/m^2");
+  EXPECT_CONTAINS(contact, "is 0.129 sqrt(m/k_eff)");
+  EXPECT_CONTAINS(of(diagnostics, "contact_time_step")[0].fix, "<= 3.86e-06 s");
+}
+
+TEST(PhysicsChecks, ContactTimeStepWithAStifferWall) {
+  // k = 70000: k_eff = 2.8e5 N/m^2, m = 7.09e-4 kg/m, sqrt(m/k_eff) = 5.03e-5 s; dt = 1e-5 s.
+  const Diagnostic warning =
+      coarse_warning("contact_time_step", {{"LIGGGHTS_SPH_parameters.SPH_wall_rep", "70000"}});
+  EXPECT_CONTAINS(warning.message, "time step dt = 1e-05 s is 0.199 sqrt(m/k_eff)");
+  EXPECT_CONTAINS(warning.message, "particle mass m = 0.000709 kg/m");
+  EXPECT_CONTAINS(warning.message, "k_eff = r_c max|df/dd|");
+  EXPECT_EQ(warning.fix,
+            "use SolverOptions.Timeint.step_size <= 5.03e-06 s, or a smaller SPH_wall_rep if the "
+            "walls hold with it");
+}
+
+TEST(PhysicsChecks, ContactStiffnessFollowsTheEquilibriumDistance) {
+  // r0 = r_c / 2: k_eff = k (4 r_c^2 - 2 (r_c/2)^2) / (r_c/2 * 3 r_c/2) = 14 k / 3.
+  const Diagnostic warning = coarse_warning(
+      "contact_time_step", {{"LIGGGHTS_SPH_parameters.SPH_wall_rep", "70000"},
+                            {"LIGGGHTS_SPH_parameters.SPH_wall_equilibriumdist", "0.0016"}});
+  EXPECT_CONTAINS(warning.message, "= 327000 N/m^2 with k = 70000");
+}
+
+TEST_F(SmallScene, ContactCheckSkippedForTheLennardJonesLaw) {
+  std::ofstream(folder_ / "setup.in")
+      << "fix fsi all fsi/sph k 2000 t 1 r0 0.002 &\n    cutoff 0.002 law lj p1 12 p2 6\n";
+  const std::vector<Diagnostic> diagnostics = physics_checks(build(kGoodSph, kGoodFluid));
+  const auto infos = of(diagnostics, "contact_time_step", Severity::Info);
+  ASSERT_EQ(infos.size(), 1u);
+  EXPECT_EQ(infos[0].message,
+            "fix fsi/sph uses law lj, the estimate covers the thesis law only: contact time-step "
+            "check skipped");
+}
+
+TEST(PhysicsChecks, SpeedOfSoundAgainstFreeFall) {
+  // U = sqrt(2 * 9.81 * 0.0308) = 0.777 m/s.
+  const Diagnostic warning =
+      coarse_warning("speed_of_sound", {{"LIGGGHTS_SPH_parameters.cAB", "5"}});
+  EXPECT_CONTAINS(warning.message, "c = 5 m/s is below 10x the expected flow speed U = 0.777 m/s");
+  EXPECT_CONTAINS(warning.message, "sqrt(2 g H) with g = 9.81 m/s^2, H = 0.0308 m");
+  EXPECT_CONTAINS(warning.message, "(U/c)^2 = 2.42 %");
+  EXPECT_CONTAINS(warning.fix, "raise cAB to >= 7.77 m/s");
+}
+
+TEST(PhysicsChecks, SpeedOfSoundAgainstAPrescribedVelocity) {
+  const Diagnostic warning = coarse_warning("speed_of_sound", {{"Geometry.piston_v0", "3"}});
+  EXPECT_CONTAINS(warning.message, "U = 3 m/s (VelocityConstraint on piston.y)");
+  EXPECT_CONTAINS(warning.fix, ">= 30 m/s");
+}
+
+TEST_F(SmallScene, SpeedOfSoundAgainstARotationUsesTheBodyRadius) {
+  // 2 rad/s on a body whose mesh reaches 0.05 m from its centre: 0.1 m/s; gravity off.
+  const Scene scene =
+      build("cAB = 0.5",
+            "RigidBody2D { name = \"paddle\"; mass = 1; inertia = 1; position = [0.05, 0.5]; "
+            "angular_velocity = 2\n"
+            "  Mesh { points = [[-0.05, 0], [0.05, 0]] } }\n"
+            "VelocityConstraint { body = \"paddle\"; coordinate = \"angle\"; velocity = 2 }\n"
+            "Gravity.acceleration = [0, 0]");
+  const auto warnings = of(physics_checks(scene), "speed_of_sound");
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_CONTAINS(warnings[0].message, "U = 0.1 m/s (VelocityConstraint on paddle.angle)");
+}
+
+TEST(PhysicsChecks, WallRepulsionBelowTheThesisRange) {
+  // rho0 g h_max = 1000 * 9.81 * 0.0308 = 302 N/m^2.
+  const Diagnostic warning =
+      coarse_warning("wall_repulsion", {{"LIGGGHTS_SPH_parameters.SPH_wall_rep", "300"}});
+  EXPECT_CONTAINS(warning.message,
+                  "k = 300 N/m^2 is 0.993 rho0 g h_max, below the thesis' 2-20 "
+                  "rho0 g h_max = 604-6040 N/m^2");
+  EXPECT_CONTAINS(warning.message, "particles may pass through the walls");
+  EXPECT_CONTAINS(warning.fix, "between 604 and 6040 N/m^2");
+}
+
+TEST(PhysicsChecks, WallRepulsionInsideTheThesisRangeIsSilent) {
+  EXPECT_TRUE(
+      of(coarse_diagnostics({{"LIGGGHTS_SPH_parameters.SPH_wall_rep", "3000"}}), "wall_repulsion")
+          .empty());
+}
+
+TEST(PhysicsChecks, KernelNeighboursTooFewAndTooMany) {
+  // d = h: pi (2h)^2 / h^2 = 4 pi = 12.6; d = h/3: 36 pi = 113.
+  Diagnostic warning = coarse_warning(
+      "kernel_neighbours", {{"LIGGGHTS_SPH_parameters.particlespacing", "smoothinglength"}});
+  EXPECT_CONTAINS(warning.message,
+                  "pi (2h)^2 / d^2 = 12.6 particles lie within the kernel support");
+  EXPECT_CONTAINS(warning.message, "outside the thesis' 30-100");
+  // d = 2h sqrt(pi/N): 0.000567 m for N = 100, 0.00104 m for N = 30.
+  EXPECT_EQ(warning.fix, "choose the spacing between 0.000567 and 0.00104 m");
+  warning = coarse_warning("kernel_neighbours",
+                           {{"LIGGGHTS_SPH_parameters.particlespacing", "smoothinglength/3"}});
+  EXPECT_CONTAINS(warning.message, "= 113 particles");
+}
+
+TEST(PhysicsChecks, WallViscosityMoreThanAFactorThreeOff) {
+  // nu rho / h = 1e-3 * 1000 / 0.0016 = 625 N s/m^3.
+  const Diagnostic warning =
+      coarse_warning("wall_viscosity", {{"LIGGGHTS_SPH_parameters.SPH_wall_visc", "5000"}});
+  EXPECT_CONTAINS(warning.message,
+                  "t = 5000 N s/m^3 is 8x the estimate t = nu rho / h = 625 N s/m^3");
+  EXPECT_EQ(warning.fix, "set SPH_wall_visc = 625 (SPHdensity*viscosity/smoothinglength)");
+  EXPECT_EQ(coarse_warning("wall_viscosity", {{"LIGGGHTS_SPH_parameters.SPH_wall_visc", "200"}})
+                .message.substr(0, 40),
+            "wall viscosity t = 200 N s/m^3 is 0.32x ");
+  EXPECT_TRUE(
+      of(coarse_diagnostics({{"LIGGGHTS_SPH_parameters.SPH_wall_visc", "1800"}}), "wall_viscosity")
+          .empty());
+}
+
+TEST(PhysicsChecks, FluidBoxTooCloseToAWall) {
+  const Diagnostic warning =
+      coarse_warning("fluid_overlap", {{"FluidRegion.lower", "[0.0005, 0.0041]"}});
+  EXPECT_CONTAINS(warning.message, "comes within 0.0005 m of the mesh of Ground[0]");
+  EXPECT_CONTAINS(warning.message, "closer than r0/2 = 0.0016 m");
+  EXPECT_EQ(warning.fix, "leave at least 0.0016 m between the fluid box and the mesh");
+}
+
+TEST(PhysicsChecks, FluidBoxOverlappingThePiston) {
+  // Fill height 0.08 m: the box reaches y = 0.0841 m, the piston's lower face is at 0.07 m.
+  const Diagnostic warning = coarse_warning("fluid_overlap", {{"Geometry.fill_height", "0.08"}});
+  EXPECT_CONTAINS(warning.message,
+                  "overlaps the mesh of body 'piston' (segment (0, 0.07)-(0.05, "
+                  "0.07)): particles start on or inside the structure");
+}
+
+TEST_F(SmallScene, FluidBoxNearARotatedBody) {
+  // A square of half-width 0.01 m at (0.05, 0.05): turned by 45 degrees its corner reaches
+  // x = 0.0359 m, 0.0009 m from the box (r0/2 = 0.001 m); unturned it stays 0.005 m away.
+  const std::string fluid =
+      "FluidRegion { shape = \"box\"; lower = [0.01, 0.001]; upper = [0.035, 0.08]; "
+      "spacing = 0.001/1.9; density = 1000 }\n";
+  const std::string body =
+      "RigidBody2D { name = \"block\"; mass = 1; inertia = 1; position = [0.05, 0.05]; angle = "
+      "ANGLE\n  Mesh { points = [[-0.01, -0.01], [0.01, -0.01], [0.01, 0.01], [-0.01, 0.01]]; "
+      "closed = 1 } }\n";
+  auto with_angle = [&](const std::string& angle) {
+    std::string text = body;
+    text.replace(text.find("ANGLE"), 5, angle);
+    return text;
+  };
+  EXPECT_TRUE(
+      of(physics_checks(build(kGoodSph, fluid + with_angle("0"))), "fluid_overlap").empty());
+  const auto warnings =
+      of(physics_checks(build(kGoodSph, fluid + with_angle("pi/4"))), "fluid_overlap");
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_CONTAINS(warnings[0].message, "comes within 0.000858 m of the mesh of body 'block'");
+}
+
+TEST_F(SmallScene, AGoodSceneIsSilent) {
+  const std::vector<Diagnostic> diagnostics = physics_checks(build(kGoodSph, kGoodFluid));
+  for (const Diagnostic& diagnostic : diagnostics)
+    ADD_FAILURE() << diagnostic.text();
+}
+
+TEST_F(SmallScene, MissingInputsSkipChecksWithOneInfoEach) {
+  // No cAB, no SPH_wall_visc, no FluidRegion (so no spacing, density or fluid height).
+  const std::vector<Diagnostic> diagnostics =
+      physics_checks(build("smoothinglength = 0.001; viscosity = 1e-3", ""));
+  for (const Diagnostic& diagnostic : diagnostics)
+    EXPECT_EQ(diagnostic.severity, Severity::Info) << diagnostic.text();
+  ASSERT_EQ(diagnostics.size(), std::size(kPhysicsCheckNames)) << listing(diagnostics);
+  EXPECT_EQ(of(diagnostics, "acoustic_time_step", Severity::Info)[0].message,
+            "no 'cAB' in LIGGGHTS_SPH_parameters: acoustic time-step check skipped");
+  EXPECT_EQ(of(diagnostics, "speed_of_sound", Severity::Info)[0].message,
+            "no 'cAB' in LIGGGHTS_SPH_parameters: speed-of-sound check skipped");
+  EXPECT_CONTAINS(of(diagnostics, "wall_viscosity", Severity::Info)[0].message,
+                  "no 'SPHdensity' in LIGGGHTS_SPH_parameters");
+  EXPECT_CONTAINS(of(diagnostics, "kernel_neighbours", Severity::Info)[0].message,
+                  "no 'particlespacing' in LIGGGHTS_SPH_parameters");
+  EXPECT_CONTAINS(of(diagnostics, "fluid_overlap", Severity::Info)[0].message, "no FluidRegion");
+  EXPECT_EQ(of(diagnostics, "fluid_overlap", Severity::Info)[0].location.text(),
+            (folder_ / "small.scene").string());
+}
+
+TEST_F(SmallScene, AnUnsetWallViscosityGetsTheSuggestedValue) {
+  const std::vector<Diagnostic> diagnostics = physics_checks(
+      build("smoothinglength = 0.001; cAB = 20; viscosity = 1e-3; SPH_wall_rep = 2000\n"
+            "SPH_wall_equilibriumdist = 0.002; SPH_wall_cutoff = 0.002",
+            kGoodFluid));
+  ASSERT_EQ(diagnostics.size(), 1u) << listing(diagnostics);
+  EXPECT_EQ(diagnostics[0].message,
+            "no 'SPH_wall_visc' in LIGGGHTS_SPH_parameters (thesis eq. 6.4 suggests t = nu rho / "
+            "h = 1000 N s/m^3): wall-viscosity check skipped");
+}
+
+TEST(PhysicsChecks, SeveralProblemsAreAllListed) {
+  const std::vector<Diagnostic> diagnostics = coarse_diagnostics({
+      {"Resolution.time_step", "3e-5"},                                // acoustic, contact
+      {"LIGGGHTS_SPH_parameters.cAB", "7"},                            // speed of sound
+      {"LIGGGHTS_SPH_parameters.particlespacing", "smoothinglength"},  // neighbours
+      {"LIGGGHTS_SPH_parameters.SPH_wall_visc", "10"},                 // wall viscosity
+      {"FluidRegion.lower", "[0.0005, 0.0041]"},                       // overlap
+  });
+  for (std::string_view check : kPhysicsCheckNames)
+    EXPECT_EQ(of(diagnostics, check).size(), 1u) << check;
+  EXPECT_EQ(diagnostics.size(), std::size(kPhysicsCheckNames)) << listing(diagnostics);
+}
+
+}  // namespace
+}  // namespace fsi::scene
