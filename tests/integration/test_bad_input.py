@@ -18,6 +18,15 @@ def server(*arguments):
 ok = server(scene, "--check")
 check(ok.returncode == 0 and "particles" in ok.stdout, "--check accepts the example and summarises it")
 
+# Physics warnings (thesis §6.2 rules of thumb) are listed, all of them, and do not fail --check.
+physics = server(scene, "--check", "--set", "Resolution.time_step=3e-5", "--set", "LIGGGHTS_SPH_parameters.cAB=7",
+                 "--set", "LIGGGHTS_SPH_parameters.particlespacing=smoothinglength",
+                 "--set", "LIGGGHTS_SPH_parameters.SPH_wall_visc=10", "--set", "FluidRegion.lower=[0.0005, 0.0041]")
+listed = [name for name in ("acoustic_time_step", "contact_time_step", "speed_of_sound", "wall_repulsion",
+                            "kernel_neighbours", "wall_viscosity", "fluid_overlap") if f"warning ({name})" in physics.stdout]
+check(physics.returncode == 0 and len(listed) == 7 and "7 warning(s)" in physics.stdout,
+      f"--check lists all 7 physics warnings and exits 0 ({physics.returncode}, {listed})")
+
 bad_scene = os.path.join(output, "bad.scene")
 with open(bad_scene, "w") as handle:
     handle.write('include "%s"\nOutput.sensor_every_step = 2\n' % example("static_tank", "static_tank_coarse.scene"))

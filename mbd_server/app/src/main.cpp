@@ -6,6 +6,7 @@
 #include <spdlog/spdlog.h>
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -14,6 +15,7 @@
 #include "fsi/common/error.hpp"
 #include "fsi/common/version.hpp"
 #include "fsi/coupling/session.hpp"
+#include "fsi/scene/physics_checks.hpp"
 #include "fsi/scene/scene.hpp"
 
 namespace {
@@ -41,6 +43,46 @@ void print_summary(const fsi::scene::Scene& scene) {
   std::printf("  time: %g s in steps of %g s (Radau IIA, %d stages); %llu equilibration steps\n",
               scene.solver.end_time, scene.solver.step_size, scene.solver.stages,
               static_cast<unsigned long long>(scene.liggghts.equilibration_steps));
+}
+
+std::size_t count(const std::vector<fsi::scene::Diagnostic>& diagnostics,
+                  fsi::scene::Severity severity) {
+  return static_cast<std::size_t>(std::count_if(
+      diagnostics.begin(), diagnostics.end(),
+      [&](const fsi::scene::Diagnostic& diagnostic) { return diagnostic.severity == severity; }));
+}
+
+std::string diagnostics_headline(const fsi::scene::Scene& scene,
+                                 const std::vector<fsi::scene::Diagnostic>& diagnostics) {
+  return "physics checks of " + scene.file +
+         " (thesis §6.2 rules of thumb; docs/user-guide.md, \"Physics checks\"): " +
+         std::to_string(count(diagnostics, fsi::scene::Severity::Warning)) + " warning(s), " +
+         std::to_string(count(diagnostics, fsi::scene::Severity::Info)) + " check(s) skipped";
+}
+
+// --check: every warning and skipped check, on stdout after the summary.
+void print_diagnostics(const fsi::scene::Scene& scene,
+                       const std::vector<fsi::scene::Diagnostic>& diagnostics) {
+  std::printf("%s\n", diagnostics_headline(scene, diagnostics).c_str());
+  for (const fsi::scene::Diagnostic& diagnostic : diagnostics)
+    std::printf("  %s\n", diagnostic.text().c_str());
+}
+
+// A run: the same at start-up in the log; warnings at warning level.
+void log_diagnostics(const fsi::scene::Scene& scene,
+                     const std::vector<fsi::scene::Diagnostic>& diagnostics) {
+  if (count(diagnostics, fsi::scene::Severity::Warning) > 0) {
+    spdlog::warn("{}", diagnostics_headline(scene, diagnostics));
+  } else {
+    spdlog::info("{}", diagnostics_headline(scene, diagnostics));
+  }
+  for (const fsi::scene::Diagnostic& diagnostic : diagnostics) {
+    if (diagnostic.severity == fsi::scene::Severity::Warning) {
+      spdlog::warn("{}", diagnostic.text());
+    } else {
+      spdlog::info("{}", diagnostic.text());
+    }
+  }
 }
 
 }  // namespace
@@ -129,8 +171,11 @@ int main(int argc, char** argv) {
     std::cout << fsi::scene::to_text(scene.parameters);
     return 0;
   }
+  // Warnings only: a scene may break a rule of thumb on purpose.
+  const std::vector<fsi::scene::Diagnostic> diagnostics = fsi::scene::physics_checks(scene);
   if (check_only) {
     print_summary(scene);
+    print_diagnostics(scene, diagnostics);
     return 0;
   }
   if (output.empty()) {
@@ -140,6 +185,7 @@ int main(int argc, char** argv) {
   std::error_code error;
   std::filesystem::create_directories(output, error);
   configure_logging(log_level, (std::filesystem::path(output) / "fsi-server.log").string());
+  log_diagnostics(scene, diagnostics);
   fsi::coupling::ServerOptions options;
   options.listen_address = listen;
   options.port = static_cast<std::uint16_t>(port);
