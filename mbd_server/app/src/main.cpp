@@ -195,6 +195,10 @@ int main(int argc, char** argv) {
   options.peer_timeout = std::chrono::milliseconds(static_cast<long>(peer_timeout * 1000));
   for (int i = 0; i < argc; ++i)
     options.command_line += (i ? " " : "") + std::string(argv[i]);
+  for (const fsi::scene::Diagnostic& diagnostic : diagnostics) {
+    if (diagnostic.severity == fsi::scene::Severity::Warning)
+      options.warnings.push_back(diagnostic.text());
+  }
   try {
     return fsi::coupling::run_coupled_session(scene, options);
   } catch (const fsi::Error& failure) {

@@ -536,6 +536,7 @@ class Session {
          checks_.health_samples > 0 ? json(checks_.max_speed) : json(nullptr)},
         {"position_constraint_drift", drift(&mbd::Model::position_constraint_drift)},
         {"velocity_constraint_drift", drift(&mbd::Model::velocity_constraint_drift)}};
+    manifest["warnings"] = options_.warnings;
     manifest["status"] = status_;
     if (!reason_.empty()) manifest["reason"] = reason_;
     const fs::path path = fs::path(options_.output_dir) / "run.json";

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "fsi/scene/scene.hpp"
 
@@ -23,7 +24,8 @@ struct ServerOptions {
   // (stopped, deadlocked) ends the run after this long. The wait for Ready, which includes the
   // LIGGGHTS-only equilibration, is not bounded (no heartbeat yet).
   std::chrono::milliseconds peer_timeout{std::chrono::minutes(5)};
-  std::string command_line;  // recorded in run.json
+  std::string command_line;           // recorded in run.json
+  std::vector<std::string> warnings;  // the scene's physics warnings, recorded in run.json
 };
 
 // Runs the session; returns the process exit status (0 success, 1 failure). Never throws for
