@@ -94,7 +94,7 @@ TEST(PhysicsChecks, TheStaticTanksGetOnlyTheExplainedRepulsionWarning) {
     ASSERT_EQ(diagnostics.size(), 1u) << file << ":\n" << listing(diagnostics);
     EXPECT_EQ(diagnostics.front().check, "wall_repulsion");
     EXPECT_CONTAINS(diagnostics.front().message, "k = 17500 N/m^2 is 57.9 rho0 g h_max, above");
-    EXPECT_CONTAINS(diagnostics.front().text(), "static_tank_model.scene:");
+    EXPECT_CONTAINS(diagnostics.front().text(), "static_tank_model.inc:");
   }
 }
 
@@ -106,7 +106,7 @@ TEST(PhysicsChecks, AcousticTimeStepAboveTheMeasuredLimit) {
   EXPECT_CONTAINS(warning.message, "above 0.125 h/c = 1e-05 s");
   EXPECT_CONTAINS(warning.message, "blew up at dt c/h = 0.163");
   EXPECT_EQ(warning.fix, "use SolverOptions.Timeint.step_size <= 1e-05 s");
-  EXPECT_CONTAINS(warning.location.text(), "static_tank_model.scene:");
+  EXPECT_CONTAINS(warning.location.text(), "static_tank_model.inc:");
 }
 
 TEST(PhysicsChecks, AcousticTimeStepAboveTheThesisLimit) {
