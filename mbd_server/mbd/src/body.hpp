@@ -38,6 +38,11 @@ class Body {
   // dr/dq (2 x n_b), written.
   virtual void position_jacobian(const ConstVector& q, const Eigen::Vector2d& local,
                                  Eigen::Ref<Eigen::MatrixXd> jacobian) const = 0;
+  // d/dq [(dr/dq) v] at fixed v (2 x n_b), written: how the point's velocity changes with the
+  // coordinates. Times v it is the acceleration-free part of d^2r/dt^2 (the centripetal term).
+  virtual void velocity_jacobian(const ConstVector& q, const ConstVector& v,
+                                 const Eigen::Vector2d& local,
+                                 Eigen::Ref<Eigen::MatrixXd> jacobian) const = 0;
   // d/dq [(dr/dq)^T f] for a constant world-frame force f (n_b x n_b), added.
   virtual void add_point_load_derivative(const ConstVector& q, const Eigen::Vector2d& local,
                                          const Eigen::Vector2d& force,
@@ -65,6 +70,8 @@ class RigidBody2D final : public Body {
   Eigen::Vector2d velocity(const ConstVector& q, const ConstVector& v,
                            const Eigen::Vector2d& local) const override;
   void position_jacobian(const ConstVector& q, const Eigen::Vector2d& local,
+                         Eigen::Ref<Eigen::MatrixXd> jacobian) const override;
+  void velocity_jacobian(const ConstVector& q, const ConstVector& v, const Eigen::Vector2d& local,
                          Eigen::Ref<Eigen::MatrixXd> jacobian) const override;
   void add_point_load_derivative(const ConstVector& q, const Eigen::Vector2d& local,
                                  const Eigen::Vector2d& force,

@@ -1,42 +1,19 @@
 #pragma once
-// Constraint element interface (internal): one row of the constraint equations. A row enters
-// the equations of motion with the force -G^T lambda (sign convention: fsi/mbd/model.hpp).
-// Later element types (joints) implement this interface.
+// The model's constraint elements: coordinate and velocity constraints, and joints between body
+// points (internal; the row interface is fsi/mbd/constraint_element.hpp).
 
 #include <Eigen/Dense>
 
 #include <string>
 
+#include "body_point.hpp"
+#include "fsi/mbd/constraint_element.hpp"
 #include "fsi/mbd/model.hpp"
 
 namespace fsi::mbd::detail {
 
-// A row of a column-major matrix (stride = row count).
-using RowRef = Eigen::Ref<Eigen::RowVectorXd, 0, Eigen::InnerStride<>>;
-
-class Constraint {
- public:
-  virtual ~Constraint() = default;
-
-  virtual std::string description() const = 0;
-  virtual ConstraintLevel level() const = 0;
-  // Position level: C(q, t). Velocity level: G v - g(t).
-  virtual double residual(double time, const Eigen::VectorXd& q,
-                          const Eigen::VectorXd& v) const = 0;
-  // G, written into a zeroed row of length n: dC/dq (position level) or d(G v - g)/dv (velocity
-  // level). Velocity-level rows must have G independent of q: the Newton matrix of the
-  // integrator has no d(G v)/dq term.
-  virtual void jacobian_row(double time, const Eigen::VectorXd& q, RowRef row) const = 0;
-  // Position level: dC/dt at fixed q, so that dC/dt = G v + (this). Velocity level: unused.
-  virtual double explicit_time_derivative(double time, const Eigen::VectorXd& q) const = 0;
-  // The acceleration-free part of the next time derivative: d^2C/dt^2 = G a + (this) on position
-  // level, d(G v - g)/dt = G a + (this) on velocity level. Used for consistent initial lambda.
-  virtual double acceleration_remainder(double time, const Eigen::VectorXd& q,
-                                        const Eigen::VectorXd& v) const = 0;
-  // Adds multiplier * d(G^T)/dq (n x n); rows linear in q add nothing.
-  virtual void add_force_derivative(double time, const Eigen::VectorXd& q, double multiplier,
-                                    Eigen::MatrixXd& derivative) const = 0;
-};
+// The interface is public (fsi/mbd/constraint_element.hpp); the elements here are the model's own.
+using Constraint = ConstraintElement;
 
 // q_i - value = 0.
 class CoordinateConstraint final : public Constraint {
@@ -82,6 +59,57 @@ class VelocityConstraint final : public Constraint {
   std::string description_;
   int index_;
   double velocity_;
+};
+
+// One component of r_a - r_b = 0: two of them (x, y) make a revolute joint between two body
+// points, or fix a body point to the ground.
+class PointConstraint final : public Constraint {
+ public:
+  PointConstraint(std::string description, BodyPoint a, BodyPoint b, int axis);
+
+  std::string description() const override { return description_; }
+  ConstraintLevel level() const override { return ConstraintLevel::Position; }
+  double residual(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v) const override;
+  void jacobian_row(double time, const Eigen::VectorXd& q, RowRef row) const override;
+  double explicit_time_derivative(double, const Eigen::VectorXd&) const override { return 0.0; }
+  double acceleration_remainder(double time, const Eigen::VectorXd& q,
+                                const Eigen::VectorXd& v) const override;
+  void add_force_derivative(double time, const Eigen::VectorXd& q, double multiplier,
+                            Eigen::MatrixXd& derivative) const override;
+
+ private:
+  std::string description_;
+  BodyPoint a_;
+  BodyPoint b_;
+  int axis_;
+};
+
+// A massless rod between two body points: C = (|d|^2 - length^2) / (2 length), d = r_b - r_a.
+// The quadratic form is smooth for every d; dividing by 2 length makes G = d^T (dd/dq) / length
+// the unit direction e = d / |d| at consistent states, so lambda is the rod force [N]: -G^T lambda
+// pulls point a by +lambda e and point b by -lambda e, lambda > 0 is tension.
+class DistanceConstraint final : public Constraint {
+ public:
+  DistanceConstraint(std::string description, BodyPoint a, BodyPoint b, double length);
+
+  std::string description() const override { return description_; }
+  ConstraintLevel level() const override { return ConstraintLevel::Position; }
+  double residual(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v) const override;
+  void jacobian_row(double time, const Eigen::VectorXd& q, RowRef row) const override;
+  double explicit_time_derivative(double, const Eigen::VectorXd&) const override { return 0.0; }
+  double acceleration_remainder(double time, const Eigen::VectorXd& q,
+                                const Eigen::VectorXd& v) const override;
+  void add_force_derivative(double time, const Eigen::VectorXd& q, double multiplier,
+                            Eigen::MatrixXd& derivative) const override;
+
+ private:
+  // dd/dq = dr_b/dq - dr_a/dq (2 x n).
+  Eigen::MatrixXd separation_jacobian(const Eigen::VectorXd& q) const;
+
+  std::string description_;
+  BodyPoint a_;
+  BodyPoint b_;
+  double length_;
 };
 
 }  // namespace fsi::mbd::detail

@@ -7,8 +7,10 @@
 #include <vector>
 
 #include "body.hpp"
+#include "body_point.hpp"
 #include "constraint.hpp"
 #include "fsi/common/error.hpp"
+#include "spring_damper.hpp"
 
 namespace fsi::mbd {
 namespace {
@@ -73,6 +75,36 @@ struct Model::Data {
                   "multibody model", "use the coordinates of a RigidBody2D");
     }
     return *rigid;
+  }
+  // A body point as the elements see it; throws naming `user` for unknown bodies or
+  // non-finite coordinates.
+  detail::BodyPoint point(const BodyPointSpec& spec, const std::string& user) const {
+    if (!spec.local.allFinite()) {
+      throw Error("point coordinates are not finite", user, "give finite local coordinates");
+    }
+    if (spec.body == kGround) return {nullptr, 0, spec.local};
+    check_body(spec.body, user);
+    return {bodies[spec.body].get(), offsets[spec.body], spec.local};
+  }
+  // World position of a body point in the bodies' initial state.
+  Eigen::Vector2d initial_position(const BodyPointSpec& spec) const {
+    if (spec.body == kGround) return spec.local;
+    const auto& body = *bodies[spec.body];
+    Eigen::VectorXd q(body.coordinate_count()), v(body.coordinate_count());
+    body.initial_state(q, v);
+    return body.position(q, spec.local);
+  }
+  std::string point_name(const BodyPointSpec& spec) const {
+    if (spec.body == kGround) return "ground";
+    return bodies[spec.body]->name();
+  }
+  // Two points of joints must belong to two different bodies, at most one of them the ground.
+  void check_pair(const BodyPointSpec& a, const BodyPointSpec& b, const std::string& user) const {
+    if (a.body == b.body) {
+      throw Error(
+          a.body == kGround ? "both points are on the ground" : "both points are on the same body",
+          user, "connect points of two different bodies, or a body and the ground");
+    }
   }
   auto segment(const Eigen::VectorXd& x, BodyId body) const {
     return x.segment(offsets[body], bodies[body]->coordinate_count());
@@ -147,6 +179,65 @@ int Model::add_velocity_constraint(BodyId body, Coordinate coordinate, double ve
 void Model::add_force_element(std::unique_ptr<ForceElement> element) {
   FSI_ASSERT(element != nullptr, "add_force_element got no element");
   data_->force_elements.push_back(std::move(element));
+}
+
+int Model::add_revolute_joint(const BodyPointSpec& a, const BodyPointSpec& b) {
+  const std::string user = "revolute joint " + std::to_string(constraint_count());
+  const detail::BodyPoint first = data_->point(a, user);
+  const detail::BodyPoint second = data_->point(b, user);
+  data_->check_pair(a, b, user);
+  const std::string name =
+      "revolute joint " + data_->point_name(a) + "-" + data_->point_name(b) + " (";
+  const int x_row = constraint_count();
+  for (int axis = 0; axis < 2; ++axis) {
+    data_->constraints.push_back(std::make_unique<detail::PointConstraint>(
+        name + (axis == 0 ? "x)" : "y)"), first, second, axis));
+  }
+  return x_row;
+}
+
+int Model::add_distance_constraint(const BodyPointSpec& a, const BodyPointSpec& b,
+                                   std::optional<double> length) {
+  const std::string user = "distance constraint " + std::to_string(constraint_count());
+  const detail::BodyPoint first = data_->point(a, user);
+  const detail::BodyPoint second = data_->point(b, user);
+  data_->check_pair(a, b, user);
+  const double rod =
+      length.value_or((data_->initial_position(b) - data_->initial_position(a)).norm());
+  if (!(rod > 0.0) || !std::isfinite(rod)) {
+    throw Error("the length must be positive and finite, got " + number(rod), user,
+                "give a positive length, or place the points apart initially");
+  }
+  data_->constraints.push_back(std::make_unique<detail::DistanceConstraint>(
+      "distance constraint " + data_->point_name(a) + "-" + data_->point_name(b), first, second,
+      rod));
+  return constraint_count() - 1;
+}
+
+int Model::add_constraint_element(std::unique_ptr<ConstraintElement> element) {
+  FSI_ASSERT(element != nullptr, "add_constraint_element got no element");
+  data_->constraints.push_back(std::move(element));
+  return constraint_count() - 1;
+}
+
+void Model::add_spring_damper(const SpringDamperSpec& spec) {
+  const std::string user = "spring-damper " + std::to_string(data_->force_elements.size());
+  const detail::BodyPoint first = data_->point(spec.a, user);
+  const detail::BodyPoint second = data_->point(spec.b, user);
+  data_->check_pair(spec.a, spec.b, user);
+  const double rest = spec.rest_length.value_or(
+      (data_->initial_position(spec.b) - data_->initial_position(spec.a)).norm());
+  std::string problems;
+  if (!(spec.stiffness >= 0.0) || !std::isfinite(spec.stiffness)) problems += " stiffness < 0;";
+  if (!(spec.damping >= 0.0) || !std::isfinite(spec.damping)) problems += " damping < 0;";
+  if (!(rest >= 0.0) || !std::isfinite(rest)) problems += " rest length < 0;";
+  if (!problems.empty()) {
+    problems.pop_back();
+    throw Error("invalid parameters:" + problems, user,
+                "give finite, non-negative stiffness, damping and rest length");
+  }
+  data_->force_elements.push_back(
+      std::make_unique<detail::SpringDamper>(first, second, spec.stiffness, spec.damping, rest));
 }
 
 // --- structure ---

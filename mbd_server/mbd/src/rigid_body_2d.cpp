@@ -97,6 +97,14 @@ void RigidBody2D::position_jacobian(const ConstVector& q, const Eigen::Vector2d&
   jacobian.col(2) = rotate_derivative(q(2), local);
 }
 
+void RigidBody2D::velocity_jacobian(const ConstVector& q, const ConstVector& v,
+                                    const Eigen::Vector2d& local,
+                                    Eigen::Ref<Eigen::MatrixXd> jacobian) const {
+  // (dr/dq) v = v_xy + omega R' p; only R' p depends on q: d/dphi = omega R'' p = -omega R p.
+  jacobian.leftCols<2>().setZero();
+  jacobian.col(2) = -v(2) * rotate(q(2), local);
+}
+
 void RigidBody2D::add_point_load_derivative(const ConstVector& q, const Eigen::Vector2d& local,
                                             const Eigen::Vector2d& force,
                                             Eigen::Ref<Eigen::MatrixXd> derivative) const {

@@ -28,6 +28,7 @@
 #include <string>
 #include <string_view>
 
+#include "fsi/mbd/constraint_element.hpp"
 #include "fsi/mbd/force_element.hpp"
 
 namespace fsi::mbd {
@@ -57,7 +58,22 @@ struct RigidBody2DSpec {
   double angular_velocity = 0.0;                       // [rad/s]
 };
 
-enum class ConstraintLevel { Position, Velocity };
+// A material point of a body at body-fixed local coordinates, or, with body = kGround, a fixed
+// point of the world at `local`.
+struct BodyPointSpec {
+  BodyId body = kGround;
+  Eigen::Vector2d local = Eigen::Vector2d::Zero();
+};
+
+// Linear spring-damper along the line between two points: tension
+// T = stiffness (l - rest_length) + damping dl/dt pulls a stretched spring's points together.
+struct SpringDamperSpec {
+  BodyPointSpec a;
+  BodyPointSpec b;
+  double stiffness = 0.0;             // [N/m]
+  double damping = 0.0;               // [N s/m]
+  std::optional<double> rest_length;  // [m]; default: the initial distance
+};
 
 class Model {
  public:
@@ -80,6 +96,22 @@ class Model {
   // Velocity level: dq_i/dt - velocity = 0 (thesis §6.3: the piston's dy/dt = v0).
   int add_velocity_constraint(BodyId body, Coordinate coordinate, double velocity);
   void add_force_element(std::unique_ptr<ForceElement> element);
+  // Joints between two body points (one of them may be on the ground). All throw fsi::Error
+  // naming the joint for unknown bodies, two points on the same body or both on the ground, and
+  // non-finite values. Whether the initial state satisfies them is checked by initial_state().
+  // Revolute joint (2D): r_a - r_b = 0, two rows (x, then y); returns the index of the x row.
+  // With b on the ground it fixes a body point in the world (ground joint).
+  int add_revolute_joint(const BodyPointSpec& a, const BodyPointSpec& b);
+  // Massless rod: |r_b - r_a| = length (default: the initial distance; must be positive).
+  // One row, written (|d|^2 - length^2) / (2 length) so that lambda is the rod force, tension
+  // positive. Returns its index.
+  int add_distance_constraint(const BodyPointSpec& a, const BodyPointSpec& b,
+                              std::optional<double> length = std::nullopt);
+  // A user's constraint row (e.g. a prescribed time-dependent motion); returns its index.
+  int add_constraint_element(std::unique_ptr<ConstraintElement> element);
+  // Throws fsi::Error for negative stiffness or damping or a negative rest length; the points
+  // must never coincide (the direction of the force is undefined there).
+  void add_spring_damper(const SpringDamperSpec& spec);
 
   // --- structure ---
   int coordinate_count() const;

@@ -1,0 +1,36 @@
+#pragma once
+// Linear spring-damper between two body points (either may be a ground point), acting along the
+// line between them, with exact derivatives for the Newton matrix (internal; built by
+// Model::add_spring_damper).
+//
+//     d = r_b - r_a, l = |d|, e = d / l, l' = e . (dr_b/dt - dr_a/dt)
+//     tension T = stiffness (l - rest_length) + damping l'
+//     force on point a: +T e, on point b: -T e (a stretched spring pulls the points together)
+
+#include "body_point.hpp"
+#include "fsi/mbd/force_element.hpp"
+
+namespace fsi::mbd::detail {
+
+class SpringDamper final : public ForceElement {
+ public:
+  SpringDamper(BodyPoint a, BodyPoint b, double stiffness, double damping, double rest_length);
+
+  // Tension T at (q, v) [N].
+  double tension(const Eigen::VectorXd& q, const Eigen::VectorXd& v) const;
+
+  void add_force(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                 Eigen::VectorXd& force) const override;
+  bool add_jacobians(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                     Eigen::MatrixXd& force_by_position,
+                     Eigen::MatrixXd& force_by_velocity) const override;
+
+ private:
+  BodyPoint a_;
+  BodyPoint b_;
+  double stiffness_;
+  double damping_;
+  double rest_length_;
+};
+
+}  // namespace fsi::mbd::detail
