@@ -75,7 +75,7 @@ struct RadauIIA::Workspace {
   double current_step_size = 0.0;
 
   explicit Workspace(const RadauOptions& o)
-      : tableau(radau_iia(o.stages)), options(o.newton), equations(tableau) {}
+      : tableau(butcher_tableau(o.family, o.stages)), options(o.newton), equations(tableau) {}
 
   bool full_newton() const { return options.max_modified_newton_steps == 0; }
 
@@ -175,11 +175,11 @@ struct RadauIIA::Workspace {
     factorised = false;
     char text[512];
     std::snprintf(text, sizeof text,
-                  "Newton iterations of Radau IIA (%d stages) failed at t = %.9g s with step size "
+                  "Newton iterations of %s (%d stages) failed at t = %.9g s with step size "
                   "%.6g s: %s; after %d iterations the scaled increment is %.3g (converged: <= 1) "
                   "and the residual of the scaled stage equations |r|_inf = %.3g",
-                  equations.stages(), state.time, h, attempt.reason, attempt.iterations,
-                  attempt.increment, attempt.residual);
+                  tableau.name.c_str(), equations.stages(), state.time, h, attempt.reason,
+                  attempt.iterations, attempt.increment, attempt.residual);
     throw Error(text, "multibody integration",
                 "reduce the step size; check that the constraints are consistent with each other "
                 "and with the initial state, and that loads and force elements are finite; or "

@@ -1,6 +1,7 @@
 #include "radau_stage_equations.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 #include "fsi/common/error.hpp"
@@ -15,7 +16,10 @@ double max_abs(const Eigen::VectorXd& x) {
 }  // namespace
 
 RadauStageEquations::RadauStageEquations(const ButcherTableau& tableau)
-    : a_(tableau.a), c_(tableau.c), stages_(static_cast<int>(tableau.c.size())) {}
+    : a_(tableau.a),
+      c_(tableau.c),
+      stages_(static_cast<int>(tableau.c.size())),
+      first_stage_is_start_(tableau.a.row(0).isZero(0.0)) {}
 
 void RadauStageEquations::begin_step(const Model& model, const State& start, double step_size) {
   model_ = &model;
@@ -64,6 +68,7 @@ void RadauStageEquations::residual(const Eigen::VectorXd& unknowns, Eigen::Vecto
     model.constraint_jacobian(stage_time(j), q_, stage_constraint_jacobian_[j]);
   }
   residual.resize(size());
+  position_residual_ = 0.0;
   for (int i = 0; i < stages_; ++i) {
     auto kinematic = residual.segment(z_offset(i), n_);
     auto dynamic = residual.segment(v_offset(i), n_);
@@ -74,11 +79,18 @@ void RadauStageEquations::residual(const Eigen::VectorXd& unknowns, Eigen::Vecto
       dynamic -= a_(i, j) * (h * stage_force_[j] - stage_constraint_jacobian_[j].transpose() *
                                                        unknowns.segment(l_offset(j), m_));
     }
+    if (i == 0 && first_stage_is_start_) {
+      residual.segment(l_offset(0), m_) = unknowns.segment(l_offset(0), m_) - h * start_.lambda;
+      continue;
+    }
     q_ = position(unknowns, i);
     v_ = velocity(unknowns, i);
     model.constraint_residual(stage_time(i), q_, v_, constraint_);
-    for (int k = 0; k < m_; ++k)
+    for (int k = 0; k < m_; ++k) {
       residual(l_offset(i) + k) = position_level_[k] ? constraint_(k) / h : constraint_(k);
+      if (position_level_[k])
+        position_residual_ = std::max(position_residual_, std::abs(constraint_(k)));
+    }
   }
 }
 
@@ -108,6 +120,10 @@ void RadauStageEquations::jacobian(const Eigen::VectorXd& unknowns, Eigen::Matri
     }
     jacobian.block(z_offset(j), z_offset(j), n_, n_).diagonal().array() += 1.0;
     jacobian.block(v_offset(j), v_offset(j), n_, n_) += mass;
+    if (j == 0 && first_stage_is_start_) {
+      jacobian.block(l_offset(0), l_offset(0), m_, m_).setIdentity();
+      continue;
+    }
     for (int k = 0; k < m_; ++k) {
       const int column = position_level_[k] ? z_offset(j) : v_offset(j);
       jacobian.block(l_offset(j) + k, column, 1, n_) = g.row(k);
@@ -143,9 +159,16 @@ double RadauStageEquations::increment_norm(const Eigen::VectorXd& unknowns,
     return options.absolute_tolerance + options.relative_tolerance * scale + round_off * rounding +
            std::numeric_limits<double>::min();
   };
-  const double multiplier_rounding = multiplier_scale + mass_size * velocity_scale / h;
+  // A position row that is not exactly zero in floating point (a nonlinear joint, unlike a held
+  // coordinate) carries its rounding eps |q| into C / h; the Newton matrix passes that on to the
+  // velocities as eps |q| / h and to lambda as eps M |q| / h^2: the index-3 round-off floor.
+  // |C| / eps is the size whose rounding |C| can be, at most |q|; a held coordinate has C = 0.
+  const double constraint_rounding =
+      std::min(position_residual_ / std::numeric_limits<double>::epsilon(), position_scale) / h;
+  const double multiplier_rounding =
+      multiplier_scale + mass_size * (velocity_scale + constraint_rounding / h) / h;
   return std::max({position_step / weight(position_scale, position_scale),
-                   velocity_step / weight(velocity_scale, velocity_scale),
+                   velocity_step / weight(velocity_scale, velocity_scale + constraint_rounding),
                    multiplier_step / weight(multiplier_scale, multiplier_rounding)});
 }
 

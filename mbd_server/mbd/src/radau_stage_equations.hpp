@@ -1,6 +1,6 @@
 #pragma once
-// The nonlinear stage equations of one Radau IIA step on the index-3 DAE of fsi::mbd::Model,
-// in scaled unknowns (internal; the Newton driver is radau_iia.cpp).
+// The nonlinear stage equations of one Radau IIA (or Lobatto IIIA) step on the index-3 DAE of
+// fsi::mbd::Model, in scaled unknowns (internal; the Newton driver is radau_iia.cpp).
 //
 // Physical stage values at t_i = t_n + c_i h: positions Q_i, velocities V_i, multipliers Lambda_i.
 // Unknowns per stage i, in this order:
@@ -18,6 +18,12 @@
 //     d dynamic   = [-a_ij (h^2 dF/dq - h d(G^T L)/dq), M delta_ij - h a_ij dF/dv, a_ij G^T]
 //     d constraint = [G, 0, 0] (position) or [0, G, 0] (velocity)
 // and its limit h -> 0 is non-singular whenever M is and G has full rank.
+//
+// Lobatto IIIA (a_1j = 0, c_1 = 0): the first stage is the step start, Z_1 = 0 and V_1 = v_n
+// follow from its kinematic and dynamic rows, and C(Q_1) = C(q_n) = 0 holds already, so its
+// constraint rows would repeat G Z_1 = 0 and leave L_1 undetermined (singular Newton matrix).
+// They are replaced by L_1 - h lambda_n = 0: the first stage takes the multipliers of the step
+// start, and the constraints are enforced at the stages 2..s (docs/theory.md).
 
 #include <Eigen/Dense>
 
@@ -50,7 +56,10 @@ class RadauStageEquations {
   //     absolute_tolerance + relative_tolerance * scale + 100 eps * round-off scale,
   // where scale is the block's size over the start and all stages (for velocities at least
   // h |F| / min diag M, for multipliers at least |F|), and the round-off term keeps the
-  // criterion reachable in floating point (multipliers: L / h carries the rounding of M V / h).
+  // criterion reachable in floating point (multipliers: L / h carries the rounding of M V / h;
+  // and the rounding of the position rows' C / h in the last residual() call reaches the
+  // velocities as |q| / h and the multipliers as M |q| / h^2: the index-3 floor; held
+  // coordinates have C = 0 exactly and no such term).
   // Uses the stage forces of the last residual() call.
   double increment_norm(const Eigen::VectorXd& unknowns, const Eigen::VectorXd& increment,
                         const NewtonOptions& options) const;
@@ -69,6 +78,7 @@ class RadauStageEquations {
   Eigen::MatrixXd a_;
   Eigen::VectorXd c_;
   int stages_;
+  bool first_stage_is_start_;  // Lobatto IIIA: a_1j = 0
   const Model* model_ = nullptr;
   State start_;
   double step_size_ = 0.0;
@@ -76,6 +86,7 @@ class RadauStageEquations {
   int m_ = 0;
   int block_ = 0;
   std::vector<bool> position_level_;
+  double position_residual_ = 0.0;  // max |C(Q_i)| of position rows in the last residual() call
   // Scratch, per stage where needed.
   std::vector<Eigen::VectorXd> stage_force_;
   std::vector<Eigen::MatrixXd> stage_constraint_jacobian_;

@@ -39,9 +39,44 @@ ButcherTableau radau_iia(int stages) {
       throw Error("Radau IIA with " + std::to_string(stages) + " stages is not available",
                   "integrator options", "choose 1, 2 or 3 stages (orders 1, 3, 5)");
   }
+  tableau.name = "Radau IIA";
   tableau.b = tableau.a.row(stages - 1).transpose();
   tableau.order = 2 * stages - 1;
   return tableau;
+}
+
+// Lobatto IIIA: collocation at the Lobatto points (c_1 = 0, c_s = 1), so the first row of a is
+// zero and the last equals b (Hairer & Wanner, Solving ODEs II, §IV.5, Table 5.7).
+ButcherTableau lobatto_iiia(int stages) {
+  ButcherTableau tableau;
+  switch (stages) {
+    case 2:
+      tableau.a.resize(2, 2);
+      tableau.a << 0.0, 0.0,  //
+          0.5, 0.5;
+      tableau.c.resize(2);
+      tableau.c << 0.0, 1.0;
+      break;
+    case 3:
+      tableau.a.resize(3, 3);
+      tableau.a << 0.0, 0.0, 0.0,              //
+          5.0 / 24.0, 1.0 / 3.0, -1.0 / 24.0,  //
+          1.0 / 6.0, 2.0 / 3.0, 1.0 / 6.0;
+      tableau.c.resize(3);
+      tableau.c << 0.0, 0.5, 1.0;
+      break;
+    default:
+      throw Error("Lobatto IIIA with " + std::to_string(stages) + " stages is not available",
+                  "integrator options", "choose 2 or 3 stages (orders 2, 4)");
+  }
+  tableau.name = "Lobatto IIIA";
+  tableau.b = tableau.a.row(stages - 1).transpose();
+  tableau.order = 2 * stages - 2;
+  return tableau;
+}
+
+ButcherTableau butcher_tableau(TableauFamily family, int stages) {
+  return family == TableauFamily::LobattoIIIA ? lobatto_iiia(stages) : radau_iia(stages);
 }
 
 }  // namespace fsi::mbd

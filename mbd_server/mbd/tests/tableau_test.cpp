@@ -48,6 +48,32 @@ TEST(MbdRadauTableau, SatisfiesTheSimplifyingAssumptionsOfOrder2sMinus1) {
   }
 }
 
+TEST(MbdLobattoTableau, SatisfiesTheSimplifyingAssumptionsOfOrder2sMinus2) {
+  for (int s = 2; s <= 3; ++s) {
+    const ButcherTableau t = lobatto_iiia(s);
+    EXPECT_EQ(t.order, 2 * s - 2);
+    EXPECT_EQ(t.name, "Lobatto IIIA");
+    EXPECT_EQ(t.c(0), 0.0);
+    EXPECT_EQ(t.c(s - 1), 1.0);
+    EXPECT_TRUE(t.a.row(0).isZero(0.0)) << "the first stage is the step start";
+    for (int j = 0; j < s; ++j)
+      EXPECT_EQ(t.a(s - 1, j), t.b(j));
+    for (int k = 1; k <= 2 * s - 2; ++k)
+      EXPECT_NEAR(sum_b_c_power(t, k - 1), 1.0 / k, 2e-16) << "s = " << s << ", B(" << k << ")";
+    EXPECT_GT(std::abs(sum_b_c_power(t, 2 * s - 2) - 1.0 / (2 * s - 1)), 1e-4);
+    for (int i = 0; i < s; ++i) {
+      for (int k = 1; k <= s; ++k) {
+        double row = 0.0;
+        for (int j = 0; j < s; ++j)
+          row += t.a(i, j) * std::pow(t.c(j), k - 1);
+        EXPECT_NEAR(row, std::pow(t.c(i), k) / k, 2e-16) << "s = " << s << ", C(" << k << ")";
+      }
+    }
+  }
+  EXPECT_THROW(lobatto_iiia(1), fsi::Error);
+  EXPECT_THROW(lobatto_iiia(4), fsi::Error);
+}
+
 TEST(MbdRadauTableau, UnavailableStageCountIsAUserError) {
   for (int s : {0, 4, -1}) {
     try {

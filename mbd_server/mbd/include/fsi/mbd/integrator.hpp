@@ -1,7 +1,9 @@
 #pragma once
 // Implicit Runge-Kutta integration of the constrained equations of motion (thesis §2.1.3.3):
-// Radau IIA with s = 1, 2, 3 stages (orders 1, 3, 5; stiffly accurate, L-stable) applied
-// directly to the index-3 DAE of fsi::mbd::Model, with a fixed step given per call. The stage
+// Radau IIA with s = 1, 2, 3 stages (orders 1, 3, 5; stiffly accurate, L-stable), or Lobatto
+// IIIA with s = 2, 3 stages (orders 2, 4; stiffly accurate, A-stable but not L-stable; HOTINT's
+// tableau_name), applied directly to the index-3 DAE of fsi::mbd::Model, with a fixed step given
+// per call. Orders on the constrained problem: docs/theory.md. The stage
 // equations are solved by (modified) Newton iterations with a dense LU factorisation; a step runs
 // the named stages initialise, predict, Newton increment, accept/reject, finalise.
 // Equations, unknowns and their scaling: mbd_server/mbd/README.md.
@@ -10,20 +12,28 @@
 
 #include <cstdint>
 #include <memory>
+#include <string>
 
 #include "fsi/mbd/model.hpp"
 
 namespace fsi::mbd {
 
+enum class TableauFamily { RadauIIA, LobattoIIIA };
+
 struct ButcherTableau {
+  std::string name;   // "Radau IIA", "Lobatto IIIA"
   Eigen::MatrixXd a;  // s x s
   Eigen::VectorXd b;  // weights (= last row of a: stiffly accurate)
   Eigen::VectorXd c;  // nodes (c_s = 1)
-  int order = 0;      // classical order 2s - 1
+  int order = 0;      // classical order: 2s - 1 (Radau IIA), 2s - 2 (Lobatto IIIA)
 };
 
 // Radau IIA tableau with 1, 2 or 3 stages; throws fsi::Error otherwise.
 ButcherTableau radau_iia(int stages);
+// Lobatto IIIA tableau with 2 or 3 stages (trapezoidal rule, Hermite-Simpson); c_1 = 0 and
+// a_1j = 0: the first stage is the step start. Throws fsi::Error otherwise.
+ButcherTableau lobatto_iiia(int stages);
+ButcherTableau butcher_tableau(TableauFamily family, int stages);
 
 struct NewtonOptions {
   // Convergence: every block of the Newton increment (positions, velocities, multipliers) is
@@ -40,8 +50,9 @@ struct NewtonOptions {
 };
 
 struct RadauOptions {
-  int stages = 3;  // 1, 2 or 3 (orders 1, 3, 5)
+  int stages = 3;  // Radau IIA: 1, 2 or 3 (orders 1, 3, 5); Lobatto IIIA: 2 or 3 (orders 2, 4)
   NewtonOptions newton;
+  TableauFamily family = TableauFamily::RadauIIA;
 };
 
 struct StepStatistics {
