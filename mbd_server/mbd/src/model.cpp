@@ -479,6 +479,27 @@ void Model::constraint_residual(double time, const Eigen::VectorXd& q, const Eig
     residual(k) = data_->constraints[k]->residual(time, q, v);
 }
 
+void Model::constraint_rate(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                            Eigen::VectorXd& rate) const {
+  Eigen::MatrixXd jacobian;
+  constraint_jacobian(time, q, jacobian);
+  rate.resize(constraint_count());
+  for (int k = 0; k < constraint_count(); ++k) {
+    const auto& constraint = *data_->constraints[k];
+    rate(k) = constraint.level() == ConstraintLevel::Position
+                  ? jacobian.row(k).dot(v) + constraint.explicit_time_derivative(time, q)
+                  : constraint.residual(time, q, v);
+  }
+}
+
+void Model::constraint_acceleration_remainder(double time, const Eigen::VectorXd& q,
+                                              const Eigen::VectorXd& v,
+                                              Eigen::VectorXd& remainder) const {
+  remainder.resize(constraint_count());
+  for (int k = 0; k < constraint_count(); ++k)
+    remainder(k) = data_->constraints[k]->acceleration_remainder(time, q, v);
+}
+
 void Model::constraint_jacobian(double time, const Eigen::VectorXd& q,
                                 Eigen::MatrixXd& jacobian) const {
   jacobian.setZero(constraint_count(), coordinate_count());

@@ -154,6 +154,17 @@ class Model {
   // C(q, t) for position-level rows, G v - g(t) for velocity-level rows (size m).
   void constraint_residual(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
                            Eigen::VectorXd& residual) const;
+  // The constraints on velocity level (size m): G v + C_t for position-level rows (the time
+  // derivative of C along the motion) and G v - g(t) for velocity-level rows. Used by the
+  // index-2 (GGL) formulation of the IDA integrator.
+  void constraint_rate(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                       Eigen::VectorXd& rate) const;
+  // The acceleration-free part of the constraints' second time derivative (size m), so that
+  // d^2C/dt^2 = G a + remainder (position rows) and d(G v - g)/dt = G a + remainder (velocity
+  // rows): the right-hand side of consistent multipliers.
+  void constraint_acceleration_remainder(double time, const Eigen::VectorXd& q,
+                                         const Eigen::VectorXd& v,
+                                         Eigen::VectorXd& remainder) const;
   // G (m x n): dC/dq for position-level rows, d(G v - g)/dv for velocity-level rows.
   void constraint_jacobian(double time, const Eigen::VectorXd& q, Eigen::MatrixXd& jacobian) const;
   // d/dq (G(q)^T lambda) (n x n); zero while all constraints are linear in q.
