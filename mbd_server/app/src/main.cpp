@@ -14,6 +14,7 @@
 
 #include "fsi/common/error.hpp"
 #include "fsi/common/version.hpp"
+#include "fsi/coupling/mbd_only.hpp"
 #include "fsi/coupling/session.hpp"
 #include "fsi/scene/physics_checks.hpp"
 #include "fsi/scene/scene.hpp"
@@ -101,6 +102,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> overrides;
   double accept_timeout = 120.0;
   bool check_only = false;
+  bool mbd_only = false;
   bool print_params = false;
   bool help_params = false;
   std::string parameter_doc;
@@ -127,6 +129,9 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
   app.add_flag("--check", check_only, "Validate the scene (all problems at once) and exit");
+  app.add_flag("--mbd-only", mbd_only,
+               "Run the scene's multibody part alone, without fsi-client (fluid forces zero); "
+               "writes sensors.csv and run.json into --output");
   app.add_flag("--print-params", print_params, "Print the evaluated parameter tree and exit");
   app.add_flag("--help-params", help_params, "List every scene parameter and exit");
   app.add_option("--write-parameter-doc", parameter_doc,
@@ -198,6 +203,13 @@ int main(int argc, char** argv) {
   for (const fsi::scene::Diagnostic& diagnostic : diagnostics) {
     if (diagnostic.severity == fsi::scene::Severity::Warning)
       options.warnings.push_back(diagnostic.text());
+  }
+  if (mbd_only) {
+    fsi::coupling::MbdOnlyOptions mbd_options;
+    mbd_options.output_dir = output;
+    mbd_options.command_line = options.command_line;
+    mbd_options.warnings = options.warnings;
+    return fsi::coupling::run_mbd_only(scene, mbd_options);
   }
   try {
     return fsi::coupling::run_coupled_session(scene, options);

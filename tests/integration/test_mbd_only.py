@@ -1,0 +1,50 @@
+#!/usr/bin/python3
+"""`fsi-server --mbd-only`: the coarse static tank's multibody part alone, without fsi-client, 1000
+steps. It must finish by itself (no client is waited for) and write sensors.csv and run.json like
+a coupled run. Without fluid the answer is known exactly: the piston follows y = 0.0725 - 0.05 t,
+the held bottom and the driven piston each carry their own weight through the constraint
+(-(constraint force) = gravity, so the constraint force is +m g = +0.981 N/m), fluid forces are 0."""
+import math
+import os
+import subprocess
+
+from fsi_test import ENV, binary, check, cleanup, example, fail, load_sensors, manifest, read, work_dir
+
+STEPS = 1000
+DT = 1e-5
+WEIGHT = 0.1 * 9.81
+
+output = work_dir("mbd_only")
+run_dir = os.path.join(output, "run")
+command = [binary("fsi-server"), example("static_tank", "static_tank_coarse.scene"), "--mbd-only",
+           "--output", run_dir, "--set", f"Resolution.end_time={STEPS}*{DT}"]
+try:
+    result = subprocess.run(command, env=ENV, capture_output=True, text=True, timeout=120)
+except subprocess.TimeoutExpired:
+    fail("fsi-server --mbd-only did not finish within 120 s (is it waiting for a client?)")
+if result.returncode != 0:
+    fail(f"fsi-server --mbd-only exited {result.returncode}:\n{result.stderr[-3000:]}")
+check(True, "fsi-server --mbd-only exits 0 without a client")
+
+run = manifest(run_dir)
+check(run.get("mode") == "mbd-only", "run.json says mode mbd-only")
+check(run["status"] == "completed", "run.json says completed")
+check(run["steps"] == STEPS, f"run.json counts {STEPS} steps")
+check(run["newton"]["iterations"] >= STEPS, "run.json has the Newton statistics")
+
+sensors = load_sensors(run_dir)
+times = sensors["time"] if "time" in sensors else sensors[list(sensors)[0]]
+check(len(times) == STEPS, f"sensors.csv has {STEPS} rows")
+check(all(math.isfinite(v) for column in sensors.values() for v in column), "no NaN or inf in sensors.csv")
+check(abs(times[-1] - STEPS * DT) < 1e-12, f"the last row is t = {STEPS * DT}")
+piston = max(abs(y - (0.0725 - 0.05 * t)) for t, y in zip(times, sensors["piston_position_y"]))
+check(piston < 1e-12, f"piston y = 0.0725 - 0.05 t to {piston:.1e} m (< 1e-12)")
+for name in ("bottom_constraint_force_y", "piston_constraint_force_y"):
+    error = max(abs(f - WEIGHT) for f in sensors[name])
+    check(error < 1e-9 * WEIGHT, f"{name} = m g = {WEIGHT:.3f} N/m to {error:.1e}")
+for name in ("bottom_fluid_force_y", "piston_fluid_force_y", "total_fluid_force_y"):
+    check(all(f == 0.0 for f in sensors[name]), f"{name} is zero without fluid")
+log = read(run_dir, "fsi-server.log")
+check("multibody alone" in log, "the log says the multibody part runs alone")
+cleanup(output)
+print("mbd-only: 1 passed, 0 failed")
