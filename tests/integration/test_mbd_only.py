@@ -4,8 +4,10 @@ steps. It must finish by itself (no client is waited for) and write sensors.csv 
 a coupled run. Without fluid the answer is known exactly: the piston follows y = 0.0725 - 0.05 t,
 the held bottom and the driven piston each carry their own weight through the constraint
 (-(constraint force) = gravity, so the constraint force is +m g = +0.981 N/m), fluid forces are 0."""
+import glob
 import math
 import os
+import shutil
 import subprocess
 
 from fsi_test import ENV, binary, check, cleanup, example, fail, load_sensors, manifest, read, work_dir
@@ -46,5 +48,27 @@ for name in ("bottom_fluid_force_y", "piston_fluid_force_y", "total_fluid_force_
     check(all(f == 0.0 for f in sensors[name]), f"{name} is zero without fluid")
 log = read(run_dir, "fsi-server.log")
 check("multibody alone" in log, "the log says the multibody part runs alone")
+
+# Bad input: a free body and one Newton iteration allowed cannot converge. The run must stop with
+# exit 1, naming step and time, run.json "failed", and no NaN written.
+bad_dir = os.path.join(output, "bad")
+os.makedirs(bad_dir)
+for path in glob.glob(example("static_tank", "static_tank*.in*")) + [example("static_tank", "static_tank_model.inc")]:
+    shutil.copy(path, bad_dir)
+with open(example("static_tank", "static_tank_coarse.scene")) as handle:
+    coarse = handle.read()
+with open(os.path.join(bad_dir, "free_body.scene"), "w") as handle:
+    handle.write(coarse + '\nRigidBody2D { name = "stone"; mass = 1; inertia = 1; position = [0.2, 0.2] }\n')
+bad_run = os.path.join(bad_dir, "run")
+result = subprocess.run([binary("fsi-server"), os.path.join(bad_dir, "free_body.scene"), "--mbd-only",
+                         "--output", bad_run, "--set", "Resolution.end_time=1e-4",
+                         "--set", "SolverOptions.Newton.max_iterations=1"],
+                        env=ENV, capture_output=True, text=True, timeout=60)
+check(result.returncode == 1, f"Newton failure: exit 1 (got {result.returncode})")
+check("step 1 (t = 0 s)" in result.stderr and "Newton iterations of Radau IIA" in result.stderr,
+      "the message names the step, the time and the Newton failure")
+bad = manifest(bad_run)
+check(bad["status"] == "failed" and "step 1" in bad.get("reason", ""), "run.json says failed, with the step")
+check("nan" not in read(bad_run, "sensors.csv").lower(), "no NaN in sensors.csv")
 cleanup(output)
-print("mbd-only: 1 passed, 0 failed")
+print("mbd-only: 2 passed, 0 failed")
