@@ -119,6 +119,11 @@ int main(int argc, char** argv) {
                  "Seconds the client may outlive the server before it is terminated")
       ->capture_default_str();
   app.add_option("--mpirun", mpirun, "MPI launcher")->capture_default_str();
+  std::string token_file;
+  app.add_option("--token-file", token_file,
+                 "Shared token file given to both fsi-server and fsi-client (--token-file): they "
+                 "authenticate each other")
+      ->check(CLI::ExistingFile);
   CLI11_PARSE(app, argc, argv);
 
   const fs::path bin = own_directory();
@@ -152,6 +157,8 @@ int main(int argc, char** argv) {
     server_command.push_back("--set");
     server_command.push_back(item);
   }
+  if (!token_file.empty())
+    server_command.insert(server_command.end(), {"--token-file", token_file});
   server_command.insert(server_command.end(), server_arguments.begin(), server_arguments.end());
   const pid_t server_pid = spawn(server_command);
   if (server_pid < 0) return 2;
@@ -184,6 +191,8 @@ int main(int argc, char** argv) {
   if (geteuid() == 0) client_command.push_back("--allow-run-as-root");
   client_command.insert(client_command.end(),
                         {"--oversubscribe", client.string(), "--server", "127.0.0.1:" + port});
+  if (!token_file.empty())
+    client_command.insert(client_command.end(), {"--token-file", token_file});
   client_command.insert(client_command.end(), client_arguments.begin(), client_arguments.end());
   const pid_t client_pid = spawn(client_command);
   if (client_pid < 0) {

@@ -5,10 +5,12 @@
 
 #include <netinet/in.h>
 #include <netinet/tcp.h>
+#include <poll.h>
 #include <sys/socket.h>
 
 #include <algorithm>
 #include <array>
+#include <cerrno>
 #include <cstdio>
 #include <thread>
 #include <vector>
@@ -110,6 +112,7 @@ struct Channel::Impl {
   std::string peer = "unconnected peer";
   std::uint16_t peer_major = 0;
   std::uint16_t peer_minor = 0;
+  std::uint64_t heartbeats_received = 0;
   std::array<std::byte, kHeaderSize> header_bytes{};
   std::vector<std::byte> payload_buffer;  // reused from frame to frame
   std::vector<std::byte> send_buffer;     // reused for every encoded message
@@ -195,6 +198,26 @@ struct Channel::Impl {
                               unusable_because + ")",
                           "connection to " + peer, "close the channel and reconnect");
     }
+    // Heartbeats (1.1) say "still computing": each one starts the timeout again, so the timeout
+    // measures the peer's silence rather than its compute time.
+    while (true) {
+      const FrameHeader header = receive_one_frame(timeout, waiting_for);
+      if (header.type != MessageType::Heartbeat) return header;
+      if (header.payload_length != 0) {
+        fail_frame(
+            ProtocolError("malformed Heartbeat message: " + std::to_string(header.payload_length) +
+                              " payload bytes, a Heartbeat has none",
+                          "Heartbeat frame",
+                          "the peer is faulty; use matching releases of fsi-server and "
+                          "fsi-client"),
+            waiting_for);
+      }
+      ++heartbeats_received;
+    }
+  }
+
+  // One frame of any type; its payload is the first payload_length bytes of payload_buffer.
+  FrameHeader receive_one_frame(std::optional<Milliseconds> timeout, std::string_view waiting_for) {
     const Deadline deadline = deadline_after(timeout);
 
     const Transfer head = read(header_bytes, deadline);
@@ -448,6 +471,9 @@ const ChannelOptions& Channel::options() const {
 std::uint16_t Channel::peer_major() const {
   return impl_->peer_major;
 }
+std::uint64_t Channel::heartbeats_received() const {
+  return impl_->heartbeats_received;
+}
 std::uint16_t Channel::peer_minor() const {
   return impl_->peer_minor;
 }
@@ -456,6 +482,111 @@ bool Channel::is_open() const {
 }
 void Channel::close() {
   if (impl_) impl_->close();
+}
+
+bool Channel::try_send_heartbeat() {
+  Impl& impl = *impl_;
+  if (!impl.socket.is_open() || !impl.send_unusable_because.empty()) return false;
+  const auto frame =
+      encode_header(MessageType::Heartbeat, {}, impl.options.major, impl.options.minor);
+  const int handle = impl.socket.native_handle();
+  std::size_t sent = 0;
+  const auto give_up = Clock::now() + Milliseconds{1000};
+  while (sent < frame.size()) {
+    const ssize_t written =
+        ::send(handle, frame.data() + sent, frame.size() - sent, MSG_DONTWAIT | MSG_NOSIGNAL);
+    if (written > 0) {
+      sent += static_cast<std::size_t>(written);
+      continue;
+    }
+    const bool would_block = written < 0 && (errno == EAGAIN || errno == EWOULDBLOCK);
+    // Nothing went out: skip this heartbeat (a peer that does not read needs none).
+    if (sent == 0) return false;
+    // Part of the header is out: the rest must follow, or the stream has lost its frame
+    // boundaries.
+    if (!would_block || Clock::now() >= give_up) {
+      impl.send_unusable_because = "a heartbeat went out only in part";
+      return false;
+    }
+    pollfd wait_for_room{handle, POLLOUT, 0};
+    ::poll(&wait_for_room, 1, 50);
+  }
+  return true;
+}
+
+HeartbeatSender::HeartbeatSender(Channel& channel, bool enabled, Milliseconds interval)
+    : channel_(channel), interval_(interval) {
+  if (enabled) thread_ = std::thread([this] { run(); });
+}
+
+HeartbeatSender::~HeartbeatSender() {
+  stop();
+}
+
+void HeartbeatSender::stop() {
+  {
+    std::lock_guard lock(mutex_);
+    stopping_ = true;
+  }
+  wake_.notify_all();
+  if (thread_.joinable() && thread_.get_id() != std::this_thread::get_id()) thread_.join();
+}
+
+std::uint64_t HeartbeatSender::sent() const {
+  std::lock_guard lock(mutex_);
+  return sent_;
+}
+
+void HeartbeatSender::set_busy(bool busy) {
+  {
+    // Waits for a heartbeat being sent: afterwards the owner has the channel to itself.
+    std::lock_guard lock(mutex_);
+    busy_ = busy;
+    if (busy) ++busy_epoch_;
+  }
+  wake_.notify_all();
+}
+
+void HeartbeatSender::run() {
+  std::unique_lock lock(mutex_);
+  while (!stopping_) {
+    if (!busy_) {
+      wake_.wait(lock, [this] { return stopping_ || busy_; });
+      continue;
+    }
+    const std::uint64_t epoch = busy_epoch_;
+    const bool interrupted = wake_.wait_for(
+        lock, interval_, [&] { return stopping_ || !busy_ || busy_epoch_ != epoch; });
+    if (interrupted) continue;
+    // Still busy a whole interval later. The lock is held while sending (see set_busy).
+    if (channel_.is_open() && channel_.try_send_heartbeat()) ++sent_;
+  }
+}
+
+HeartbeatSender::Busy HeartbeatSender::busy() {
+  return Busy(thread_.joinable() ? this : nullptr);
+}
+
+HeartbeatSender::Busy::Busy(HeartbeatSender* sender) : sender_(sender) {
+  if (sender_) sender_->set_busy(true);
+}
+HeartbeatSender::Busy::Busy(Busy&& other) noexcept
+    : sender_(std::exchange(other.sender_, nullptr)) {}
+HeartbeatSender::Busy& HeartbeatSender::Busy::operator=(Busy&& other) noexcept {
+  if (this != &other) {
+    if (sender_) sender_->set_busy(false);
+    sender_ = std::exchange(other.sender_, nullptr);
+  }
+  return *this;
+}
+HeartbeatSender::Busy::~Busy() {
+  if (sender_) sender_->set_busy(false);
+}
+
+bool is_loopback_address(const std::string& numeric_address) {
+  error_code error;
+  const auto address = asio::ip::make_address(numeric_address, error);
+  return !error && address.is_loopback();
 }
 
 struct Listener::Impl {

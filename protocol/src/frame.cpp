@@ -57,6 +57,14 @@ std::string name(MessageType type) {
       return "Mesh";
     case MessageType::Particles:
       return "Particles";
+    case MessageType::AuthChallenge:
+      return "AuthChallenge";
+    case MessageType::AuthResponse:
+      return "AuthResponse";
+    case MessageType::AuthProof:
+      return "AuthProof";
+    case MessageType::Heartbeat:
+      return "Heartbeat";
     case MessageType::Ready:
       return "Ready";
     case MessageType::Step:
@@ -80,6 +88,10 @@ bool is_known(MessageType type) {
     case MessageType::Hello:
     case MessageType::Welcome:
     case MessageType::Error:
+    case MessageType::AuthChallenge:
+    case MessageType::AuthResponse:
+    case MessageType::AuthProof:
+    case MessageType::Heartbeat:
     case MessageType::Setup:
     case MessageType::Mesh:
     case MessageType::Particles:

@@ -47,6 +47,21 @@ void layout(auto& io, MessageOf<ErrorMessage> auto& m) {
   io.text("text", m.text);
 }
 
+void layout(auto& io, MessageOf<AuthChallenge> auto& m) {
+  io.scalar("server_nonce", m.server_nonce);
+}
+
+void layout(auto& io, MessageOf<AuthResponse> auto& m) {
+  io.scalar("client_nonce", m.client_nonce);
+  io.scalar("client_tag", m.client_tag);
+}
+
+void layout(auto& io, MessageOf<AuthProof> auto& m) {
+  io.scalar("server_tag", m.server_tag);
+}
+
+void layout(auto&, MessageOf<Heartbeat> auto&) {}
+
 void layout(auto& io, MessageOf<Setup> auto& m) {
   io.scalar("dimension", m.dimension);
   io.scalar("time_step", m.time_step);
@@ -381,6 +396,10 @@ bool is_variable_name(const std::string& text) {
 void check(const Reader&, const Hello&) {}
 void check(const Reader&, const Welcome&) {}
 void check(const Reader&, const ErrorMessage&) {}
+void check(const Reader&, const AuthChallenge&) {}
+void check(const Reader&, const AuthResponse&) {}
+void check(const Reader&, const AuthProof&) {}
+void check(const Reader&, const Heartbeat&) {}
 void check(const Reader&, const Ready&) {}
 void check(const Reader&, const Forces&) {}
 void check(const Reader&, const SnapshotRequest&) {}
@@ -497,6 +516,8 @@ std::string name(ErrorCode code) {
       return "PeerAborted";
     case ErrorCode::Internal:
       return "Internal";
+    case ErrorCode::AuthenticationFailed:
+      return "AuthenticationFailed";
   }
   return "code " + std::to_string(static_cast<std::uint32_t>(code));
 }
@@ -515,6 +536,18 @@ std::vector<std::byte> encode(const Welcome& message) {
   return encode_message(message);
 }
 std::vector<std::byte> encode(const ErrorMessage& message) {
+  return encode_message(message);
+}
+std::vector<std::byte> encode(const AuthChallenge& message) {
+  return encode_message(message);
+}
+std::vector<std::byte> encode(const AuthResponse& message) {
+  return encode_message(message);
+}
+std::vector<std::byte> encode(const AuthProof& message) {
+  return encode_message(message);
+}
+std::vector<std::byte> encode(const Heartbeat& message) {
   return encode_message(message);
 }
 std::vector<std::byte> encode(const Setup& message) {
@@ -559,6 +592,10 @@ std::span<const std::byte> encode_into(const T& message, std::vector<std::byte>&
 template std::span<const std::byte> encode_into(const Hello&, std::vector<std::byte>&);
 template std::span<const std::byte> encode_into(const Welcome&, std::vector<std::byte>&);
 template std::span<const std::byte> encode_into(const ErrorMessage&, std::vector<std::byte>&);
+template std::span<const std::byte> encode_into(const AuthChallenge&, std::vector<std::byte>&);
+template std::span<const std::byte> encode_into(const AuthResponse&, std::vector<std::byte>&);
+template std::span<const std::byte> encode_into(const AuthProof&, std::vector<std::byte>&);
+template std::span<const std::byte> encode_into(const Heartbeat&, std::vector<std::byte>&);
 template std::span<const std::byte> encode_into(const Setup&, std::vector<std::byte>&);
 template std::span<const std::byte> encode_into(const Mesh&, std::vector<std::byte>&);
 template std::span<const std::byte> encode_into(const Particles&, std::vector<std::byte>&);
@@ -583,6 +620,10 @@ T decode_as(std::span<const std::byte> payload) {
 template Hello decode_as<Hello>(std::span<const std::byte>);
 template Welcome decode_as<Welcome>(std::span<const std::byte>);
 template ErrorMessage decode_as<ErrorMessage>(std::span<const std::byte>);
+template AuthChallenge decode_as<AuthChallenge>(std::span<const std::byte>);
+template AuthResponse decode_as<AuthResponse>(std::span<const std::byte>);
+template AuthProof decode_as<AuthProof>(std::span<const std::byte>);
+template Heartbeat decode_as<Heartbeat>(std::span<const std::byte>);
 template Setup decode_as<Setup>(std::span<const std::byte>);
 template Mesh decode_as<Mesh>(std::span<const std::byte>);
 template Particles decode_as<Particles>(std::span<const std::byte>);
@@ -602,6 +643,14 @@ Message decode(MessageType type, std::span<const std::byte> payload) {
       return decode_as<Welcome>(payload);
     case MessageType::Error:
       return decode_as<ErrorMessage>(payload);
+    case MessageType::AuthChallenge:
+      return decode_as<AuthChallenge>(payload);
+    case MessageType::AuthResponse:
+      return decode_as<AuthResponse>(payload);
+    case MessageType::AuthProof:
+      return decode_as<AuthProof>(payload);
+    case MessageType::Heartbeat:
+      return decode_as<Heartbeat>(payload);
     case MessageType::Setup:
       return decode_as<Setup>(payload);
     case MessageType::Mesh:

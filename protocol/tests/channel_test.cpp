@@ -325,7 +325,9 @@ TEST(ProtocolChannel, FaultyFramesFromThePeerAreNamed) {
   EXPECT_TRUE(contains(text, "announces a payload of 17 bytes, more than the 16")) << text;
 
   text = fault_from_raw_peer(encode_frame(MessageType::Step, {}, 2, 0), options);
-  EXPECT_TRUE(contains(text, "Step frame of protocol 2.0, but this side speaks 1.0")) << text;
+  EXPECT_TRUE(contains(text, "Step frame of protocol 2.0, but this side speaks " +
+                                 version_text(kMajorVersion, kMinorVersion)))
+      << text;
 
   auto unknown = encode_frame(MessageType::Step, {});
   unknown[8] = std::byte{0x7E};
@@ -427,7 +429,8 @@ TEST(ProtocolChannel, VersionMismatchIsReportedOnBothSides) {
   }
   server.close();
   const std::string at_client = client.get();
-  EXPECT_TRUE(contains(at_client, "fsi-client speaks protocol 2.4, this fsi-server speaks 1.0"))
+  EXPECT_TRUE(contains(at_client, "fsi-client speaks protocol 2.4, this fsi-server speaks " +
+                                      version_text(kMajorVersion, kMinorVersion)))
       << at_client;
   EXPECT_TRUE(contains(at_client, "[VersionMismatch]")) << at_client;
 }
@@ -526,6 +529,87 @@ TEST(ProtocolListener, AcceptTimesOut) {
   }
   EXPECT_GE(seconds_since(start), 0.19);
   EXPECT_LT(seconds_since(start), 1.0);
+}
+
+}  // namespace
+}  // namespace fsi::protocol
+
+namespace fsi::protocol {
+namespace {
+
+// The peer computes for 1.2 s between two messages; the receiver allows 0.4 s of silence.
+std::string wait_through_a_long_computation(bool with_heartbeats, std::uint64_t* heartbeats) {
+  Listener listener("127.0.0.1", 0, quick_close());
+  auto busy_peer = std::async(std::launch::async, [&, port = listener.port()] {
+    Channel channel = Channel::connect("127.0.0.1", port, 5s, quick_close());
+    HeartbeatSender heartbeat(channel, with_heartbeats, 100ms);
+    channel.send(Goodbye{1, 0.0});
+    {
+      auto busy = heartbeat.busy();
+      std::this_thread::sleep_for(1200ms);
+    }
+    try {
+      channel.send(Goodbye{2, 0.0});
+    } catch (const ProtocolError&) {
+      // The receiver gave up already.
+    }
+    return heartbeat.sent();
+  });
+  Channel receiver = listener.accept(5s);
+  std::string outcome;
+  try {
+    receiver.expect<Goodbye>(400ms);
+    outcome = "steps " + std::to_string(receiver.expect<Goodbye>(400ms).steps_done);
+  } catch (const ProtocolError& error) {
+    outcome = error.what();
+  }
+  *heartbeats = receiver.heartbeats_received();
+  receiver.close();
+  const std::uint64_t sent = busy_peer.get();
+  EXPECT_GE(sent, *heartbeats);
+  return outcome;
+}
+
+TEST(ProtocolHeartbeat, TimeoutMeasuresSilenceNotComputeTime) {
+  std::uint64_t heartbeats = 0;
+  EXPECT_EQ(wait_through_a_long_computation(true, &heartbeats), "steps 2");
+  // About 12 heartbeats in 1.2 s at 100 ms; a loaded machine may delay some.
+  EXPECT_GE(heartbeats, 5u);
+}
+
+TEST(ProtocolHeartbeat, WithoutHeartbeatsTheSameComputationTimesOut) {
+  std::uint64_t heartbeats = 0;
+  const std::string outcome = wait_through_a_long_computation(false, &heartbeats);
+  EXPECT_TRUE(contains(outcome, "timed out after 0.4 s while waiting for Goodbye")) << outcome;
+  EXPECT_EQ(heartbeats, 0u);
+}
+
+TEST(ProtocolHeartbeat, NothingIsSentOutsideBusyScopesAndStopIsFinal) {
+  Listener listener("127.0.0.1", 0, quick_close());
+  auto peer = std::async(std::launch::async, [port = listener.port()] {
+    Channel channel = Channel::connect("127.0.0.1", port, 5s, quick_close());
+    HeartbeatSender heartbeat(channel, true, 50ms);
+    std::this_thread::sleep_for(300ms);  // idle: no heartbeats
+    const std::uint64_t idle = heartbeat.sent();
+    heartbeat.stop();
+    heartbeat.stop();
+    {
+      auto busy = heartbeat.busy();  // after stop(): does nothing
+      std::this_thread::sleep_for(200ms);
+    }
+    channel.send(Goodbye{heartbeat.sent() + 100 * idle, 0.0});
+  });
+  Channel receiver = listener.accept(5s);
+  EXPECT_EQ(receiver.expect<Goodbye>(5s).steps_done, 0u);
+  EXPECT_EQ(receiver.heartbeats_received(), 0u);
+  receiver.close();
+  peer.get();
+}
+
+TEST(ProtocolHeartbeat, HeartbeatWithAPayloadIsMalformed) {
+  const std::string text = fault_from_raw_peer(
+      encode_frame(MessageType::Heartbeat, std::vector<std::byte>(3)), quick_close());
+  EXPECT_TRUE(contains(text, "malformed Heartbeat message: 3 payload bytes")) << text;
 }
 
 }  // namespace

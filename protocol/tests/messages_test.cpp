@@ -60,10 +60,30 @@ Goodbye sample_goodbye() {
   return {140000, 3600.5};
 }
 
+AuthBytes counting_bytes(std::uint8_t first) {
+  AuthBytes bytes{};
+  for (std::size_t i = 0; i < bytes.size(); ++i)
+    bytes[i] = static_cast<std::uint8_t>(first + i);
+  return bytes;
+}
+
 std::vector<Message> all_samples() {
-  return {sample_hello(),  sample_welcome(),          sample_error(),    sample_setup(),
-          sample_mesh(),   sample_particles(),        sample_ready(),    sample_step(),
-          sample_forces(), sample_snapshot_request(), sample_snapshot(), sample_shutdown(),
+  return {sample_hello(),
+          sample_welcome(),
+          sample_error(),
+          AuthChallenge{counting_bytes(1)},
+          AuthResponse{counting_bytes(40), counting_bytes(80)},
+          AuthProof{counting_bytes(200)},
+          Heartbeat{},
+          sample_setup(),
+          sample_mesh(),
+          sample_particles(),
+          sample_ready(),
+          sample_step(),
+          sample_forces(),
+          sample_snapshot_request(),
+          sample_snapshot(),
+          sample_shutdown(),
           sample_goodbye()};
 }
 
@@ -107,6 +127,10 @@ TEST(ProtocolMessages, PayloadSizesFollowTheSpecTables) {
   EXPECT_EQ(encode(sample_mesh()).size(), 4u + 4 + 4 + 8 + (8 + 6 * 8) * 2 + (8 + 4 * 4));
   EXPECT_EQ(encode(sample_snapshot_request()).size(), 8u);
   EXPECT_EQ(encode(Welcome{}).size(), 2u + 4 + 4 + 4);
+  EXPECT_EQ(encode(AuthChallenge{}).size(), 32u);
+  EXPECT_EQ(encode(AuthResponse{}).size(), 64u);
+  EXPECT_EQ(encode(AuthProof{}).size(), 32u);
+  EXPECT_EQ(encode(Heartbeat{}).size(), 0u);
 }
 
 std::vector<double> awkward_doubles() {

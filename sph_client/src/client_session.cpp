@@ -9,6 +9,7 @@
 #include <limits>
 #include <memory>
 #include <optional>
+#include <thread>
 #include <variant>
 #include <vector>
 
@@ -16,6 +17,7 @@
 #include "fsi/common/stopwatch.hpp"
 #include "fsi/common/version.hpp"
 #include "fsi/contact/liggghts_fix.hpp"
+#include "fsi/protocol/auth.hpp"
 #include "fsi/protocol/channel.hpp"
 #include "fsi/protocol/messages.hpp"
 #include "liggghts_driver.hpp"
@@ -36,12 +38,15 @@ struct SetupData {
 struct ExitReport {
   protocol::Channel* channel = nullptr;
   const LiggghtsDriver* driver = nullptr;
+  protocol::HeartbeatSender* heartbeat = nullptr;
   bool active = false;
 };
 ExitReport g_exit_report;
 
 void report_liggghts_exit() {
   if (!g_exit_report.active || !g_exit_report.channel) return;
+  // LIGGGHTS may exit in the middle of a step, while heartbeats go out: stop them first.
+  if (g_exit_report.heartbeat) g_exit_report.heartbeat->stop();
   std::string text = "LIGGGHTS stopped the client";
   if (g_exit_report.driver) {
     const auto& position = g_exit_report.driver->position();
@@ -110,6 +115,8 @@ class ClientSession {
   int run() {
     if (mpi_.root()) connect();
     const SetupData data = receive_setup();
+    // From here until Ready, rank 0 tells the server it is busy (set-up and equilibration).
+    setup_busy_ = busy();
     dimension_ = static_cast<int>(data.setup.dimension);
     configure_boundary(data.mesh);
     DriverOptions driver_options;
@@ -126,6 +133,8 @@ class ClientSession {
 
   void report_failure(const std::string& text, protocol::ErrorCode code) {
     if (!channel_) return;
+    setup_busy_ = {};
+    if (heartbeat_) heartbeat_->stop();
     try {
       channel_->send(protocol::ErrorMessage{code, text});
       channel_->close();  // lingers until the server has read it (MPI_Abort follows)
@@ -140,16 +149,44 @@ class ClientSession {
     g_exit_report.channel = channel_.get();
     g_exit_report.active = true;
     std::atexit(report_liggghts_exit);
-    protocol::Hello hello;
-    hello.software_version = std::string(fsi::software_version());
-    hello.host = host_name();
-    hello.mpi_ranks = static_cast<std::uint32_t>(mpi_.size());
-    hello.capabilities = 0;
-    channel_->send(hello);
-    const auto welcome = channel_->expect<protocol::Welcome>(options_.connect_timeout);
-    std::fprintf(stderr, "fsi-client: connected to %s (fsi-server %s, run '%s'), %d rank(s)\n",
-                 channel_->peer_description().c_str(), welcome.software_version.c_str(),
-                 welcome.run_name.c_str(), mpi_.size());
+    protocol::ClientHandshake handshake;
+    handshake.token = options_.token;
+    handshake.hello.software_version = std::string(fsi::software_version());
+    handshake.hello.host = host_name();
+    handshake.hello.mpi_ranks = static_cast<std::uint32_t>(mpi_.size());
+    handshake.timeout = options_.connect_timeout;
+    const protocol::ClientHandshakeResult opened = protocol::open_session(*channel_, handshake);
+    capabilities_ = opened.capabilities;
+    heartbeat_ = std::make_unique<protocol::HeartbeatSender>(
+        *channel_, (capabilities_ & protocol::kCapabilityHeartbeat) != 0);
+    g_exit_report.heartbeat = heartbeat_.get();
+    const protocol::Welcome& welcome = opened.welcome;
+    std::fprintf(
+        stderr, "fsi-client: connected to %s (fsi-server %s, run '%s'), %d rank(s)%s\n",
+        channel_->peer_description().c_str(), welcome.software_version.c_str(),
+        welcome.run_name.c_str(), mpi_.size(),
+        (capabilities_ & protocol::kCapabilityAuthentication) != 0 ? ", server authenticated" : "");
+  }
+
+  // Rank 0 sends heartbeats while this lives (other ranks have no connection).
+  protocol::HeartbeatSender::Busy busy() {
+    return heartbeat_ ? heartbeat_->busy() : protocol::HeartbeatSender::Busy{};
+  }
+
+  // Test hook: FSI_TEST_SLOW_STEP="STEP:SECONDS" makes every rank sleep that long in coupled step
+  // STEP, standing in for a long LIGGGHTS step (tests/integration/test_heartbeat.py).
+  void slow_step_for_tests(std::uint64_t step) const {
+    const char* hook = std::getenv("FSI_TEST_SLOW_STEP");
+    if (hook == nullptr) return;
+    unsigned long long slow_step = 0;
+    double seconds = 0.0;
+    if (std::sscanf(hook, "%llu:%lf", &slow_step, &seconds) == 2 && slow_step == step) {
+      if (mpi_.root()) {
+        std::fprintf(stderr, "fsi-client: test hook: step %llu takes %g s\n", slow_step, seconds);
+        std::fflush(stderr);
+      }
+      std::this_thread::sleep_for(std::chrono::duration<double>(seconds));
+    }
   }
 
   // Receives one frame on rank 0 and hands type and payload to every rank.
@@ -267,6 +304,7 @@ class ClientSession {
     dimension_ = static_cast<int>(data.setup.dimension);
 
     const std::uint64_t count = driver_->particle_count();
+    setup_busy_ = {};
     if (mpi_.root()) {
       protocol::Ready ready;
       ready.particle_count = count;
@@ -334,6 +372,8 @@ class ClientSession {
     while (true) {
       protocol::Message message = next_message();
       if (auto* step = std::get_if<protocol::Step>(&message)) {
+        auto computing = busy();
+        slow_step_for_tests(step->step);
         apply_step(*step);
         const double fix_before = boundary_->seconds_in_fix;
         Stopwatch liggghts;
@@ -341,10 +381,13 @@ class ClientSession {
         driver_->step();
         liggghts.stop();
         const double contact = boundary_->seconds_in_fix - fix_before;
+        computing = {};
         send_forces(step->step, liggghts.seconds() - contact, contact);
         ++steps;
       } else if (auto* request = std::get_if<protocol::SnapshotRequest>(&message)) {
+        auto gathering = busy();
         Snapshot snapshot = driver_->gather_snapshot(dimension_);
+        gathering = {};
         if (mpi_.root()) {
           protocol::Snapshot reply;
           reply.step = request->step;
@@ -399,6 +442,9 @@ class ClientSession {
   MpiContext mpi_;
   ClientOptions options_;
   std::unique_ptr<protocol::Channel> channel_;
+  std::uint32_t capabilities_ = 0;                        // agreed in the handshake
+  std::unique_ptr<protocol::HeartbeatSender> heartbeat_;  // rank 0
+  protocol::HeartbeatSender::Busy setup_busy_;
   std::shared_ptr<contact::CouplingBoundary> boundary_;
   std::unique_ptr<LiggghtsDriver> driver_;
   std::vector<double> initial_velocities_;

@@ -7,7 +7,10 @@
 
 #include <chrono>
 #include <cstdint>
+#include <optional>
 #include <string>
+
+#include "fsi/protocol/auth.hpp"
 
 namespace fsi::client {
 
@@ -15,9 +18,12 @@ struct ClientOptions {
   std::string host = "127.0.0.1";
   std::uint16_t port = 0;
   std::chrono::milliseconds connect_timeout{60000};
-  // Longest wait for the next message from the server once connected: a server that hangs ends
-  // the client after this long.
+  // Longest silence of the server (no message, no heartbeat) once connected: a server that hangs
+  // ends the client after this long.
   std::chrono::milliseconds peer_timeout{std::chrono::minutes(5)};
+  // --token-file: the server must prove this token before its set-up is accepted, and the client
+  // proves it to the server. None: the server is not authenticated.
+  std::optional<protocol::Token> token;
   std::string liggghts_log;  // LIGGGHTS log file (rank 0); empty: none
   bool echo_liggghts = false;
   bool allow_unsafe_commands = false;  // run `shell` and files outside the run directory

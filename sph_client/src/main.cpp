@@ -7,7 +7,10 @@
 #include <string>
 
 #include "client_session.hpp"
+#include "fsi/common/error.hpp"
 #include "fsi/common/version.hpp"
+#include "fsi/protocol/auth.hpp"
+#include "fsi/protocol/channel.hpp"
 
 int main(int argc, char** argv) {
   MPI_Init(&argc, &argv);
@@ -30,10 +33,15 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   double peer_timeout = 300.0;
   app.add_option("--peer-timeout", peer_timeout,
-                 "Seconds to wait for the next message from fsi-server before giving up (a "
-                 "stopped or hung server)")
-      ->check(CLI::PositiveNumber)
+                 "Seconds of silence from fsi-server after which the client gives up (a stopped "
+                 "or hung server). A computing server sends a heartbeat every second, so long "
+                 "structure solves do not count as silence. At least 2")
+      ->check(CLI::Range(2.0, 1e9))
       ->capture_default_str();
+  std::string token_file;
+  app.add_option("--token-file", token_file,
+                 "Shared token (same content as fsi-server's --token-file): the server must prove "
+                 "it holds it before its set-up is accepted, and this client proves it in turn");
   app.add_option("--liggghts-log", options.liggghts_log, "Write LIGGGHTS' log to this file");
   app.add_flag("--echo", options.echo_liggghts, "Show LIGGGHTS' screen output (rank 0)");
   app.add_flag("--allow-unsafe-commands", options.allow_unsafe_commands,
@@ -61,6 +69,21 @@ int main(int argc, char** argv) {
     return 2;
   }
   options.host = server.substr(0, colon);
+  if (!token_file.empty()) {
+    try {
+      options.token = fsi::protocol::read_token_file(token_file);
+    } catch (const fsi::Error& error) {
+      if (rank == 0) std::fprintf(stderr, "fsi-client: error: %s\n", error.what());
+      MPI_Finalize();
+      return 2;
+    }
+  } else if (rank == 0 && !fsi::protocol::is_loopback_address(options.host) &&
+             options.host != "localhost") {
+    std::fprintf(stderr,
+                 "fsi-client: warning: connecting to %s without --token-file: the server is not "
+                 "authenticated, and this client runs the LIGGGHTS commands it sends\n",
+                 server.c_str());
+  }
   options.port = static_cast<std::uint16_t>(port);
   options.connect_timeout = std::chrono::milliseconds(static_cast<long>(connect_timeout * 1000));
   options.peer_timeout = std::chrono::milliseconds(static_cast<long>(peer_timeout * 1000));

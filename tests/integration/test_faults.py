@@ -118,9 +118,9 @@ fake = subprocess.run([binary("fake_peer"), "client", "127.0.0.1", str(port), "2
 status = wait(server, 10)
 log = read(run_dir, "server.stderr")
 check(fake.returncode == 1 and "server refused" in fake.stdout, f"fake client refused: {fake.stdout.strip()}")
-check("protocol 2.0" in fake.stdout and "1.0" in fake.stdout, "the refusal names both versions")
+check("protocol 2.0" in fake.stdout and "this fsi-server speaks 1." in fake.stdout, "the refusal names both versions")
 check(status is not None and status > 0, f"server exits non-zero without crashing ({status})")
-check("protocol 2.0" in log and "1.0" in log, "the server's message names both versions")
+check("protocol 2.0" in log and "this fsi-server speaks 1." in log, "the server's message names both versions")
 
 # 4. A server speaking protocol 2.0 is refused by the client.
 run_dir = os.path.join(output, "server_version")
@@ -139,6 +139,6 @@ if status is None:
     kill_group(client)
     fail("fsi-client still runs 10 s after meeting a protocol 2.0 server")
 check(status > 0, f"client exits non-zero without crashing ({status})")
-check("protocol 2.0" in log and "1.0" in log, "the client's message names both versions")
+check("protocol 2.0" in log and "this side speaks 1." in log, "the client's message names both versions")
 fake_server.wait(timeout=30)
 cleanup(output)

@@ -11,11 +11,13 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <optional>
 
 #include "fsi/common/error.hpp"
 #include "fsi/common/version.hpp"
 #include "fsi/coupling/mbd_only.hpp"
 #include "fsi/coupling/session.hpp"
+#include "fsi/protocol/auth.hpp"
 #include "fsi/scene/physics_checks.hpp"
 #include "fsi/scene/scene.hpp"
 
@@ -124,10 +126,20 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   double peer_timeout = 300.0;
   app.add_option("--peer-timeout", peer_timeout,
-                 "Seconds to wait for fsi-client's answer to one step or snapshot before giving "
-                 "up (a stopped or hung client); the equilibration wait is not bounded")
+                 "Seconds of silence from fsi-client after which the server gives up (a stopped or "
+                 "hung client). A computing client sends a heartbeat every second, so long "
+                 "steps and the equilibration do not count as silence. At least 2")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Range(2.0, 1e9));
+  std::string token_file;
+  app.add_option("--token-file", token_file,
+                 "Shared token (a file only you can read, e.g. `openssl rand -hex 32 > FILE; chmod "
+                 "600 FILE`): fsi-client must prove it holds the same token, and this server "
+                 "proves it to the client (HMAC-SHA256 challenge-response)");
+  bool allow_unauthenticated = false;
+  app.add_flag("--allow-unauthenticated", allow_unauthenticated,
+               "Listen on a non-loopback --listen address without --token-file (anyone who "
+               "reaches the port can take the client's place)");
   app.add_flag("--check", check_only, "Validate the scene (all problems at once) and exit");
   app.add_flag("--mbd-only", mbd_only,
                "Run the scene's multibody part alone, without fsi-client (fluid forces zero); "
@@ -187,6 +199,30 @@ int main(int argc, char** argv) {
     spdlog::error("--output is required for a run (a folder for sensors.csv, run.json, snapshots)");
     return 2;
   }
+  // Refused before anything else of a run: who may connect is decided up front.
+  std::optional<fsi::protocol::Token> token;
+  if (!token_file.empty()) {
+    try {
+      token = fsi::protocol::read_token_file(token_file);
+    } catch (const fsi::Error& error) {
+      spdlog::error("{}", error.what());
+      return 2;
+    }
+  } else if (!fsi::protocol::is_loopback_address(listen)) {
+    if (!allow_unauthenticated) {
+      spdlog::error(
+          "--listen {}: refusing to listen on a non-loopback address without --token-file: "
+          "anyone who reaches the port could connect as fsi-client\n  how to fix: give "
+          "fsi-server and fsi-client the same --token-file (docs/user-guide.md, "
+          "\"Authentication\"), or add --allow-unauthenticated on a network you trust",
+          listen);
+      return 2;
+    }
+    spdlog::warn(
+        "--listen {} without --token-file (--allow-unauthenticated): ANY host that reaches the "
+        "port can connect as fsi-client; use --token-file unless the network is trusted",
+        listen);
+  }
   std::error_code error;
   std::filesystem::create_directories(output, error);
   configure_logging(log_level, (std::filesystem::path(output) / "fsi-server.log").string());
@@ -195,6 +231,7 @@ int main(int argc, char** argv) {
   options.listen_address = listen;
   options.port = static_cast<std::uint16_t>(port);
   options.port_file = port_file;
+  options.token = token;
   options.output_dir = output;
   options.accept_timeout = std::chrono::milliseconds(static_cast<long>(accept_timeout * 1000));
   options.peer_timeout = std::chrono::milliseconds(static_cast<long>(peer_timeout * 1000));

@@ -165,25 +165,22 @@ class Session {
                  listener.port());
     if (!options_.port_file.empty()) write_port_file(options_.port_file, listener.port());
     channel_ = std::make_unique<protocol::Channel>(listener.accept(options_.accept_timeout));
-    // The Hello layout is the same in every protocol version, so a mismatch is always readable.
-    const auto hello = channel_->expect<protocol::Hello>(options_.handshake_timeout);
-    const protocol::VersionCheck version = protocol::check_peer_version(
-        protocol::Role::Server, channel_->peer_major(), channel_->peer_minor());
-    if (!version.compatible) {
-      const std::string& text = version.message;
-      channel_->send(protocol::ErrorMessage{protocol::ErrorCode::VersionMismatch, text});
-      throw Error("refused fsi-client " + hello.software_version + " at " +
-                      channel_->peer_description() + ": " + text,
-                  "handshake", "use matching fsi-server and fsi-client releases");
-    }
+    protocol::ServerHandshake handshake;
+    handshake.token = options_.token;
+    handshake.software_version = std::string(fsi::software_version());
+    handshake.run_name = fs::path(options_.output_dir).filename().string();
+    handshake.timeout = options_.handshake_timeout;
+    const protocol::ServerHandshakeResult opened = protocol::accept_client(*channel_, handshake);
+    const protocol::Hello& hello = opened.hello;
     client_ = hello;
-    protocol::Welcome welcome;
-    welcome.accepted_minor = version.agreed_minor;
-    welcome.software_version = std::string(fsi::software_version());
-    welcome.run_name = fs::path(options_.output_dir).filename().string();
-    channel_->send(welcome);
-    spdlog::info("fsi-client {} connected from {} ({}, {} MPI rank(s))", hello.software_version,
-                 channel_->peer_description(), hello.host, hello.mpi_ranks);
+    capabilities_ = opened.capabilities;
+    heartbeat_ = std::make_unique<protocol::HeartbeatSender>(
+        *channel_, (capabilities_ & protocol::kCapabilityHeartbeat) != 0);
+    spdlog::info("fsi-client {} connected from {} ({}, {} MPI rank(s)){}", hello.software_version,
+                 channel_->peer_description(), hello.host, hello.mpi_ranks,
+                 (capabilities_ & protocol::kCapabilityAuthentication) != 0
+                     ? "; authenticated with the token of " + options_.token->file()
+                     : std::string());
   }
 
   void send_boundary_setup() {
@@ -233,8 +230,11 @@ class Session {
         scene_.fluid.count(), scene_.fluid.mass, scene_.boundary.vertex_count,
         scene_.boundary.dynamic_vertex_count, scene_.boundary.segments.size() / 2,
         scene_.liggghts.equilibration_steps);
-    // Set-up and equilibration may take long; a client that dies closes the connection.
-    ready_ = channel_->expect<protocol::Ready>(std::nullopt);
+    // Set-up and equilibration may take long: a client that sends heartbeats (1.1) is waited for
+    // as long as it computes; one of protocol 1.0 (no heartbeats) as long as it takes.
+    const bool client_heartbeats = (capabilities_ & protocol::kCapabilityHeartbeat) != 0;
+    ready_ = channel_->expect<protocol::Ready>(
+        client_heartbeats ? std::optional(options_.peer_timeout) : std::nullopt);
     checks_.particles_initial = ready_.particle_count;
     spdlog::info("client ready: {} particles in LIGGGHTS; set-up {:.2f} s, equilibration {:.2f} s",
                  ready_.particle_count, ready_.seconds_setup, ready_.seconds_equilibration);
@@ -346,6 +346,8 @@ class Session {
                         std::to_string(n),
                     "fsi-server", "results up to this step are in the output folder");
       }
+      // The client waits for the Step meanwhile: heartbeats tell it we are computing.
+      auto computing = heartbeat_->busy();
       {
         ScopedTimer timer(timings_.mbd);
         integrator_->step(scene_.model, state_, dt);
@@ -367,6 +369,7 @@ class Session {
                             positions.begin() + static_cast<long>(dynamic_values));
       step.velocities.assign(velocities.begin(),
                              velocities.begin() + static_cast<long>(dynamic_values));
+      computing = {};
       timings_.round_trip.start();
       channel_->send(step);
       const auto forces = channel_->expect<protocol::Forces>(options_.peer_timeout);
@@ -405,6 +408,7 @@ class Session {
     ScopedTimer timer(timings_.output);
     channel_->send(protocol::SnapshotRequest{n});
     auto reply = channel_->expect<protocol::Snapshot>(options_.peer_timeout);
+    auto writing = heartbeat_->busy();
     ParticleSnapshot snapshot;
     snapshot.step = reply.step;
     snapshot.time = reply.time;
@@ -459,7 +463,11 @@ class Session {
                            {"version", std::string(fsi::software_version())},
                            {"git_revision", std::string(fsi::git_revision())},
                            {"command_line", options_.command_line}};
-    manifest["protocol"] = {{"major", protocol::kMajorVersion}, {"minor", protocol::kMinorVersion}};
+    manifest["protocol"] = {
+        {"major", protocol::kMajorVersion},
+        {"minor", protocol::kMinorVersion},
+        {"capabilities", capabilities_},
+        {"authenticated", (capabilities_ & protocol::kCapabilityAuthentication) != 0}};
     if (client_) {
       manifest["client"] = {{"software_version", client_->software_version},
                             {"host", client_->host},
@@ -551,6 +559,8 @@ class Session {
   std::unique_ptr<VtkOutput> vtk_;
   std::unique_ptr<protocol::Channel> channel_;
   std::optional<protocol::Hello> client_;
+  std::uint32_t capabilities_ = 0;  // agreed in the handshake
+  std::unique_ptr<protocol::HeartbeatSender> heartbeat_;
   protocol::Ready ready_;
   std::unique_ptr<mbd::RadauIIA> integrator_;
   mbd::State state_;

@@ -7,13 +7,16 @@
 // may only be destroyed or assigned to.
 
 #include <chrono>
+#include <condition_variable>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <span>
 #include <string>
 #include <string_view>
+#include <thread>
 
 #include "fsi/protocol/frame.hpp"
 #include "fsi/protocol/messages.hpp"
@@ -21,6 +24,10 @@
 namespace fsi::protocol {
 
 using Milliseconds = std::chrono::milliseconds;
+
+// How often a busy side sends Heartbeat frames (docs/protocol.md, "Waiting"). A peer's receive
+// timeout must be longer than this.
+inline constexpr Milliseconds kHeartbeatInterval{1000};
 
 struct ChannelOptions {
   // Version written into every sent header. Only tests that fake another peer change it.
@@ -55,9 +62,10 @@ class Channel {
   void send(const T& message) { send(T::kType, encode_into(message, send_buffer())); }
   void send(const Message& message);
 
-  // Receives one complete frame with a checked header and CRC. No timeout waits for ever;
-  // waiting_for words the errors ("Forces", "the set-up", ...). A timeout before the first byte
-  // of a frame leaves the channel usable; any other receive fault makes later receives throw.
+  // Receives one complete frame with a checked header and CRC, skipping Heartbeat frames: each
+  // Heartbeat starts the timeout again, so it measures the peer's silence. No timeout waits for
+  // ever; waiting_for words the errors ("Forces", "the set-up", ...). A timeout before the first
+  // byte of a frame leaves the channel usable; any other receive fault makes later receives throw.
   Frame receive(std::optional<Milliseconds> timeout, std::string_view waiting_for = "a message");
   // Receives and decodes one message; the payload goes through a buffer the channel reuses.
   Message receive_message(std::optional<Milliseconds> timeout,
@@ -77,12 +85,18 @@ class Channel {
   // Version in the last header received from the peer (0.0 before the first frame).
   std::uint16_t peer_major() const;
   std::uint16_t peer_minor() const;
+  // Heartbeat frames consumed by receives so far.
+  std::uint64_t heartbeats_received() const;
   bool is_open() const;
   // Ends the connection gracefully (see ChannelOptions::close_linger). Idempotent.
   void close();
 
  private:
   friend class Listener;
+  friend class HeartbeatSender;
+  // Sends one Heartbeat frame without blocking; false if it did not go out (socket buffer full,
+  // connection gone). Only for HeartbeatSender, while the owning thread leaves the channel alone.
+  bool try_send_heartbeat();
   // Reused for every message this channel encodes (keeps the largest size it has needed).
   std::vector<std::byte>& send_buffer();
   struct Impl;
@@ -90,6 +104,55 @@ class Channel {
   [[noreturn]] void throw_unexpected(MessageType expected, const Message& received) const;
   std::unique_ptr<Impl> impl_;
 };
+
+// Sends Heartbeat frames from a background thread while its owner computes (protocol 1.1,
+// capability kCapabilityHeartbeat), so that the peer's receive timeout measures silence rather
+// than compute time. During a Busy scope the owning thread must not use the channel; ending the
+// scope waits for a heartbeat that is being sent, then the channel is the owner's again. Sends
+// never block: a heartbeat that does not fit into the socket buffer is skipped.
+class HeartbeatSender {
+ public:
+  // enabled = false (the peer did not announce kCapabilityHeartbeat): sends nothing.
+  HeartbeatSender(Channel& channel, bool enabled, Milliseconds interval = kHeartbeatInterval);
+  HeartbeatSender(const HeartbeatSender&) = delete;
+  HeartbeatSender& operator=(const HeartbeatSender&) = delete;
+  ~HeartbeatSender();
+
+  // While alive, a Heartbeat goes out every interval. A default-constructed Busy does nothing.
+  class Busy {
+   public:
+    Busy() = default;
+    explicit Busy(HeartbeatSender* sender);
+    Busy(Busy&& other) noexcept;
+    Busy& operator=(Busy&& other) noexcept;
+    ~Busy();
+
+   private:
+    HeartbeatSender* sender_ = nullptr;
+  };
+  [[nodiscard]] Busy busy();
+  // Ends heartbeats for good, e.g. before an exit handler sends on the channel. Idempotent;
+  // callable from any thread.
+  void stop();
+  std::uint64_t sent() const;
+
+ private:
+  void run();
+  void set_busy(bool busy);
+  Channel& channel_;
+  Milliseconds interval_;
+  mutable std::mutex mutex_;
+  std::condition_variable wake_;
+  bool busy_ = false;
+  bool stopping_ = false;
+  std::uint64_t busy_epoch_ = 0;
+  std::uint64_t sent_ = 0;
+  std::thread thread_;
+};
+
+// Whether a numeric address is a loopback one (127.0.0.0/8, ::1): only this host can reach it.
+// Names and malformed addresses are not.
+bool is_loopback_address(const std::string& numeric_address);
 
 class Listener {
  public:

@@ -16,9 +16,13 @@
 
 namespace fsi::protocol {
 
-// Capability bits of Hello and Welcome. Protocol 1.0 defines none; later minors add optional
-// features here (shared-secret authentication is planned), agreed as the AND of both sides' bits.
+// Capability bits of Hello and Welcome, agreed as the AND of both sides' bits (docs/protocol.md,
+// "Versions"). Protocol 1.0 defines none.
 inline constexpr std::uint32_t kNoCapabilities = 0;
+// 1.1: the sender holds a shared token and proves it (AuthChallenge, AuthResponse, AuthProof).
+inline constexpr std::uint32_t kCapabilityAuthentication = 1u << 0;
+// 1.1: the sender understands Heartbeat frames (the peer may send them while it computes).
+inline constexpr std::uint32_t kCapabilityHeartbeat = 1u << 1;
 
 enum class ErrorCode : std::uint32_t {
   VersionMismatch = 1,
@@ -28,6 +32,7 @@ enum class ErrorCode : std::uint32_t {
   LiggghtsError = 5,
   PeerAborted = 6,
   Internal = 7,
+  AuthenticationFailed = 8,  // 1.1
 };
 // "VersionMismatch", ..., or "code 42" for codes this version does not know.
 std::string name(ErrorCode code);
@@ -67,6 +72,36 @@ struct ErrorMessage {  // either way; layout frozen in every major version
   ErrorCode code = ErrorCode::Internal;  // codes unknown to this version are kept as they are
   std::string text;
   bool operator==(const ErrorMessage&) const = default;
+};
+
+// Authentication (1.1, capability kCapabilityAuthentication; docs/protocol.md §5): 32-byte
+// nonces from a CSPRNG and HMAC-SHA256 tags.
+using AuthBytes = std::array<std::uint8_t, 32>;
+
+struct AuthChallenge {  // server -> client, after a Hello with kCapabilityAuthentication
+  static constexpr MessageType kType = MessageType::AuthChallenge;
+  AuthBytes server_nonce{};
+  bool operator==(const AuthChallenge&) const = default;
+};
+
+struct AuthResponse {  // client -> server
+  static constexpr MessageType kType = MessageType::AuthResponse;
+  AuthBytes client_nonce{};
+  AuthBytes client_tag{};  // HMAC(token, "fsi-client" | server_nonce | client_nonce)
+  bool operator==(const AuthResponse&) const = default;
+};
+
+struct AuthProof {  // server -> client, once the client's tag is verified; Welcome follows
+  static constexpr MessageType kType = MessageType::AuthProof;
+  AuthBytes server_tag{};  // HMAC(token, "fsi-server" | client_nonce | server_nonce)
+  bool operator==(const AuthProof&) const = default;
+};
+
+// 1.1, capability kCapabilityHeartbeat: "still computing". Carries no payload; a receiving Channel
+// consumes it and starts its timeout again.
+struct Heartbeat {
+  static constexpr MessageType kType = MessageType::Heartbeat;
+  bool operator==(const Heartbeat&) const = default;
 };
 
 struct LiggghtsVariable {
@@ -187,13 +222,18 @@ struct Goodbye {  // client -> server, the last message of a session
   bool operator==(const Goodbye&) const = default;
 };
 
-using Message = std::variant<Hello, Welcome, ErrorMessage, Setup, Mesh, Particles, Ready, Step,
-                             Forces, SnapshotRequest, Snapshot, Shutdown, Goodbye>;
+using Message = std::variant<Hello, Welcome, ErrorMessage, AuthChallenge, AuthResponse, AuthProof,
+                             Heartbeat, Setup, Mesh, Particles, Ready, Step, Forces,
+                             SnapshotRequest, Snapshot, Shutdown, Goodbye>;
 
 // Payload bytes (without the frame header).
 std::vector<std::byte> encode(const Hello& message);
 std::vector<std::byte> encode(const Welcome& message);
 std::vector<std::byte> encode(const ErrorMessage& message);
+std::vector<std::byte> encode(const AuthChallenge& message);
+std::vector<std::byte> encode(const AuthResponse& message);
+std::vector<std::byte> encode(const AuthProof& message);
+std::vector<std::byte> encode(const Heartbeat& message);
 std::vector<std::byte> encode(const Setup& message);
 std::vector<std::byte> encode(const Mesh& message);
 std::vector<std::byte> encode(const Particles& message);

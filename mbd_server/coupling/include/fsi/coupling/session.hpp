@@ -6,9 +6,11 @@
 
 #include <chrono>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "fsi/protocol/auth.hpp"
 #include "fsi/scene/scene.hpp"
 
 namespace fsi::coupling {
@@ -20,9 +22,12 @@ struct ServerOptions {
   std::string output_dir;
   std::chrono::milliseconds accept_timeout{std::chrono::minutes(2)};
   std::chrono::milliseconds handshake_timeout{std::chrono::seconds(30)};
-  // Longest wait for the client's answer to one step or snapshot request: a client that hangs
-  // (stopped, deadlocked) ends the run after this long. The wait for Ready, which includes the
-  // LIGGGHTS-only equilibration, is not bounded (no heartbeat yet).
+  // --token-file: the client must prove this token, and the server proves it to the client
+  // (docs/protocol.md, "Authentication"). None: clients are not authenticated.
+  std::optional<protocol::Token> token;
+  // Longest silence of the client (no message, no heartbeat) while the server waits for it: a
+  // client that hangs (stopped, deadlocked) ends the run after this long. A client of protocol
+  // 1.0 sends no heartbeats; then the wait for Ready (set-up and equilibration) is not bounded.
   std::chrono::milliseconds peer_timeout{std::chrono::minutes(5)};
   std::string command_line;           // recorded in run.json
   std::vector<std::string> warnings;  // the scene's physics warnings, recorded in run.json
