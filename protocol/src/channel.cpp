@@ -538,28 +538,27 @@ std::uint64_t HeartbeatSender::sent() const {
 }
 
 void HeartbeatSender::set_busy(bool busy) {
-  {
-    // Waits for a heartbeat being sent: afterwards the owner has the channel to itself.
-    std::lock_guard lock(mutex_);
-    busy_ = busy;
-    if (busy) ++busy_epoch_;
-  }
-  wake_.notify_all();
+  // No wake-up of the thread: toggling costs a lock per compute phase, not two context switches.
+  // Taking the lock waits for a heartbeat being sent, so afterwards the owner has the channel.
+  std::lock_guard lock(mutex_);
+  busy_ = busy;
+  if (busy) busy_since_ = std::chrono::steady_clock::now();
 }
 
 void HeartbeatSender::run() {
+  // The thread looks four times per interval, so the peer hears from a busy side at most
+  // 1.25 intervals apart.
+  const auto tick = std::max(Milliseconds{1}, interval_ / 4);
   std::unique_lock lock(mutex_);
   while (!stopping_) {
-    if (!busy_) {
-      wake_.wait(lock, [this] { return stopping_ || busy_; });
-      continue;
-    }
-    const std::uint64_t epoch = busy_epoch_;
-    const bool interrupted = wake_.wait_for(
-        lock, interval_, [&] { return stopping_ || !busy_ || busy_epoch_ != epoch; });
-    if (interrupted) continue;
-    // Still busy a whole interval later. The lock is held while sending (see set_busy).
+    wake_.wait_for(lock, tick, [this] { return stopping_; });
+    if (stopping_ || !busy_) continue;
+    const auto now = std::chrono::steady_clock::now();
+    if (now - busy_since_ < interval_) continue;
+    // Still busy an interval after the start or the last heartbeat. The lock is held while
+    // sending (see set_busy).
     if (channel_.is_open() && channel_.try_send_heartbeat()) ++sent_;
+    busy_since_ = now;
   }
 }
 

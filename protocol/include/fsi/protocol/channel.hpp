@@ -25,8 +25,9 @@ namespace fsi::protocol {
 
 using Milliseconds = std::chrono::milliseconds;
 
-// How often a busy side sends Heartbeat frames (docs/protocol.md, "Waiting"). A peer's receive
-// timeout must be longer than this.
+// How often a busy side sends Heartbeat frames (docs/protocol.md, "Waiting"; the first one an
+// interval after the compute phase began, then one per interval, each at most a quarter interval
+// late). A peer's receive timeout must be longer than 1.25 intervals.
 inline constexpr Milliseconds kHeartbeatInterval{1000};
 
 struct ChannelOptions {
@@ -145,7 +146,7 @@ class HeartbeatSender {
   std::condition_variable wake_;
   bool busy_ = false;
   bool stopping_ = false;
-  std::uint64_t busy_epoch_ = 0;
+  std::chrono::steady_clock::time_point busy_since_;  // start of busy, or the last heartbeat
   std::uint64_t sent_ = 0;
   std::thread thread_;
 };
