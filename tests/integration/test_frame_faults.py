@@ -1,0 +1,168 @@
+#!/usr/bin/python3
+"""Broken frames at the process level (docs/protocol.md §2, §7): a fake client written here in
+Python (its own CRC-32C, independent of the C++ one) completes the handshake and receives the
+set-up from the real fsi-server, then, instead of Ready, sends half a frame and goes silent, a
+truncated frame and hangs up, or a frame with a wrong CRC, an oversize length, an unknown type or
+another major version. Each time the server ends with a message naming the fault and a non-zero
+status, within its --peer-timeout where it has to wait; decodable faults are answered with an
+Error frame. Likewise a fake server that sends half a frame to the real fsi-client."""
+import os
+import socket
+import struct
+import subprocess
+import time
+
+from fsi_test import (ENV, binary, check, cleanup, example, fail, kill_group, read, start_client, start_server,
+                      wait, work_dir)
+
+scene = example("static_tank", "static_tank_coarse.scene")
+output = work_dir("frame_faults")
+timeout = 2.0
+
+
+def crc32c_table():
+    table = []
+    for byte in range(256):
+        crc = byte
+        for _ in range(8):
+            crc = (crc >> 1) ^ 0x82F63B78 if crc & 1 else crc >> 1
+        table.append(crc)
+    return table
+
+
+TABLE = crc32c_table()
+
+
+def crc32c(data, crc=0):
+    crc ^= 0xFFFFFFFF
+    for byte in data:
+        crc = TABLE[(crc ^ byte) & 0xFF] ^ (crc >> 8)
+    return crc ^ 0xFFFFFFFF
+
+
+assert crc32c(b"123456789") == 0xE3069283  # the check value of docs/protocol.md
+
+
+def frame(kind, payload, major=1, minor=1, length=None, crc_error=0):
+    head = b"FSIP" + struct.pack("<HHHHI", major, minor, kind, 0, len(payload) if length is None else length)
+    return head + struct.pack("<I", crc32c(payload, crc32c(head)) ^ crc_error) + payload
+
+
+def text(value):
+    data = value.encode()
+    return struct.pack("<I", len(data)) + data
+
+
+HELLO, WELCOME, ERROR, SETUP, MESH, PARTICLES, READY = 0x01, 0x02, 0x03, 0x10, 0x11, 0x12, 0x13
+READY_PAYLOAD = struct.pack("<Q", 1980) + text("fake LIGGGHTS") + struct.pack("<dd", 0.1, 0.2)
+
+
+def receive_frame(connection):
+    head = receive_exactly(connection, 20)
+    if head is None:
+        return None
+    kind, _, length = struct.unpack("<HHI", head[8:16])
+    return kind, receive_exactly(connection, length)
+
+
+def receive_exactly(connection, size):
+    data = b""
+    while len(data) < size:
+        piece = connection.recv(size - len(data))
+        if not piece:
+            return None
+        data += piece
+    return data
+
+
+def fake_client_until_setup(port):
+    connection = socket.create_connection(("127.0.0.1", port), timeout=30)
+    connection.sendall(frame(HELLO, text("fake-python") + text("test") + struct.pack("<II", 1, 0x2)))
+    kinds = [receive_frame(connection)[0] for _ in range(4)]
+    if kinds != [WELCOME, SETUP, MESH, PARTICLES]:
+        fail(f"expected Welcome, Setup, Mesh, Particles from the server, got {kinds}")
+    return connection
+
+
+def server_case(name, send, needle, hang_up=False, answered=True):
+    run_dir = os.path.join(output, name)
+    server, port = start_server(scene, run_dir, extra=["--peer-timeout", str(timeout)])
+    connection = fake_client_until_setup(port)
+    send(connection)
+    if hang_up:
+        connection.close()
+    started = time.time()
+    status = wait(server, 20)
+    elapsed = time.time() - started
+    if status is None:
+        kill_group(server)
+        fail(f"{name}: fsi-server still runs 20 s after the fault")
+    log = read(run_dir, "server.stderr")
+    check(status != 0 and needle in log,
+          f"{name}: server exits {status} after {elapsed:.2f} s, naming the fault: "
+          f"{next((line for line in log.splitlines() if needle in line), '(not found)')[-170:]}")
+    if answered:
+        connection.settimeout(5)
+        reply = receive_frame(connection)
+        check(reply is not None and reply[0] == ERROR,
+              f"{name}: the server answered with an Error frame (code {struct.unpack('<I', reply[1][:4])[0] if reply else '-'})")
+    if not hang_up:
+        connection.close()
+    return elapsed
+
+
+ready = frame(READY, READY_PAYLOAD)
+
+# Half a header, then silence: ended after --peer-timeout.
+elapsed = server_case("half_header_silent", lambda c: c.sendall(ready[:10]),
+                      "timed out after 2 s while waiting for Ready from 127.0.0.1", answered=False)
+check(timeout <= elapsed < timeout + 1.5, f"half a header: ended within the timeout ({elapsed:.2f} s)")
+check("received 10 of the 20 header bytes" in read(os.path.join(output, "half_header_silent"), "server.stderr"),
+      "half a header: the message says how much of the frame arrived")
+# The header and half the payload, then silence.
+elapsed = server_case("half_payload_silent", lambda c: c.sendall(ready[:20 + len(READY_PAYLOAD) // 2]),
+                      f"received {len(READY_PAYLOAD) // 2} of the {len(READY_PAYLOAD)} payload bytes of a Ready frame",
+                      answered=False)
+check(timeout <= elapsed < timeout + 1.5, f"half a payload: ended within the timeout ({elapsed:.2f} s)")
+# A truncated frame, then the connection closes.
+server_case("truncated_then_closed", lambda c: c.sendall(ready[:20 + 5]),
+            "connection closed by peer", hang_up=True, answered=False)
+server_case("wrong_crc", lambda c: c.sendall(frame(READY, READY_PAYLOAD, crc_error=0x40)),
+            "CRC-32C mismatch in Ready frame")
+server_case("oversize_length", lambda c: c.sendall(frame(READY, b"", length=0xFFFFFFF0)),
+            "Ready frame announces a payload of 4294967280 bytes, more than the 1073741824 bytes")
+server_case("unknown_type", lambda c: c.sendall(frame(0x99, READY_PAYLOAD)),
+            "frame of unknown type 0x0099, which protocol 1.1 does not define")
+server_case("other_major", lambda c: c.sendall(frame(READY, READY_PAYLOAD, major=2, minor=0)),
+            "Ready frame of protocol 2.0, but this side speaks 1.1")
+server_case("bad_payload", lambda c: c.sendall(frame(READY, READY_PAYLOAD[:-3])),
+            "malformed Ready message: field 'seconds_equilibration' is truncated")
+
+# A fake server sends the real client half a Setup frame and goes silent.
+run_dir = os.path.join(output, "client_half_frame")
+os.makedirs(run_dir)
+listener = socket.socket()
+listener.bind(("127.0.0.1", 0))
+listener.listen(1)
+client = start_client(listener.getsockname()[1], 1, run_dir, ["--peer-timeout", str(timeout)])
+listener.settimeout(30)
+connection, _ = listener.accept()
+if receive_frame(connection)[0] != HELLO:
+    fail("the client did not start with Hello")
+connection.sendall(frame(WELCOME, struct.pack("<HI", 1, 0x2) + text("fake-server") + text("run")))
+connection.sendall(frame(SETUP, b"\x02\x00\x00\x00" + b"\x00" * 40)[:30])
+started = time.time()
+status = wait(client, 20)
+elapsed = time.time() - started
+connection.close()
+if status is None:
+    kill_group(client)
+    fail("fsi-client still runs 20 s after receiving half a frame")
+log = read(run_dir, "client.stderr")
+check(status != 0 and "timed out after 2 s while waiting for the next message from fsi-server" in log
+      and "payload bytes of a Setup frame" in log,
+      f"client: exits {status} after {elapsed:.2f} s naming the half Setup frame")
+# The timeout fires after 2 s (the message above says so); the exit then takes MPI_Abort and
+# mpirun's teardown of both ranks, allowed 3 s here.
+check(elapsed < timeout + 3.0, f"client: process ended {elapsed:.2f} s after the half frame (timeout {timeout} s + MPI teardown)")
+cleanup(output)
