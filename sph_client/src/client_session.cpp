@@ -111,6 +111,15 @@ class ClientSession {
  public:
   ClientSession(MPI_Comm communicator, const ClientOptions& options)
       : mpi_(communicator), options_(options) {}
+  ClientSession(const ClientSession&) = delete;
+  ClientSession& operator=(const ClientSession&) = delete;
+  // The exit handler must not reach into a finished session (--persistent runs several).
+  ~ClientSession() {
+    g_exit_report.active = false;
+    g_exit_report.channel = nullptr;
+    g_exit_report.driver = nullptr;
+    g_exit_report.heartbeat = nullptr;
+  }
 
   int run() {
     if (mpi_.root()) connect();
@@ -144,11 +153,11 @@ class ClientSession {
 
  private:
   void connect() {
-    channel_ = std::make_unique<protocol::Channel>(
-        protocol::Channel::connect(options_.host, options_.port, options_.connect_timeout));
+    channel_ = std::make_unique<protocol::Channel>(connect_to_server());
     g_exit_report.channel = channel_.get();
     g_exit_report.active = true;
-    std::atexit(report_liggghts_exit);
+    static const bool registered = std::atexit(report_liggghts_exit) == 0;
+    (void)registered;
     protocol::ClientHandshake handshake;
     handshake.token = options_.token;
     handshake.hello.software_version = std::string(fsi::software_version());
@@ -166,6 +175,20 @@ class ClientSession {
         channel_->peer_description().c_str(), welcome.software_version.c_str(),
         welcome.run_name.c_str(), mpi_.size(),
         (capabilities_ & protocol::kCapabilityAuthentication) != 0 ? ", server authenticated" : "");
+  }
+
+  // --persistent waits for the next server as long as it takes; otherwise --connect-timeout.
+  protocol::Channel connect_to_server() const {
+    if (!options_.persistent) {
+      return protocol::Channel::connect(options_.host, options_.port, options_.connect_timeout);
+    }
+    while (true) {
+      try {
+        return protocol::Channel::connect(options_.host, options_.port, options_.connect_timeout);
+      } catch (const protocol::ProtocolError&) {
+        // Nobody listens yet: keep waiting.
+      }
+    }
   }
 
   // Rank 0 sends heartbeats while this lives (other ranks have no connection).
@@ -453,11 +476,9 @@ class ClientSession {
   int dimension_ = 2;
 };
 
-}  // namespace
-
-int run_client_session(MPI_Comm communicator, const ClientOptions& options) {
-  int rank = 0;
-  MPI_Comm_rank(communicator, &rank);
+// One connection, set-up and run. A fault ends the whole MPI job (also with --persistent: the
+// ranks may be stuck in different collective calls, so there is no common place to resume).
+int run_one_session(MPI_Comm communicator, const ClientOptions& options, int rank) {
   ClientSession session(communicator, options);
   try {
     return session.run();
@@ -475,6 +496,24 @@ int run_client_session(MPI_Comm communicator, const ClientOptions& options) {
     g_exit_report.active = false;
     MPI_Abort(communicator, 1);
     return 1;
+  }
+}
+
+}  // namespace
+
+int run_client_session(MPI_Comm communicator, const ClientOptions& options) {
+  int rank = 0;
+  MPI_Comm_rank(communicator, &rank);
+  for (int run = 1;; ++run) {
+    const int status = run_one_session(communicator, options, rank);
+    if (!options.persistent) return status;
+    if (rank == 0) {
+      std::fprintf(stderr,
+                   "fsi-client: run %d done; waiting for the next fsi-server at %s:%u "
+                   "(--persistent; Ctrl-C ends)\n",
+                   run, options.host.c_str(), static_cast<unsigned>(options.port));
+      std::fflush(stderr);
+    }
   }
 }
 

@@ -26,7 +26,10 @@ struct ClientOptions {
   std::optional<protocol::Token> token;
   std::string liggghts_log;  // LIGGGHTS log file (rank 0); empty: none
   bool echo_liggghts = false;
-  bool allow_unsafe_commands = false;  // run `shell` and files outside the run directory
+  bool allow_unsafe_commands = false;
+  // After a successful run, wait for the next fsi-server at the same address and serve it too
+  // (thesis §5.4.2 "Finalize"); connecting then waits without limit.
+  bool persistent = false;  // run `shell` and files outside the run directory
 };
 
 // Runs the session; returns the process exit status. Faults end the whole MPI job: rank 0 tells

@@ -44,6 +44,9 @@ int main(int argc, char** argv) {
                  "it holds it before its set-up is accepted, and this client proves it in turn");
   app.add_option("--liggghts-log", options.liggghts_log, "Write LIGGGHTS' log to this file");
   app.add_flag("--echo", options.echo_liggghts, "Show LIGGGHTS' screen output (rank 0)");
+  app.add_flag("--persistent", options.persistent,
+               "After a run, wait for the next fsi-server at the same address and serve it too "
+               "(until interrupted); a failed run still ends the client");
   app.add_flag("--allow-unsafe-commands", options.allow_unsafe_commands,
                "Run script commands that are refused by default: 'shell' and file names outside "
                "the run directory (absolute, ~ or ..). Only for scenes you trust");
