@@ -33,6 +33,7 @@ void validate(const RadauOptions& options) {
     problems += " absolute_tolerance must be >= 0;";
   }
   if (newton.max_iterations < 1) problems += " max_iterations must be >= 1;";
+  if (newton.sparse_threshold < 1) problems += " sparse_threshold must be >= 1;";
   if (newton.max_modified_newton_steps < 0) problems += " max_modified_newton_steps must be >= 0;";
   if (!(newton.max_contraction > 0.0 && newton.max_contraction < 1.0)) {
     problems += " max_contraction must be in (0, 1);";
@@ -64,6 +65,10 @@ struct RadauIIA::Workspace {
   Eigen::VectorXd unknowns, residual, increment;
   Eigen::MatrixXd jacobian;
   Eigen::PartialPivLU<Eigen::MatrixXd> lu;
+  Eigen::SparseMatrix<double> sparse_jacobian;
+  Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> sparse_lu;
+  bool sparse = false;    // the kept factorisation is sparse_lu
+  bool singular = false;  // SparseLU found the matrix singular
   // What the kept factorisation belongs to.
   bool factorised = false;
   const Model* factorised_model = nullptr;
@@ -109,7 +114,16 @@ struct RadauIIA::Workspace {
   void refactorise(StepStatistics& stats) {
     equations.jacobian(unknowns, jacobian);
     ++stats.jacobian_evaluations;
-    lu.compute(jacobian);
+    sparse = options.linear_solver == LinearSolver::Sparse ||
+             (options.linear_solver == LinearSolver::Automatic &&
+              equations.size() >= options.sparse_threshold);
+    if (sparse) {
+      sparse_jacobian = jacobian.sparseView();
+      sparse_lu.compute(sparse_jacobian);
+      singular = sparse_lu.info() != Eigen::Success;
+    } else {
+      lu.compute(jacobian);
+    }
     ++stats.factorisations;
     factorised = true;
     factorised_model = current_model;
@@ -133,7 +147,12 @@ struct RadauIIA::Workspace {
         return attempt;
       }
       if (full_newton() && iteration > 1) refactorise(stats);
-      increment = -lu.solve(residual);
+      if (sparse && singular) {
+        attempt.reason = "the Newton matrix is singular (sparse LU)";
+        return attempt;
+      }
+      increment = sparse ? Eigen::VectorXd(-sparse_lu.solve(residual))
+                         : Eigen::VectorXd(-lu.solve(residual));
       unknowns += increment;
       ++stats.newton_iterations;
       attempt.iterations = iteration;

@@ -70,6 +70,32 @@ inline double hermite_root(double t0, double h, double x0, double v0, double x1,
   return t0 + 0.5 * (low + high) * h;
 }
 
+// --- rigid chain: `bodies` bars of 0.1 m and 0.1 kg in a horizontal line, each joined to the
+// next by a revolute joint at their common end, the first to the ground at the origin; released
+// from rest under gravity (3 coordinates and 2 joint rows per body) ---
+inline Model rigid_chain(int bodies) {
+  Model model;
+  const double length = 0.1, mass = 0.1;
+  model.set_gravity({0.0, -9.81});
+  BodyId previous = kGround;
+  for (int b = 0; b < bodies; ++b) {
+    RigidBody2DSpec bar;
+    bar.name = "bar " + std::to_string(b);
+    bar.mass = mass;
+    bar.inertia = mass * length * length / 12.0;
+    bar.position = {(b + 0.5) * length, 0.0};
+    const BodyId body = model.add_rigid_body(bar);
+    const Eigen::Vector2d joint(b * length, 0.0);
+    if (previous == kGround) {
+      model.add_revolute_joint({body, {-0.5 * length, 0.0}}, {kGround, joint});
+    } else {
+      model.add_revolute_joint({body, {-0.5 * length, 0.0}}, {previous, {0.5 * length, 0.0}});
+    }
+    previous = body;
+  }
+  return model;
+}
+
 // --- car axis ---
 namespace car_axis {
 

@@ -9,6 +9,8 @@
 // Equations, unknowns and their scaling: mbd_server/mbd/README.md.
 
 #include <Eigen/Dense>
+#include <Eigen/SparseCore>
+#include <Eigen/SparseLU>
 
 #include <cstdint>
 #include <memory>
@@ -35,6 +37,10 @@ ButcherTableau radau_iia(int stages);
 ButcherTableau lobatto_iiia(int stages);
 ButcherTableau butcher_tableau(TableauFamily family, int stages);
 
+// How the Newton matrix is factorised: dense partial-pivoting LU, or Eigen's SparseLU (COLAMD
+// ordering) of its non-zeros; Automatic takes SparseLU from sparse_threshold unknowns on.
+enum class LinearSolver { Automatic, Dense, Sparse };
+
 struct NewtonOptions {
   // Convergence: every block of the Newton increment (positions, velocities, multipliers) is
   // below absolute_tolerance + relative_tolerance * (size of that block), in SI units.
@@ -47,6 +53,9 @@ struct NewtonOptions {
   double max_contraction = 0.5;
   // Matters only where a whole block is zero and stays zero (e.g. no forces at all).
   double absolute_tolerance = 1e-14;
+  LinearSolver linear_solver = LinearSolver::Automatic;
+  // Size of the Newton matrix (stages x (2 n + m)) from which Automatic factorises sparsely.
+  int sparse_threshold = 300;
 };
 
 struct RadauOptions {
