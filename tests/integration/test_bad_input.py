@@ -35,6 +35,31 @@ check(result.returncode == 2, f"unknown key: exit status 2 ({result.returncode})
 check("bad.scene:2:1" in result.stderr and "did you mean 'sensor_every_steps'" in result.stderr,
       "unknown key: file:line:column and a suggestion")
 
+# Five different mistakes in one file: --check reports all of them, each at its line:column.
+with open(os.path.join(output, "ok.in1"), "w") as handle:
+    handle.write("# script 1\n")
+five_scene = os.path.join(output, "five.scene")
+with open(five_scene, "w") as handle:
+    handle.write("""SceneFormat { version = 1 }
+SolverOptions { end_time = 1; Timeint { step_size = 1e-5; stages = 4 } }
+Output { snapshot_every_step = 10 }
+Geometry { a = b; b = a + 1 }
+RigidBody2D { name = "lid"; mass = Geometry.c; inertia = [1]; Mesh { points = [[0, 1], [1, 1]] } }
+LIGGGHTS { script1 = "ok.in1"; script2 = "nowhere.in2" }
+Coupling { refinement_resolution = 0.002 }
+""")
+result = server(five_scene, "--check")
+expected = {"2:59": "'SolverOptions.Timeint.stages' = 4 is out of range",  # value out of range
+            "3:10": "did you mean 'snapshot_every_steps'?",               # unknown key
+            "4:16": "a cycle Geometry.a -> Geometry.b -> Geometry.a",     # cycle
+            "5:36": "has no parameter 'c'",                                # undefined reference
+            "5:48": "must be a number, not a vector",                      # wrong type
+            "6:32": "nowhere.in2' cannot be read"}                         # missing script
+found = {where: any(f"five.scene:{where}:" in line and what in line for line in result.stderr.splitlines())
+         for where, what in expected.items()}
+check(result.returncode == 2 and all(found.values()) and "6 problem(s)" in result.stderr,
+      f"--check reports six different mistakes at once, each at its line:column ({found})\n{result.stderr}")
+
 result = server(scene, "--check", "--set", "Geometry.widht=0.06")
 check(result.returncode == 2 and "did you mean 'Geometry.width'" in result.stderr, "bad --set suggests the key")
 

@@ -145,6 +145,7 @@ class Evaluator {
     RawParameter* parameter = nullptr;  // set when found
     std::string message;                // otherwise why not
     std::string fix;
+    bool silent = false;  // part of a cycle reported already: fail without a second report
   };
 
   static void collect(RawBlock& block, std::vector<RawParameter*>& all) {
@@ -270,6 +271,23 @@ class Evaluator {
       if (first_problem.message.empty()) first_problem = std::move(found);
     }
     if (later) {
+      std::vector<const RawParameter*> chain{&from};
+      std::vector<const RawParameter*> visited;
+      if (leads_back(*later, from, chain, visited)) {
+        if (std::find(cycle_members_.begin(), cycle_members_.end(), &from) !=
+            cycle_members_.end()) {
+          return {nullptr, "", "", true};
+        }
+        cycle_members_.insert(cycle_members_.end(), chain.begin(), chain.end());
+        std::string text;
+        for (const RawParameter* step : chain)
+          text += path_of(*step) + " -> ";
+        text += path_of(from);
+        return {nullptr,
+                in_quotes(path) + " is defined later (" + later->location.text() +
+                    ") and depends on " + in_quotes(from.key) + " itself: a cycle " + text,
+                "break the cycle: give one of them a value that does not depend on the other"};
+      }
       const bool same_file = later->location.file == from.location.file;
       const std::string use =
           same_file ? "line " + std::to_string(from.location.line) : from.location.text();
@@ -297,6 +315,75 @@ class Evaluator {
                 ? "define it above this line (a name is looked up in its block, then in the "
                   "blocks around it)"
                 : "did you mean " + in_quotes(suggestion) + "?"};
+  }
+
+  // ---- cycles ----
+
+  // The parameter `path` names when seen from `from`, ignoring textual order (the last
+  // assignment in the first scope that has it), or nullptr.
+  static const RawParameter* resolve_any(std::string_view path, const RawParameter& from) {
+    std::vector<PathPart> parts;
+    if (!parse_path(path, parts)) return nullptr;
+    for (const RawBlock* scope = from.block; scope; scope = scope->parent) {
+      const RawBlock* block = scope;
+      for (std::size_t i = 0; block && i + 1 < parts.size(); ++i) {
+        const std::vector<RawBlock*> candidates = block->children(parts[i].name);
+        const std::size_t index = parts[i].index < 0 ? 0 : static_cast<std::size_t>(parts[i].index);
+        block = index < candidates.size() ? candidates[index] : nullptr;
+      }
+      if (!block) continue;
+      const RawParameter* found = nullptr;
+      for (const auto& candidate : block->parameters) {
+        if (candidate->key == parts.back().name && candidate.get() != &from)
+          found = candidate.get();
+      }
+      if (found) return found;
+    }
+    return nullptr;
+  }
+
+  // The names `parameter` refers to (outside strings; function names excluded).
+  static std::vector<std::string> references_of(const RawParameter& parameter) {
+    const std::string& text = parameter.expression;
+    std::vector<std::string> names;
+    bool in_string = false;
+    for (std::size_t i = 0; i < text.size();) {
+      if (text[i] == '"') in_string = !in_string;
+      const bool starts =
+          !in_string && is_identifier_start(text[i]) && (i == 0 || !is_name_char(text[i - 1]));
+      if (!starts) {
+        ++i;
+        continue;
+      }
+      std::size_t end = reference_end(text, i, text.size());
+      if (end == i) {
+        ++i;
+        continue;
+      }
+      std::size_t next = end;
+      while (next < text.size() && is_blank(text[next]))
+        ++next;
+      if (next >= text.size() || text[next] != '(') names.push_back(text.substr(i, end - i));
+      i = end;
+    }
+    return names;
+  }
+
+  // Whether `at` depends (through references, in any order) on `target`; `chain` collects the
+  // way there.
+  static bool leads_back(const RawParameter& at, const RawParameter& target,
+                         std::vector<const RawParameter*>& chain,
+                         std::vector<const RawParameter*>& visited) {
+    if (&at == &target) return true;
+    if (std::find(visited.begin(), visited.end(), &at) != visited.end()) return false;
+    visited.push_back(&at);
+    chain.push_back(&at);
+    for (const std::string& name : references_of(at)) {
+      const RawParameter* next = resolve_any(name, at);
+      if (next && leads_back(*next, target, chain, visited)) return true;
+    }
+    chain.pop_back();
+    return false;
   }
 
   // ---- numbers through muParser ----
@@ -333,7 +420,9 @@ class Evaluator {
     double* slot = &slots_.back();
     const std::size_t offset = locate(name);
     const Resolution found = resolve(name, *current_);
-    if (!found.parameter) {
+    if (found.silent) {
+      dependency_failed_ = true;
+    } else if (!found.parameter) {
       pending_.push_back({offset, found.message, found.fix});
     } else if (found.parameter->state != RawParameter::State::Done) {
       dependency_failed_ = true;  // its own error is reported already
@@ -546,6 +635,8 @@ class Evaluator {
         ok = false;  // the referenced parameter's error says it all
       } else if (found.parameter) {
         value = found.parameter->value;  // numbers, strings, vectors and matrices alike
+      } else if (is_reference && found.silent) {
+        ok = false;  // the cycle it belongs to is reported already
       } else if (is_reference) {
         report(parameter, whole.begin, found.message, found.fix);
         ok = false;
@@ -574,6 +665,7 @@ class Evaluator {
   std::deque<double> slots_;  // stable addresses for muParser's variables
   std::vector<Pending> pending_;
   bool dependency_failed_ = false;
+  std::vector<const RawParameter*> cycle_members_;  // of cycles reported already
   std::vector<Problem> problems_;
 };
 

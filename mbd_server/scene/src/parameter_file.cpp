@@ -58,6 +58,7 @@ Block convert(const detail::RawBlock& raw) {
       parameter.expression = one_line(source.expression);
       parameter.location =
           source.override_label.empty() ? source.location : SourceLocation{source.override_label};
+      parameter.failed = source.state != detail::RawParameter::State::Done;
       block.add_parameter(std::move(parameter));
     }
   }
@@ -291,6 +292,22 @@ Block parse_parameter_text(const std::string& text, const std::string& file_name
 
 Block load_parameter_file(const std::string& path, const std::vector<Override>& overrides) {
   return parse_parameter_text(read_file(path), path, overrides);
+}
+
+Block parse_parameter_text(const std::string& text, const std::string& file_name,
+                           const std::vector<Override>& overrides, std::vector<Problem>& problems) {
+  detail::RawBlock root;
+  root.location = {file_name};
+  detail::parse_into(root, text, file_name);
+  detail::apply_overrides(root, overrides);
+  std::vector<Problem> found = detail::evaluate(root);
+  problems.insert(problems.end(), found.begin(), found.end());
+  return convert(root);
+}
+
+Block load_parameter_file(const std::string& path, const std::vector<Override>& overrides,
+                          std::vector<Problem>& problems) {
+  return parse_parameter_text(read_file(path), path, overrides, problems);
 }
 
 std::optional<long> scene_format_version(const Block& root) {

@@ -1,5 +1,6 @@
 #include "fsi/scene/scene.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -7,6 +8,7 @@
 #include <fstream>
 #include <random>
 #include <sstream>
+#include <tuple>
 
 #include "fsi/common/error.hpp"
 
@@ -146,14 +148,15 @@ BlockSpec make_schema() {
       "Prescribes the velocity of a body coordinate (velocity level, thesis §6.3 piston).",
       {body_name, coordinate, number("velocity", "m/s or rad/s", "prescribed constant velocity")}));
 
-  BlockSpec sensor = repeated(
-      block("Sensor", "A column of sensors.csv, written every Output.sensor_every_steps steps.",
-            {text("name", "column name"),
-             choice(text("type", "what is measured (total_fluid_force: on every boundary, walls included)"),
-                    {"position", "velocity", "fluid_force", "constraint_force", "total_fluid_force"}),
-             optional(text("body", "name of a RigidBody2D (not for total_fluid_force)")),
-             choice(text("component", "x, y, angle (torque for forces)"),
-                    {"x", "y", "angle", "torque"})}));
+  BlockSpec sensor = repeated(block(
+      "Sensor", "A column of sensors.csv, written every Output.sensor_every_steps steps.",
+      {text("name", "column name"),
+       choice(
+           text("type", "what is measured (total_fluid_force: on every boundary, walls included)"),
+           {"position", "velocity", "fluid_force", "constraint_force", "total_fluid_force"}),
+       optional(text("body", "name of a RigidBody2D (not for total_fluid_force)")),
+       choice(text("component", "x, y, angle (torque for forces)"),
+              {"x", "y", "angle", "torque"})}));
 
   BlockSpec fluid = block(
       "FluidRegion",
@@ -166,10 +169,10 @@ BlockSpec make_schema() {
        positive(number("density", "kg/m^3", "initial density rho0; particle mass = rho0 d^2")),
        with_default(vector("velocity", 2, "m/s", "initial particle velocity"),
                     vector_value({0.0, 0.0})),
-       with_default(
-           at_least(number("random_displacement", "", "uniform random offset, as a fraction of d"),
-                    0.0),
-           number_value(0.0)),
+       with_default(number("random_displacement", "",
+                           "uniform random offset per coordinate, as a fraction of d (not in %)")
+                        .between(0.0, 0.5),
+                    number_value(0.0)),
        with_default(integer("seed", "random generator seed"), number_value(1)),
        with_default(at_least(integer("atom_type", "LIGGGHTS atom type of the particles"), 1),
                     number_value(1))});
@@ -250,6 +253,60 @@ std::string read_script(const fs::path& scene_dir, const std::string& name,
   return text.str();
 }
 
+void build_fluid(const View& region, FluidParticles& fluid, std::vector<Problem>& problems) {
+  const auto lower = region.vector("lower");
+  const auto upper = region.vector("upper");
+  const double d = region.number("spacing");
+  const auto velocity = region.vector("velocity");
+  fluid.spacing = d;
+  fluid.density = region.number("density");
+  fluid.mass = fluid.density * d * d;
+  fluid.atom_type = static_cast<int>(region.integer("atom_type"));
+  const long nx = static_cast<long>(std::floor((upper[0] - lower[0]) / d + 1e-9));
+  const long ny = static_cast<long>(std::floor((upper[1] - lower[1]) / d + 1e-9));
+  if (nx < 1 || ny < 1) {
+    problems.push_back(
+        {region.location("upper"),
+         "the fluid box holds no lattice point (upper must exceed lower by at least one spacing)",
+         "check lower, upper and spacing"});
+    return;
+  }
+  if (static_cast<double>(nx) * static_cast<double>(ny) > 5e7) {
+    problems.push_back({region.location("spacing"),
+                        "the fluid box would hold " + std::to_string(nx * ny) + " particles",
+                        "increase the spacing"});
+    return;
+  }
+  std::mt19937_64 random(static_cast<std::uint64_t>(region.integer("seed")));
+  const double jitter = region.number("random_displacement") * d;
+  std::uniform_real_distribution<double> offset(-jitter, jitter);
+  for (long j = 0; j < ny; ++j) {
+    for (long i = 0; i < nx; ++i) {
+      const double x =
+          lower[0] + (static_cast<double>(i) + 0.5) * d + (jitter > 0 ? offset(random) : 0.0);
+      const double y =
+          lower[1] + (static_cast<double>(j) + 0.5) * d + (jitter > 0 ? offset(random) : 0.0);
+      fluid.positions.insert(fluid.positions.end(), {x, y});
+      fluid.velocities.insert(fluid.velocities.end(), {velocity[0], velocity[1]});
+    }
+  }
+}
+
+// Marks the parameter at `where` as failed (a schema problem names it), so that the builder
+// skips what needs it.
+bool mark_failed(Block& block, const SourceLocation& where) {
+  for (Parameter& parameter : block.parameters) {
+    if (parameter.location == where) {
+      parameter.failed = true;
+      return true;
+    }
+  }
+  for (Block& child : block.blocks) {
+    if (mark_failed(child, where)) return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 const BlockSpec& scene_schema() {
@@ -260,42 +317,72 @@ const BlockSpec& scene_schema() {
 Scene build_scene(const std::string& path, const std::vector<Override>& overrides) {
   Scene scene;
   scene.file = path;
-  scene.parameters = load_parameter_file(path, overrides);
+  // Every problem is collected: evaluation, schema, then what the builder finds in the values
+  // that are sound. Elements that need a value in error are skipped, not reported again.
+  std::vector<Problem> problems;
+  scene.parameters = load_parameter_file(path, overrides, problems);
   const BlockSpec& schema = scene_schema();
-  std::vector<Problem> problems = validate(scene.parameters, schema);
-  throw_if_any(problems, path);
+  for (Problem& problem : validate(scene.parameters, schema)) {
+    mark_failed(scene.parameters, problem.location);
+    problems.push_back(std::move(problem));
+  }
+  const bool input_sound = problems.empty();
+  bool skipped_any = false;  // an element was skipped for a value in error
+  // Runs one element's construction: a value in error skips it, an fsi::Error becomes a problem.
+  auto guard = [&](const SourceLocation& element, auto&& step) {
+    try {
+      step();
+    } catch (const AlreadyReported&) {
+      skipped_any = true;
+    } catch (const Error& error) {
+      const SourceLocation where =
+          error.location().empty() ? element : SourceLocation{error.location()};
+      problems.push_back({where, error.fault(), error.remedy()});
+    }
+  };
 
   const View root(scene.parameters, schema);
-  const long version = root.block("SceneFormat").integer("version");
-  if (version > kSceneFormatVersion) {
-    throw Error("the scene is written for scene language version " + std::to_string(version) +
-                    ", this fsi-server reads version " + std::to_string(kSceneFormatVersion),
-                root.block("SceneFormat").location("version").text(), "use a newer fsi-server");
-  }
+  guard(root.location(), [&] {
+    const long version = root.block("SceneFormat").integer("version");
+    if (version > kSceneFormatVersion) {
+      problems.push_back({root.block("SceneFormat").location("version"),
+                          "the scene is written for scene language version " +
+                              std::to_string(version) + ", this fsi-server reads version " +
+                              std::to_string(kSceneFormatVersion),
+                          "use a newer fsi-server"});
+    }
+  });
 
   // Solver and output.
-  const View solver = root.block("SolverOptions");
-  scene.solver.end_time = solver.number("end_time");
-  scene.solver.step_size = solver.block("Timeint").number("step_size");
-  scene.solver.stages = static_cast<int>(solver.block("Timeint").integer("stages"));
-  const View newton = solver.block("Newton");
-  scene.solver.newton.relative_tolerance = newton.number("relative_tolerance");
-  scene.solver.newton.max_iterations = static_cast<int>(newton.integer("max_iterations"));
-  scene.solver.newton.max_modified_newton_steps =
-      static_cast<int>(newton.integer("max_modified_newton_steps"));
-  scene.output.sensor_every_steps = root.block("Output").integer("sensor_every_steps");
-  scene.output.snapshot_every_steps = root.block("Output").integer("snapshot_every_steps");
+  guard(root.location(), [&] {
+    const View solver = root.block("SolverOptions");
+    scene.solver.end_time = solver.number("end_time");
+    scene.solver.step_size = solver.block("Timeint").number("step_size");
+    scene.solver.stages = static_cast<int>(solver.block("Timeint").integer("stages"));
+    const View newton = solver.block("Newton");
+    scene.solver.newton.relative_tolerance = newton.number("relative_tolerance");
+    scene.solver.newton.max_iterations = static_cast<int>(newton.integer("max_iterations"));
+    scene.solver.newton.max_modified_newton_steps =
+        static_cast<int>(newton.integer("max_modified_newton_steps"));
+  });
+  guard(root.location(), [&] {
+    scene.output.sensor_every_steps = root.block("Output").integer("sensor_every_steps");
+    scene.output.snapshot_every_steps = root.block("Output").integer("snapshot_every_steps");
+  });
 
   // Bodies and their meshes: body vertices first (dynamic), ground vertices after (static).
   mbd::Model& model = scene.model;
-  const auto gravity = root.block("Gravity").vector("acceleration");
-  model.set_gravity({gravity[0], gravity[1]});
+  guard(root.location(), [&] {
+    const auto gravity = root.block("Gravity").vector("acceleration");
+    model.set_gravity({gravity[0], gravity[1]});
+  });
   auto add_mesh = [&](const View& mesh, mbd::BodyId body) {
     const auto points = mesh.matrix("points");
     if (points.size() < 2) {
       problems.push_back({mesh.location("points"), "a mesh needs at least 2 points", "add points"});
       return;
     }
+    const bool closed = mesh.integer("closed") == 1;
     const auto first = static_cast<std::uint32_t>(model.marker_count());
     for (const auto& point : points)
       model.add_marker(body, {point[0], point[1]});
@@ -303,165 +390,161 @@ Scene build_scene(const std::string& path, const std::vector<Override>& override
     for (std::uint32_t k = 0; k + 1 < count; ++k) {
       scene.boundary.segments.insert(scene.boundary.segments.end(), {first + k, first + k + 1});
     }
-    if (mesh.integer("closed") == 1 && count > 2) {
+    if (closed && count > 2) {
       scene.boundary.segments.insert(scene.boundary.segments.end(), {first + count - 1, first});
     }
   };
+  std::vector<std::string> skipped_bodies;  // bodies not built for a value in error
   for (const View& body : root.blocks("RigidBody2D")) {
-    mbd::RigidBody2DSpec spec;
-    spec.name = body.string("name");
-    spec.mass = body.number("mass");
-    spec.inertia = body.number("inertia");
-    const auto position = body.vector("position");
-    const auto velocity = body.vector("velocity");
-    spec.position = {position[0], position[1]};
-    spec.velocity = {velocity[0], velocity[1]};
-    spec.angle = body.number("angle");
-    spec.angular_velocity = body.number("angular_velocity");
-    try {
-      const mbd::BodyId id = model.add_rigid_body(spec);
-      for (const View& mesh : body.blocks("Mesh"))
-        add_mesh(mesh, id);
-    } catch (const Error& error) {
-      problems.push_back({body.location("name"), error.fault(), error.remedy()});
-    }
+    std::optional<mbd::BodyId> id;
+    guard(body.location(), [&] {
+      mbd::RigidBody2DSpec spec;
+      spec.name = body.string("name");
+      skipped_bodies.push_back(spec.name);
+      spec.mass = body.number("mass");
+      spec.inertia = body.number("inertia");
+      const auto position = body.vector("position");
+      const auto velocity = body.vector("velocity");
+      spec.position = {position[0], position[1]};
+      spec.velocity = {velocity[0], velocity[1]};
+      spec.angle = body.number("angle");
+      spec.angular_velocity = body.number("angular_velocity");
+      try {
+        id = model.add_rigid_body(spec);
+      } catch (const Error& error) {
+        problems.push_back({body.location("name"), error.fault(), error.remedy()});
+        return;
+      }
+      skipped_bodies.pop_back();
+    });
+    if (!id) continue;
+    for (const View& mesh : body.blocks("Mesh"))
+      guard(mesh.location(), [&] { add_mesh(mesh, *id); });
   }
   scene.boundary.dynamic_vertex_count = static_cast<std::size_t>(model.marker_count());
   for (const View& ground : root.blocks("Ground")) {
     for (const View& mesh : ground.blocks("Mesh"))
-      add_mesh(mesh, mbd::kGround);
+      guard(mesh.location(), [&] { add_mesh(mesh, mbd::kGround); });
   }
   scene.boundary.vertex_count = static_cast<std::size_t>(model.marker_count());
-  const View coupling = root.block("Coupling");
-  scene.boundary.refinement_resolution = coupling.number("refinement_resolution");
-  scene.boundary.refinement_option = static_cast<int>(coupling.integer("refinement_option"));
-  if (scene.boundary.segments.empty()) {
+  guard(root.location(), [&] {
+    const View coupling = root.block("Coupling");
+    scene.boundary.refinement_resolution = coupling.number("refinement_resolution");
+    scene.boundary.refinement_option = static_cast<int>(coupling.integer("refinement_option"));
+  });
+  if (scene.boundary.segments.empty() && !skipped_any) {
     problems.push_back({scene.parameters.location,
                         "the scene has no surface mesh: the fluid would see no structure",
                         "add Mesh { points = ... } to bodies or Ground"});
   }
 
-  auto find_body = [&](const View& element) -> std::optional<mbd::BodyId> {
+  // A body the element names; a body skipped for a value in error skips the element too.
+  auto find_body = [&](const View& element, std::string_view key) -> mbd::BodyId {
+    const std::string& name = element.string(key);
+    if (std::find(skipped_bodies.begin(), skipped_bodies.end(), name) != skipped_bodies.end()) {
+      throw AlreadyReported(element.location(key));
+    }
     try {
-      return model.find_body(element.string("body"));
+      return model.find_body(name);
     } catch (const Error& error) {
-      problems.push_back({element.location("body"), error.fault(), error.remedy()});
-      return std::nullopt;
+      if (skipped_any) throw AlreadyReported(element.location(key));  // perhaps the skipped one
+      throw Error(error.fault(), element.location(key).text(), error.remedy());
     }
   };
   for (const View& c : root.blocks("CoordinateConstraint")) {
-    if (auto body = find_body(c)) {
+    guard(c.location(), [&] {
+      const mbd::BodyId body = find_body(c, "body");
       std::optional<double> value;
       if (c.has("value")) value = c.number("value");
-      model.add_coordinate_constraint(*body, coordinate_of(c.string("coordinate")), value);
-    }
+      model.add_coordinate_constraint(body, coordinate_of(c.string("coordinate")), value);
+    });
   }
   for (const View& c : root.blocks("VelocityConstraint")) {
-    if (auto body = find_body(c)) {
-      model.add_velocity_constraint(*body, coordinate_of(c.string("coordinate")),
+    guard(c.location(), [&] {
+      const mbd::BodyId body = find_body(c, "body");
+      model.add_velocity_constraint(body, coordinate_of(c.string("coordinate")),
                                     c.number("velocity"));
-    }
+    });
   }
   for (const View& s : root.blocks("Sensor")) {
-    SensorSpec sensor;
-    sensor.name = s.string("name");
-    const std::string type = s.string("type");
-    const std::string component = s.string("component");
-    sensor.type = type == "position"           ? SensorType::Position
-                  : type == "velocity"         ? SensorType::Velocity
-                  : type == "fluid_force"      ? SensorType::FluidForce
-                  : type == "constraint_force" ? SensorType::ConstraintForce
-                                               : SensorType::TotalFluidForce;
-    const bool force = sensor.type != SensorType::Position && sensor.type != SensorType::Velocity;
-    if (force && component == "angle") {
-      problems.push_back({s.location("component"), "a force sensor has components x, y or torque",
-                          "write torque"});
-    }
-    if (!force && component == "torque") {
-      problems.push_back({s.location("component"),
-                          "a " + type + " sensor has components x, y or angle", "write angle"});
-    }
-    sensor.component = coordinate_of(component);
-    const bool rotational = sensor.component == mbd::Coordinate::Angle;
-    sensor.unit = sensor.type == SensorType::Position   ? (rotational ? "rad" : "m")
-                  : sensor.type == SensorType::Velocity ? (rotational ? "rad/s" : "m/s")
-                                                        : (rotational ? "N m/m" : "N/m");
-    for (const auto& other : scene.sensors) {
-      if (other.name == sensor.name) {
-        problems.push_back(
-            {s.location("name"), "a second sensor is named '" + sensor.name + "'", "rename it"});
+    guard(s.location(), [&] {
+      SensorSpec sensor;
+      sensor.name = s.string("name");
+      const std::string type = s.string("type");
+      const std::string component = s.string("component");
+      sensor.type = type == "position"           ? SensorType::Position
+                    : type == "velocity"         ? SensorType::Velocity
+                    : type == "fluid_force"      ? SensorType::FluidForce
+                    : type == "constraint_force" ? SensorType::ConstraintForce
+                                                 : SensorType::TotalFluidForce;
+      const bool force = sensor.type != SensorType::Position && sensor.type != SensorType::Velocity;
+      if (force && component == "angle") {
+        problems.push_back({s.location("component"), "a force sensor has components x, y or torque",
+                            "write torque"});
       }
-    }
-    if (sensor.type == SensorType::TotalFluidForce) {
-      if (s.has("body")) {
-        problems.push_back({s.location("body"), "a total_fluid_force sensor sums over all boundaries and takes no body",
-                            "remove body, or use type = \"fluid_force\""});
+      if (!force && component == "torque") {
+        problems.push_back({s.location("component"),
+                            "a " + type + " sensor has components x, y or angle", "write angle"});
       }
-      if (component == "torque") {
-        problems.push_back({s.location("component"), "total_fluid_force has components x and y", "write x or y"});
+      sensor.component = coordinate_of(component);
+      const bool rotational = sensor.component == mbd::Coordinate::Angle;
+      sensor.unit = sensor.type == SensorType::Position   ? (rotational ? "rad" : "m")
+                    : sensor.type == SensorType::Velocity ? (rotational ? "rad/s" : "m/s")
+                                                          : (rotational ? "N m/m" : "N/m");
+      for (const auto& other : scene.sensors) {
+        if (other.name == sensor.name) {
+          problems.push_back(
+              {s.location("name"), "a second sensor is named '" + sensor.name + "'", "rename it"});
+        }
       }
-      scene.sensors.push_back(sensor);
-    } else if (!s.has("body")) {
-      problems.push_back({s.location("name"), "sensor '" + sensor.name + "' needs a body", "add body = \"...\""});
-    } else if (auto body = find_body(s)) {
-      sensor.body = *body;
-      scene.sensors.push_back(sensor);
-    }
+      if (sensor.type == SensorType::TotalFluidForce) {
+        if (s.has("body")) {
+          problems.push_back(
+              {s.location("body"),
+               "a total_fluid_force sensor sums over all boundaries and takes no body",
+               "remove body, or use type = \"fluid_force\""});
+        }
+        if (component == "torque") {
+          problems.push_back({s.location("component"), "total_fluid_force has components x and y",
+                              "write x or y"});
+        }
+        scene.sensors.push_back(sensor);
+      } else if (!s.has("body")) {
+        problems.push_back({s.location("name"), "sensor '" + sensor.name + "' needs a body",
+                            "add body = \"...\""});
+      } else {
+        sensor.body = find_body(s, "body");
+        scene.sensors.push_back(sensor);
+      }
+    });
   }
 
   // Fluid particles on a lattice.
   if (root.has_block("FluidRegion")) {
-    const View region = root.block("FluidRegion");
-    const auto lower = region.vector("lower");
-    const auto upper = region.vector("upper");
-    const double d = region.number("spacing");
-    const auto velocity = region.vector("velocity");
-    FluidParticles& fluid = scene.fluid;
-    fluid.spacing = d;
-    fluid.density = region.number("density");
-    fluid.mass = fluid.density * d * d;
-    fluid.atom_type = static_cast<int>(region.integer("atom_type"));
-    const long nx = static_cast<long>(std::floor((upper[0] - lower[0]) / d + 1e-9));
-    const long ny = static_cast<long>(std::floor((upper[1] - lower[1]) / d + 1e-9));
-    if (nx < 1 || ny < 1) {
-      problems.push_back(
-          {region.location("upper"),
-           "the fluid box holds no lattice point (upper must exceed lower by at least one spacing)",
-           "check lower, upper and spacing"});
-    } else if (static_cast<double>(nx) * static_cast<double>(ny) > 5e7) {
-      problems.push_back({region.location("spacing"),
-                          "the fluid box would hold " + std::to_string(nx * ny) + " particles",
-                          "increase the spacing"});
-    } else {
-      std::mt19937_64 random(static_cast<std::uint64_t>(region.integer("seed")));
-      const double jitter = region.number("random_displacement") * d;
-      std::uniform_real_distribution<double> offset(-jitter, jitter);
-      for (long j = 0; j < ny; ++j) {
-        for (long i = 0; i < nx; ++i) {
-          const double x =
-              lower[0] + (static_cast<double>(i) + 0.5) * d + (jitter > 0 ? offset(random) : 0.0);
-          const double y =
-              lower[1] + (static_cast<double>(j) + 0.5) * d + (jitter > 0 ? offset(random) : 0.0);
-          fluid.positions.insert(fluid.positions.end(), {x, y});
-          fluid.velocities.insert(fluid.velocities.end(), {velocity[0], velocity[1]});
-        }
-      }
-    }
+    guard(root.block("FluidRegion").location(),
+          [&] { build_fluid(root.block("FluidRegion"), scene.fluid, problems); });
   }
 
   // LIGGGHTS scripts and variables.
   const fs::path scene_dir = fs::path(path).parent_path();
   const View liggghts = root.block("LIGGGHTS");
-  scene.liggghts.script1_name = liggghts.string("script1");
-  scene.liggghts.script2_name = liggghts.string("script2");
-  scene.liggghts.script1_text =
-      read_script(scene_dir, scene.liggghts.script1_name, liggghts.location("script1"), problems);
-  scene.liggghts.script2_text =
-      read_script(scene_dir, scene.liggghts.script2_name, liggghts.location("script2"), problems);
-  scene.liggghts.equilibration_steps =
-      static_cast<std::uint64_t>(liggghts.integer("equilibration_steps"));
+  guard(liggghts.location(), [&] {
+    scene.liggghts.script1_name = liggghts.string("script1");
+    scene.liggghts.script1_text =
+        read_script(scene_dir, scene.liggghts.script1_name, liggghts.location("script1"), problems);
+  });
+  guard(liggghts.location(), [&] {
+    scene.liggghts.script2_name = liggghts.string("script2");
+    scene.liggghts.script2_text =
+        read_script(scene_dir, scene.liggghts.script2_name, liggghts.location("script2"), problems);
+  });
+  guard(liggghts.location(), [&] {
+    scene.liggghts.equilibration_steps =
+        static_cast<std::uint64_t>(liggghts.integer("equilibration_steps"));
+  });
   if (const Block* sph = scene.parameters.child("LIGGGHTS_SPH_parameters")) {
     for (const Parameter& p : sph->parameters) {
+      if (p.failed) continue;
       if (p.value.kind == ValueKind::Number) {
         scene.liggghts.variables.emplace_back(p.key, format_exact(p.value.number));
       } else if (p.value.kind == ValueKind::String) {
@@ -475,7 +558,16 @@ Scene build_scene(const std::string& path, const std::vector<Override>& override
     }
   }
 
+  // In the order of the scene file; problems in included files after it.
+  std::stable_sort(problems.begin(), problems.end(), [&](const Problem& a, const Problem& b) {
+    const auto key = [&](const Problem& p) {
+      return std::make_tuple(p.location.file != path, p.location.file, p.location.line,
+                             p.location.column);
+    };
+    return key(a) < key(b);
+  });
   throw_if_any(problems, path);
+  FSI_ASSERT(input_sound && !skipped_any, "a value in error was skipped without a problem");
   try {
     (void)model.initial_state();
   } catch (const Error& error) {

@@ -182,6 +182,7 @@ class Validator {
   }
 
   void value(const Parameter& parameter, const ParameterSpec& spec, const std::string& full) {
+    if (parameter.failed) return;  // its evaluation problem is reported already
     const Value& value = parameter.value;
     const SourceLocation& where = parameter.location;
     if (!kind_matches(spec.kind, value)) {
@@ -424,7 +425,10 @@ const Value& View::value(std::string_view key) const {
   const ParameterSpec* declared = spec_->parameter(key);
   FSI_ASSERT(declared || spec_->open,
              "parameter '" + std::string(key) + "' is not declared in block '" + spec_->name + "'");
-  if (const Parameter* given = block_->find(key)) return given->value;
+  if (const Parameter* given = block_->find(key)) {
+    if (given->failed) throw AlreadyReported(given->location);
+    return given->value;
+  }
   if (declared && declared->default_value) return *declared->default_value;
   throw Error("'" + std::string(key) + "' is missing in " +
                   (block_->name.empty() ? std::string("the scene") : "block " + block_->name),

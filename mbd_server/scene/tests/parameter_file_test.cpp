@@ -204,6 +204,17 @@ TEST(ParameterFile, ReferenceToALaterParameterNamesBothPlaces) {
       message, "t.scene:1:5: in 'a': 'b' is defined later, at t.scene:2:1; move it above line 1");
 }
 
+TEST(ParameterFile, ACycleIsNamedAsOneWithItsWholeChain) {
+  // a -> Geometry.b -> c -> a, across blocks; reported once, where the cycle is entered.
+  const std::string message =
+      error_of("a = Geometry.b + 1\nGeometry { b = sqrt(c) }\nc = 2*a\nd = 1\n");
+  EXPECT_CONTAINS(message, "1 problem(s)");
+  EXPECT_CONTAINS(message, "t.scene:1:5: in 'a': 'Geometry.b' is defined later (t.scene:2:12)");
+  EXPECT_CONTAINS(message, "a cycle a -> Geometry.b -> c -> a; break the cycle");
+  // A parameter referring to itself is a plain undefined name (nothing earlier has its name).
+  EXPECT_CONTAINS(error_of("x = x + 1\n"), "'x' is not defined");
+}
+
 TEST(ParameterFile, UndefinedNameSuggestsTheNearestOne) {
   const std::string message = error_of("Geometry {\n  width = 0.05\n  height = 2*widht\n}\n");
   EXPECT_CONTAINS(message,

@@ -95,6 +95,75 @@ Coupling { refinement_resolution = 0.001 }
   fs::remove_all(folder);
 }
 
+// Issue 6 acceptance: one file with six different mistakes; every one is reported in the same
+// run, at its line and column, with a fix, and nothing else is reported.
+TEST(Scene, ReportsSixDifferentMistakesAtOnceWithLineAndColumn) {
+  const fs::path folder = fs::temp_directory_path() / "fsi_scene_six_mistakes";
+  fs::create_directories(folder);
+  std::ofstream(folder / "ok.in1") << "# script 1\n";
+  std::ofstream(folder / "six.scene") << R"(SceneFormat { version = 1 }
+SolverOptions { end_time = 1; Timeint { step_size = 1e-5 } }
+Output { sensor_every_step = 2 }
+Geometry { width = 0.05; a = b + 1; b = 2*a }
+Gravity { acceleration = -9.81 }
+RigidBody2D { name = "box"; mass = Geometry.widht*2; inertia = 1; Mesh { points = [[0, 0], [1, 0]] } }
+RigidBody2D { name = "lid"; mass = 1; inertia = 1; Mesh { points = [[0, 1], [1, 1]] } }
+CoordinateConstraint { body = "box"; coordinate = "x" }
+Sensor { name = "lid_y"; type = "position"; body = "lid"; component = "y" }
+FluidRegion { shape = "box"; lower = [0, 0]; upper = [0.05, 0.02]; spacing = 0.001
+              density = 1000; random_displacement = 30 }
+LIGGGHTS { script1 = "ok.in1"; script2 = "missing.in2" }
+Coupling { refinement_resolution = 0.002 }
+)";
+  std::string text;
+  try {
+    build_scene((folder / "six.scene").string());
+  } catch (const fsi::Error& error) {
+    text = error.what();
+  }
+  fs::remove_all(folder);
+  ASSERT_FALSE(text.empty()) << "the scene with six mistakes was accepted";
+  const std::string file = (folder / "six.scene").string();
+  // Each: where, what, how to fix.
+  const std::vector<std::vector<std::string>> expected = {
+      // 1. unknown key, with the nearest known one
+      {file + ":3:10: unknown parameter 'Output.sensor_every_step'",
+       "did you mean 'sensor_every_steps'?"},
+      // 2. a cycle: a uses b, which is defined later and uses a
+      {file + ":4:30: in 'Geometry.a': 'b' is defined later", "a cycle Geometry.a -> Geometry.b",
+       "break the cycle"},
+      // 3. wrong type: a number where a vector belongs
+      {file + ":5:11: 'Gravity.acceleration' must be a vector, not a number",
+       "e.g. acceleration = [x, y]"},
+      // 4. an undefined reference (a typo), with the nearest defined name
+      {file + ":6:36: in 'RigidBody2D[0].mass': block 'Geometry' has no parameter 'widht'",
+       "did you mean 'Geometry.width'?"},
+      // 5. a unit mistake caught by the range: 30 (%) where a fraction of d belongs
+      {file + ":11:31: 'FluidRegion.random_displacement' = 30 is out of range", "choose a value"},
+      // 6. a LIGGGHTS script that does not exist
+      {file + ":12:32: LIGGGHTS script '", "missing.in2' cannot be read",
+       "relative to the scene file"},
+  };
+  for (const auto& pieces : expected) {
+    const std::size_t at = text.find(pieces.front());
+    EXPECT_NE(at, std::string::npos) << pieces.front() << "\n" << text;
+    if (at == std::string::npos) continue;
+    const std::string line = text.substr(at, text.find('\n', at) - at);
+    for (std::size_t i = 1; i < pieces.size(); ++i)
+      EXPECT_NE(line.find(pieces[i]), std::string::npos) << pieces[i] << "\n" << line;
+  }
+  // Nothing else: no consequence of a mistake reported as a mistake of its own (the box, whose
+  // mass is in error, is skipped, and so is its constraint).
+  EXPECT_NE(text.find("6 problem(s) in the scene"), std::string::npos) << text;
+  // In the order of the file.
+  std::size_t previous = 0;
+  for (const char* line : {":3:10:", ":4:30:", ":5:11:", ":6:36:", ":11:31:", ":12:32:"}) {
+    const std::size_t at = text.find(line);
+    EXPECT_GT(at, previous) << line;
+    previous = at;
+  }
+}
+
 TEST(Scene, SchemaDocumentsEveryBlock) {
   const std::string markdown = render_markdown(scene_schema());
   for (const char* block :

@@ -57,6 +57,9 @@ struct Parameter {
   Value value;
   std::string expression;   // as written (comments dropped, line breaks joined), or as overridden
   SourceLocation location;  // of the key; "--set KEY=EXPR" when overridden
+  // The value could not be computed (its problem is reported); `value` is meaningless. Only
+  // trees loaded with a `problems` list hold such parameters.
+  bool failed = false;
 };
 
 struct Block;
@@ -107,6 +110,14 @@ Block load_parameter_file(const std::string& path, const std::vector<Override>& 
 // The same for text in memory; `file_name` appears in messages and anchors relative includes.
 Block parse_parameter_text(const std::string& text, const std::string& file_name,
                            const std::vector<Override>& overrides = {});
+// The same, but evaluation problems are appended to `problems` instead of thrown, and the
+// parameters they concern are kept with `failed` set, so that later checks (schema, scene) can
+// report their own problems in the same run (`fsi-server --check` lists everything at once).
+// Syntax errors, include errors and bad overrides still throw: nothing after them is reliable.
+Block load_parameter_file(const std::string& path, const std::vector<Override>& overrides,
+                          std::vector<Problem>& problems);
+Block parse_parameter_text(const std::string& text, const std::string& file_name,
+                           const std::vector<Override>& overrides, std::vector<Problem>& problems);
 
 // The top-level `SceneFormat { version = N }` of a file, if present. Refusing a version is the
 // caller's job. Throws fsi::Error if the version is given but is not a whole number.

@@ -62,7 +62,7 @@ enum class SensorType { Position, Velocity, FluidForce, ConstraintForce, TotalFl
 struct SensorSpec {
   std::string name;
   SensorType type = SensorType::Position;
-  mbd::BodyId body = 0;  // unused for TotalFluidForce
+  mbd::BodyId body = 0;                            // unused for TotalFluidForce
   mbd::Coordinate component = mbd::Coordinate::X;  // Angle means the torque for force sensors
   std::string unit;
 };

@@ -14,6 +14,7 @@
 #include <concepts>
 #include <memory>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -98,6 +99,15 @@ BlockSpec block_spec(std::string name, std::string doc, std::vector<ParameterSpe
 // kinds, non-integers, values out of range, strings not among the choices, wrong lengths, missing
 // required entries, non-repeatable blocks given twice.
 std::vector<Problem> validate(const Block& root, const BlockSpec& root_spec);
+
+// Thrown by View when it is asked for a parameter marked `failed` (its problem is reported
+// already): a scene builder skips the element that needs the value instead of reporting a
+// consequence of the same mistake.
+class AlreadyReported : public std::runtime_error {
+ public:
+  explicit AlreadyReported(const SourceLocation& where)
+      : std::runtime_error("value at " + where.text() + " is in error (reported already)") {}
+};
 
 // Typed read access to a validated block; absent parameters read as their declared defaults,
 // absent declared blocks as blocks of defaults. Asking for an undeclared key is a programming
