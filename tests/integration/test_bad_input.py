@@ -29,10 +29,10 @@ check(physics.returncode == 0 and len(listed) == 7 and "7 warning(s)" in physics
 
 bad_scene = os.path.join(output, "bad.scene")
 with open(bad_scene, "w") as handle:
-    handle.write('include "%s"\nOutput.sensor_every_step = 2\n' % example("static_tank", "static_tank_coarse.scene"))
+    handle.write('scene_language = 1\ninclude "%s"\nOutput.sensor_every_step = 2\n' % example("static_tank", "static_tank_coarse.scene"))
 result = server(bad_scene, "--check")
 check(result.returncode == 2, f"unknown key: exit status 2 ({result.returncode})")
-check("bad.scene:2:1" in result.stderr and "did you mean 'sensor_every_steps'" in result.stderr,
+check("bad.scene:3:1" in result.stderr and "did you mean 'sensor_every_steps'" in result.stderr,
       "unknown key: file:line:column and a suggestion")
 
 # Five different mistakes in one file: --check reports all of them, each at its line:column.
@@ -40,7 +40,7 @@ with open(os.path.join(output, "ok.in1"), "w") as handle:
     handle.write("# script 1\n")
 five_scene = os.path.join(output, "five.scene")
 with open(five_scene, "w") as handle:
-    handle.write("""SceneFormat { version = 1 }
+    handle.write("""scene_language = 1
 SolverOptions { end_time = 1; Timeint { step_size = 1e-5; stages = 4 } }
 Output { snapshot_every_step = 10 }
 Geometry { a = b; b = a + 1 }

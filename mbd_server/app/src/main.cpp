@@ -165,7 +165,11 @@ int main(int argc, char** argv) {
            "earlier "
            "parameters, `%`/`//` comments, `include`). Blocks not listed here (e.g. `Geometry`) "
            "are your own "
-           "parameter blocks.\n"
+           "parameter blocks.\n\n"
+           "A scene states the language version it is written for as its first entry (comments may "
+           "stand above it): `scene_language = 1`. A file for a newer version is refused before "
+           "the rest is read; a scene without the line is an error that names the line to add "
+           "(docs/user-guide.md, \"Scene language versions\").\n"
         << fsi::scene::render_markdown(fsi::scene::scene_schema());
     return out ? 0 : 1;
   }

@@ -47,6 +47,8 @@ Block convert(const detail::RawBlock& raw) {
   Block block;
   block.name = raw.name;
   block.location = raw.location;
+  block.language_version = raw.language_version;
+  block.language_version_location = raw.language_version_location;
   for (const detail::RawEntry& entry : raw.entries) {
     if (entry.is_block) {
       block.add_block(convert(*raw.blocks[entry.index]));
@@ -310,27 +312,17 @@ Block load_parameter_file(const std::string& path, const std::vector<Override>& 
   return parse_parameter_text(read_file(path), path, overrides, problems);
 }
 
-std::optional<long> scene_format_version(const Block& root) {
-  const Block* format = root.child("SceneFormat");
-  const Parameter* version = format ? format->find("version") : nullptr;
-  if (!version) return std::nullopt;
-  const Value& value = version->value;
-  if (value.kind != ValueKind::Number || value.number != std::floor(value.number) ||
-      std::fabs(value.number) > 1e9) {
-    throw Error("SceneFormat.version must be a whole number, not " + format_value(value),
-                version->location.text(), "write SceneFormat { version = 1 }");
-  }
-  return static_cast<long>(value.number);
-}
-
 std::string to_text(const Block& root) {
   std::string out;
+  if (root.language_version)
+    out += "scene_language = " + std::to_string(*root.language_version) + "\n";
   print(root, 0, out);
   return out;
 }
 
 nlohmann::json to_json(const Block& root) {
   nlohmann::json out = nlohmann::json::object();
+  if (root.language_version) out["scene_language"] = *root.language_version;
   for (const BlockEntry& entry : root.entries) {
     if (entry.type == BlockEntry::Type::Parameter) {
       const Parameter& parameter = root.parameters[entry.index];

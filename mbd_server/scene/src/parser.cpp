@@ -14,6 +14,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
+constexpr const char* kLanguageKey = "scene_language";
+
 bool is_continuation_byte(char c) {
   return (static_cast<unsigned char>(c) & 0xC0U) == 0x80U;
 }
@@ -35,6 +37,7 @@ class Parser {
     position_ = 0;
     line_ = 1;
     line_start_ = 0;
+    entries_ = 0;
     parse_entries(into, nullptr);
   }
 
@@ -160,6 +163,11 @@ class Parser {
              "an entry is 'key = expression', 'Block { ... }' or 'include \"file\"'");
       }
       const std::string path = read_path(start);
+      ++entries_;
+      if (path == kLanguageKey) {
+        parse_language_version(block, start, opened_at != nullptr);
+        continue;
+      }
       if (path == "include") {
         parse_include(block, start);
         continue;
@@ -347,6 +355,54 @@ class Parser {
     target.add_parameter(std::move(parameter));
   }
 
+  // `scene_language = N`: read before anything else of the file, so that a file written for a
+  // newer language is refused with that reason, not with a syntax error of the newer syntax.
+  void parse_language_version(RawBlock& block, const SourceLocation& start, bool in_block) {
+    const std::string line = "scene_language = " + std::to_string(kSceneLanguageVersion);
+    if (in_block || entries_ != 1) {
+      fail(start, "scene_language must be the first entry of its file, outside any block",
+           "move '" + line + "' to the top of the file (comments may stand above it)");
+    }
+    skip_blanks();
+    if (peek() != '=') fail(here(), "scene_language is followed by no '='", "write " + line);
+    advance();
+    skip_blanks();
+    const SourceLocation number_at = here();
+    std::string digits;
+    while (std::isdigit(static_cast<unsigned char>(peek())) && digits.size() < 9) {
+      digits += peek();
+      advance();
+    }
+    skip_blanks();
+    if (digits.empty() || !(at_end() || peek() == '\n' || peek() == ';' || at_comment())) {
+      fail(number_at, "scene_language takes a whole number written out (no expression)",
+           "write " + line);
+    }
+    const long version = std::stol(digits);
+    if (version < 1) fail(number_at, "scene language versions start at 1", "write " + line);
+    if (version > kSceneLanguageVersion) {
+      fail(number_at,
+           "the file is written for scene language version " + digits +
+               ", this program reads version " + std::to_string(kSceneLanguageVersion) +
+               (kSceneLanguageVersion > 1 ? " and older" : std::string()),
+           "use an fsi-server that reads version " + digits + ", or rewrite the file for version " +
+               std::to_string(kSceneLanguageVersion) +
+               " (docs/user-guide.md, \"Scene language versions\")");
+    }
+    if (&block == root_of(block) && include_depth() == 0) {
+      block.language_version = version;
+      block.language_version_location = start;
+    }
+  }
+
+  static const RawBlock* root_of(const RawBlock& block) {
+    const RawBlock* root = &block;
+    while (root->parent)
+      root = root->parent;
+    return root;
+  }
+  std::size_t include_depth() const { return include_stack_.size() - 1; }
+
   void parse_include(RawBlock& block, const SourceLocation& start) {
     skip_blanks();
     if (peek() != '"') {
@@ -403,6 +459,7 @@ class Parser {
   std::size_t position_ = 0;
   int line_ = 1;
   std::size_t line_start_ = 0;
+  int entries_ = 0;  // entries of this file so far (nested ones included)
 };
 
 }  // namespace

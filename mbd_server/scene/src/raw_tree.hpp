@@ -3,6 +3,7 @@
 // evaluator. Nodes are heap-allocated so that parent pointers stay valid while the tree grows.
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -42,6 +43,9 @@ struct RawBlock {
   SourceLocation location;
   RawBlock* parent = nullptr;
   bool implicit = false;  // created by a dotted key; a later `Name { ... }` continues it
+  // Root only: `scene_language = N` of the top file, and where it is.
+  std::optional<long> language_version;
+  SourceLocation language_version_location;
   std::vector<std::unique_ptr<RawParameter>> parameters;
   std::vector<std::unique_ptr<RawBlock>> blocks;
   std::vector<RawEntry> entries;

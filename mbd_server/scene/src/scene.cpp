@@ -58,11 +58,6 @@ BlockSpec required(BlockSpec b) {
 }
 
 BlockSpec make_schema() {
-  ParameterSpec version =
-      with_default(integer("version", "scene language version the file is written for"),
-                   number_value(kSceneFormatVersion));
-  version.minimum = 1;
-
   BlockSpec timeint = required(block(
       "Timeint", "Time integration of the multibody system (fixed step when coupled).",
       {positive(number("step_size", "s",
@@ -210,19 +205,8 @@ BlockSpec make_schema() {
   root.doc = "A scene file.";
   root.user_blocks_allowed = true;
   root.blocks = {
-      block("SceneFormat", "Version of the scene language this file is written for.", {version}),
-      solver,
-      output,
-      gravity,
-      body,
-      ground,
-      coordinate_constraint,
-      velocity_constraint,
-      sensor,
-      fluid,
-      liggghts,
-      sph,
-      coupling};
+      solver, output, gravity,  body, ground,  coordinate_constraint, velocity_constraint,
+      sensor, fluid,  liggghts, sph,  coupling};
   return root;
 }
 
@@ -342,16 +326,22 @@ Scene build_scene(const std::string& path, const std::vector<Override>& override
   };
 
   const View root(scene.parameters, schema);
-  guard(root.location(), [&] {
-    const long version = root.block("SceneFormat").integer("version");
-    if (version > kSceneFormatVersion) {
-      problems.push_back({root.block("SceneFormat").location("version"),
-                          "the scene is written for scene language version " +
-                              std::to_string(version) + ", this fsi-server reads version " +
-                              std::to_string(kSceneFormatVersion),
-                          "use a newer fsi-server"});
-    }
-  });
+  if (!scene.parameters.language_version) {
+    // Required, not defaulted: a later language version may change what existing syntax means,
+    // and an unversioned file would then be read by the wrong rules without a word.
+    Problem missing;
+    missing.location.file = path;
+    missing.location.line = 1;
+    missing.location.column = 1;
+    missing.message = "the scene does not state the scene language version it is written for";
+    missing.fix = "add the line 'scene_language = " + std::to_string(kSceneLanguageVersion) +
+                  "' at the top of the file (comments may stand above it)";
+    problems.push_back(std::move(missing));
+  }
+  if (const Block* old = scene.parameters.child("SceneFormat")) {
+    problems.push_back({old->location, "SceneFormat { version = N } is no longer read",
+                        "replace it by 'scene_language = N' as the first entry of the file"});
+  }
 
   // Solver and output.
   guard(root.location(), [&] {

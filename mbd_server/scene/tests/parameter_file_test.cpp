@@ -446,11 +446,48 @@ TEST(ParameterFile, JsonMirrorsTheTree) {
   EXPECT_EQ(flat.at("S.end_time"), 0.5);
 }
 
-TEST(ParameterFile, SceneFormatVersionIsExposed) {
-  EXPECT_EQ(scene_format_version(parse("SceneFormat { version = 1 }\n")), 1L);
-  EXPECT_EQ(scene_format_version(parse("a = 1\n")), std::nullopt);
-  EXPECT_THROW(scene_format_version(parse("SceneFormat { version = 1.5 }\n")), fsi::Error);
-  EXPECT_THROW(scene_format_version(parse("SceneFormat { version = \"1\" }\n")), fsi::Error);
+TEST(ParameterFile, TheLanguageVersionIsReadFirst) {
+  const Block root = parse("% a scene\n\nscene_language = 1   % the version\na = 2\n");
+  EXPECT_EQ(root.language_version, 1L);
+  EXPECT_EQ(root.language_version_location.line, 3);
+  EXPECT_EQ(root.find("scene_language"), nullptr);  // a statement, not a parameter
+  EXPECT_EQ(parse("a = 1\n").language_version, std::nullopt);
+  // Printed back and recorded in the manifest.
+  EXPECT_EQ(to_text(root).rfind("scene_language = 1\na = 2", 0), 0u) << to_text(root);
+  EXPECT_EQ(parse(to_text(root)).language_version, 1L);
+  EXPECT_EQ(to_json(root)["scene_language"], 1);
+
+  // A newer version is refused before its (perhaps new) syntax is read.
+  const std::string newer = error_of("scene_language = 2\nBody < mass := 1 >\n");
+  EXPECT_CONTAINS(newer,
+                  "the file is written for scene language version 2, this program reads version 1");
+  EXPECT_CONTAINS(newer, "t.scene:1:18");
+  EXPECT_CONTAINS(newer, "use an fsi-server that reads version 2");
+  // Only as the first entry, only a whole number written out.
+  EXPECT_CONTAINS(error_of("a = 1\nscene_language = 1\n"),
+                  "t.scene:2:1: scene_language must be the first entry of its file");
+  EXPECT_CONTAINS(error_of("A { scene_language = 1 }\n"), "must be the first entry");
+  EXPECT_CONTAINS(error_of("scene_language = 1.5\n"), "takes a whole number written out");
+  EXPECT_CONTAINS(error_of("scene_language = 2-1\n"), "takes a whole number written out");
+  EXPECT_CONTAINS(error_of("scene_language = 0\n"), "versions start at 1");
+}
+
+TEST(ParameterFile, AnIncludedFileMayStateItsVersionToo) {
+  TempFolder folder;
+  folder.write("ok.inc", "% fragment\nscene_language = 1\nb = 2\n");
+  folder.write("new.inc", "scene_language = 3\nb = 2\n");
+  const Block root = load_parameter_file(
+      folder.write("main.scene", "scene_language = 1\na = 1\ninclude \"ok.inc\"\nc = a + b\n"));
+  EXPECT_EQ(root.language_version, 1L);
+  EXPECT_EQ(root.language_version_location.line, 1);
+  EXPECT_EQ(number_at(root, "c"), 3.0);
+  try {
+    load_parameter_file(folder.write("bad.scene", "scene_language = 1\ninclude \"new.inc\"\n"));
+    FAIL() << "a newer included file was accepted";
+  } catch (const fsi::Error& error) {
+    EXPECT_CONTAINS(error.what(), "new.inc:1:18");
+    EXPECT_CONTAINS(error.what(), "written for scene language version 3");
+  }
 }
 
 TEST(ParameterFile, LookupHelpers) {
@@ -468,7 +505,9 @@ TEST(ParameterFile, LookupHelpers) {
 
   Block built;
   built.add_parameter({"x", number_value(1), "1", {}});
-  built.add_block(Block{"Child", {}, {}, {}, {}});
+  Block child;
+  child.name = "Child";
+  built.add_block(child);
   ASSERT_EQ(built.entries.size(), 2u);
   EXPECT_EQ(built.entries[1].type, BlockEntry::Type::Block);
   EXPECT_EQ(to_text(built), "x = 1\nChild\n{\n}\n");
@@ -479,7 +518,7 @@ TEST(ParameterFile, LoadsTheStaticTankExample) {
   EXPECT_DOUBLE_EQ(number_at(root, "Geometry.width"), 0.05);
   EXPECT_DOUBLE_EQ(number_at(root, "LIGGGHTS_SPH_parameters.particlespacing"), 0.0016 / 1.9);
   EXPECT_EQ(root.children("RigidBody2D").size(), 2u);
-  EXPECT_EQ(scene_format_version(root), 1L);
+  EXPECT_EQ(root.language_version, 1L);
 }
 
 TEST(EditDistance, SuggestsTheNearestName) {

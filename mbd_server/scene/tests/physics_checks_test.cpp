@@ -64,7 +64,8 @@ class SmallScene : public ::testing::Test {
 
   Scene build(const std::string& sph, const std::string& extra) {
     std::ofstream(folder_ / "small.scene")
-        << "SolverOptions { end_time = 0.1; Timeint { step_size = 5e-6 } }\n"
+        << "scene_language = 1\n"
+           "SolverOptions { end_time = 0.1; Timeint { step_size = 5e-6 } }\n"
            "Gravity { acceleration = [0, -9.81] }\n"
            "Ground { Mesh { points = [[0, 0], [0.1, 0]] } }\n"
            "LIGGGHTS { script1 = \"setup.in\"; script2 = \"after.in\" }\n"

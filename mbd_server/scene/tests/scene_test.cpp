@@ -54,8 +54,8 @@ TEST(Scene, OverridesReachTheBuiltScene) {
 TEST(Scene, ReportsAllProblemsWithLocations) {
   const fs::path folder = fs::temp_directory_path() / "fsi_scene_build_test";
   fs::create_directories(folder);
-  std::ofstream(folder / "bad.scene")
-      << R"(SolverOptions { end_time = 1; Timeint { step_size = 0 } }
+  std::ofstream(folder / "bad.scene") << R"(scene_language = 1
+SolverOptions { end_time = 1; Timeint { step_size = 0 } }
 RigidBody2D { name = "a"; mass = 1; inertia = 1; Mesh { points = [[0, 0], [1, 0]] } }
 CoordinateConstraint { body = "b"; coordinate = "x" }
 Sensor { name = "s"; type = "fluid_force"; body = "a"; component = "angle" }
@@ -68,13 +68,13 @@ Coupling { refinement_resolution = 0.001 }
   } catch (const fsi::Error& error) {
     const std::string text = error.what();
     // Schema problems come first (and alone): step_size out of range.
-    EXPECT_NE(text.find("bad.scene:1:41"), std::string::npos) << text;
+    EXPECT_NE(text.find("bad.scene:2:41"), std::string::npos) << text;
     EXPECT_NE(text.find("'SolverOptions.Timeint.step_size' = 0 s is out of range"),
               std::string::npos)
         << text;
   }
-  std::ofstream(folder / "bad2.scene")
-      << R"(SolverOptions { end_time = 1; Timeint { step_size = 1e-5 } }
+  std::ofstream(folder / "bad2.scene") << R"(scene_language = 1
+SolverOptions { end_time = 1; Timeint { step_size = 1e-5 } }
 RigidBody2D { name = "a"; mass = 1; inertia = 1; Mesh { points = [[0, 0], [1, 0]] } }
 CoordinateConstraint { body = "b"; coordinate = "x" }
 Sensor { name = "s"; type = "fluid_force"; body = "a"; component = "angle" }
@@ -87,7 +87,7 @@ Coupling { refinement_resolution = 0.001 }
   } catch (const fsi::Error& error) {
     const std::string text = error.what();
     EXPECT_NE(text.find("4 problem(s)"), std::string::npos) << text;
-    EXPECT_NE(text.find("bad2.scene:3:24: no body named 'b'"), std::string::npos) << text;
+    EXPECT_NE(text.find("bad2.scene:4:24: no body named 'b'"), std::string::npos) << text;
     EXPECT_NE(text.find("known bodies: a"), std::string::npos) << text;
     EXPECT_NE(text.find("a force sensor has components x, y or torque"), std::string::npos) << text;
     EXPECT_NE(text.find("missing.in' cannot be read"), std::string::npos) << text;
@@ -101,7 +101,7 @@ TEST(Scene, ReportsSixDifferentMistakesAtOnceWithLineAndColumn) {
   const fs::path folder = fs::temp_directory_path() / "fsi_scene_six_mistakes";
   fs::create_directories(folder);
   std::ofstream(folder / "ok.in1") << "# script 1\n";
-  std::ofstream(folder / "six.scene") << R"(SceneFormat { version = 1 }
+  std::ofstream(folder / "six.scene") << R"(scene_language = 1
 SolverOptions { end_time = 1; Timeint { step_size = 1e-5 } }
 Output { sensor_every_step = 2 }
 Geometry { width = 0.05; a = b + 1; b = 2*a }
@@ -162,6 +162,41 @@ Coupling { refinement_resolution = 0.002 }
     EXPECT_GT(at, previous) << line;
     previous = at;
   }
+}
+
+TEST(Scene, ASceneMustStateItsLanguageVersion) {
+  const fs::path folder = fs::temp_directory_path() / "fsi_scene_version_test";
+  fs::create_directories(folder);
+  std::ofstream(folder / "s.in") << "# script\n";
+  const std::string body = R"(SolverOptions { end_time = 1; Timeint { step_size = 1e-5 } }
+Ground { Mesh { points = [[0, 0], [1, 0]] } }
+LIGGGHTS { script1 = "s.in"; script2 = "s.in" }
+Coupling { refinement_resolution = 0.002 }
+)";
+  auto error_of = [&](const std::string& text) {
+    std::ofstream(folder / "v.scene") << text;
+    try {
+      build_scene((folder / "v.scene").string());
+    } catch (const fsi::Error& error) {
+      return std::string(error.what());
+    }
+    return std::string();
+  };
+  EXPECT_EQ(error_of("% a comment first is fine\nscene_language = 1\n" + body), "");
+  const std::string missing = error_of(body);
+  EXPECT_NE(missing.find("v.scene:1:1: the scene does not state the scene language version"),
+            std::string::npos)
+      << missing;
+  EXPECT_NE(missing.find("add the line 'scene_language = 1' at the top of the file"),
+            std::string::npos)
+      << missing;
+  const std::string old = error_of("scene_language = 1\nSceneFormat { version = 1 }\n" + body);
+  EXPECT_NE(old.find("v.scene:2:1: SceneFormat { version = N } is no longer read"),
+            std::string::npos)
+      << old;
+  const std::string newer = error_of("scene_language = 2\n" + body);
+  EXPECT_NE(newer.find("written for scene language version 2"), std::string::npos) << newer;
+  fs::remove_all(folder);
 }
 
 TEST(Scene, SchemaDocumentsEveryBlock) {

@@ -7,6 +7,7 @@
 //   y = 0.75*height - 0.5*thickness               references to EARLIER parameters
 //   x = Geometry.offset_x + Body[1].mass          dotted (and indexed) references
 //   v = [0, -9.81]     m = [[0, 0], [1, 0]]       vectors and matrices (may span lines)
+//   scene_language = 1                            first entry: the language version
 //   include "other.scene"                         textual include, relative to this file
 //   Body { ... } Body { ... }                     repeated blocks form element lists
 //
@@ -27,6 +28,12 @@
 #include "fsi/scene/problem.hpp"
 
 namespace fsi::scene {
+
+// The version of the language this program reads. A file states the version it is written for
+// with `scene_language = N` as its first entry (comments may stand above); the parser reads it
+// before the rest and refuses N > kSceneLanguageVersion at once. Included files may state it too
+// (checked the same way). Whether a file must state it is the caller's decision (scenes must).
+inline constexpr long kSceneLanguageVersion = 1;
 
 enum class ValueKind { Number, String, Vector, Matrix };
 std::string_view name(ValueKind kind);
@@ -77,6 +84,9 @@ struct Block {
   std::vector<Parameter> parameters;
   std::vector<Block> blocks;
   std::vector<BlockEntry> entries;  // parameters and blocks interleaved as in the text
+  // Root only: the `scene_language = N` of the top file, if it states one, and where.
+  std::optional<long> language_version;
+  SourceLocation language_version_location;
 
   // The parameter `key` of this block (the last assignment if it is assigned twice), or nullptr.
   const Parameter* find(std::string_view key) const;
@@ -118,10 +128,6 @@ Block load_parameter_file(const std::string& path, const std::vector<Override>& 
                           std::vector<Problem>& problems);
 Block parse_parameter_text(const std::string& text, const std::string& file_name,
                            const std::vector<Override>& overrides, std::vector<Problem>& problems);
-
-// The top-level `SceneFormat { version = N }` of a file, if present. Refusing a version is the
-// caller's job. Throws fsi::Error if the version is given but is not a whole number.
-std::optional<long> scene_format_version(const Block& root);
 
 // The evaluated tree in the language's syntax (for `fsi-server --print-params`); parsing it again
 // gives the same values. Each entry whose expression differs from its value carries the

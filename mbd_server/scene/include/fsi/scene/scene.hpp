@@ -14,8 +14,6 @@
 
 namespace fsi::scene {
 
-inline constexpr int kSceneFormatVersion = 1;
-
 struct SolverSettings {
   double end_time = 0.0;
   double step_size = 0.0;
@@ -82,7 +80,8 @@ struct Scene {
 // The declaration of every scene parameter.
 const BlockSpec& scene_schema();
 
-// Loads, validates (all problems at once) and builds a scene. Throws fsi::Error.
+// Loads, validates (all problems at once) and builds a scene. A scene must state its language
+// version (`scene_language = 1` as its first entry). Throws fsi::Error.
 Scene build_scene(const std::string& path, const std::vector<Override>& overrides = {});
 
 }  // namespace fsi::scene
