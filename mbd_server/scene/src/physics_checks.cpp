@@ -130,12 +130,25 @@ class Inputs {
       add_missing("no FluidRegion (the height of the fluid is not known)");
       return std::nullopt;
     }
-    const auto& lower = root_.lookup("FluidRegion.lower")->value.vector;
-    const auto& upper = root_.lookup("FluidRegion.upper")->value.vector;
-    const Point extent(upper.at(0) - lower.at(0), upper.at(1) - lower.at(1));
+    Point extent;
+    if (const Parameter* lower = root_.lookup("FluidRegion.lower")) {
+      const auto& upper = root_.lookup("FluidRegion.upper")->value.vector;
+      extent =
+          Point(upper.at(0) - lower->value.vector.at(0), upper.at(1) - lower->value.vector.at(1));
+    } else {
+      // A polygon: the extent of its particles, plus the d/2 around each.
+      const auto& xy = scene_.fluid.positions;
+      Point low(xy.at(0), xy.at(1)), high = low;
+      for (std::size_t i = 0; i + 1 < xy.size(); i += 2) {
+        low = low.cwiseMin(Point(xy[i], xy[i + 1]));
+        high = high.cwiseMax(Point(xy[i], xy[i + 1]));
+      }
+      extent = high - low + Point::Constant(scene_.fluid.spacing);
+    }
     const double height =
         gravity.direction ? extent.cwiseAbs().dot(gravity.direction->cwiseAbs()) : extent.y();
-    return Quantity{height, where("FluidRegion.upper")};
+    return Quantity{height, where(root_.lookup("FluidRegion.upper") ? "FluidRegion.upper"
+                                                                    : "FluidRegion.points")};
   }
 
   SourceLocation where(std::string_view path) const {
@@ -537,6 +550,10 @@ void check_fluid_overlap(const Scene& scene, Report& report) {
   if (!in.has_fluid_region()) {
     return report.skip(kCheck, "fluid-overlap",
                        {"no FluidRegion (particles made by the LIGGGHTS script)"});
+  }
+  if (!scene.parameters.lookup("FluidRegion.lower")) {
+    return report.skip(kCheck, "fluid-overlap",
+                       {"a polygon FluidRegion (the check handles boxes only)"});
   }
   const auto& lower = scene.parameters.lookup("FluidRegion.lower")->value.vector;
   const auto& upper = scene.parameters.lookup("FluidRegion.upper")->value.vector;

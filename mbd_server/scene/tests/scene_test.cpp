@@ -199,6 +199,54 @@ Coupling { refinement_resolution = 0.002 }
   fs::remove_all(folder);
 }
 
+TEST(Scene, APolygonFluidRegionWithAHole) {
+  const fs::path folder = fs::temp_directory_path() / "fsi_scene_polygon_test";
+  fs::create_directories(folder);
+  std::ofstream(folder / "s.in") << "# script\n";
+  const std::string head = R"(scene_language = 1
+SolverOptions { end_time = 1; Timeint { step_size = 1e-5 } }
+Ground { Mesh { points = [[0, 0], [1, 0]] } }
+LIGGGHTS { script1 = "s.in"; script2 = "s.in" }
+Coupling { refinement_resolution = 0.002 }
+)";
+  auto build = [&](const std::string& region) {
+    std::ofstream(folder / "p.scene") << head << region;
+    return build_scene((folder / "p.scene").string());
+  };
+  // An L (the unit square without [0.4, 1]^2) with the hole [0.1, 0.3]^2: 64 - 4 = 60 points.
+  const Scene scene = build(R"(FluidRegion {
+  shape = "polygon"; spacing = 0.1; density = 1000; velocity = [0.5, 0]
+  points = [[0, 0], [1, 0], [1, 0.4], [0.4, 0.4], [0.4, 1], [0, 1]]
+  Hole { points = [[0.1, 0.1], [0.3, 0.1], [0.3, 0.3], [0.1, 0.3]] }
+}
+)");
+  EXPECT_EQ(scene.fluid.count(), 60u);
+  EXPECT_DOUBLE_EQ(scene.fluid.mass, 1000 * 0.1 * 0.1);
+  ASSERT_EQ(scene.fluid.velocities.size(), 120u);
+  EXPECT_EQ(scene.fluid.velocities[0], 0.5);
+  std::string message;
+  try {
+    build(
+        "FluidRegion { shape = \"polygon\"; spacing = 0.1; density = 1000\n"
+        "  lower = [0, 0]\n  points = [[0, 0], [1, 1], [1, 0], [0, 0.5]] }\n");
+  } catch (const fsi::Error& error) {
+    message = error.what();
+  }
+  EXPECT_NE(message.find("p.scene:7:3: 'lower' belongs to the other shape than 'polygon'"),
+            std::string::npos)
+      << message;
+  try {
+    build(
+        "FluidRegion { shape = \"polygon\"; spacing = 0.1; density = 1000\n"
+        "  points = [[0, 0], [1, 1], [1, 0], [0, 0.5]] }\n");
+  } catch (const fsi::Error& error) {
+    message = error.what();
+  }
+  EXPECT_NE(message.find("p.scene:7:3: the polygon: edges 0-1 and 2-3 cross"), std::string::npos)
+      << message;
+  fs::remove_all(folder);
+}
+
 TEST(Scene, SchemaDocumentsEveryBlock) {
   const std::string markdown = render_markdown(scene_schema());
   for (const char* block :

@@ -1,0 +1,263 @@
+#include "fsi/scene/fluid_region.hpp"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+
+#include "fsi/common/error.hpp"
+
+namespace fsi::scene {
+namespace {
+
+std::size_t count2(const std::vector<double>& xy) {
+  return xy.size() / 2;
+}
+
+LatticeOptions lattice(double d, double displacement = 0.0, std::uint64_t seed = 1) {
+  LatticeOptions options;
+  options.spacing = d;
+  options.random_displacement = displacement;
+  options.seed = seed;
+  return options;
+}
+
+std::string error_of(auto&& call) {
+  try {
+    call();
+  } catch (const fsi::Error& error) {
+    return error.what();
+  }
+  return "";
+}
+
+TEST(FluidRegion, ARectangularPolygonFillsLikeTheBox) {
+  const Polygon rectangle{{{0, 0}, {1, 0}, {1, 0.5}, {0, 0.5}}, {}};
+  const auto polygon = fill_polygon(rectangle, lattice(0.1));
+  const auto box = fill_box({0, 0}, {1, 0.5}, lattice(0.1));
+  EXPECT_EQ(count2(box), 50u);  // 10 x 5
+  EXPECT_EQ(polygon, box);
+  EXPECT_DOUBLE_EQ(box[0], 0.05);
+  EXPECT_DOUBLE_EQ(box[1], 0.05);
+  EXPECT_DOUBLE_EQ(lattice_particle_mass(1000, 0.1, 2), 10.0);
+  EXPECT_DOUBLE_EQ(lattice_particle_mass(1000, 0.1, 3), 1.0);
+}
+
+TEST(FluidRegion, AConcavePolygonInEitherOrientation) {
+  // An L: the unit square without [0.4, 1]^2. 100 lattice points minus 6 x 6 = 64.
+  Polygon l_shape{{{0, 0}, {1, 0}, {1, 0.4}, {0.4, 0.4}, {0.4, 1}, {0, 1}}, {}};
+  EXPECT_EQ(polygon_problem(l_shape), "");
+  EXPECT_TRUE(inside(l_shape, {0.2, 0.8}));
+  EXPECT_TRUE(inside(l_shape, {0.8, 0.2}));
+  EXPECT_FALSE(inside(l_shape, {0.7, 0.7}));
+  EXPECT_FALSE(inside(l_shape, {1.2, 0.2}));
+  EXPECT_FALSE(inside(l_shape, {-0.1, 0.5}));
+  const auto points = fill_polygon(l_shape, lattice(0.1));
+  EXPECT_EQ(count2(points), 64u);
+  for (std::size_t i = 0; i < count2(points); ++i)
+    EXPECT_FALSE(points[2 * i] > 0.4 && points[2 * i + 1] > 0.4) << i;
+  std::reverse(l_shape.outer.begin(), l_shape.outer.end());
+  EXPECT_EQ(count2(fill_polygon(l_shape, lattice(0.1))), 64u);
+}
+
+TEST(FluidRegion, HolesAreLeftEmpty) {
+  // Unit square with the hole [0.3, 0.7]^2: lattice points 0.35 ... 0.65 (4 x 4) fall out.
+  const Polygon ring{{{0, 0}, {1, 0}, {1, 1}, {0, 1}},
+                     {{{0.3, 0.3}, {0.3, 0.7}, {0.7, 0.7}, {0.7, 0.3}}}};
+  EXPECT_EQ(polygon_problem(ring), "");
+  EXPECT_FALSE(inside(ring, {0.5, 0.5}));
+  EXPECT_TRUE(inside(ring, {0.2, 0.5}));
+  EXPECT_EQ(count2(fill_polygon(ring, lattice(0.1))), 84u);
+}
+
+TEST(FluidRegion, ACircleHoldsItsAreaOverDSquared) {
+  Polygon circle;
+  const int n = 400;
+  for (int k = 0; k < n; ++k) {
+    const double phi = 2 * std::numbers::pi * k / n;
+    circle.outer.push_back({0.5 + 0.5 * std::cos(phi), 0.5 + 0.5 * std::sin(phi)});
+  }
+  const double d = 0.005;
+  const double area = static_cast<double>(count2(fill_polygon(circle, lattice(d)))) * d * d;
+  // Lattice-point counting error is O(perimeter d) = O(1e-2) relative; measured below 0.2 %.
+  EXPECT_NEAR(area / (std::numbers::pi * 0.25), 1.0, 2e-3);
+}
+
+TEST(FluidRegion, RandomDisplacementIsBoundedSeededAndKeepsTheCount) {
+  const Polygon square{{{0, 0}, {1, 0}, {1, 1}, {0, 1}}, {}};
+  const auto plain = fill_polygon(square, lattice(0.1));
+  const auto moved = fill_polygon(square, lattice(0.1, 0.2, 7));
+  ASSERT_EQ(moved.size(), plain.size());
+  double largest = 0.0;
+  for (std::size_t i = 0; i < plain.size(); ++i)
+    largest = std::max(largest, std::fabs(moved[i] - plain[i]));
+  EXPECT_LE(largest, 0.2 * 0.1);
+  EXPECT_GT(largest, 0.1 * 0.1);  // 200 draws: one beyond half the bound
+  EXPECT_EQ(fill_polygon(square, lattice(0.1, 0.2, 7)), moved);
+  EXPECT_NE(fill_polygon(square, lattice(0.1, 0.2, 8)), moved);
+}
+
+TEST(FluidRegion, BadPolygonsAreExplained) {
+  EXPECT_NE(polygon_problem({{{0, 0}, {1, 0}}, {}}).find("has 2 vertices, needs 3"),
+            std::string::npos);
+  EXPECT_NE(polygon_problem({{{0, 0}, {1, 0}, {2, 0}}, {}}).find("encloses no area"),
+            std::string::npos);
+  // A bow tie: edges 0-1 and 2-3 cross.
+  EXPECT_NE(polygon_problem({{{0, 0}, {2, 2}, {2, 0}, {0, 1}}, {}}).find("edges 0-1 and 2-3 cross"),
+            std::string::npos);
+  EXPECT_NE(
+      polygon_problem({{{0, 0}, {1, 0}, {1, 1}, {0, 1}}, {{{0.5, 0.5}, {1.5, 0.5}, {0.5, 0.7}}}})
+          .find("hole 0: vertex 1 lies outside the polygon"),
+      std::string::npos);
+  const Polygon square{{{0, 0}, {1, 0}, {1, 1}, {0, 1}}, {}};
+  EXPECT_NE(error_of([&] { fill_polygon(square, lattice(0.0)); }).find("spacing must be positive"),
+            std::string::npos);
+  EXPECT_NE(error_of([&] { fill_polygon(square, lattice(0.1, 0.6)); }).find("[0, 0.5]"),
+            std::string::npos);
+  EXPECT_NE(
+      error_of([&] { fill_polygon(square, lattice(1e-5), 1000); }).find("increase the spacing"),
+      std::string::npos);
+}
+
+// ---- STL ----
+
+struct Facet {
+  Point3 a, b, c;
+};
+
+// The unit cube [0, 1]^3 (scaled and shifted), outward-oriented, 12 triangles.
+std::vector<Facet> cube(double size = 1.0, Point3 at = {0, 0, 0}) {
+  const auto p = [&](double x, double y, double z) {
+    return Point3{at[0] + size * x, at[1] + size * y, at[2] + size * z};
+  };
+  const Point3 v000 = p(0, 0, 0), v100 = p(1, 0, 0), v110 = p(1, 1, 0), v010 = p(0, 1, 0);
+  const Point3 v001 = p(0, 0, 1), v101 = p(1, 0, 1), v111 = p(1, 1, 1), v011 = p(0, 1, 1);
+  return {{v000, v010, v110}, {v000, v110, v100},   // z = 0, normal -z
+          {v001, v101, v111}, {v001, v111, v011},   // z = 1, normal +z
+          {v000, v100, v101}, {v000, v101, v001},   // y = 0, normal -y
+          {v010, v011, v111}, {v010, v111, v110},   // y = 1, normal +y
+          {v000, v001, v011}, {v000, v011, v010},   // x = 0, normal -x
+          {v100, v110, v111}, {v100, v111, v101}};  // x = 1, normal +x
+}
+
+std::string ascii_stl(const std::vector<Facet>& facets) {
+  std::ostringstream out;
+  out.precision(17);
+  out << "solid test\n";
+  for (const Facet& f : facets) {
+    out << "  facet normal 0 0 0\n    outer loop\n";
+    for (const Point3& v : {f.a, f.b, f.c})
+      out << "      vertex " << v[0] << " " << v[1] << " " << v[2] << "\n";
+    out << "    endloop\n  endfacet\n";
+  }
+  out << "endsolid test\n";
+  return out.str();
+}
+
+std::string binary_stl(const std::vector<Facet>& facets) {
+  std::string bytes(80, ' ');
+  bytes.replace(0, 12, "solid binary");  // a header that starts like ASCII
+  const auto count = static_cast<std::uint32_t>(facets.size());
+  bytes.append(reinterpret_cast<const char*>(&count), 4);
+  for (const Facet& f : facets) {
+    const float normal[3] = {0, 0, 0};
+    bytes.append(reinterpret_cast<const char*>(normal), 12);
+    for (const Point3& v : {f.a, f.b, f.c}) {
+      for (double x : v) {
+        const auto value = static_cast<float>(x);
+        bytes.append(reinterpret_cast<const char*>(&value), 4);
+      }
+    }
+    bytes.append(2, '\0');
+  }
+  return bytes;
+}
+
+TEST(FluidRegion, AsciiAndBinaryStlReadTheSameCube) {
+  const TriangleMesh ascii = parse_stl(ascii_stl(cube()), "cube_ascii.stl");
+  const TriangleMesh binary = parse_stl(binary_stl(cube()), "cube_binary.stl");
+  for (const TriangleMesh* mesh : {&ascii, &binary}) {
+    EXPECT_EQ(mesh->vertices.size(), 8u);  // shared corners merged
+    EXPECT_EQ(mesh->triangles.size(), 12u);
+    EXPECT_EQ(closed_surface_problem(*mesh), "");
+    EXPECT_DOUBLE_EQ(enclosed_volume(*mesh), 1.0);
+  }
+  EXPECT_EQ(ascii.vertices, binary.vertices);
+  EXPECT_EQ(ascii.triangles, binary.triangles);
+
+  // Through a file as well.
+  const auto path =
+      std::filesystem::temp_directory_path() / ("fsi_cube_" + std::to_string(::getpid()) + ".stl");
+  std::ofstream(path, std::ios::binary) << binary_stl(cube());
+  EXPECT_EQ(read_stl(path.string()).triangles, binary.triangles);
+  std::filesystem::remove(path);
+}
+
+TEST(FluidRegion, InsideAStlSurfaceByWindingNumber) {
+  const TriangleMesh mesh = parse_stl(ascii_stl(cube()), "cube.stl");
+  EXPECT_NEAR(winding_number(mesh, {0.5, 0.5, 0.5}), 1.0, 1e-12);
+  EXPECT_NEAR(winding_number(mesh, {1.5, 0.5, 0.5}), 0.0, 1e-12);
+  EXPECT_TRUE(inside(mesh, {0.999, 0.001, 0.5}));
+  EXPECT_FALSE(inside(mesh, {1.001, 0.5, 0.5}));
+  EXPECT_FALSE(inside(mesh, {0.5, 0.5, -0.001}));
+  // A point on the line through a vertex and an edge (where a ray test can miscount).
+  EXPECT_TRUE(inside(mesh, {0.5, 0.5, 0.25}));
+  EXPECT_FALSE(inside(mesh, {2.0, 2.0, 2.0}));
+}
+
+TEST(FluidRegion, FillingAStlCubeAndAnOctahedron) {
+  const TriangleMesh box = parse_stl(binary_stl(cube(1.0, {0.2, 0, 0})), "cube.stl");
+  EXPECT_EQ(fill_closed_surface(box, lattice(0.1)).size() / 3, 1000u);
+
+  // An octahedron |x| + |y| + |z| <= 1: volume 4/3, faces oblique to the lattice.
+  const Point3 px{1, 0, 0}, nx{-1, 0, 0}, py{0, 1, 0}, ny{0, -1, 0}, pz{0, 0, 1}, nz{0, 0, -1};
+  const std::vector<Facet> octahedron = {{px, py, pz}, {py, nx, pz}, {nx, ny, pz}, {ny, px, pz},
+                                         {py, px, nz}, {nx, py, nz}, {ny, nx, nz}, {px, ny, nz}};
+  const TriangleMesh mesh = parse_stl(ascii_stl(octahedron), "octahedron.stl");
+  EXPECT_EQ(closed_surface_problem(mesh), "");
+  EXPECT_NEAR(enclosed_volume(mesh), 4.0 / 3.0, 1e-12);
+  const double d = 0.05;
+  const auto points = fill_closed_surface(mesh, lattice(d));
+  const double volume = static_cast<double>(points.size() / 3) * d * d * d;
+  EXPECT_NEAR(volume / (4.0 / 3.0), 1.0, 0.02);
+  for (std::size_t i = 0; i < points.size(); i += 3)
+    EXPECT_LT(std::fabs(points[i]) + std::fabs(points[i + 1]) + std::fabs(points[i + 2]), 1.0);
+}
+
+TEST(FluidRegion, BadStlFilesAreExplained) {
+  std::vector<Facet> open = cube();
+  open.pop_back();
+  const TriangleMesh holed = parse_stl(ascii_stl(open), "open.stl");
+  EXPECT_NE(closed_surface_problem(holed).find("belongs to one triangle only"), std::string::npos);
+  EXPECT_NE(
+      error_of([&] { fill_closed_surface(holed, lattice(0.1)); }).find("does not enclose a volume"),
+      std::string::npos);
+  std::vector<Facet> flipped = cube();
+  std::swap(flipped[0].b, flipped[0].c);
+  EXPECT_NE(closed_surface_problem(parse_stl(ascii_stl(flipped), "f.stl"))
+                .find("consistently oriented triangles (a flipped"),
+            std::string::npos);
+
+  std::string truncated = binary_stl(cube());
+  truncated.resize(truncated.size() - 10);
+  EXPECT_NE(error_of([&] { parse_stl(truncated, "t.stl"); }).find("this file has"),
+            std::string::npos);
+  std::string text = ascii_stl(cube());
+  text.replace(text.find("vertex 0 0 0"), 12, "vertex 0 0 x");
+  const std::string message = error_of([&] { parse_stl(text, "bad.stl"); });
+  EXPECT_NE(message.find("bad.stl:4"), std::string::npos) << message;
+  EXPECT_NE(message.find("a vertex needs three numbers"), std::string::npos) << message;
+  EXPECT_NE(error_of([&] {
+              parse_stl("solid x\n facet normal 0 0 1\n", "e.stl");
+            }).find("without 'endsolid'"),
+            std::string::npos);
+  EXPECT_NE(error_of([&] { read_stl("/nonexistent/x.stl"); }).find("cannot read the STL file"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace fsi::scene
