@@ -201,7 +201,11 @@ class Session {
   void set_up() {
     timings_.setup.start();
     state_ = scene_.model.initial_state();
-    integrator_ = std::make_unique<mbd::RadauIIA>(scene_.solver.stages, scene_.solver.newton);
+    mbd::RadauOptions integrator_options;
+    integrator_options.stages = scene_.solver.stages;
+    integrator_options.newton = scene_.solver.newton;
+    integrator_options.family = scene_.solver.family;
+    integrator_ = std::make_unique<mbd::RadauIIA>(integrator_options);
 
     protocol::Setup setup;
     setup.dimension = 2;
@@ -486,11 +490,11 @@ class Session {
       const auto& body = scene_.model.body(b);
       bodies.push_back({{"name", body.name}, {"mass", body.mass}, {"inertia", body.inertia}});
     }
-    manifest["model"] = {
-        {"gravity", {scene_.model.gravity().x(), scene_.model.gravity().y()}},
-        {"bodies", bodies},
-        {"constraints", scene_.model.constraint_count()},
-        {"integrator", "Radau IIA, " + std::to_string(scene_.solver.stages) + " stages"}};
+    manifest["model"] = {{"gravity", {scene_.model.gravity().x(), scene_.model.gravity().y()}},
+                         {"bodies", bodies},
+                         {"constraints", scene_.model.constraint_count()},
+                         {"integrator", integrator_->tableau().name + ", " +
+                                            std::to_string(scene_.solver.stages) + " stages"}};
     manifest["fluid"] = {
         {"particle_count", ready_.particle_count ? ready_.particle_count : scene_.fluid.count()},
         {"generated_particles", scene_.fluid.count()},

@@ -63,11 +63,14 @@ BlockSpec make_schema() {
       "Timeint", "Time integration of the multibody system (fixed step when coupled).",
       {positive(number("step_size", "s",
                        "coupled time step, the same on both sides; SPH needs <= 0.25 h/c")),
-       with_default(choice(text("tableau", "implicit Runge-Kutta scheme"), {"RadauIIA"}),
+       with_default(choice(text("tableau", "implicit Runge-Kutta scheme (HOTINT's tableau_name)"),
+                           {"RadauIIA", "LobattoIIIA"}),
                     text_value("RadauIIA")),
        [] {
          ParameterSpec p = with_default(
-             integer("stages", "Radau IIA stages: 1, 2, 3 (orders 1, 3, 5)"), number_value(3));
+             integer("stages",
+                     "Radau IIA: 1, 2, 3 (orders 1, 3, 5); Lobatto IIIA: 2, 3 (orders 2, 4)"),
+             number_value(3));
          p.minimum = 1;
          p.maximum = 3;
          return p;
@@ -82,7 +85,15 @@ BlockSpec make_schema() {
        with_default(at_least(integer("max_modified_newton_steps",
                                      "steps that reuse one factorised Jacobian (0: full Newton)"),
                              0),
-                    number_value(20))});
+                    number_value(20)),
+       with_default(number("max_contraction", "",
+                           "a reused Jacobian is replaced when |dx_k|/|dx_k-1| exceeds this")
+                        .above(0.0)
+                        .at_most(1.0),
+                    number_value(0.5)),
+       with_default(positive(number("absolute_tolerance", "SI",
+                                    "increment tolerance where a whole block stays zero")),
+                    number_value(1e-14))});
   BlockSpec solver =
       required(block("SolverOptions", "Solver settings of the run.",
                      {positive(number("end_time", "s", "simulated time of the coupled phase"))},
@@ -143,6 +154,34 @@ BlockSpec make_schema() {
       "VelocityConstraint",
       "Prescribes the velocity of a body coordinate (velocity level, thesis §6.3 piston).",
       {body_name, coordinate, number("velocity", "m/s or rad/s", "prescribed constant velocity")}));
+
+  // Elements between two body points; body_b absent: point_b is a fixed point of the world.
+  auto two_points = [](std::vector<ParameterSpec> extra) {
+    std::vector<ParameterSpec> parameters = {
+        text("body_a", "name of a RigidBody2D"),
+        with_default(vector("point_a", 2, "m", "point on body_a, body coordinates"),
+                     vector_value({0.0, 0.0})),
+        optional(text("body_b", "name of a RigidBody2D; absent: the ground")),
+        with_default(
+            vector("point_b", 2, "m", "point on body_b (body coordinates) or in the world"),
+            vector_value({0.0, 0.0}))};
+    parameters.insert(parameters.end(), extra.begin(), extra.end());
+    return parameters;
+  };
+  BlockSpec revolute = repeated(
+      block("RevoluteJoint", "Pins point_a of body_a to point_b (2 constraint rows, x then y).",
+            two_points({})));
+  BlockSpec distance = repeated(block(
+      "DistanceConstraint",
+      "A massless rod: |r_b - r_a| = length (1 row; lambda is the rod force, tension positive).",
+      two_points({optional(
+          positive(number("length", "m", "rod length (default: the initial distance)")))})));
+  BlockSpec spring = repeated(block(
+      "SpringDamper", "Linear spring-damper between the two points: tension k (l - l0) + c dl/dt.",
+      two_points({at_least(number("stiffness", "N/m", "k (2D: per unit depth)"), 0.0),
+                  with_default(at_least(number("damping", "N s/m", "c"), 0.0), number_value(0.0)),
+                  optional(at_least(
+                      number("rest_length", "m", "l0 (default: the initial distance)"), 0.0))})));
 
   BlockSpec sensor = repeated(block(
       "Sensor", "A column of sensors.csv, written every Output.sensor_every_steps steps.",
@@ -211,9 +250,21 @@ BlockSpec make_schema() {
   root.name = "";
   root.doc = "A scene file.";
   root.user_blocks_allowed = true;
-  root.blocks = {
-      solver, output, gravity,  body, ground,  coordinate_constraint, velocity_constraint,
-      sensor, fluid,  liggghts, sph,  coupling};
+  root.blocks = {solver,
+                 output,
+                 gravity,
+                 body,
+                 ground,
+                 coordinate_constraint,
+                 velocity_constraint,
+                 revolute,
+                 distance,
+                 spring,
+                 sensor,
+                 fluid,
+                 liggghts,
+                 sph,
+                 coupling};
   return root;
 }
 
@@ -385,11 +436,21 @@ Scene build_scene(const std::string& path, const std::vector<Override>& override
     scene.solver.end_time = solver.number("end_time");
     scene.solver.step_size = solver.block("Timeint").number("step_size");
     scene.solver.stages = static_cast<int>(solver.block("Timeint").integer("stages"));
+    const bool lobatto = solver.block("Timeint").string("tableau") == "LobattoIIIA";
+    scene.solver.family = lobatto ? mbd::TableauFamily::LobattoIIIA : mbd::TableauFamily::RadauIIA;
+    if (lobatto && scene.solver.stages < 2) {
+      problems.push_back(
+          {solver.block("Timeint").location("stages"),
+           "Lobatto IIIA has 2 or 3 stages, not " + std::to_string(scene.solver.stages),
+           "write stages = 2 (order 2) or stages = 3 (order 4)"});
+    }
     const View newton = solver.block("Newton");
     scene.solver.newton.relative_tolerance = newton.number("relative_tolerance");
     scene.solver.newton.max_iterations = static_cast<int>(newton.integer("max_iterations"));
     scene.solver.newton.max_modified_newton_steps =
         static_cast<int>(newton.integer("max_modified_newton_steps"));
+    scene.solver.newton.max_contraction = newton.number("max_contraction");
+    scene.solver.newton.absolute_tolerance = newton.number("absolute_tolerance");
   });
   guard(root.location(), [&] {
     scene.output.sensor_every_steps = root.block("Output").integer("sensor_every_steps");
@@ -421,7 +482,10 @@ Scene build_scene(const std::string& path, const std::vector<Override>& override
     }
   };
   std::vector<std::string> skipped_bodies;  // bodies not built for a value in error
+  bool unnamed_body_skipped = false;        // a body whose name is in error: its name is unknown
   for (const View& body : root.blocks("RigidBody2D")) {
+    const Parameter* name_given = body.raw().find("name");
+    if (name_given && name_given->failed) unnamed_body_skipped = true;
     std::optional<mbd::BodyId> id;
     guard(body.location(), [&] {
       mbd::RigidBody2DSpec spec;
@@ -473,7 +537,7 @@ Scene build_scene(const std::string& path, const std::vector<Override>& override
     try {
       return model.find_body(name);
     } catch (const Error& error) {
-      if (skipped_any) throw AlreadyReported(element.location(key));  // perhaps the skipped one
+      if (unnamed_body_skipped) throw AlreadyReported(element.location(key));  // perhaps it
       throw Error(error.fault(), element.location(key).text(), error.remedy());
     }
   };
@@ -490,6 +554,50 @@ Scene build_scene(const std::string& path, const std::vector<Override>& override
       const mbd::BodyId body = find_body(c, "body");
       model.add_velocity_constraint(body, coordinate_of(c.string("coordinate")),
                                     c.number("velocity"));
+    });
+  }
+  auto point_spec = [&](const View& element, const std::string& side) {
+    mbd::BodyPointSpec point;
+    if (side == "a" || element.has("body_b")) point.body = find_body(element, "body_" + side);
+    const auto local = element.vector("point_" + side);
+    point.local = {local[0], local[1]};
+    return point;
+  };
+  // The model's messages name no place: give them the element's.
+  auto placed = [](const View& element, auto&& add) {
+    try {
+      add();
+    } catch (const AlreadyReported&) {
+      throw;
+    } catch (const Error& error) {
+      throw Error(error.fault(), element.location().text(), error.remedy());
+    }
+  };
+  for (const View& j : root.blocks("RevoluteJoint")) {
+    guard(j.location(), [&] {
+      const auto a = point_spec(j, "a");
+      const auto b = point_spec(j, "b");
+      placed(j, [&] { model.add_revolute_joint(a, b); });
+    });
+  }
+  for (const View& c : root.blocks("DistanceConstraint")) {
+    guard(c.location(), [&] {
+      const auto a = point_spec(c, "a");
+      const auto b = point_spec(c, "b");
+      std::optional<double> length;
+      if (c.has("length")) length = c.number("length");
+      placed(c, [&] { model.add_distance_constraint(a, b, length); });
+    });
+  }
+  for (const View& f : root.blocks("SpringDamper")) {
+    guard(f.location(), [&] {
+      mbd::SpringDamperSpec spec;
+      spec.a = point_spec(f, "a");
+      spec.b = point_spec(f, "b");
+      spec.stiffness = f.number("stiffness");
+      spec.damping = f.number("damping");
+      if (f.has("rest_length")) spec.rest_length = f.number("rest_length");
+      placed(f, [&] { model.add_spring_damper(spec); });
     });
   }
   for (const View& s : root.blocks("Sensor")) {

@@ -247,6 +247,49 @@ Coupling { refinement_resolution = 0.002 }
   fs::remove_all(folder);
 }
 
+TEST(Scene, JointsSpringsAndTheLobattoTableau) {
+  const fs::path folder = fs::temp_directory_path() / "fsi_scene_joints_test";
+  fs::create_directories(folder);
+  std::ofstream(folder / "s.in") << "# script\n";
+  std::ofstream(folder / "j.scene") << R"(scene_language = 1
+SolverOptions { end_time = 1; Timeint { step_size = 1e-3; tableau = "LobattoIIIA"; stages = 2 }
+                Newton { max_contraction = 0.25; absolute_tolerance = 1e-12 } }
+RigidBody2D { name = "arm"; mass = 1; inertia = 0.1; position = [0.5, 0]; Mesh { points = [[0, 0], [1, 0]] } }
+RigidBody2D { name = "bob"; mass = 1; inertia = 0.1; position = [2, 0] }
+RevoluteJoint { body_a = "arm"; point_a = [-0.5, 0]; point_b = [0, 0] }
+DistanceConstraint { body_a = "arm"; point_a = [0.5, 0]; body_b = "bob"; point_b = [-0.5, 0] }
+SpringDamper { body_a = "bob"; stiffness = 100; damping = 1; point_b = [2, 1] }
+LIGGGHTS { script1 = "s.in"; script2 = "s.in" }
+Coupling { refinement_resolution = 0.002 }
+)";
+  const Scene scene = build_scene((folder / "j.scene").string());
+  EXPECT_EQ(scene.model.constraint_count(), 3);  // revolute: 2 rows, rod: 1
+  EXPECT_EQ(scene.solver.family, mbd::TableauFamily::LobattoIIIA);
+  EXPECT_EQ(scene.solver.stages, 2);
+  EXPECT_EQ(scene.solver.newton.max_contraction, 0.25);
+  EXPECT_EQ(scene.solver.newton.absolute_tolerance, 1e-12);
+  std::ofstream(folder / "j.scene") << R"(scene_language = 1
+SolverOptions { end_time = 1; Timeint { step_size = 1e-3; tableau = "LobattoIIIA"; stages = 1 } }
+RigidBody2D { name = "arm"; mass = 1; inertia = 0.1; Mesh { points = [[0, 0], [1, 0]] } }
+RevoluteJoint { body_a = "arn" }
+SpringDamper { body_a = "arm"; stiffness = -1 }
+LIGGGHTS { script1 = "s.in"; script2 = "s.in" }
+Coupling { refinement_resolution = 0.002 }
+)";
+  std::string message;
+  try {
+    build_scene((folder / "j.scene").string());
+  } catch (const fsi::Error& error) {
+    message = error.what();
+  }
+  EXPECT_NE(message.find("Lobatto IIIA has 2 or 3 stages"), std::string::npos) << message;
+  EXPECT_NE(message.find("j.scene:4:17: no body named 'arn'"), std::string::npos)
+      << message;  // body_a = "arn"
+  EXPECT_NE(message.find("'SpringDamper.stiffness' = -1 N/m is out of range"), std::string::npos)
+      << message;
+  fs::remove_all(folder);
+}
+
 TEST(Scene, SchemaDocumentsEveryBlock) {
   const std::string markdown = render_markdown(scene_schema());
   for (const char* block :

@@ -18,6 +18,7 @@ struct SolverSettings {
   double end_time = 0.0;
   double step_size = 0.0;
   int stages = 3;
+  mbd::TableauFamily family = mbd::TableauFamily::RadauIIA;
   mbd::NewtonOptions newton;
 };
 
