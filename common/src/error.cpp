@@ -19,12 +19,11 @@ std::string compose(const std::string& what, const std::string& where, const std
 Error::Error(const std::string& what, const std::string& where, const std::string& fix)
     : std::runtime_error(compose(what, where, fix)), fault_(what), location_(where), remedy_(fix) {}
 
-void assertion_failed(const char* expression, const std::source_location& where,
+void assertion_failed(const char* expression, const char* file, unsigned line, const char* function,
                       const std::string& detail) {
   std::fprintf(
       stderr, "internal error (a bug, please report it): assertion '%s' failed at %s:%u (%s): %s\n",
-      expression, where.file_name(), static_cast<unsigned>(where.line()), where.function_name(),
-      detail.c_str());
+      expression, file, line, function, detail.c_str());
   std::fflush(stderr);
   std::abort();
 }

@@ -4,7 +4,6 @@
 //    protocol mismatch). Its message says what went wrong, where, and how to fix it.
 //  - FSI_ASSERT: a programmer's mistake. Aborts with file and line; never used for user input.
 
-#include <source_location>
 #include <stdexcept>
 #include <string>
 
@@ -25,14 +24,16 @@ class Error : public std::runtime_error {
   std::string remedy_;
 };
 
-[[noreturn]] void assertion_failed(const char* expression, const std::source_location& where,
-                                   const std::string& detail);
+// The place comes from __FILE__, __LINE__ and __func__ rather than std::source_location, which
+// clang 14 (the fuzzing compiler, docs/testing.md) cannot provide with libstdc++ 12.
+[[noreturn]] void assertion_failed(const char* expression, const char* file, unsigned line,
+                                   const char* function, const std::string& detail);
 
 }  // namespace fsi
 
-#define FSI_ASSERT(condition, detail)                                                 \
-  do {                                                                                \
-    if (!(condition)) {                                                               \
-      ::fsi::assertion_failed(#condition, std::source_location::current(), (detail)); \
-    }                                                                                 \
+#define FSI_ASSERT(condition, detail)                                              \
+  do {                                                                             \
+    if (!(condition)) {                                                            \
+      ::fsi::assertion_failed(#condition, __FILE__, __LINE__, __func__, (detail)); \
+    }                                                                              \
   } while (false)
