@@ -4,8 +4,8 @@
 
 #include <charconv>
 #include <cmath>
-#include <fstream>
-#include <sstream>
+#include <optional>
+#include <utility>
 
 #include "fsi/common/error.hpp"
 #include "raw_tree.hpp"
@@ -142,14 +142,13 @@ void flatten(const Block& block, const std::string& prefix, std::map<std::string
 }
 
 std::string read_file(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) {
+  std::optional<std::string> text = detail::read_regular_file(path);
+  if (!text) {
     throw Error("cannot read the scene file '" + path + "'", path,
-                "check the path and the file's permissions");
+                "check the path and the file's permissions (it must be a regular file, not a "
+                "folder or a device)");
   }
-  std::stringstream content;
-  content << in.rdbuf();
-  return content.str();
+  return std::move(*text);
 }
 
 }  // namespace
@@ -282,11 +281,20 @@ Override parse_override(std::string_view text) {
   return {trim(text.substr(0, equals)), trim(text.substr(equals + 1))};
 }
 
+IncludeReader in_memory_files(std::map<std::string, std::string> files) {
+  return [files = std::move(files)](const std::string& path) -> std::optional<std::string> {
+    const auto found = files.find(path);
+    if (found == files.end()) return std::nullopt;
+    return found->second;
+  };
+}
+
 Block parse_parameter_text(const std::string& text, const std::string& file_name,
-                           const std::vector<Override>& overrides) {
+                           const std::vector<Override>& overrides,
+                           const IncludeReader& read_include) {
   detail::RawBlock root;
   root.location = {file_name};
-  detail::parse_into(root, text, file_name);
+  detail::parse_into(root, text, file_name, read_include);
   detail::apply_overrides(root, overrides);
   throw_if_any(detail::evaluate(root), file_name);
   return convert(root);
@@ -300,7 +308,7 @@ Block parse_parameter_text(const std::string& text, const std::string& file_name
                            const std::vector<Override>& overrides, std::vector<Problem>& problems) {
   detail::RawBlock root;
   root.location = {file_name};
-  detail::parse_into(root, text, file_name);
+  detail::parse_into(root, text, file_name, {});
   detail::apply_overrides(root, overrides);
   std::vector<Problem> found = detail::evaluate(root);
   problems.insert(problems.end(), found.begin(), found.end());

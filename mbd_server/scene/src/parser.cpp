@@ -24,12 +24,22 @@ std::string in_quotes(std::string_view text) {
   return "'" + std::string(text) + "'";
 }
 
+// What identifies a file on the include stack (for cycles): its canonical path on the file
+// system; for files from a reader, its normalized path, so that nothing on disk is looked at.
+std::string identity_of(const std::string& path, const IncludeReader& read_include) {
+  if (read_include) return fs::path(path).lexically_normal().string();
+  std::error_code ignored;
+  return fs::weakly_canonical(path, ignored).string();
+}
+
 class Parser {
  public:
-  Parser(int& sequence, std::vector<std::string>& include_stack, std::string included_from)
+  Parser(int& sequence, std::vector<std::string>& include_stack, std::string included_from,
+         const IncludeReader& read_include)
       : sequence_(sequence),
         include_stack_(include_stack),
-        included_from_(std::move(included_from)) {}
+        included_from_(std::move(included_from)),
+        read_include_(read_include) {}
 
   void parse_file(RawBlock& into, const std::string& text, const std::string& file) {
     text_ = &text;
@@ -422,8 +432,7 @@ class Parser {
     fs::path path = name;
     if (path.is_relative()) path = fs::path(file_).parent_path() / path;
     path = path.lexically_normal();
-    std::error_code ignored;
-    const std::string identity = fs::weakly_canonical(path, ignored).string();
+    const std::string identity = identity_of(path.string(), read_include_);
     const auto repeat = std::find(include_stack_.begin(), include_stack_.end(), identity);
     if (repeat != include_stack_.end()) {
       std::string chain;
@@ -434,26 +443,26 @@ class Parser {
                " (the file is already being read)",
            "remove the include that closes the cycle");
     }
-    std::ifstream in(path);
-    if (!in) {
+    const std::optional<std::string> text =
+        read_include_ ? read_include_(path.string()) : read_regular_file(path.string());
+    if (!text) {
       fail(start, "cannot read the included file '" + path.string() + "'",
-           "check the name; a relative path starts at the folder of the including file");
+           "check the name (it must be a readable regular file, not a folder or a device); a "
+           "relative path starts at the folder of the including file");
     }
-    std::stringstream content;
-    content << in.rdbuf();
-    const std::string text = content.str();
 
     include_stack_.push_back(identity);
     std::string chain = start.text();
     if (!included_from_.empty()) chain += ", included from " + included_from_;
-    Parser nested(sequence_, include_stack_, chain);
-    nested.parse_file(block, text, path.string());
+    Parser nested(sequence_, include_stack_, chain, read_include_);
+    nested.parse_file(block, *text, path.string());
     include_stack_.pop_back();
   }
 
   int& sequence_;
   std::vector<std::string>& include_stack_;
   std::string included_from_;
+  const IncludeReader& read_include_;
   const std::string* text_ = nullptr;
   std::string file_;
   std::size_t position_ = 0;
@@ -563,12 +572,22 @@ void collect_paths(const RawBlock& block, const std::string& prefix,
   }
 }
 
-void parse_into(RawBlock& root, const std::string& text, const std::string& file_name) {
+void parse_into(RawBlock& root, const std::string& text, const std::string& file_name,
+                const IncludeReader& read_include) {
   int sequence = 0;
-  std::error_code ignored;
-  std::vector<std::string> include_stack{fs::weakly_canonical(file_name, ignored).string()};
-  Parser parser(sequence, include_stack, "");
+  std::vector<std::string> include_stack{identity_of(file_name, read_include)};
+  Parser parser(sequence, include_stack, "", read_include);
   parser.parse_file(root, text, file_name);
+}
+
+std::optional<std::string> read_regular_file(const std::string& path) {
+  std::error_code error;
+  if (!fs::is_regular_file(path, error)) return std::nullopt;
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return std::nullopt;
+  std::stringstream content;
+  content << in.rdbuf();
+  return content.str();
 }
 
 }  // namespace fsi::scene::detail

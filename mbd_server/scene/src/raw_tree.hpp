@@ -69,9 +69,14 @@ std::string to_string(const std::vector<PathPart>& parts, std::size_t count);
 void collect_paths(const RawBlock& block, const std::string& prefix,
                    std::vector<std::string>& paths);
 
-// Parses `text` (read from `file_name`) into `root`, following includes. Throws fsi::Error at the
-// first syntax error.
-void parse_into(RawBlock& root, const std::string& text, const std::string& file_name);
+// Parses `text` (read from `file_name`) into `root`, following includes through `read_include`
+// (the file system if empty). Throws fsi::Error at the first syntax error.
+void parse_into(RawBlock& root, const std::string& text, const std::string& file_name,
+                const IncludeReader& read_include);
+
+// The text of the regular file at `path`, or nullopt (missing, unreadable, a folder, a device or
+// a pipe: nothing that could block or never end is opened).
+std::optional<std::string> read_regular_file(const std::string& path);
 
 // Replaces the expressions the overrides name. Throws fsi::Error for an unknown key.
 void apply_overrides(RawBlock& root, const std::vector<Override>& overrides);

@@ -331,6 +331,61 @@ TEST(ParameterFile, IncludeErrorsNameTheIncludingLine) {
   }
 }
 
+// Found by designing the scene fuzzer: a folder opened as a file read as empty, so
+// `include "data"` (a folder) or a scene path naming a folder passed silently as an empty scene,
+// and a device such as /dev/zero or a pipe would be read forever. Only regular files are read.
+TEST(ParameterFile, IncludesAndScenesMustBeRegularFiles) {
+  TempFolder folder;
+  folder.write("data/x.scene", "x = 1\n");
+  const std::string main = folder.write("main.scene", "a = 1\ninclude \"data\"\n");
+  try {
+    load_parameter_file(main);
+    FAIL() << "including a folder was accepted";
+  } catch (const fsi::Error& error) {
+    EXPECT_CONTAINS(error.what(), "main.scene:2:1: cannot read the included file");
+    EXPECT_CONTAINS(error.what(), "not a folder or a device");
+  }
+  try {
+    parse_parameter_text("include \"/dev/null\"\n", "t.scene");
+    FAIL() << "including a device was accepted";
+  } catch (const fsi::Error& error) {
+    EXPECT_CONTAINS(error.what(), "t.scene:1:1: cannot read the included file '/dev/null'");
+  }
+  const std::string data_folder = fs::path(main).parent_path() / "data";
+  try {
+    load_parameter_file(data_folder);
+    FAIL() << "a folder was accepted as a scene file";
+  } catch (const fsi::Error& error) {
+    EXPECT_CONTAINS(error.what(), "cannot read the scene file '" + data_folder + "'");
+  }
+}
+
+// The fuzzer's reader: includes come from memory only, relative to the including file's folder,
+// and a name outside the given files (absolute, or with ../ leaving the folder) is not found.
+TEST(ParameterFile, InMemoryIncludesReadNothingElse) {
+  const IncludeReader files =
+      in_memory_files({{"/scenes/common.inc", "g = 9.81\n"},
+                       {"/scenes/sub/nested.inc", "include \"../common.inc\"\n"},
+                       {"/scenes/loop.inc", "include \"loop.inc\"\n"}});
+  const Block root = parse_parameter_text("include \"sub/nested.inc\"\nw = 2*g\n",
+                                          "/scenes/main.scene", {}, files);
+  EXPECT_DOUBLE_EQ(number_at(root, "w"), 2 * 9.81);
+  for (const std::string outside : {"/etc/hostname", "../etc/hostname", "sub/../../etc/hostname"}) {
+    try {
+      parse_parameter_text("include \"" + outside + "\"\n", "/scenes/main.scene", {}, files);
+      FAIL() << "include \"" << outside << "\" was read";
+    } catch (const fsi::Error& error) {
+      EXPECT_CONTAINS(error.what(), "/scenes/main.scene:1:1: cannot read the included file");
+    }
+  }
+  try {
+    parse_parameter_text("include \"loop.inc\"\n", "/scenes/main.scene", {}, files);
+    FAIL() << "an include cycle in memory was accepted";
+  } catch (const fsi::Error& error) {
+    EXPECT_CONTAINS(error.what(), "include cycle: loop.inc -> loop.inc");
+  }
+}
+
 TEST(ParameterFile, OverridesReplaceTheExpressionInPlace) {
   const std::string text = R"(Geometry { width = 0.05; height = 2*width }
 points = [[0, 0], [Geometry.width, Geometry.height]]

@@ -19,6 +19,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cstddef>
+#include <functional>
 #include <map>
 #include <optional>
 #include <string>
@@ -113,13 +114,23 @@ struct Override {
 // Splits "KEY=EXPR"; throws fsi::Error if it is not of that form.
 Override parse_override(std::string_view text);
 
+// Where `include "file"` reads from: given the path (the name joined to the including file's
+// folder, normalized), the file's text, or nullopt if there is no readable regular file there.
+// Empty (the default): the file system. The fuzzer gives files held in memory (in_memory_files),
+// so that no input can make it read anything else.
+using IncludeReader = std::function<std::optional<std::string>(const std::string& path)>;
+// A reader serving exactly `files` (normalized path -> text) and nothing else.
+IncludeReader in_memory_files(std::map<std::string, std::string> files);
+
 // Reads `path` with its includes, applies the overrides and evaluates every expression. Throws
 // fsi::Error: a syntax error stops at once; evaluation errors (undefined names, bad arithmetic,
-// references to later parameters) are collected and reported together, one per line.
+// references to later parameters) are collected and reported together, one per line. A path that
+// is not a regular file (a folder, a device, a pipe) is refused, never read.
 Block load_parameter_file(const std::string& path, const std::vector<Override>& overrides = {});
 // The same for text in memory; `file_name` appears in messages and anchors relative includes.
 Block parse_parameter_text(const std::string& text, const std::string& file_name,
-                           const std::vector<Override>& overrides = {});
+                           const std::vector<Override>& overrides = {},
+                           const IncludeReader& read_include = {});
 // The same, but evaluation problems are appended to `problems` instead of thrown, and the
 // parameters they concern are kept with `failed` set, so that later checks (schema, scene) can
 // report their own problems in the same run (`fsi-server --check` lists everything at once).
