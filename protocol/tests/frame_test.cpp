@@ -136,6 +136,19 @@ TEST(ProtocolFrame, OversizeLengthIsRefusedBeforeThePayload) {
   EXPECT_NO_THROW(decode_frame(frame, 100));
 }
 
+// A header announcing 4 GiB - 1 bytes with nothing behind it: the limit is reported (before any
+// buffer for the payload could be made), not the missing bytes.
+TEST(ProtocolFrame, OversizeLengthIsReportedBeforeTheMissingPayload) {
+  auto frame = encode_frame(MessageType::Particles, {});
+  for (std::size_t k = 12; k < 16; ++k)
+    frame[k] = std::byte{0xFF};
+  const std::string text = decode_error(frame);
+  EXPECT_NE(text.find("Particles frame announces a payload of 4294967295 bytes, more than the "
+                      "1073741824 bytes this side accepts"),
+            std::string::npos)
+      << text;
+}
+
 TEST(ProtocolFrame, TruncatedAndOverlongFrames) {
   const auto frame = encode_frame(MessageType::Forces, bytes_of("0123456789"));
   EXPECT_NE(decode_error(std::span(frame).first(10)).find("truncated frame: 10 bytes"),

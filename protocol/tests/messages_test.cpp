@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstring>
@@ -8,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "fsi/protocol/frame.hpp"
 #include "fsi/protocol/messages.hpp"
 
 namespace fsi::protocol {
@@ -200,6 +202,103 @@ TEST(ProtocolMessages, DoublesSurviveBitExactInArraysAndScalars) {
 
   const Goodbye goodbye{1, values[12]};
   expect_same_bits(values[12], decode_as<Goodbye>(encode(goodbye)).seconds_total);
+}
+
+// Random values of each awkward class: subnormals (exponent 0, random mantissa), NaNs with random
+// payloads (quiet and signalling, both signs), ±0, ±inf, and random normal numbers.
+std::vector<double> random_awkward_doubles(std::size_t per_class, std::uint64_t seed) {
+  std::mt19937_64 generator(seed);
+  constexpr std::uint64_t kMantissa = (1ull << 52) - 1;
+  constexpr std::uint64_t kSign = 1ull << 63;
+  constexpr std::uint64_t kExponentAllOnes = 0x7FFull << 52;
+  std::vector<double> values{0.0, -0.0, Limits::infinity(), -Limits::infinity()};
+  for (std::size_t i = 0; i < per_class; ++i) {
+    const std::uint64_t sign = generator() & kSign;
+    const std::uint64_t mantissa = (generator() & kMantissa) | 1;  // never 0: not zero nor inf
+    values.push_back(std::bit_cast<double>(sign | mantissa));      // subnormal
+    values.push_back(std::bit_cast<double>(sign | kExponentAllOnes | mantissa));  // NaN payload
+    const std::uint64_t exponent = 1 + generator() % 0x7FE;                       // normal
+    values.push_back(std::bit_cast<double>(sign | (exponent << 52) | (generator() & kMantissa)));
+  }
+  std::shuffle(values.begin(), values.end(), generator);
+  return values;
+}
+
+// The whole receive path (frame, CRC, message decoder) for every message with double fields:
+// every double arrives with the bits it was sent with.
+TEST(ProtocolMessages, RandomAwkwardDoublesSurviveFramesOfEveryMessageBitForBit) {
+  const std::vector<double> values = random_awkward_doubles(300, 2026);
+  std::size_t subnormals = 0;
+  std::size_t nans = 0;
+  for (const double value : values) {
+    subnormals += std::fpclassify(value) == FP_SUBNORMAL;
+    nans += std::isnan(value);
+  }
+  ASSERT_GE(subnormals, 300u);
+  ASSERT_GE(nans, 300u);
+  std::size_t next = 0;
+  const auto take = [&] { return values[next++ % values.size()]; };
+  const auto through_frame = [](const auto& message) {
+    using T = std::decay_t<decltype(message)>;
+    const Frame frame = decode_frame(encode_frame(T::kType, encode(message)));
+    return std::get<T>(decode(frame.header.type, frame.payload));
+  };
+  const std::vector<double> triples(values.begin(), values.begin() + 3 * (values.size() / 3));
+
+  Mesh mesh = sample_mesh();
+  mesh.dimension = 3;
+  mesh.dynamic_vertex_count = 0;
+  mesh.element_vertices.clear();
+  mesh.positions = triples;
+  mesh.velocities.assign(triples.rbegin(), triples.rend());
+  const Mesh mesh_back = through_frame(mesh);
+  expect_same_bits(mesh.positions, mesh_back.positions);
+  expect_same_bits(mesh.velocities, mesh_back.velocities);
+
+  Particles particles = sample_particles();
+  particles.dimension = 3;
+  particles.positions = triples;
+  particles.velocities = triples;
+  expect_same_bits(particles.velocities, through_frame(particles).velocities);
+
+  Step step{1, take(), 1e-5, values, values};
+  const Step step_back = through_frame(step);
+  expect_same_bits(step.time, step_back.time);
+  expect_same_bits(values, step_back.positions);
+
+  Forces forces;
+  forces.forces = values;
+  forces.diagnostics.force_on_structure = {take(), take(), take()};
+  forces.diagnostics.closest_approach_over_r0 = take();
+  forces.diagnostics.seconds_client_communication = take();
+  const Forces forces_back = through_frame(forces);
+  expect_same_bits(values, forces_back.forces);
+  for (int k = 0; k < 3; ++k)
+    expect_same_bits(forces.diagnostics.force_on_structure[k],
+                     forces_back.diagnostics.force_on_structure[k]);
+  expect_same_bits(forces.diagnostics.closest_approach_over_r0,
+                   forces_back.diagnostics.closest_approach_over_r0);
+  expect_same_bits(forces.diagnostics.seconds_client_communication,
+                   forces_back.diagnostics.seconds_client_communication);
+
+  Snapshot snapshot;
+  snapshot.dimension = 3;
+  snapshot.time = take();
+  snapshot.ids.resize(triples.size() / 3);
+  snapshot.positions = triples;
+  snapshot.velocities = triples;
+  snapshot.density.assign(values.begin(), values.begin() + snapshot.ids.size());
+  snapshot.pressure.assign(values.rbegin(), values.rbegin() + snapshot.ids.size());
+  const Snapshot snapshot_back = through_frame(snapshot);
+  expect_same_bits(snapshot.time, snapshot_back.time);
+  expect_same_bits(snapshot.velocities, snapshot_back.velocities);
+  expect_same_bits(snapshot.density, snapshot_back.density);
+  expect_same_bits(snapshot.pressure, snapshot_back.pressure);
+
+  const Ready ready{1, "LIGGGHTS", take(), take()};
+  const Ready ready_back = through_frame(ready);
+  expect_same_bits(ready.seconds_setup, ready_back.seconds_setup);
+  expect_same_bits(ready.seconds_equilibration, ready_back.seconds_equilibration);
 }
 
 TEST(ProtocolMessages, EveryTruncationOfEveryMessageIsRejected) {
