@@ -5,9 +5,12 @@ function(fsi_configure_target target)
     -Woverloaded-virtual -Wcast-align -Wdouble-promotion -Wformat=2
     -Wimplicit-fallthrough
     # GCC 12 reports false -Wrestrict positives on std::string concatenation at -O2 (GCC bug 105329).
-    -Wno-restrict)
+    $<$<CXX_COMPILER_ID:GNU>:-Wno-restrict>)
   if(FSI_WARNINGS_AS_ERRORS)
     target_compile_options(${target} PRIVATE -Werror)
+  endif()
+  if(FSI_FUZZ)
+    fsi_fuzz_instrument(${target})
   endif()
   if(FSI_SANITIZE)
     target_compile_options(${target} PRIVATE -fsanitize=${FSI_SANITIZE} -fno-omit-frame-pointer)

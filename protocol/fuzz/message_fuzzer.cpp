@@ -1,0 +1,47 @@
+// libFuzzer target: every message decoder. Input: one byte choosing the decoder (modulo the 17
+// types, see decoders.hpp), then the payload. A decoder must either accept the payload, and then
+// re-encoding the message gives back the same bytes, or throw ProtocolError; anything else (a
+// crash, a sanitizer report, another exception, a mismatch) is a finding.
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+
+#include "decoders.hpp"
+
+namespace {
+
+using fsi::protocol::fuzz::kDecoders;
+
+std::array<fsi::protocol::fuzz::Reach, kDecoders.size()> reach;
+
+void print_reach_at_exit() {
+  fsi::protocol::fuzz::print_reach(reach);
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerInitialize(int*, char***) {
+  std::atexit(print_reach_at_exit);
+  return 0;
+}
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  if (size == 0) return 0;
+  const std::size_t index = data[0] % kDecoders.size();
+  const auto payload = std::as_bytes(std::span(data + 1, size - 1));
+  std::vector<std::byte> again;
+  try {
+    again = kDecoders[index].run(payload);
+  } catch (const fsi::protocol::ProtocolError&) {
+    ++reach[index].rejected;
+    return 0;
+  }
+  ++reach[index].accepted;
+  if (again.size() != payload.size() ||
+      (!again.empty() && std::memcmp(again.data(), payload.data(), again.size()) != 0)) {
+    std::fprintf(stderr, "%s: an accepted payload of %zu bytes re-encodes to %zu other bytes\n",
+                 name(kDecoders[index].type).c_str(), payload.size(), again.size());
+    std::abort();
+  }
+  return 0;
+}

@@ -1,0 +1,127 @@
+// Writes the seed corpora of the protocol fuzz targets: for every message type one valid message
+// made by the encoder, as a frame (corpus/frame/) and as decoder-byte + payload (corpus/messages/).
+// The doubles include the values the codec must carry bit for bit (±0, subnormals, ±inf, NaN).
+// Usage: write_seeds OUTPUT_DIR   (scripts/run-fuzzers --write-seeds runs it into
+// protocol/fuzz/corpus)
+#include <cctype>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <string>
+
+#include "decoders.hpp"
+
+namespace {
+
+using namespace fsi::protocol;
+namespace fs = std::filesystem;
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+const double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kSubnormal = std::numeric_limits<double>::denorm_min();
+
+AuthBytes nonce(std::uint8_t start) {
+  AuthBytes bytes{};
+  for (std::size_t k = 0; k < bytes.size(); ++k)
+    bytes[k] = static_cast<std::uint8_t>(start + 37 * k);
+  return bytes;
+}
+
+Message seed(MessageType type) {
+  switch (type) {
+    case MessageType::Hello:
+      return Hello{"0.1.0", "host-a", 2, kNoCapabilities};
+    case MessageType::Welcome:
+      return Welcome{0, kNoCapabilities, "0.1.0", "static_tank"};
+    case MessageType::Error:
+      return ErrorMessage{ErrorCode::SetupFailed, "script 1 failed: unknown command"};
+    case MessageType::AuthChallenge:
+      return AuthChallenge{nonce(1)};
+    case MessageType::AuthResponse:
+      return AuthResponse{nonce(2), nonce(3)};
+    case MessageType::AuthProof:
+      return AuthProof{nonce(4)};
+    case MessageType::Heartbeat:
+      return Heartbeat{};
+    case MessageType::Setup:
+      return Setup{2,
+                   1e-5,
+                   100,
+                   {{"SPHdensity", "1000"}, {"h", "0.0013"}},
+                   "script1.in",
+                   "atom_style sph\nvariable x equal 1\n",
+                   "script2.in",
+                   "run 0\n"};
+    case MessageType::Mesh:
+      return Mesh{2,
+                  2,
+                  1,
+                  0.001,
+                  {0.0, 0.0, 1.0, 0.0, 1.0, 1.0},
+                  {0.0, -0.0, kSubnormal, 0, 0, 0},
+                  {0, 1, 1, 2}};
+    case MessageType::Particles:
+      return Particles{3, 1, 1e-6, 1000.0, {0.1, 0.2, 0.3, 0.4, 0.5, 0.6}, {0, 0, 0, 0, 0, -1}};
+    case MessageType::Ready:
+      return Ready{1200, "LIGGGHTS 3.8.0", 0.5, 12.25};
+    case MessageType::Step:
+      return Step{7, 7e-5, 1e-5, {1.0, -0.0, kInf, -kInf}, {kNaN, kSubnormal, -kSubnormal, 0.0}};
+    case MessageType::Forces: {
+      Forces forces{7, {0.5, -0.5, 1e300, -1e-300}, {}};
+      forces.diagnostics.force_on_fluid = {1.0, 2.0, 0.0};
+      forces.diagnostics.particles_in_range = 12;
+      forces.diagnostics.particle_count = 1200;
+      return forces;
+    }
+    case MessageType::SnapshotRequest:
+      return SnapshotRequest{42};
+    case MessageType::Snapshot:
+      return Snapshot{42,           4.2e-4,       2,          {5, 9}, {0.1, 0.2, 0.3, 0.4},
+                      {0, 0, 0, 0}, {1000, 1001}, {0.0, 12.5}};
+    case MessageType::Shutdown:
+      return Shutdown{"end time reached"};
+    case MessageType::Goodbye:
+      return Goodbye{100, 3.5};
+  }
+  throw ProtocolError("no seed for " + name(type), "write_seeds", "add one");
+}
+
+void write(const fs::path& path, const std::vector<std::byte>& bytes) {
+  std::ofstream out(path, std::ios::binary);
+  out.write(reinterpret_cast<const char*>(bytes.data()),
+            static_cast<std::streamsize>(bytes.size()));
+  if (!out) throw ProtocolError("cannot write " + path.string(), "write_seeds", "check the folder");
+}
+
+std::string file_name(MessageType type) {
+  std::string text;
+  for (const char c : name(type)) {
+    if (std::isupper(static_cast<unsigned char>(c)) && !text.empty()) text += '_';
+    text += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  }
+  return text;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc != 2) {
+    std::fprintf(stderr, "usage: write_seeds OUTPUT_DIR\n");
+    return 2;
+  }
+  const fs::path out = argv[1];
+  fs::create_directories(out / "frame");
+  fs::create_directories(out / "messages");
+  for (std::size_t i = 0; i < fuzz::kDecoders.size(); ++i) {
+    const MessageType type = fuzz::kDecoders[i].type;
+    const std::vector<std::byte> payload = encode(seed(type));
+    write(out / "frame" / (file_name(type) + ".bin"), encode_frame(type, payload));
+    std::vector<std::byte> selected{static_cast<std::byte>(i)};
+    selected.insert(selected.end(), payload.begin(), payload.end());
+    write(out / "messages" / (file_name(type) + ".bin"), selected);
+  }
+  std::printf("write_seeds: %zu frames and %zu payloads in %s\n", fuzz::kDecoders.size(),
+              fuzz::kDecoders.size(), out.c_str());
+  return 0;
+}
