@@ -118,7 +118,11 @@ nlohmann::json value_json(const Value& value) {
     case ValueKind::Number:
       return value.number;
     case ValueKind::String:
-      return value.text;
+      // JSON text is UTF-8: a string with other bytes (found by fuzz_scene_parser) made dump()
+      // throw a json::type_error; each invalid byte becomes U+FFFD instead.
+      return nlohmann::json::parse(
+          nlohmann::json(value.text)
+              .dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
     case ValueKind::Vector:
       return value.vector;
     case ValueKind::Matrix:

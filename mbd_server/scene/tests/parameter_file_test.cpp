@@ -386,6 +386,19 @@ TEST(ParameterFile, InMemoryIncludesReadNothingElse) {
   }
 }
 
+// Found by fuzz_scene_parser: a string value with bytes that are not UTF-8 made the run manifest's
+// to_json(...).dump() throw nlohmann's type_error 316; invalid bytes now become U+FFFD.
+TEST(ParameterFile, JsonOfAStringThatIsNotUtf8) {
+  const Block root = parse(
+      "name = \"a\xFF\xFE"
+      "b\"\n");
+  std::string dumped;
+  EXPECT_NO_THROW(dumped = to_json(root).dump());
+  EXPECT_EQ(dumped,
+            "{\"name\":\"a\xEF\xBF\xBD\xEF\xBF\xBD"
+            "b\"}");
+}
+
 TEST(ParameterFile, OverridesReplaceTheExpressionInPlace) {
   const std::string text = R"(Geometry { width = 0.05; height = 2*width }
 points = [[0, 0], [Geometry.width, Geometry.height]]
