@@ -144,7 +144,7 @@ TriangleMesh parse_binary(const std::string& bytes, const std::string& name, std
           throw Error("binary STL triangle " + std::to_string(t) + " has a non-finite coordinate",
                       name, "repair or re-export the file");
         }
-        p[static_cast<std::size_t>(k)] = value;
+        p[static_cast<std::size_t>(k)] = static_cast<double>(value);
       }
       triangle[static_cast<std::size_t>(v)] = merge(p);
     }
