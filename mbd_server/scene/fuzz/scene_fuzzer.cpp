@@ -130,10 +130,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string printed = to_text(root);
   (void)to_json(root).dump();
   (void)flatten_numbers(root);
-  try {
-    (void)scene_format_version(root);
-  } catch (const fsi::Error&) {
-  }
   // parameter_file.hpp: parsing the printed tree again gives the same values.
   Block again;
   try {
