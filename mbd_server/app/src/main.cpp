@@ -1,9 +1,11 @@
 // fsi-server SCENE --output DIR [--port P] [--port-file F] [--listen ADDR] [--set KEY=EXPR ...]
 // The multibody side of the co-simulation: owns the clock and the set-up of both sides, serves
 // boundary positions and velocities to fsi-client and applies the fluid forces it returns.
+#include <spdlog/sinks/base_sink.h>
 #include <spdlog/sinks/basic_file_sink.h>
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
+#include <unistd.h>
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
@@ -11,6 +13,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <mutex>
 #include <optional>
 
 #include "fsi/common/error.hpp"
@@ -23,14 +26,71 @@
 
 namespace {
 
-void configure_logging(const std::string& level, const std::string& log_file) {
-  std::vector<spdlog::sink_ptr> sinks{std::make_shared<spdlog::sinks::stderr_color_sink_mt>()};
-  if (!log_file.empty())
+// stderr on a terminal: log messages as usual, plus one status line kept at the bottom and
+// rewritten in place ("\r", erase to the end of the line); a message clears it and redraws it
+// below. No colours (the status line's escape sequences are the only ones).
+class TerminalSink : public spdlog::sinks::base_sink<std::mutex> {
+ public:
+  // An empty status ends the line: the last status stays on the screen.
+  void set_status(const std::string& status) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (status.empty()) {
+      if (!status_.empty()) std::fputs("\n", stderr);
+    } else {
+      std::fputs("\r\033[K", stderr);
+      std::fputs(status.c_str(), stderr);
+    }
+    status_ = status;
+    std::fflush(stderr);
+  }
+
+ protected:
+  void sink_it_(const spdlog::details::log_msg& message) override {
+    spdlog::memory_buf_t formatted;
+    formatter_->format(message, formatted);
+    if (!status_.empty()) std::fputs("\r\033[K", stderr);
+    std::fwrite(formatted.data(), 1, formatted.size(), stderr);
+    if (!status_.empty()) std::fputs(status_.c_str(), stderr);
+    std::fflush(stderr);
+  }
+  void flush_() override { std::fflush(stderr); }
+
+ private:
+  std::string status_;
+};
+
+// The default logger "fsi-server" writes to stderr and, once the output folder is known, to
+// DIR/fsi-server.log. Progress lines go through the logger "progress": to the log file and, when
+// stderr is not a terminal, to stderr; on a terminal stderr gets the live status line instead.
+// Returns the terminal sink when stderr is a terminal (and live is wanted), else nullptr.
+std::shared_ptr<TerminalSink> configure_logging(const std::string& level,
+                                                const std::string& log_file, bool live) {
+  std::shared_ptr<TerminalSink> terminal;
+  spdlog::sink_ptr console;
+  if (live && isatty(STDERR_FILENO)) {
+    terminal = std::make_shared<TerminalSink>();
+    console = terminal;
+  } else {
+    console = std::make_shared<spdlog::sinks::stderr_color_sink_mt>();
+  }
+  std::vector<spdlog::sink_ptr> sinks{console};
+  std::vector<spdlog::sink_ptr> progress_sinks;
+  if (!terminal) progress_sinks.push_back(console);
+  if (!log_file.empty()) {
     sinks.push_back(std::make_shared<spdlog::sinks::basic_file_sink_mt>(log_file, true));
+    progress_sinks.push_back(sinks.back());
+  }
   auto logger = std::make_shared<spdlog::logger>("fsi-server", sinks.begin(), sinks.end());
-  logger->set_pattern("[%H:%M:%S.%e] [fsi-server] [%l] %v");
-  logger->set_level(spdlog::level::from_str(level));
+  auto progress =
+      std::make_shared<spdlog::logger>("progress", progress_sinks.begin(), progress_sinks.end());
+  for (const auto& each : {logger, progress}) {
+    each->set_pattern("[%H:%M:%S.%e] [fsi-server] [%l] %v");
+    each->set_level(spdlog::level::from_str(level));
+  }
+  spdlog::drop_all();
   spdlog::set_default_logger(logger);
+  spdlog::register_logger(progress);
+  return terminal;
 }
 
 void print_summary(const fsi::scene::Scene& scene) {
@@ -148,6 +208,15 @@ int main(int argc, char** argv) {
   app.add_flag("--help-params", help_params, "List every scene parameter and exit");
   app.add_option("--write-parameter-doc", parameter_doc,
                  "Write the parameter reference (markdown) and exit");
+  double progress_interval = 10.0;
+  app.add_option("--progress-interval", progress_interval,
+                 "Seconds between progress lines in the log (time, percent, steps/s, ETA, fluid "
+                 "health); on a terminal a live status line is updated four times a second too")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  bool no_live = false;
+  app.add_flag("--no-live", no_live,
+               "No live status line on a terminal (progress only as periodic log lines)");
   app.add_option("--log-level", log_level, "trace, debug, info, warn, error")
       ->capture_default_str()
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error"}));
@@ -177,7 +246,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "fsi-server: a scene file is required (see --help)\n");
     return 2;
   }
-  configure_logging(log_level, "");
+  configure_logging(log_level, "", false);
   std::vector<fsi::scene::Override> parsed_overrides;
   fsi::scene::Scene scene;
   try {
@@ -229,7 +298,8 @@ int main(int argc, char** argv) {
   }
   std::error_code error;
   std::filesystem::create_directories(output, error);
-  configure_logging(log_level, (std::filesystem::path(output) / "fsi-server.log").string());
+  const std::shared_ptr<TerminalSink> terminal = configure_logging(
+      log_level, (std::filesystem::path(output) / "fsi-server.log").string(), !no_live);
   log_diagnostics(scene, diagnostics);
   fsi::coupling::ServerOptions options;
   options.listen_address = listen;
@@ -239,6 +309,11 @@ int main(int argc, char** argv) {
   options.output_dir = output;
   options.accept_timeout = std::chrono::milliseconds(static_cast<long>(accept_timeout * 1000));
   options.peer_timeout = std::chrono::milliseconds(static_cast<long>(peer_timeout * 1000));
+  options.progress_interval =
+      std::chrono::milliseconds(static_cast<long>(progress_interval * 1000));
+  if (terminal) {
+    options.live_status = [terminal](const std::string& line) { terminal->set_status(line); };
+  }
   for (int i = 0; i < argc; ++i)
     options.command_line += (i ? " " : "") + std::string(argv[i]);
   for (const fsi::scene::Diagnostic& diagnostic : diagnostics) {
@@ -252,10 +327,12 @@ int main(int argc, char** argv) {
     mbd_options.warnings = options.warnings;
     return fsi::coupling::run_mbd_only(scene, mbd_options);
   }
+  int status = 1;
   try {
-    return fsi::coupling::run_coupled_session(scene, options);
+    status = fsi::coupling::run_coupled_session(scene, options);
   } catch (const fsi::Error& failure) {
     spdlog::error("{}", failure.what());
-    return 1;
   }
+  if (terminal) terminal->set_status("");
+  return status;
 }

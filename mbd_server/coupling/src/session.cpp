@@ -18,8 +18,10 @@
 #include "fsi/common/stopwatch.hpp"
 #include "fsi/common/version.hpp"
 #include "fsi/coupling/output.hpp"
+#include "fsi/coupling/progress.hpp"
 #include "fsi/coupling/vtk_output.hpp"
 #include "fsi/protocol/channel.hpp"
+#include "fsi/scene/physics_checks.hpp"
 
 namespace fsi::coupling {
 namespace {
@@ -81,11 +83,17 @@ struct Checks {
   double last_max_speed = 0.0;          // max |v| in the latest snapshot [m/s]
   double max_density_deviation = 0.0;   // over all snapshots
   double max_speed = 0.0;
+  double closest_since_report = std::numeric_limits<double>::infinity();
 };
 
 class Session {
  public:
-  Session(scene::Scene& scene, const ServerOptions& options) : scene_(scene), options_(options) {}
+  Session(scene::Scene& scene, const ServerOptions& options)
+      : scene_(scene),
+        options_(options),
+        speed_of_sound_(scene::speed_of_sound(scene)),
+        progress_logger_(spdlog::get("progress") ? spdlog::get("progress")
+                                                 : spdlog::default_logger()) {}
 
   int run() {
     timings_.total.start();
@@ -301,6 +309,8 @@ class Session {
     }
     checks_.closest_approach_over_r0 =
         std::min(checks_.closest_approach_over_r0, d.closest_approach_over_r0);
+    checks_.closest_since_report =
+        std::min(checks_.closest_since_report, d.closest_approach_over_r0);
     checks_.particles_final = d.particle_count;
     if (d.particle_count < checks_.particles_initial && !checks_.lost_warned) {
       spdlog::warn("step {}: {} particle(s) lost (left the LIGGGHTS box)", expected_step,
@@ -343,7 +353,7 @@ class Session {
     std::vector<double> positions(2 * scene_.boundary.vertex_count), velocities(positions.size());
     spdlog::info("coupled phase: {} steps of {:.3g} s to t = {:.6g} s", steps, dt, steps * dt);
     coupled_begin_ = std::chrono::steady_clock::now();
-    auto last_report = coupled_begin_;
+    last_log_ = last_live_ = coupled_begin_;
     for (std::uint64_t n = 1; n <= steps; ++n) {
       if (g_stop_signal != 0) {
         throw Error("stopped by signal " + std::to_string(g_stop_signal.load()) + " at step " +
@@ -385,27 +395,44 @@ class Session {
           n % static_cast<std::uint64_t>(scene_.output.snapshot_every_steps) == 0) {
         take_snapshot(n);
       }
-      const auto now = std::chrono::steady_clock::now();
-      if (now - last_report > std::chrono::seconds(10)) {
-        const double rate =
-            static_cast<double>(n) /
-            std::max(1e-9, std::chrono::duration<double>(now - coupled_begin_).count());
-        std::string health;
-        if (checks_.health_samples > 0) {
-          health = fmt::format(
-              "; snapshot t = {:.5f} s: max |rho/rho0 - 1| = {:.2e}, max speed {:.3g} m/s",
-              checks_.last_snapshot_time, checks_.last_density_deviation, checks_.last_max_speed);
-        }
-        spdlog::info(
-            "t = {:.5f} s ({:.1f} %), {:.0f} steps/s, ETA {:.0f} s, closest wall approach {:.3f} "
-            "r0{}",
-            state_.time, 100.0 * static_cast<double>(n) / static_cast<double>(steps), rate,
-            static_cast<double>(steps - n) / std::max(rate, 1e-9),
-            forces.diagnostics.closest_approach_over_r0, health);
-        last_report = now;
-      }
+      report_progress(n, steps);
     }
+    if (options_.live_status) options_.live_status("");
     timings_.coupled.stop();
+  }
+
+  void report_progress(std::uint64_t n, std::uint64_t steps) {
+    const auto now = std::chrono::steady_clock::now();
+    const bool log_due = now - last_log_ >= options_.progress_interval || n == steps;
+    const bool live_due =
+        options_.live_status && (now - last_live_ >= std::chrono::milliseconds(250) || n == steps);
+    if (!log_due && !live_due) return;
+    ProgressSample sample;
+    sample.time = state_.time;
+    sample.end_time = static_cast<double>(steps) * scene_.solver.step_size;
+    sample.step = n;
+    sample.steps = steps;
+    sample.steps_per_second =
+        static_cast<double>(n) /
+        std::max(1e-9, std::chrono::duration<double>(now - coupled_begin_).count());
+    sample.closest_approach_over_r0 = checks_.closest_since_report;
+    if (checks_.health_samples > 0) {
+      sample.snapshot_time = checks_.last_snapshot_time;
+      sample.density_deviation = checks_.last_density_deviation;
+      sample.max_speed = checks_.last_max_speed;
+    }
+    sample.speed_of_sound = speed_of_sound_;
+    const std::string line = format_progress(sample);
+    if (live_due) {
+      options_.live_status(line);
+      last_live_ = now;
+    }
+    if (log_due) {
+      progress_logger_->info("{}", line);
+      last_log_ = now;
+      // The closest approach of a log line covers the whole interval since the previous one.
+      checks_.closest_since_report = std::numeric_limits<double>::infinity();
+    }
   }
 
   void take_snapshot(std::uint64_t n) {
@@ -546,6 +573,10 @@ class Session {
          checks_.health_samples > 0 ? json(checks_.max_density_deviation) : json(nullptr)},
         {"max_particle_speed_at_snapshots",
          checks_.health_samples > 0 ? json(checks_.max_speed) : json(nullptr)},
+        {"speed_of_sound", speed_of_sound_ ? json(*speed_of_sound_) : json(nullptr)},
+        {"max_particle_speed_over_speed_of_sound_at_snapshots",
+         checks_.health_samples > 0 && speed_of_sound_ ? json(checks_.max_speed / *speed_of_sound_)
+                                                       : json(nullptr)},
         {"position_constraint_drift", drift(&mbd::Model::position_constraint_drift)},
         {"velocity_constraint_drift", drift(&mbd::Model::velocity_constraint_drift)}};
     manifest["warnings"] = options_.warnings;
@@ -576,7 +607,9 @@ class Session {
   std::uint64_t snapshots_ = 0;
   std::string status_ = "started";
   std::string reason_;
-  std::chrono::steady_clock::time_point coupled_begin_;
+  std::optional<double> speed_of_sound_;
+  std::shared_ptr<spdlog::logger> progress_logger_;
+  std::chrono::steady_clock::time_point coupled_begin_, last_log_, last_live_;
 };
 
 }  // namespace

@@ -621,4 +621,11 @@ std::vector<Diagnostic> physics_checks(const Scene& scene) {
   return report.take();
 }
 
+std::optional<double> speed_of_sound(const Scene& scene) {
+  Inputs in(scene);
+  const auto c = in.sph("cAB");
+  if (!c) return std::nullopt;
+  return c->value;
+}
+
 }  // namespace fsi::scene

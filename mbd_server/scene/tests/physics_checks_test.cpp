@@ -328,5 +328,13 @@ TEST(PhysicsChecks, SeveralProblemsAreAllListed) {
   EXPECT_EQ(diagnostics.size(), std::size(kPhysicsCheckNames)) << listing(diagnostics);
 }
 
+TEST_F(SmallScene, SpeedOfSoundIsCabOrUnknown) {
+  EXPECT_EQ(speed_of_sound(build(kGoodSph, kGoodFluid)), 20.0);
+  EXPECT_EQ(speed_of_sound(build_scene(kCoarseTank, {{"LIGGGHTS_SPH_parameters.cAB", "35"}})),
+            35.0);
+  EXPECT_FALSE(speed_of_sound(build("smoothinglength = 0.001", kGoodFluid)).has_value());
+  EXPECT_FALSE(speed_of_sound(build("cAB = -3", kGoodFluid)).has_value());
+}
+
 }  // namespace
 }  // namespace fsi::scene

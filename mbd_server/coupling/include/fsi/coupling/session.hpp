@@ -6,6 +6,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -29,6 +30,11 @@ struct ServerOptions {
   // client that hangs (stopped, deadlocked) ends the run after this long. A client of protocol
   // 1.0 sends no heartbeats; then the wait for Ready (set-up and equilibration) is not bounded.
   std::chrono::milliseconds peer_timeout{std::chrono::minutes(5)};
+  // Progress (progress.hpp): a log line every progress_interval on the logger "progress" (the
+  // default logger if there is none); if live_status is set, it also gets the line about four
+  // times a second (a terminal's status line) and an empty string when the coupled phase ends.
+  std::chrono::milliseconds progress_interval{std::chrono::seconds(10)};
+  std::function<void(const std::string&)> live_status;
   std::string command_line;           // recorded in run.json
   std::vector<std::string> warnings;  // the scene's physics warnings, recorded in run.json
 };

@@ -12,6 +12,7 @@
 // gravity without a FluidRegion or Gravity block). A check whose inputs are missing is skipped
 // with one Info diagnostic saying which inputs.
 
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -47,5 +48,9 @@ inline constexpr std::string_view kPhysicsCheckNames[] = {
 // Every check over `scene`: warnings for broken rules, infos for checks skipped. Pure: reads the
 // scene only.
 std::vector<Diagnostic> physics_checks(const Scene& scene);
+
+// The speed of sound c [m/s] the checks use (LIGGGHTS_SPH_parameters.cAB), or nullopt when the
+// scene does not give a positive number; the server's progress line compares particle speeds to it.
+std::optional<double> speed_of_sound(const Scene& scene);
 
 }  // namespace fsi::scene
