@@ -1,13 +1,16 @@
 #!/usr/bin/python3
 """fsi-plot on a real short run (coarse static tank, a snapshot every 250 steps): one valid PNG of
-non-trivial size per sensor, the stacked sensors.png, one frame per snapshot by default and one per
-requested time with --frames; a folder without sensors.csv is refused with what/where/how and a
+non-trivial size per sensor, the stacked sensors.png, the example's declared figure
+(examples/static_tank/fsi-plot.json) with N m g equal to run.json's counts, one frame per snapshot by default and one per
+requested time with --frames; --mp4 makes an H.264 video of every snapshot that ffprobe decodes
+(frame count), and says how to install ffmpeg when it is missing; a folder without sensors.csv is refused with what/where/how and a
 non-zero status; --help works."""
+import json
 import os
 import struct
 import subprocess
 
-from fsi_test import binary, check, cleanup, example, fail, read, run_pair, work_dir
+from fsi_test import binary, check, cleanup, example, fail, manifest, read, run_pair, work_dir
 
 PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
 
@@ -55,6 +58,15 @@ with open(os.path.join(run_dir, "sensors.csv")) as handle:
 for name in header[1:]:
     check_png(os.path.join(run_dir, "plots", "sensors", f"{name}.png"), 10_000)
 check_png(os.path.join(run_dir, "plots", "sensors.png"), 30_000)
+# The example's own figure, declared in examples/static_tank/fsi-plot.json (found through the scene
+# path in run.json), with N m g from this run's counts.
+check_png(os.path.join(run_dir, "plots", "static_tank.png"), 60_000)
+run = manifest(run_dir)
+weight = run["fluid"]["particle_count"] * run["fluid"]["particle_mass"] * abs(run["model"]["gravity"][1])
+printed = [float(line.rsplit("=", 1)[1]) for line in result.stdout.splitlines()
+           if line.startswith("fsi-plot: static_tank.png: reference 'N m g' =")]
+check(len(printed) == 2 and all(abs(value - weight) <= 1e-12 * weight for value in printed),
+      f"the declared reference N m g = {printed} equals particle_count * particle_mass * g = {weight!r} of run.json")
 frames = sorted(os.listdir(os.path.join(run_dir, "plots", "frames")))
 check(frames == [f"frame_{step:09d}.png" for step in (250, 500, 750, 1000)], f"one frame per snapshot: {frames}")
 for frame in frames:
@@ -66,6 +78,38 @@ result = fsi_plot(run_dir, "--frames", "0.0024,0.0099", "--color", "pressure", "
 check(result.returncode == 0, f"fsi-plot --frames --color pressure exits 0 (got {result.returncode}: {result.stderr})")
 chosen = sorted(os.listdir(os.path.join(chosen_dir, "frames")))
 check(chosen == ["frame_000000250.png", "frame_000001000.png"], f"--frames picks the nearest snapshots: {chosen}")
+
+# --mp4: every snapshot's frame in an H.264 file that ffprobe decodes frame by frame.
+movie_dir = os.path.join(output, "movie")
+result = fsi_plot(run_dir, "--mp4", "--max-frames", "2", "--output", movie_dir)
+check(result.returncode == 0, f"fsi-plot --mp4 exits 0 (got {result.returncode}: {result.stderr})")
+movie = os.path.join(movie_dir, "frames.mp4")
+check(os.path.exists(movie) and os.path.getsize(movie) > 10_000, f"frames.mp4 written ({os.path.getsize(movie)} bytes)")
+probe = subprocess.run(["ffprobe", "-v", "error", "-count_frames", "-select_streams", "v:0", "-show_entries",
+                        "stream=codec_name,nb_read_frames,width,height", "-of", "json", movie],
+                       capture_output=True, text=True, timeout=60)
+stream = json.loads(probe.stdout)["streams"][0]
+print(stream)
+check(probe.returncode == 0 and stream["codec_name"] == "h264" and int(stream["nb_read_frames"]) == 4,
+      f"ffprobe decodes {stream.get('nb_read_frames')} H.264 frames = the 4 snapshots (--max-frames does not cap it)")
+check(stream["width"] >= 300 and stream["height"] >= 300, f"video is {stream['width']}x{stream['height']}")
+no_ffmpeg = subprocess.run([binary("fsi-plot"), run_dir, "--mp4", "--output", os.path.join(output, "none")],
+                           capture_output=True, text=True, timeout=120, env=dict(os.environ, PATH="/nonexistent"))
+print(no_ffmpeg.stderr)
+check(no_ffmpeg.returncode == 2 and "ffmpeg is not installed" in no_ffmpeg.stderr and
+      "apt-get install ffmpeg" in no_ffmpeg.stderr, "without ffmpeg on PATH: exit 2, says so and how to install it")
+check(not os.path.exists(os.path.join(output, "none")), "nothing is rendered when ffmpeg is missing")
+
+# A declaration with a sensor the run does not have: refused, naming the file and the entry.
+bad = os.path.join(output, "bad.json")
+with open(bad, "w") as handle:
+    json.dump({"format": "fsi-plot-figures", "version": 1, "figures": [{"file": "x.png", "panels": [
+        {"series": [{"sensor": "bottom_fluid_force_y"}], "references": [{"value": "N*m*gravity"}]}]}]}, handle)
+result = fsi_plot(run_dir, "--no-frames", "--figures", bad, "--output", os.path.join(output, "bad"))
+print(result.stderr)
+check(result.returncode == 2 and f"{bad}: figures[0].panels[0].references[0].value" in result.stderr and
+      "unknown name 'gravity'" in result.stderr and "how to fix" in result.stderr,
+      "an unknown name in a declared reference: exit 2 with file, entry and the names to use")
 
 empty = os.path.join(output, "empty")
 os.makedirs(empty)
