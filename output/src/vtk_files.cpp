@@ -1,6 +1,8 @@
 #include "fsi/output/vtk_files.hpp"
 
+#include <cmath>
 #include <cstdio>
+#include <numeric>
 
 #include "fsi/common/error.hpp"
 #include "vtk_document.hpp"
@@ -136,9 +138,22 @@ std::string encode_bodies(const BodyFrame& frame) {
     index[i] = static_cast<std::int64_t>(i);
     offsets[i] = static_cast<std::int64_t>(i + 1);
   }
+  FSI_ASSERT(frame.dimension == 2, "body frames: 2D only so far (axes from the angle)");
+  std::vector<double> axis_x(3 * count), axis_y(3 * count), axis_z(3 * count, 0.0);
+  for (std::size_t i = 0; i < count; ++i) {
+    const double c = std::cos(frame.angles[i]), s = std::sin(frame.angles[i]);
+    axis_x[3 * i] = c;
+    axis_x[3 * i + 1] = s;
+    axis_y[3 * i] = -s;
+    axis_y[3 * i + 1] = c;
+    axis_z[3 * i + 2] = 1.0;
+  }
   document.open("PointData", "Vectors=\"velocity\"");
   document.data_array<std::int64_t>("body_index", 1, index);
   document.data_array<double>("angle", 1, frame.angles);
+  document.data_array<double>("axis_x", 3, axis_x);
+  document.data_array<double>("axis_y", 3, axis_y);
+  document.data_array<double>("axis_z", 3, axis_z);
   document.data_array<double>("velocity", 3,
                               to_three_components(frame.velocities, frame.dimension));
   document.close();
@@ -147,6 +162,47 @@ std::string encode_bodies(const BodyFrame& frame) {
   document.close();
   document.open("Verts");
   document.data_array<std::int64_t>("connectivity", 1, index);
+  document.data_array<std::int64_t>("offsets", 1, offsets);
+  return document.finish();
+}
+
+std::string encode_centre_lines(const CentreLineFrame& frame) {
+  const std::size_t line_count = frame.names.size();
+  FSI_ASSERT(frame.point_counts.size() == line_count, "one point count per centre line");
+  for (std::size_t points : frame.point_counts)
+    FSI_ASSERT(points >= 2, "a centre line needs at least 2 points");
+  const std::size_t count =
+      std::accumulate(frame.point_counts.begin(), frame.point_counts.end(), std::size_t{0});
+  check_vectors(frame.positions, count, frame.dimension, "centre-line positions");
+  check_vectors(frame.velocities, count, frame.dimension, "centre-line velocities");
+
+  VtkDocument document("PolyData");
+  document.open("FieldData");
+  const double time[1] = {frame.time};
+  document.field_array<double>("TimeValue", time);
+  document.field_strings("line_name", frame.names);
+  document.close();
+  document.open("Piece", "NumberOfPoints=\"" + count_text(count) +
+                             "\" NumberOfVerts=\"0\" NumberOfLines=\"" + count_text(line_count) +
+                             "\" NumberOfStrips=\"0\" NumberOfPolys=\"0\"");
+  std::vector<std::int64_t> line_index, connectivity(count), offsets;
+  std::iota(connectivity.begin(), connectivity.end(), std::int64_t{0});
+  std::int64_t end = 0;
+  for (std::size_t line = 0; line < line_count; ++line) {
+    line_index.insert(line_index.end(), frame.point_counts[line], static_cast<std::int64_t>(line));
+    end += static_cast<std::int64_t>(frame.point_counts[line]);
+    offsets.push_back(end);
+  }
+  document.open("PointData", "Vectors=\"velocity\"");
+  document.data_array<std::int64_t>("line_index", 1, line_index);
+  document.data_array<double>("velocity", 3,
+                              to_three_components(frame.velocities, frame.dimension));
+  document.close();
+  document.open("Points");
+  document.data_array<double>("Points", 3, to_three_components(frame.positions, frame.dimension));
+  document.close();
+  document.open("Lines");
+  document.data_array<std::int64_t>("connectivity", 1, connectivity);
   document.data_array<std::int64_t>("offsets", 1, offsets);
   return document.finish();
 }

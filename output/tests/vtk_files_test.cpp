@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <regex>
@@ -203,6 +204,39 @@ TEST(VtkFiles, BodyFramesArePolyDataWithNames) {
   EXPECT_EQ(values<double>(find(parsed, "Points")),
             std::vector<double>({0.025, 0.0, 0.0, 0.025, 0.0725, 0.0}));
   EXPECT_EQ(values<std::int64_t>(find(parsed, "offsets")), std::vector<std::int64_t>({1, 2}));
+  // The frames' axes: body 0 unrotated, body 1 turned by 0.25 rad.
+  const std::vector<double> axis_x = values<double>(find(parsed, "axis_x"));
+  const std::vector<double> axis_y = values<double>(find(parsed, "axis_y"));
+  ASSERT_EQ(axis_x.size(), 6u);
+  ASSERT_EQ(axis_y.size(), 6u);
+  EXPECT_EQ(std::vector<double>(axis_x.begin(), axis_x.begin() + 3),
+            std::vector<double>({1, 0, 0}));
+  EXPECT_EQ(std::vector<double>(axis_y.begin(), axis_y.begin() + 3),
+            std::vector<double>({0, 1, 0}));
+  EXPECT_DOUBLE_EQ(axis_x[3], std::cos(0.25));
+  EXPECT_DOUBLE_EQ(axis_x[4], std::sin(0.25));
+  EXPECT_DOUBLE_EQ(axis_y[3], -std::sin(0.25));
+  EXPECT_DOUBLE_EQ(axis_y[4], std::cos(0.25));
+  EXPECT_EQ(values<double>(find(parsed, "axis_z")), std::vector<double>({0, 0, 1, 0, 0, 1}));
+}
+
+TEST(VtkFiles, CentreLinesArePolyDataLines) {
+  const std::vector<std::size_t> counts = {3, 2};
+  const std::vector<double> positions = {0, 0, 0.5, 0.1, 1, 0, 2, 2, 3, 2};
+  const std::vector<double> velocities(10, 0.5);
+  CentreLineFrame frame{2, 0.25, {"beam", "rod"}, counts, positions, velocities};
+  const Parsed parsed = parse(encode_centre_lines(frame));
+  EXPECT_NE(parsed.xml.find("NumberOfPoints=\"5\" NumberOfVerts=\"0\" NumberOfLines=\"2\""),
+            std::string::npos)
+      << parsed.xml;
+  expect_contiguous_blocks(parsed);
+  EXPECT_EQ(values<std::int64_t>(find(parsed, "connectivity")),
+            std::vector<std::int64_t>({0, 1, 2, 3, 4}));
+  EXPECT_EQ(values<std::int64_t>(find(parsed, "offsets")), std::vector<std::int64_t>({3, 5}));
+  EXPECT_EQ(values<std::int64_t>(find(parsed, "line_index")),
+            std::vector<std::int64_t>({0, 0, 0, 1, 1}));
+  EXPECT_EQ(values<double>(find(parsed, "Points")),
+            std::vector<double>({0, 0, 0, 0.5, 0.1, 0, 1, 0, 0, 2, 2, 0, 3, 2, 0}));
 }
 
 TEST(VtkFilesDeathTest, MismatchedSizesAreProgrammerErrors) {

@@ -4,7 +4,8 @@ coarse static tank with a snapshot every 250 steps. Every .pvd entry exists with
 each fluid file holds the run's N particles with ids 1..N, densities near 1000 kg/m^3 and the very
 values of the CSV snapshot of the same step; the boundary file has the run's vertices, segments as
 VTK_LINE, the dynamic vertices first, and fluid forces that sum to the fluid-force sensors; the
-body file puts the piston where its position sensor says."""
+body file puts the piston where its position sensor says, with frame axes (axis_x, axis_y,
+axis_z) that are the rotation by each body's angle."""
 import csv
 import os
 import xml.etree.ElementTree as ElementTree
@@ -154,6 +155,16 @@ for (timestep, file_name), step in zip(collection("bodies"), snapshot_steps):
     y = vtk_to_numpy(grid.GetPoints().GetData())[piston, 1]
     check(abs(y - sensors["piston_position_y"][row]) <= 1e-15,
           f"{file_name}: piston at y = {y:.9f} m as its position sensor")
+    angle = point_array(grid, "angle")
+    axis_x, axis_y, axis_z = (point_array(grid, name) for name in ("axis_x", "axis_y", "axis_z"))
+    expected_x = numpy.column_stack([numpy.cos(angle), numpy.sin(angle), numpy.zeros_like(angle)])
+    expected_y = numpy.column_stack([-numpy.sin(angle), numpy.cos(angle), numpy.zeros_like(angle)])
+    check(axis_x.shape == (len(body_names), 3) and numpy.max(numpy.abs(axis_x - expected_x)) <= 1e-15 and
+          numpy.max(numpy.abs(axis_y - expected_y)) <= 1e-15 and numpy.all(axis_z == [0.0, 0.0, 1.0]),
+          f"{file_name}: frame axes axis_x, axis_y, axis_z are the rotation by each body's angle {angle.tolist()}")
+    # Both bodies have their angle held by a constraint: their frames stay aligned with x and y.
+    check(numpy.max(numpy.abs(axis_x - [1.0, 0.0, 0.0])) <= 1e-12,
+          f"{file_name}: bottom and piston (angle held at 0) keep axis_x = (1, 0, 0)")
 
 output_share = run["timings_seconds"]["output"] / run["timings_seconds"]["total"]
 print(f"output time: {run['timings_seconds']['output']:.3f} s of {run['timings_seconds']['total']:.3f} s "

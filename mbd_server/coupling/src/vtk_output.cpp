@@ -69,6 +69,9 @@ void VtkOutput::write(const ParticleSnapshot& particles, const mbd::Model& model
   frames.velocities = body_velocities;
   frames.angles = angles;
   bodies_.write(particles.step, state.time, output::encode_bodies(frames));
+  // ANCF beams (once the model has them): sample each element's centre line r(x) at a few points,
+  // fill an output::CentreLineFrame (one line per beam) and write it to a fourth series
+  // "beams" (.vtp) here, at the same steps.
 }
 
 }  // namespace fsi::coupling

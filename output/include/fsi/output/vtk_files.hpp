@@ -44,7 +44,10 @@ struct BoundaryFrame {
   std::span<const std::uint32_t> elements;
 };
 
-// Rigid-body frames at one instant: one point per body at its reference point.
+// Rigid-body frames at one instant: one point per body at its reference point (the origin of its
+// frame), with the frame's unit axes as point data `axis_x`, `axis_y` (and `axis_z`), so that
+// ParaView's Glyph filter draws the frames as arrows (orientation array axis_x, then axis_y).
+// 2D only so far: the axes follow from the rotation angle.
 struct BodyFrame {
   int dimension = 2;
   double time = 0.0;
@@ -57,5 +60,20 @@ struct BodyFrame {
 std::string encode_particles(const ParticleFrame& frame);
 std::string encode_boundary(const BoundaryFrame& frame);
 std::string encode_bodies(const BodyFrame& frame);
+
+// Centre lines of beam elements at one instant, as PolyData lines (one polyline per line, its
+// points in order along the line): for ANCF beams the server samples each element's centre line
+// r(x) at a few points per element (not written yet: there are no ANCF elements yet; this is
+// the encoder the beams' series in mbd_server/coupling/vtk_output.cpp will use).
+struct CentreLineFrame {
+  int dimension = 2;
+  double time = 0.0;
+  std::vector<std::string> names;             // one per line (field data "line_name")
+  std::span<const std::size_t> point_counts;  // points of each line, >= 2
+  std::span<const double> positions;          // dimension values per point, line after line
+  std::span<const double> velocities;         // as positions
+};
+
+std::string encode_centre_lines(const CentreLineFrame& frame);
 
 }  // namespace fsi::output
