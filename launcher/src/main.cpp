@@ -110,11 +110,20 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
   app.add_option("--output", output, "Output folder of the run (created)")->required();
-  app.add_option("--set", overrides, "Override a scene parameter, KEY=EXPR (repeatable)");
-  app.add_option("--server-arg", server_arguments, "Extra argument for fsi-server (repeatable)")
+  app.add_option("--set", overrides,
+                 "Override a scene parameter, KEY=EXPR (repeatable; default: none)");
+  app.add_option("--server-arg", server_arguments,
+                 "Extra argument for fsi-server (repeatable; default: none)")
       ->allow_extra_args(false);
-  app.add_option("--client-arg", client_arguments, "Extra argument for fsi-client (repeatable)")
+  app.add_option("--client-arg", client_arguments,
+                 "Extra argument for fsi-client (repeatable; default: none)")
       ->allow_extra_args(false);
+  std::string log_level = "info";
+  app.add_option("--log-level", log_level,
+                 "Log level of fsi-server and fsi-client: trace, debug, info, warn, error; their "
+                 "logs go to DIR/fsi-server.log and DIR/fsi-client.log (rank 0)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error"}));
   app.add_option("--client-grace", client_grace,
                  "Seconds the client may outlive the server before it is terminated")
       ->capture_default_str();
@@ -159,6 +168,7 @@ int main(int argc, char** argv) {
   }
   if (!token_file.empty())
     server_command.insert(server_command.end(), {"--token-file", token_file});
+  server_command.insert(server_command.end(), {"--log-level", log_level});
   server_command.insert(server_command.end(), server_arguments.begin(), server_arguments.end());
   const pid_t server_pid = spawn(server_command);
   if (server_pid < 0) return 2;
@@ -189,8 +199,10 @@ int main(int argc, char** argv) {
 
   std::vector<std::string> client_command{mpirun, "-np", std::to_string(ranks)};
   if (geteuid() == 0) client_command.push_back("--allow-run-as-root");
-  client_command.insert(client_command.end(),
-                        {"--oversubscribe", client.string(), "--server", "127.0.0.1:" + port});
+  client_command.insert(
+      client_command.end(),
+      {"--oversubscribe", client.string(), "--server", "127.0.0.1:" + port, "--log-level",
+       log_level, "--log-file", (fs::path(output) / "fsi-client.log").string()});
   if (!token_file.empty())
     client_command.insert(client_command.end(), {"--token-file", token_file});
   client_command.insert(client_command.end(), client_arguments.begin(), client_arguments.end());

@@ -1,5 +1,6 @@
 #include "client_session.hpp"
 
+#include <spdlog/spdlog.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -170,10 +171,9 @@ class ClientSession {
         *channel_, (capabilities_ & protocol::kCapabilityHeartbeat) != 0);
     g_exit_report.heartbeat = heartbeat_.get();
     const protocol::Welcome& welcome = opened.welcome;
-    std::fprintf(
-        stderr, "fsi-client: connected to %s (fsi-server %s, run '%s'), %d rank(s)%s\n",
-        channel_->peer_description().c_str(), welcome.software_version.c_str(),
-        welcome.run_name.c_str(), mpi_.size(),
+    spdlog::info(
+        "connected to {} (fsi-server {}, run '{}'), {} rank(s){}", channel_->peer_description(),
+        welcome.software_version, welcome.run_name, mpi_.size(),
         (capabilities_ & protocol::kCapabilityAuthentication) != 0 ? ", server authenticated" : "");
   }
 
@@ -328,6 +328,9 @@ class ClientSession {
 
     const std::uint64_t count = driver_->particle_count();
     setup_busy_ = {};
+    // Every rank: how the fluid is spread (rank 0 only by default; --log-all-ranks for all).
+    spdlog::info("ready: {} of {} particles on this rank; set-up {:.2f} s, equilibration {:.2f} s",
+                 driver_->local_particle_count(), count, seconds_setup, seconds_equilibration);
     if (mpi_.root()) {
       protocol::Ready ready;
       ready.particle_count = count;
@@ -429,8 +432,7 @@ class ClientSession {
           goodbye.steps_done = steps;
           goodbye.seconds_total = total.stop();
           channel_->send(goodbye);
-          std::fprintf(stderr, "fsi-client: run finished after %llu coupled steps\n",
-                       static_cast<unsigned long long>(steps));
+          spdlog::info("run finished after {} coupled steps", steps);
         }
         return;
       } else if (auto* error = std::get_if<protocol::ErrorMessage>(&message)) {
@@ -485,8 +487,8 @@ int run_one_session(MPI_Comm communicator, const ClientOptions& options, int ran
   } catch (const std::exception& failure) {
     // Whatever happened on this rank ends the whole job: the other ranks may wait in a
     // collective call forever otherwise.
-    std::fprintf(stderr, "fsi-client (rank %d): error: %s\n", rank, failure.what());
-    std::fflush(stderr);
+    spdlog::error("fsi-client (rank {}): {}", rank, failure.what());
+    spdlog::default_logger()->flush();
     // Tell the server unless it reported the fault itself; a malformed frame gets its own code.
     if (rank == 0 && dynamic_cast<const protocol::PeerReportedError*>(&failure) == nullptr) {
       const bool protocol_fault = dynamic_cast<const protocol::ProtocolError*>(&failure) != nullptr;

@@ -296,6 +296,10 @@ std::uint64_t LiggghtsDriver::particle_count() const {
   return static_cast<std::uint64_t>(lammps_->atom->natoms);
 }
 
+std::uint64_t LiggghtsDriver::local_particle_count() const {
+  return static_cast<std::uint64_t>(lammps_->atom->nlocal);
+}
+
 Snapshot LiggghtsDriver::gather_snapshot(int dimension) const {
   const auto& atom = *lammps_->atom;
   const int local = atom.nlocal;

@@ -81,6 +81,8 @@ class LiggghtsDriver {
   void step();
 
   std::uint64_t particle_count() const;
+  // Particles owned by this rank.
+  std::uint64_t local_particle_count() const;
   bool has_fsi_fix() const { return fsi_fix_count_ > 0; }
   // Gathers id, position, velocity, density and pressure of every particle on rank 0, sorted by id.
   Snapshot gather_snapshot(int dimension) const;

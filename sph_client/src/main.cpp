@@ -1,16 +1,43 @@
 // fsi-client: `mpirun -np N fsi-client --server HOST:PORT`. Rank 0 connects to fsi-server (retrying
 // until it listens), all ranks run LIGGGHTS with `fix fsi/sph`, one LIGGGHTS step per server step.
 #include <mpi.h>
+#include <spdlog/sinks/basic_file_sink.h>
+#include <spdlog/sinks/stdout_color_sinks.h>
+#include <spdlog/spdlog.h>
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
+#include <memory>
 #include <string>
+#include <vector>
 
 #include "client_session.hpp"
 #include "fsi/common/error.hpp"
 #include "fsi/common/version.hpp"
 #include "fsi/protocol/auth.hpp"
 #include "fsi/protocol/channel.hpp"
+
+namespace {
+
+// Rank-aware logs: rank 0 logs at the chosen level to stderr and --log-file; the other ranks only
+// report errors (a fault one rank sees must still be told), unless --log-all-ranks, which gives
+// each rank r > 0 its own file FILE.rank<r> (one file per rank: no interleaved lines).
+void configure_logging(int rank, const std::string& level, const std::string& log_file,
+                       bool all_ranks) {
+  std::vector<spdlog::sink_ptr> sinks{std::make_shared<spdlog::sinks::stderr_color_sink_mt>()};
+  const bool verbose = rank == 0 || all_ranks;
+  if (!log_file.empty() && verbose) {
+    const std::string path = rank == 0 ? log_file : log_file + ".rank" + std::to_string(rank);
+    sinks.push_back(std::make_shared<spdlog::sinks::basic_file_sink_mt>(path, true));
+  }
+  auto logger = std::make_shared<spdlog::logger>("fsi-client", sinks.begin(), sinks.end());
+  logger->set_pattern("[%H:%M:%S.%e] [fsi-client rank " + std::to_string(rank) + "] [%l] %v");
+  logger->set_level(verbose ? spdlog::level::from_str(level) : spdlog::level::err);
+  logger->flush_on(spdlog::level::info);
+  spdlog::set_default_logger(logger);
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   MPI_Init(&argc, &argv);
@@ -41,15 +68,31 @@ int main(int argc, char** argv) {
   std::string token_file;
   app.add_option("--token-file", token_file,
                  "Shared token (same content as fsi-server's --token-file): the server must prove "
-                 "it holds it before its set-up is accepted, and this client proves it in turn");
-  app.add_option("--liggghts-log", options.liggghts_log, "Write LIGGGHTS' log to this file");
-  app.add_flag("--echo", options.echo_liggghts, "Show LIGGGHTS' screen output (rank 0)");
+                 "it holds it before its set-up is accepted, and this client proves it in turn; "
+                 "default: none)");
+  app.add_option("--liggghts-log", options.liggghts_log,
+                 "Write LIGGGHTS' log to this file (default: none)");
+  app.add_flag("--echo", options.echo_liggghts,
+               "Show LIGGGHTS' screen output (rank 0; default: off, only its warnings and errors)");
   app.add_flag("--persistent", options.persistent,
                "After a run, wait for the next fsi-server at the same address and serve it too "
-               "(until interrupted); a failed run still ends the client");
+               "(until interrupted); a failed run still ends the client (default: off)");
   app.add_flag("--allow-unsafe-commands", options.allow_unsafe_commands,
                "Run script commands that are refused by default: 'shell' and file names outside "
-               "the run directory (absolute, ~ or ..). Only for scenes you trust");
+               "the run directory (absolute, ~ or ..). Only for scenes you trust (default: off)");
+  std::string log_level = "info";
+  app.add_option("--log-level", log_level, "trace, debug, info, warn, error")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error"}));
+  std::string log_file;
+  app.add_option(
+      "--log-file", log_file,
+      "Also write rank 0's log to this file (fsi-run passes DIR/fsi-client.log; default: "
+      "none)");
+  bool log_all_ranks = false;
+  app.add_flag("--log-all-ranks", log_all_ranks,
+               "Log on every rank, rank r > 0 into FILE.rank<r> (default: off: rank 0 logs, the "
+               "others report errors only)");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
@@ -68,6 +111,14 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "fsi-client: --server '%s' is not HOST:PORT with a port 1..65535\n",
                    server.c_str());
     }
+    MPI_Finalize();
+    return 2;
+  }
+  try {
+    configure_logging(rank, log_level, log_file, log_all_ranks);
+  } catch (const spdlog::spdlog_ex& error) {
+    std::fprintf(stderr, "fsi-client (rank %d): --log-file %s: %s\n", rank, log_file.c_str(),
+                 error.what());
     MPI_Finalize();
     return 2;
   }

@@ -1,5 +1,7 @@
 #include "output_capture.hpp"
 
+#include <spdlog/spdlog.h>
+
 #include <stdexcept>
 
 namespace fsi::client {
@@ -33,7 +35,11 @@ void OutputCapture::take(const char* data, std::size_t size) {
     std::string line = partial_.substr(start, end - start);
     const bool error = line.rfind("ERROR", 0) == 0;
     if (!echo_everything_ && (error || line.rfind("WARNING", 0) == 0)) {
-      std::fprintf(stderr, "LIGGGHTS: %s\n", line.c_str());
+      if (error) {
+        spdlog::error("LIGGGHTS: {}", line);
+      } else {
+        spdlog::warn("LIGGGHTS: {}", line);
+      }
     }
     if (error) last_error_ = line;
     lines_.push_back(std::move(line));

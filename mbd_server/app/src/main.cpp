@@ -169,18 +169,20 @@ int main(int argc, char** argv) {
   bool help_params = false;
   std::string parameter_doc;
   std::string log_level = "info";
-  app.add_option("scene", scene_file, "Scene parameter file (*.scene)");
+  app.add_option("scene", scene_file, "Scene parameter file (*.scene); required");
   app.add_option("--output", output,
-                 "Output folder of the run (created): sensors.csv, run.json, snapshots/, vtk/");
+                 "Output folder of the run (created): sensors.csv, run.json, fsi-server.log, "
+                 "snapshots/, vtk/; required for a run");
   app.add_option("--port", port, "TCP port to listen on (0: the system chooses)")
       ->capture_default_str()
       ->check(CLI::Range(0, 65535));
   app.add_option("--port-file", port_file,
-                 "Write the listening port into this file once listening");
+                 "Write the listening port into this file once listening (default: none)");
   app.add_option("--listen", listen,
                  "Address to listen on (default loopback; 0.0.0.0 for all interfaces)")
       ->capture_default_str();
-  app.add_option("--set", overrides, "Override a scene parameter, KEY=EXPR (repeatable)");
+  app.add_option("--set", overrides,
+                 "Override a scene parameter, KEY=EXPR (repeatable; default: none)");
   app.add_option("--accept-timeout", accept_timeout, "Seconds to wait for fsi-client to connect")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
@@ -195,19 +197,21 @@ int main(int argc, char** argv) {
   app.add_option("--token-file", token_file,
                  "Shared token (a file only you can read, e.g. `openssl rand -hex 32 > FILE; chmod "
                  "600 FILE`): fsi-client must prove it holds the same token, and this server "
-                 "proves it to the client (HMAC-SHA256 challenge-response)");
+                 "proves it to the client (HMAC-SHA256 challenge-response; default: none)");
   bool allow_unauthenticated = false;
   app.add_flag("--allow-unauthenticated", allow_unauthenticated,
                "Listen on a non-loopback --listen address without --token-file (anyone who "
-               "reaches the port can take the client's place)");
-  app.add_flag("--check", check_only, "Validate the scene (all problems at once) and exit");
+               "reaches the port can take the client's place; default: off)");
+  app.add_flag("--check", check_only,
+               "Validate the scene (all problems at once) and exit (default: off)");
   app.add_flag("--mbd-only", mbd_only,
                "Run the scene's multibody part alone, without fsi-client (fluid forces zero); "
-               "writes sensors.csv and run.json into --output");
-  app.add_flag("--print-params", print_params, "Print the evaluated parameter tree and exit");
-  app.add_flag("--help-params", help_params, "List every scene parameter and exit");
+               "writes sensors.csv and run.json into --output (default: off)");
+  app.add_flag("--print-params", print_params,
+               "Print the evaluated parameter tree and exit (default: off)");
+  app.add_flag("--help-params", help_params, "List every scene parameter and exit (default: off)");
   app.add_option("--write-parameter-doc", parameter_doc,
-                 "Write the parameter reference (markdown) and exit");
+                 "Write the parameter reference (markdown) to this file and exit (default: none)");
   double progress_interval = 10.0;
   app.add_option("--progress-interval", progress_interval,
                  "Seconds between progress lines in the log (time, percent, steps/s, ETA, fluid "
@@ -216,7 +220,8 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   bool no_live = false;
   app.add_flag("--no-live", no_live,
-               "No live status line on a terminal (progress only as periodic log lines)");
+               "No live status line on a terminal, progress only as periodic log lines (default: "
+               "off)");
   app.add_option("--log-level", log_level, "trace, debug, info, warn, error")
       ->capture_default_str()
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error"}));
