@@ -50,6 +50,11 @@ result = fsi_plot("--help")
 check(result.returncode == 0 and "--frames" in result.stdout and "--color" in result.stdout,
       "fsi-plot --help lists --frames and --color")
 
+version = fsi_plot("--version")
+server_version = subprocess.run([binary("fsi-server"), "--version"], capture_output=True, text=True).stdout.strip()
+check(version.returncode == 0 and version.stdout.strip() == f"fsi-plot {server_version}" and "git" in server_version,
+      f"fsi-plot --version names the build's release and git revision: {version.stdout.strip()}")
+
 result = fsi_plot(run_dir)
 print(result.stdout, result.stderr)
 check(result.returncode == 0, f"fsi-plot DIR exits 0 (got {result.returncode})")
