@@ -131,7 +131,7 @@ int main(int argc, char** argv) {
   std::string token_file;
   app.add_option("--token-file", token_file,
                  "Shared token file given to both fsi-server and fsi-client (--token-file): they "
-                 "authenticate each other")
+                 "authenticate each other (default: none)")
       ->check(CLI::ExistingFile);
   CLI11_PARSE(app, argc, argv);
 
