@@ -48,6 +48,20 @@ for name in ("bottom_fluid_force_y", "piston_fluid_force_y", "total_fluid_force_
     check(all(f == 0.0 for f in sensors[name]), f"{name} is zero without fluid")
 log = read(run_dir, "fsi-server.log")
 check("multibody alone" in log, "the log says the multibody part runs alone")
+check(run["model"]["integrator"] == "Radau IIA, 3 stages", f"run.json names the integrator ({run['model']['integrator']})")
+
+# The scene's tableau is the one that runs: Lobatto IIIA asked for, Lobatto IIIA used and named.
+lobatto_dir = os.path.join(output, "lobatto")
+result = subprocess.run([binary("fsi-server"), example("static_tank", "static_tank_coarse.scene"), "--mbd-only",
+                         "--output", lobatto_dir, "--set", "Resolution.end_time=100*1e-5",
+                         "--set", 'SolverOptions.Timeint.tableau="LobattoIIIA"'],
+                        env=ENV, capture_output=True, text=True, timeout=60)
+if result.returncode != 0:
+    fail(f"fsi-server --mbd-only with Lobatto IIIA exited {result.returncode}:\n{result.stderr[-3000:]}")
+lobatto = manifest(lobatto_dir)
+check(lobatto["model"]["integrator"] == "Lobatto IIIA, 3 stages",
+      f"Lobatto IIIA asked for: run.json names {lobatto['model']['integrator']}")
+check("(Lobatto IIIA, 3 stages)" in read(lobatto_dir, "fsi-server.log"), "the log names Lobatto IIIA")
 
 # Bad input: a free body and one Newton iteration allowed cannot converge. The run must stop with
 # exit 1, naming step and time, run.json "failed", and no NaN written.
@@ -71,4 +85,4 @@ bad = manifest(bad_run)
 check(bad["status"] == "failed" and "step 1" in bad.get("reason", ""), "run.json says failed, with the step")
 check("nan" not in read(bad_run, "sensors.csv").lower(), "no NaN in sensors.csv")
 cleanup(output)
-print("mbd-only: 2 passed, 0 failed")
+print("mbd-only: 3 passed, 0 failed")

@@ -103,9 +103,9 @@ int run_mbd_only(scene::Scene& scene, const MbdOnlyOptions& options) {
                                            "fsi-server --mbd-only sensors of " + scene.file, names,
                                            units);
     state = scene.model.initial_state();
-    mbd::RadauIIA integrator(scene.solver.stages, scene.solver.newton);
-    spdlog::info("multibody alone: {} steps of {:.3g} s to t = {:.6g} s (Radau IIA, {} stages)",
-                 steps, dt, static_cast<double>(steps) * dt, scene.solver.stages);
+    mbd::RadauIIA integrator(scene.solver.integrator_options());
+    spdlog::info("multibody alone: {} steps of {:.3g} s to t = {:.6g} s ({})", steps, dt,
+                 static_cast<double>(steps) * dt, scene.solver.integrator_description());
     for (std::uint64_t n = 1; n <= steps; ++n) {
       try {
         integrator.step(scene.model, state, dt);
@@ -149,11 +149,10 @@ int run_mbd_only(scene::Scene& scene, const MbdOnlyOptions& options) {
                            {"command_line", options.command_line}};
     manifest["scene"] = {{"file", fs::absolute(scene.file).string()}};
     manifest["parameters"] = scene::to_json(scene.parameters);
-    manifest["model"] = {
-        {"gravity", {scene.model.gravity().x(), scene.model.gravity().y()}},
-        {"bodies", scene.model.body_count()},
-        {"constraints", scene.model.constraint_count()},
-        {"integrator", "Radau IIA, " + std::to_string(scene.solver.stages) + " stages"}};
+    manifest["model"] = {{"gravity", {scene.model.gravity().x(), scene.model.gravity().y()}},
+                         {"bodies", scene.model.body_count()},
+                         {"constraints", scene.model.constraint_count()},
+                         {"integrator", scene.solver.integrator_description()}};
     manifest["time_step"] = dt;
     manifest["end_time"] = scene.solver.end_time;
     manifest["steps"] = steps_done;

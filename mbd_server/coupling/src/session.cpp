@@ -209,11 +209,7 @@ class Session {
   void set_up() {
     timings_.setup.start();
     state_ = scene_.model.initial_state();
-    mbd::RadauOptions integrator_options;
-    integrator_options.stages = scene_.solver.stages;
-    integrator_options.newton = scene_.solver.newton;
-    integrator_options.family = scene_.solver.family;
-    integrator_ = std::make_unique<mbd::RadauIIA>(integrator_options);
+    integrator_ = std::make_unique<mbd::RadauIIA>(scene_.solver.integrator_options());
 
     protocol::Setup setup;
     setup.dimension = 2;
@@ -520,8 +516,7 @@ class Session {
     manifest["model"] = {{"gravity", {scene_.model.gravity().x(), scene_.model.gravity().y()}},
                          {"bodies", bodies},
                          {"constraints", scene_.model.constraint_count()},
-                         {"integrator", integrator_->tableau().name + ", " +
-                                            std::to_string(scene_.solver.stages) + " stages"}};
+                         {"integrator", scene_.solver.integrator_description()}};
     manifest["fluid"] = {
         {"particle_count", ready_.particle_count ? ready_.particle_count : scene_.fluid.count()},
         {"generated_particles", scene_.fluid.count()},

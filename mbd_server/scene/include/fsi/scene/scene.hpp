@@ -20,6 +20,13 @@ struct SolverSettings {
   int stages = 3;
   mbd::TableauFamily family = mbd::TableauFamily::RadauIIA;
   mbd::NewtonOptions newton;
+
+  // The integrator these settings ask for, and its name for logs and run.json
+  // ("Radau IIA, 3 stages"); both are valid before any integrator exists.
+  mbd::RadauOptions integrator_options() const { return {stages, newton, family}; }
+  std::string integrator_description() const {
+    return mbd::butcher_tableau(family, stages).name + ", " + std::to_string(stages) + " stages";
+  }
 };
 
 struct OutputSettings {
