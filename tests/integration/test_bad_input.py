@@ -21,11 +21,13 @@ check(ok.returncode == 0 and "particles" in ok.stdout, "--check accepts the exam
 # Physics warnings (thesis §6.2 rules of thumb) are listed, all of them, and do not fail --check.
 physics = server(scene, "--check", "--set", "Resolution.time_step=3e-5", "--set", "LIGGGHTS_SPH_parameters.cAB=7",
                  "--set", "LIGGGHTS_SPH_parameters.particlespacing=smoothinglength",
-                 "--set", "LIGGGHTS_SPH_parameters.SPH_wall_visc=10", "--set", "FluidRegion.lower=[0.0005, 0.0041]")
+                 "--set", "LIGGGHTS_SPH_parameters.SPH_wall_visc=10", "--set", "FluidRegion.lower=[0.0005, 0.0041]",
+                 "--set", "LIGGGHTS_SPH_parameters.gravity=9.8")
 listed = [name for name in ("acoustic_time_step", "contact_time_step", "speed_of_sound", "wall_repulsion",
-                            "kernel_neighbours", "wall_viscosity", "fluid_overlap") if f"warning ({name})" in physics.stdout]
-check(physics.returncode == 0 and len(listed) == 7 and "7 warning(s)" in physics.stdout,
-      f"--check lists all 7 physics warnings and exits 0 ({physics.returncode}, {listed})")
+                            "kernel_neighbours", "wall_viscosity", "fluid_overlap", "gravity")
+          if f"warning ({name})" in physics.stdout]
+check(physics.returncode == 0 and len(listed) == 8 and "8 warning(s)" in physics.stdout,
+      f"--check lists all 8 physics warnings and exits 0 ({physics.returncode}, {listed})")
 
 bad_scene = os.path.join(output, "bad.scene")
 with open(bad_scene, "w") as handle:

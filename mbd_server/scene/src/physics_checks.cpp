@@ -4,6 +4,7 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -226,12 +227,18 @@ void check_acoustic_time_step(const Scene& scene, Report& report) {
 
 // --- 2. time step against the stiffness of the wall contact ----------------------------------
 
-// The value after `keyword` on a `fix ID group fsi/sph ...` command of `script` ("" if none).
-std::string fsi_fix_keyword(const std::string& script, std::string_view keyword) {
+// Calls visit(tokens, line) for every command of a LIGGGHTS script: comments stripped, lines
+// ending in '&' joined; `line` is the command's first line (1-based).
+template <class Visit>
+void for_each_command(const std::string& script, Visit visit) {
   std::istringstream lines(script);
   std::string line;
   std::string command;
+  int number = 0;
+  int first_line = 1;
   while (std::getline(lines, line)) {
+    ++number;
+    if (command.empty()) first_line = number;
     line = line.substr(0, line.find('#'));
     const auto last = line.find_last_not_of(" \t\r");
     line = last == std::string::npos ? "" : line.substr(0, last + 1);
@@ -245,12 +252,23 @@ std::string fsi_fix_keyword(const std::string& script, std::string_view keyword)
     std::vector<std::string> tokens;
     for (std::string token; words >> token;)
       tokens.push_back(token);
-    if (tokens.size() < 4 || tokens[0] != "fix" || tokens[3] != "fsi/sph") continue;
-    for (std::size_t i = 4; i + 1 < tokens.size(); ++i) {
-      if (tokens[i] == keyword) return tokens[i + 1];
-    }
+    if (!tokens.empty()) visit(tokens, first_line);
   }
-  return "";
+}
+
+// The value after `keyword` on a `fix ID group fsi/sph ...` command of `script` ("" if none).
+std::string fsi_fix_keyword(const std::string& script, std::string_view keyword) {
+  std::string value;
+  for_each_command(script, [&](const std::vector<std::string>& tokens, int) {
+    if (!value.empty() || tokens.size() < 4 || tokens[0] != "fix" || tokens[3] != "fsi/sph") return;
+    for (std::size_t i = 4; i + 1 < tokens.size(); ++i) {
+      if (tokens[i] == keyword) {
+        value = tokens[i + 1];
+        return;
+      }
+    }
+  });
+  return value;
 }
 
 void check_contact_time_step(const Scene& scene, Report& report) {
@@ -598,6 +616,114 @@ void check_fluid_overlap(const Scene& scene, Report& report) {
   }
 }
 
+// --- 8. the fluid's gravity against the structure's ------------------------------------------
+
+// A script word with LIGGGHTS' ${name} and $c replaced by the LIGGGHTS_SPH_parameters values the
+// server puts in front of script 1; nullopt when it names another variable.
+std::optional<std::string> substitute(const std::string& word, const LiggghtsSetup& liggghts) {
+  auto value_of = [&](const std::string& name) -> std::optional<std::string> {
+    for (const auto& [key, value] : liggghts.variables) {
+      if (key == name) return value;
+    }
+    return std::nullopt;
+  };
+  std::string result;
+  for (std::size_t i = 0; i < word.size(); ++i) {
+    if (word[i] != '$' || i + 1 == word.size()) {
+      result += word[i];
+      continue;
+    }
+    std::string name;
+    if (word[i + 1] == '{') {
+      const auto close = word.find('}', i + 2);
+      if (close == std::string::npos) return std::nullopt;
+      name = word.substr(i + 2, close - i - 2);
+      i = close;
+    } else {
+      name = word.substr(i + 1, 1);
+      ++i;
+    }
+    const auto value = value_of(name);
+    if (!value) return std::nullopt;
+    result += *value;
+  }
+  return result;
+}
+
+std::optional<double> script_number(const std::string& word, const LiggghtsSetup& liggghts) {
+  const auto text = substitute(word, liggghts);
+  if (!text) return std::nullopt;
+  double value = 0.0;
+  const auto [end, error] = std::from_chars(text->data(), text->data() + text->size(), value);
+  if (error != std::errc() || end != text->data() + text->size() || !std::isfinite(value))
+    return std::nullopt;
+  return value;
+}
+
+std::string vector_text(const Eigen::Vector3d& vector) {
+  return "(" + number(vector.x()) + ", " + number(vector.y()) + ", " + number(vector.z()) + ")";
+}
+
+// LIGGGHTS moves the fluid under its own `fix ... gravity`, the multibody system under the Gravity
+// block: a scene that gives them different accelerations weighs a fluid the structure does not
+// feel (thesis §6.3 measures the fluid weight through the structure).
+void check_gravity(const Scene& scene, Report& report) {
+  constexpr std::string_view kCheck = "gravity";
+  const LiggghtsSetup& liggghts = scene.liggghts;
+  if (liggghts.script1_text.empty() && liggghts.script2_text.empty()) return;
+  const Inputs in(scene);
+  const Eigen::Vector3d structure(scene.model.gravity().x(), scene.model.gravity().y(), 0.0);
+  const SourceLocation block = in.where("Gravity.acceleration");
+  const std::string structure_text =
+      "the Gravity block gives the structure g = " + vector_text(structure) + " m/s^2";
+  std::vector<std::string> unreadable;
+  bool fluid_gravity = false;
+  auto scan = [&](const std::string& script, const std::string& script_name) {
+    for_each_command(script, [&](const std::vector<std::string>& tokens, int line) {
+      if (tokens.size() < 4 || tokens[0] != "fix" || tokens[3] != "gravity") return;
+      fluid_gravity = true;
+      const SourceLocation where{script_name, line, 1};
+      const auto magnitude = tokens.size() > 4 ? script_number(tokens[4], liggghts) : std::nullopt;
+      if (tokens.size() < 9 || tokens[5] != "vector" || !magnitude) {
+        unreadable.push_back(where.text() +
+                             " (only 'fix ID group gravity MAGNITUDE vector X Y Z' "
+                             "with numbers or LIGGGHTS_SPH_parameters is read)");
+        return;
+      }
+      Eigen::Vector3d direction;
+      for (int k = 0; k < 3; ++k) {
+        const auto component = script_number(tokens[6 + static_cast<std::size_t>(k)], liggghts);
+        if (!component) {
+          unreadable.push_back(where.text() + " (a direction component is not a number)");
+          return;
+        }
+        direction[k] = *component;
+      }
+      if (!(direction.norm() > 0.0)) return;  // LIGGGHTS refuses a zero direction itself
+      const Eigen::Vector3d fluid = *magnitude * direction / direction.norm();
+      const double size = std::max(fluid.norm(), structure.norm());
+      if ((fluid - structure).norm() <= kTolerance * size) return;
+      report.warn(kCheck, where,
+                  "fix " + tokens[1] + " gives the fluid g = " + vector_text(fluid) +
+                      " m/s^2, but " + structure_text + " (" + block.text() +
+                      "): fluid and structure must fall alike, or the structure does not carry "
+                      "the fluid's weight (thesis §6.3)",
+                  "make Gravity.acceleration and the script's fix gravity the same vector");
+    });
+  };
+  scan(liggghts.script1_text, liggghts.script1_name);
+  scan(liggghts.script2_text, liggghts.script2_name);
+  if (!unreadable.empty()) {
+    report.skip(kCheck, "gravity", {"cannot read the fluid's gravity at " + unreadable.front()});
+  } else if (!fluid_gravity && structure.norm() > 0.0) {
+    report.warn(kCheck, block,
+                structure_text + ", but neither LIGGGHTS script has a 'fix ... gravity': the " +
+                    "fluid does not fall",
+                "add 'fix gravity all gravity " + number(structure.norm()) +
+                    " vector X Y 0' to script 1, or remove the Gravity block");
+  }
+}
+
 }  // namespace
 
 std::string_view name(Severity severity) {
@@ -618,6 +744,7 @@ std::vector<Diagnostic> physics_checks(const Scene& scene) {
   check_kernel_neighbours(scene, report);
   check_wall_viscosity(scene, report);
   check_fluid_overlap(scene, report);
+  check_gravity(scene, report);
   return report.take();
 }
 

@@ -48,8 +48,6 @@ std::vector<Diagnostic> coarse_diagnostics(const std::vector<Override>& override
   return physics_checks(build_scene(kCoarseTank, overrides));
 }
 
-// A small scene of our own in a temporary folder: a floor from x = 0 to 0.1 at y = 0, a fluid box
-// above it, the LIGGGHTS variables `sph` and any `extra` blocks.
 class SmallScene : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -57,10 +55,12 @@ class SmallScene : public ::testing::Test {
               ("fsi_physics_checks_" +
                std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
     fs::create_directories(folder_);
-    std::ofstream(folder_ / "setup.in") << "# set-up\n";
+    set_up_script("# set-up\nfix gravity all gravity 9.81 vector 0.0 -1.0 0.0\n");
     std::ofstream(folder_ / "after.in") << "# after the equilibration\n";
   }
   void TearDown() override { fs::remove_all(folder_); }
+
+  void set_up_script(const std::string& text) { std::ofstream(folder_ / "setup.in") << text; }
 
   Scene build(const std::string& sph, const std::string& extra) {
     std::ofstream(folder_ / "small.scene")
@@ -79,6 +79,9 @@ class SmallScene : public ::testing::Test {
   fs::path folder_;
 };
 
+// A small scene of our own in a temporary folder: a floor from x = 0 to 0.1 at y = 0, gravity
+// (0, -9.81) for the structure (Gravity block) and the fluid (script 1's fix gravity), a fluid
+// box above it, the LIGGGHTS variables `sph` and any `extra` blocks.
 // h = 0.001 m, d = h/1.9, c = 20 m/s, a fluid box 0.02 m high starting h above the floor.
 const std::string kGoodSph =
     "smoothinglength = 0.001; cAB = 20; viscosity = 1e-3\n"
@@ -290,7 +293,9 @@ TEST_F(SmallScene, MissingInputsSkipChecksWithOneInfoEach) {
       physics_checks(build("smoothinglength = 0.001; viscosity = 1e-3", ""));
   for (const Diagnostic& diagnostic : diagnostics)
     EXPECT_EQ(diagnostic.severity, Severity::Info) << diagnostic.text();
-  ASSERT_EQ(diagnostics.size(), std::size(kPhysicsCheckNames)) << listing(diagnostics);
+  // Every check but gravity, whose inputs (the Gravity block, the scripts) are all there.
+  ASSERT_EQ(diagnostics.size(), std::size(kPhysicsCheckNames) - 1) << listing(diagnostics);
+  EXPECT_TRUE(of(diagnostics, "gravity", Severity::Info).empty()) << listing(diagnostics);
   EXPECT_EQ(of(diagnostics, "acoustic_time_step", Severity::Info)[0].message,
             "no 'cAB' in LIGGGHTS_SPH_parameters: acoustic time-step check skipped");
   EXPECT_EQ(of(diagnostics, "speed_of_sound", Severity::Info)[0].message,
@@ -322,10 +327,49 @@ TEST(PhysicsChecks, SeveralProblemsAreAllListed) {
       {"LIGGGHTS_SPH_parameters.particlespacing", "smoothinglength"},  // neighbours
       {"LIGGGHTS_SPH_parameters.SPH_wall_visc", "10"},                 // wall viscosity
       {"FluidRegion.lower", "[0.0005, 0.0041]"},                       // overlap
+      {"Gravity.acceleration", "[0, -9.8]"},                           // gravity
   });
   for (std::string_view check : kPhysicsCheckNames)
     EXPECT_EQ(of(diagnostics, check).size(), 1u) << check;
   EXPECT_EQ(diagnostics.size(), std::size(kPhysicsCheckNames)) << listing(diagnostics);
+}
+
+TEST(PhysicsChecks, FluidGravityOtherThanTheStructuresIsFlaggedAtTheScriptLine) {
+  // static_tank.in1 line 43: fix gravity all gravity ${gravity} vector 0.0 -1.0 0.0
+  const Diagnostic found = coarse_warning("gravity", {{"LIGGGHTS_SPH_parameters.gravity", "9.80"}});
+  EXPECT_CONTAINS(found.location.text(), "static_tank.in1:43:1");
+  EXPECT_CONTAINS(found.message, "fix gravity gives the fluid g = (0, -9.8, 0) m/s^2");
+  EXPECT_CONTAINS(found.message, "the Gravity block gives the structure g = (0, -9.81, 0) m/s^2");
+  EXPECT_CONTAINS(found.message, "static_tank_model.inc:");
+  EXPECT_EQ(found.fix, "make Gravity.acceleration and the script's fix gravity the same vector");
+  // The same magnitude along another direction is just as wrong.
+  const Diagnostic tilted = coarse_warning("gravity", {{"Gravity.acceleration", "[-9.81, 0]"}});
+  EXPECT_CONTAINS(tilted.message, "the structure g = (-9.81, 0, 0)");
+}
+
+TEST_F(SmallScene, FluidGravityAlongAnotherDirectionIsFlagged) {
+  set_up_script("fix down all gravity 9.81 &\n  vector 2.0 0 0   # sideways, not a unit vector\n");
+  const std::vector<Diagnostic> found = of(physics_checks(build(kGoodSph, kGoodFluid)), "gravity");
+  ASSERT_EQ(found.size(), 1u);
+  EXPECT_EQ(found[0].location.line, 1);
+  EXPECT_CONTAINS(found[0].message, "fix down gives the fluid g = (9.81, 0, 0) m/s^2");
+}
+
+TEST_F(SmallScene, AFluidWithoutGravityUnderAFallingStructureIsFlagged) {
+  set_up_script("# no gravity for the fluid\n");
+  const std::vector<Diagnostic> found = of(physics_checks(build(kGoodSph, kGoodFluid)), "gravity");
+  ASSERT_EQ(found.size(), 1u);
+  EXPECT_CONTAINS(found[0].message, "neither LIGGGHTS script has a 'fix ... gravity'");
+  EXPECT_CONTAINS(found[0].fix, "fix gravity all gravity 9.81 vector X Y 0");
+}
+
+TEST_F(SmallScene, AGravityTheCheckCannotReadIsSaid) {
+  set_up_script("variable g equal 9.81\nfix gravity all gravity v_g vector 0 -1 0\n");
+  const std::vector<Diagnostic> diagnostics = physics_checks(build(kGoodSph, kGoodFluid));
+  EXPECT_TRUE(of(diagnostics, "gravity").empty()) << listing(diagnostics);
+  const std::vector<Diagnostic> found = of(diagnostics, "gravity", Severity::Info);
+  ASSERT_EQ(found.size(), 1u) << listing(diagnostics);
+  EXPECT_CONTAINS(found[0].message, "setup.in:2:1");
 }
 
 TEST_F(SmallScene, SpeedOfSoundIsCabOrUnknown) {
