@@ -49,6 +49,79 @@ std::string point_text(const Point& point) {
   return "(" + number(point.x()) + ", " + number(point.y()) + ")";
 }
 
+// --- LIGGGHTS scripts as the checks read them ---------------------------------------------------
+
+// Calls visit(tokens, line) for every command of a LIGGGHTS script: comments stripped, lines
+// ending in '&' joined; `line` is the command's first line (1-based).
+template <class Visit>
+void for_each_command(const std::string& script, Visit visit) {
+  std::istringstream lines(script);
+  std::string line;
+  std::string command;
+  int number = 0;
+  int first_line = 1;
+  while (std::getline(lines, line)) {
+    ++number;
+    if (command.empty()) first_line = number;
+    line = line.substr(0, line.find('#'));
+    const auto last = line.find_last_not_of(" \t\r");
+    line = last == std::string::npos ? "" : line.substr(0, last + 1);
+    if (!line.empty() && line.back() == '&') {
+      command += line.substr(0, line.size() - 1) + " ";
+      continue;
+    }
+    command += line;
+    std::istringstream words(command);
+    command.clear();
+    std::vector<std::string> tokens;
+    for (std::string token; words >> token;)
+      tokens.push_back(token);
+    if (!tokens.empty()) visit(tokens, first_line);
+  }
+}
+
+// A script word with LIGGGHTS' ${name} and $c replaced by the LIGGGHTS_SPH_parameters values the
+// server puts in front of script 1; nullopt when it names another variable.
+std::optional<std::string> substitute(const std::string& word, const LiggghtsSetup& liggghts) {
+  auto value_of = [&](const std::string& name) -> std::optional<std::string> {
+    for (const auto& [key, value] : liggghts.variables) {
+      if (key == name) return value;
+    }
+    return std::nullopt;
+  };
+  std::string result;
+  for (std::size_t i = 0; i < word.size(); ++i) {
+    if (word[i] != '$' || i + 1 == word.size()) {
+      result += word[i];
+      continue;
+    }
+    std::string name;
+    if (word[i + 1] == '{') {
+      const auto close = word.find('}', i + 2);
+      if (close == std::string::npos) return std::nullopt;
+      name = word.substr(i + 2, close - i - 2);
+      i = close;
+    } else {
+      name = word.substr(i + 1, 1);
+      ++i;
+    }
+    const auto value = value_of(name);
+    if (!value) return std::nullopt;
+    result += *value;
+  }
+  return result;
+}
+
+std::optional<double> script_number(const std::string& word, const LiggghtsSetup& liggghts) {
+  const auto text = substitute(word, liggghts);
+  if (!text) return std::nullopt;
+  double value = 0.0;
+  const auto [end, error] = std::from_chars(text->data(), text->data() + text->size(), value);
+  if (error != std::errc() || end != text->data() + text->size() || !std::isfinite(value))
+    return std::nullopt;
+  return value;
+}
+
 struct Quantity {
   double value = 0.0;
   SourceLocation location;
@@ -83,6 +156,45 @@ class Inputs {
     } else {
       return Quantity{parameter->value.number, parameter->location};
     }
+    return std::nullopt;
+  }
+
+  // A wall-force value of `fix ... fsi/sph` (keyword k, t, r0 or cutoff) as the script gives it,
+  // at its script line; without such a fix in the scripts, the conventional variable.
+  std::optional<Quantity> wall(std::string_view keyword, std::string_view variable) {
+    const LiggghtsSetup& liggghts = scene_.liggghts;
+    std::optional<std::vector<std::string>> fix;  // the last fsi/sph fix: the one in force
+    SourceLocation at;
+    for (const auto* script : {&liggghts.script1_text, &liggghts.script2_text}) {
+      const std::string& name =
+          script == &liggghts.script1_text ? liggghts.script1_name : liggghts.script2_name;
+      for_each_command(*script, [&](const std::vector<std::string>& tokens, int line) {
+        if (tokens.size() < 4 || tokens[0] != "fix" || tokens[3] != "fsi/sph") return;
+        fix = tokens;
+        at = SourceLocation{name, line, 1};
+      });
+    }
+    if (!fix) return sph(variable);
+    for (std::size_t i = 4; i + 1 < fix->size(); ++i) {
+      if ((*fix)[i] != keyword) continue;
+      const std::string& word = (*fix)[i + 1];
+      // `${name}` alone: the value is a parameter of the scene; point the user there.
+      if (word.size() > 3 && word.starts_with("${") && word.ends_with('}') &&
+          find_sph(word.substr(2, word.size() - 3)) != nullptr)
+        return sph(word.substr(2, word.size() - 3));
+      const auto value = script_number(word, liggghts);
+      if (!value) {
+        add_missing("fix fsi/sph " + std::string(keyword) + " '" + word + "' at " + at.text() +
+                    " is not a number or a LIGGGHTS_SPH_parameters value");
+      } else if (!(*value > 0.0)) {
+        add_missing("fix fsi/sph " + std::string(keyword) + " at " + at.text() +
+                    " is not positive");
+      } else {
+        return Quantity{*value, at};
+      }
+      return std::nullopt;
+    }
+    add_missing("fix fsi/sph at " + at.text() + " has no " + std::string(keyword));
     return std::nullopt;
   }
 
@@ -227,35 +339,6 @@ void check_acoustic_time_step(const Scene& scene, Report& report) {
 
 // --- 2. time step against the stiffness of the wall contact ----------------------------------
 
-// Calls visit(tokens, line) for every command of a LIGGGHTS script: comments stripped, lines
-// ending in '&' joined; `line` is the command's first line (1-based).
-template <class Visit>
-void for_each_command(const std::string& script, Visit visit) {
-  std::istringstream lines(script);
-  std::string line;
-  std::string command;
-  int number = 0;
-  int first_line = 1;
-  while (std::getline(lines, line)) {
-    ++number;
-    if (command.empty()) first_line = number;
-    line = line.substr(0, line.find('#'));
-    const auto last = line.find_last_not_of(" \t\r");
-    line = last == std::string::npos ? "" : line.substr(0, last + 1);
-    if (!line.empty() && line.back() == '&') {
-      command += line.substr(0, line.size() - 1) + " ";
-      continue;
-    }
-    command += line;
-    std::istringstream words(command);
-    command.clear();
-    std::vector<std::string> tokens;
-    for (std::string token; words >> token;)
-      tokens.push_back(token);
-    if (!tokens.empty()) visit(tokens, first_line);
-  }
-}
-
 // The value after `keyword` on a `fix ID group fsi/sph ...` command of `script` ("" if none).
 std::string fsi_fix_keyword(const std::string& script, std::string_view keyword) {
   std::string value;
@@ -282,9 +365,9 @@ void check_contact_time_step(const Scene& scene, Report& report) {
   }
   const Quantity dt = in.time_step();
   const auto m = in.particle_mass();
-  const auto k = in.sph("SPH_wall_rep");
-  const auto r0 = in.sph("SPH_wall_equilibriumdist");
-  const auto rc = in.sph("SPH_wall_cutoff");
+  const auto k = in.wall("k", "SPH_wall_rep");
+  const auto r0 = in.wall("r0", "SPH_wall_equilibriumdist");
+  const auto rc = in.wall("cutoff", "SPH_wall_cutoff");
   if (r0 && rc && above(r0->value, rc->value))
     in.add_missing("SPH_wall_equilibriumdist exceeds SPH_wall_cutoff (fix fsi/sph refuses it)");
   if (!in.complete()) return report.skip(kCheck, kTitle, in.missing());
@@ -400,7 +483,7 @@ void check_wall_repulsion(const Scene& scene, Report& report) {
   constexpr std::string_view kCheck = "wall_repulsion";
   constexpr std::string_view kTitle = "wall-repulsion";
   Inputs in(scene);
-  const auto k = in.sph("SPH_wall_rep");
+  const auto k = in.wall("k", "SPH_wall_rep");
   const auto rho = in.density();
   const auto g = in.gravity();
   const auto height = g ? in.fluid_height(*g) : std::nullopt;
@@ -465,7 +548,7 @@ void check_wall_viscosity(const Scene& scene, Report& report) {
   const auto h = in.sph("smoothinglength");
   if (!in.complete()) return report.skip(kCheck, kTitle, in.missing());
   const double suggested = nu->value * rho->value / h->value;
-  const auto t = in.sph("SPH_wall_visc");
+  const auto t = in.wall("t", "SPH_wall_visc");
   if (!t) {
     std::vector<std::string> why = in.missing();
     why.back() += " (thesis eq. 6.4 suggests t = nu rho / h = " + number(suggested) + " N s/m^3)";
@@ -576,7 +659,7 @@ void check_fluid_overlap(const Scene& scene, Report& report) {
   const auto& lower = scene.parameters.lookup("FluidRegion.lower")->value.vector;
   const auto& upper = scene.parameters.lookup("FluidRegion.upper")->value.vector;
   const Box box{Point(lower.at(0), lower.at(1)), Point(upper.at(0), upper.at(1))};
-  const auto r0 = in.sph("SPH_wall_equilibriumdist");
+  const auto r0 = in.wall("r0", "SPH_wall_equilibriumdist");
   if (!r0) report.skip(kCheck, "fluid-to-mesh distance", in.missing());
   const SourceLocation where = in.where("FluidRegion.lower");
   const std::string box_text =
@@ -617,48 +700,6 @@ void check_fluid_overlap(const Scene& scene, Report& report) {
 }
 
 // --- 8. the fluid's gravity against the structure's ------------------------------------------
-
-// A script word with LIGGGHTS' ${name} and $c replaced by the LIGGGHTS_SPH_parameters values the
-// server puts in front of script 1; nullopt when it names another variable.
-std::optional<std::string> substitute(const std::string& word, const LiggghtsSetup& liggghts) {
-  auto value_of = [&](const std::string& name) -> std::optional<std::string> {
-    for (const auto& [key, value] : liggghts.variables) {
-      if (key == name) return value;
-    }
-    return std::nullopt;
-  };
-  std::string result;
-  for (std::size_t i = 0; i < word.size(); ++i) {
-    if (word[i] != '$' || i + 1 == word.size()) {
-      result += word[i];
-      continue;
-    }
-    std::string name;
-    if (word[i + 1] == '{') {
-      const auto close = word.find('}', i + 2);
-      if (close == std::string::npos) return std::nullopt;
-      name = word.substr(i + 2, close - i - 2);
-      i = close;
-    } else {
-      name = word.substr(i + 1, 1);
-      ++i;
-    }
-    const auto value = value_of(name);
-    if (!value) return std::nullopt;
-    result += *value;
-  }
-  return result;
-}
-
-std::optional<double> script_number(const std::string& word, const LiggghtsSetup& liggghts) {
-  const auto text = substitute(word, liggghts);
-  if (!text) return std::nullopt;
-  double value = 0.0;
-  const auto [end, error] = std::from_chars(text->data(), text->data() + text->size(), value);
-  if (error != std::errc() || end != text->data() + text->size() || !std::isfinite(value))
-    return std::nullopt;
-  return value;
-}
 
 std::string vector_text(const Eigen::Vector3d& vector) {
   return "(" + number(vector.x()) + ", " + number(vector.y()) + ", " + number(vector.z()) + ")";

@@ -372,6 +372,42 @@ TEST_F(SmallScene, AGravityTheCheckCannotReadIsSaid) {
   EXPECT_CONTAINS(found[0].message, "setup.in:2:1");
 }
 
+TEST_F(SmallScene, WallValuesAreReadFromTheFixLineTheScriptRuns) {
+  // LIGGGHTS_SPH_parameters say k = 2000 (within 2-20 rho0 g h_max), but the fix line the client
+  // runs says 200000: the check must judge the value that is used, at the script line.
+  set_up_script(
+      "fix gravity all gravity 9.81 vector 0.0 -1.0 0.0\n"
+      "fix fsi all fsi/sph k 200000 t ${SPH_wall_visc} &\n"
+      "    r0 ${SPH_wall_equilibriumdist} cutoff ${SPH_wall_cutoff}\n");
+  const std::vector<Diagnostic> diagnostics = physics_checks(build(kGoodSph, kGoodFluid));
+  const std::vector<Diagnostic> found = of(diagnostics, "wall_repulsion");
+  ASSERT_EQ(found.size(), 1u) << listing(diagnostics);
+  EXPECT_EQ(found[0].location.text(), "setup.in:2:1");  // the script as the scene names it
+  EXPECT_CONTAINS(found[0].message, "k = 200000 N/m^2");
+  // A value given as ${name} alone is located at that parameter, where the user changes it.
+  const std::vector<Diagnostic> viscosity =
+      of(physics_checks(
+             build("smoothinglength = 0.001; cAB = 20; viscosity = 1e-3\n"
+                   "SPH_wall_rep = 2000; SPH_wall_visc = 50; SPH_wall_equilibriumdist = 0.002\n"
+                   "SPH_wall_cutoff = 0.002",
+                   kGoodFluid)),
+         "wall_viscosity");
+  ASSERT_EQ(viscosity.size(), 1u);
+  EXPECT_EQ(viscosity[0].location.file, (folder_ / "small.scene").string());
+}
+
+TEST_F(SmallScene, AFixValueTheChecksCannotReadSkipsThemWithTheReason) {
+  set_up_script(
+      "fix gravity all gravity 9.81 vector 0.0 -1.0 0.0\n"
+      "fix fsi all fsi/sph k v_k t 1000 r0 0.002 cutoff 0.002\n");
+  const std::vector<Diagnostic> found =
+      of(physics_checks(build(kGoodSph, kGoodFluid)), "wall_repulsion", Severity::Info);
+  ASSERT_EQ(found.size(), 1u);
+  EXPECT_CONTAINS(
+      found[0].message,
+      "fix fsi/sph k 'v_k' at setup.in:2:1 is not a number or a LIGGGHTS_SPH_parameters value");
+}
+
 TEST_F(SmallScene, SpeedOfSoundIsCabOrUnknown) {
   EXPECT_EQ(speed_of_sound(build(kGoodSph, kGoodFluid)), 20.0);
   EXPECT_EQ(speed_of_sound(build_scene(kCoarseTank, {{"LIGGGHTS_SPH_parameters.cAB", "35"}})),

@@ -9,7 +9,9 @@
 // VelocityConstraint); everything else is read under the variable names of thesis §5.6 and the
 // examples: smoothinglength, cAB, viscosity, SPH_wall_rep, SPH_wall_visc,
 // SPH_wall_equilibriumdist, SPH_wall_cutoff (and SPHdensity, particlespacing, SPHparticlemass,
-// gravity without a FluidRegion or Gravity block). A check whose inputs are missing is skipped
+// gravity without a FluidRegion or Gravity block). The wall values k, t, r0, cutoff come from the
+// scripts' `fix ... fsi/sph` line when there is one (variables substituted), the gravity check
+// reads the scripts' `fix ... gravity`. A check whose inputs are missing is skipped
 // with one Info diagnostic saying which inputs.
 
 #include <optional>
