@@ -172,6 +172,7 @@ struct Channel::Impl {
       fix = "check the network and the peer";
     }
     if (!(transfer.timed_out && frame_bytes == 0)) unusable_because = fault;
+    if (transfer.timed_out) throw PeerTimeoutError(fault, where, fix);
     throw ProtocolError(fault, where, fix);
   }
 
@@ -179,10 +180,11 @@ struct Channel::Impl {
   // unusable: after a bad header the frame boundaries are lost.
   [[noreturn]] void fail_frame(const ProtocolError& error, std::string_view waiting_for) {
     unusable_because = error.fault();
-    throw ProtocolError(
-        error.fault(),
-        error.location() + " from " + peer + ", while waiting for " + std::string(waiting_for),
-        error.remedy());
+    const std::string where =
+        error.location() + " from " + peer + ", while waiting for " + std::string(waiting_for);
+    if (dynamic_cast<const VersionMismatchError*>(&error) != nullptr)
+      throw VersionMismatchError(error.fault(), where, error.remedy());
+    throw ProtocolError(error.fault(), where, error.remedy());
   }
 
   // Reads one frame; its payload is the first payload_length bytes of payload_buffer.
@@ -457,7 +459,7 @@ void Channel::throw_unexpected(MessageType expected, const Message& received) co
   if (const auto* error = std::get_if<ErrorMessage>(&received)) {
     throw PeerReportedError(error->code, error->text, where);
   }
-  throw ProtocolError(
+  throw UnexpectedMessageError(
       "expected a " + name(expected) + " message but received " + name(type_of(received)), where,
       "use matching releases of fsi-server and fsi-client");
 }

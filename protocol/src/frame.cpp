@@ -163,10 +163,10 @@ FrameHeader decode_header(std::span<const std::byte, kHeaderSize> bytes, std::si
   // A peer of another major version may use types and flags we do not know; its version is the
   // fault worth reporting, so it is checked first.
   if (!same_major && !is_version_independent(header.type)) {
-    throw ProtocolError(name(header.type) + " frame of protocol " +
-                            version_text(header.major, header.minor) + ", but this side speaks " +
-                            version_text(expected_major, kMinorVersion),
-                        "frame header", kMatchingReleases);
+    throw VersionMismatchError(
+        name(header.type) + " frame of protocol " + version_text(header.major, header.minor) +
+            ", but this side speaks " + version_text(expected_major, kMinorVersion),
+        "frame header", kMatchingReleases);
   }
   if (!is_known(header.type)) {
     throw ProtocolError("frame of " + name(header.type) + ", which protocol " +

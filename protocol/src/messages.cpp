@@ -529,6 +529,17 @@ PeerReportedError::PeerReportedError(ErrorCode code, const std::string& peer_tex
       code_(code),
       peer_text_(peer_text) {}
 
+std::optional<ErrorCode> error_code_for(const std::exception& failure, ErrorCode otherwise) {
+  if (dynamic_cast<const PeerReportedError*>(&failure) != nullptr) return std::nullopt;
+  if (dynamic_cast<const VersionMismatchError*>(&failure) != nullptr)
+    return ErrorCode::VersionMismatch;
+  if (dynamic_cast<const UnexpectedMessageError*>(&failure) != nullptr)
+    return ErrorCode::UnexpectedMessage;
+  if (dynamic_cast<const PeerTimeoutError*>(&failure) != nullptr) return ErrorCode::PeerAborted;
+  if (dynamic_cast<const ProtocolError*>(&failure) != nullptr) return ErrorCode::MalformedMessage;
+  return otherwise;
+}
+
 std::vector<std::byte> encode(const Hello& message) {
   return encode_message(message);
 }

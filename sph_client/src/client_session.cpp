@@ -231,10 +231,14 @@ class ClientSession {
     protocol::Message message = next_message();
     if (auto* wanted = std::get_if<T>(&message)) return std::move(*wanted);
     if (auto* error = std::get_if<protocol::ErrorMessage>(&message)) {
-      throw Error("fsi-server reported: " + error->text, phase, "see the server's log");
+      throw protocol::PeerReportedError(error->code, error->text,
+                                        "fsi-server, during " + std::string(phase));
     }
-    throw Error("unexpected message from fsi-server during " + std::string(phase), "protocol",
-                "use matching fsi-server and fsi-client releases");
+    throw protocol::UnexpectedMessageError("expected a " + protocol::name(T::kType) +
+                                               " message but received " +
+                                               protocol::name(protocol::type_of(message)),
+                                           "fsi-client, during " + std::string(phase),
+                                           "use matching fsi-server and fsi-client releases");
   }
 
   SetupData receive_setup() {
@@ -436,11 +440,14 @@ class ClientSession {
         }
         return;
       } else if (auto* error = std::get_if<protocol::ErrorMessage>(&message)) {
-        throw Error("fsi-server ended the run: " + error->text, "coupled steps",
-                    "see the server's log");
+        throw protocol::PeerReportedError(error->code, error->text,
+                                          "fsi-server, during the coupled steps");
       } else {
-        throw Error("unexpected message from fsi-server during the coupled steps", "protocol",
-                    "use matching fsi-server and fsi-client releases");
+        throw protocol::UnexpectedMessageError(
+            "expected a Step, SnapshotRequest or Shutdown message but received " +
+                protocol::name(protocol::type_of(message)),
+            "fsi-client, during the coupled steps",
+            "use matching fsi-server and fsi-client releases");
       }
     }
   }
@@ -489,11 +496,10 @@ int run_one_session(MPI_Comm communicator, const ClientOptions& options, int ran
     // collective call forever otherwise.
     spdlog::error("fsi-client (rank {}): {}", rank, failure.what());
     spdlog::default_logger()->flush();
-    // Tell the server unless it reported the fault itself; a malformed frame gets its own code.
-    if (rank == 0 && dynamic_cast<const protocol::PeerReportedError*>(&failure) == nullptr) {
-      const bool protocol_fault = dynamic_cast<const protocol::ProtocolError*>(&failure) != nullptr;
-      session.report_failure(failure.what(), protocol_fault ? protocol::ErrorCode::MalformedMessage
-                                                            : protocol::ErrorCode::SetupFailed);
+    // Tell the server unless it reported the fault itself (docs/protocol.md §7).
+    if (const auto code = protocol::error_code_for(failure, protocol::ErrorCode::SetupFailed);
+        rank == 0 && code) {
+      session.report_failure(failure.what(), *code);
     }
     g_exit_report.active = false;
     MPI_Abort(communicator, 1);

@@ -14,65 +14,14 @@ import time
 
 from fsi_test import (ENV, binary, check, cleanup, example, fail, kill_group, read, start_client, start_server,
                       wait, work_dir)
+from wire import ERROR, HELLO, MESH, PARTICLES, READY, SETUP, WELCOME, error_of, frame, receive_frame, text
 
 scene = example("static_tank", "static_tank_coarse.scene")
 output = work_dir("frame_faults")
 timeout = 2.0
 
 
-def crc32c_table():
-    table = []
-    for byte in range(256):
-        crc = byte
-        for _ in range(8):
-            crc = (crc >> 1) ^ 0x82F63B78 if crc & 1 else crc >> 1
-        table.append(crc)
-    return table
-
-
-TABLE = crc32c_table()
-
-
-def crc32c(data, crc=0):
-    crc ^= 0xFFFFFFFF
-    for byte in data:
-        crc = TABLE[(crc ^ byte) & 0xFF] ^ (crc >> 8)
-    return crc ^ 0xFFFFFFFF
-
-
-assert crc32c(b"123456789") == 0xE3069283  # the check value of docs/protocol.md
-
-
-def frame(kind, payload, major=1, minor=1, length=None, crc_error=0):
-    head = b"FSIP" + struct.pack("<HHHHI", major, minor, kind, 0, len(payload) if length is None else length)
-    return head + struct.pack("<I", crc32c(payload, crc32c(head)) ^ crc_error) + payload
-
-
-def text(value):
-    data = value.encode()
-    return struct.pack("<I", len(data)) + data
-
-
-HELLO, WELCOME, ERROR, SETUP, MESH, PARTICLES, READY = 0x01, 0x02, 0x03, 0x10, 0x11, 0x12, 0x13
 READY_PAYLOAD = struct.pack("<Q", 1980) + text("fake LIGGGHTS") + struct.pack("<dd", 0.1, 0.2)
-
-
-def receive_frame(connection):
-    head = receive_exactly(connection, 20)
-    if head is None:
-        return None
-    kind, _, length = struct.unpack("<HHI", head[8:16])
-    return kind, receive_exactly(connection, length)
-
-
-def receive_exactly(connection, size):
-    data = b""
-    while len(data) < size:
-        piece = connection.recv(size - len(data))
-        if not piece:
-            return None
-        data += piece
-    return data
 
 
 def fake_client_until_setup(port):
@@ -84,7 +33,7 @@ def fake_client_until_setup(port):
     return connection
 
 
-def server_case(name, send, needle, hang_up=False, answered=True):
+def server_case(name, send, needle, hang_up=False, answered="MalformedMessage"):
     run_dir = os.path.join(output, name)
     server, port = start_server(scene, run_dir, extra=["--peer-timeout", str(timeout)])
     connection = fake_client_until_setup(port)
@@ -103,9 +52,9 @@ def server_case(name, send, needle, hang_up=False, answered=True):
           f"{next((line for line in log.splitlines() if needle in line), '(not found)')[-170:]}")
     if answered:
         connection.settimeout(5)
-        reply = receive_frame(connection)
-        check(reply is not None and reply[0] == ERROR,
-              f"{name}: the server answered with an Error frame (code {struct.unpack('<I', reply[1][:4])[0] if reply else '-'})")
+        reply = receive_frame(connection, skip_heartbeats=True)
+        code = error_of(reply[1])[0] if reply and reply[0] == ERROR else None
+        check(code == answered, f"{name}: the server answered with an Error frame {answered} (got {code})")
     if not hang_up:
         connection.close()
     return elapsed
@@ -115,14 +64,14 @@ ready = frame(READY, READY_PAYLOAD)
 
 # Half a header, then silence: ended after --peer-timeout.
 elapsed = server_case("half_header_silent", lambda c: c.sendall(ready[:10]),
-                      "timed out after 2 s while waiting for Ready from 127.0.0.1", answered=False)
+                      "timed out after 2 s while waiting for Ready from 127.0.0.1", answered="PeerAborted")
 check(timeout <= elapsed < timeout + 1.5, f"half a header: ended within the timeout ({elapsed:.2f} s)")
 check("received 10 of the 20 header bytes" in read(os.path.join(output, "half_header_silent"), "server.stderr"),
       "half a header: the message says how much of the frame arrived")
 # The header and half the payload, then silence.
 elapsed = server_case("half_payload_silent", lambda c: c.sendall(ready[:20 + len(READY_PAYLOAD) // 2]),
                       f"received {len(READY_PAYLOAD) // 2} of the {len(READY_PAYLOAD)} payload bytes of a Ready frame",
-                      answered=False)
+                      answered="PeerAborted")
 check(timeout <= elapsed < timeout + 1.5, f"half a payload: ended within the timeout ({elapsed:.2f} s)")
 # A truncated frame, then the connection closes.
 server_case("truncated_then_closed", lambda c: c.sendall(ready[:20 + 5]),
@@ -134,7 +83,7 @@ server_case("oversize_length", lambda c: c.sendall(frame(READY, b"", length=0xFF
 server_case("unknown_type", lambda c: c.sendall(frame(0x99, READY_PAYLOAD)),
             "frame of unknown type 0x0099, which protocol 1.1 does not define")
 server_case("other_major", lambda c: c.sendall(frame(READY, READY_PAYLOAD, major=2, minor=0)),
-            "Ready frame of protocol 2.0, but this side speaks 1.1")
+            "Ready frame of protocol 2.0, but this side speaks 1.1", answered="VersionMismatch")
 server_case("bad_payload", lambda c: c.sendall(frame(READY, READY_PAYLOAD[:-3])),
             "malformed Ready message: field 'seconds_equilibration' is truncated")
 

@@ -110,15 +110,14 @@ class Session {
       status_ = "failed";
       reason_ = failure.what();
       spdlog::error("{}", failure.what());
-      // Tell the client unless it reported the fault itself; a malformed frame gets its own code.
-      if (channel_ && dynamic_cast<const protocol::PeerReportedError*>(&failure) == nullptr) {
-        const bool protocol_fault =
-            dynamic_cast<const protocol::ProtocolError*>(&failure) != nullptr;
+      // Tell the client unless it reported the fault itself (docs/protocol.md §7): before the
+      // coupled steps a failure of ours is a set-up failure, during them (solver, signal) an
+      // abort.
+      const auto code = protocol::error_code_for(
+          failure, coupling_ ? protocol::ErrorCode::PeerAborted : protocol::ErrorCode::SetupFailed);
+      if (channel_ && code) {
         try {
-          channel_->send(protocol::ErrorMessage{protocol_fault
-                                                    ? protocol::ErrorCode::MalformedMessage
-                                                    : protocol::ErrorCode::SetupFailed,
-                                                failure.what()});
+          channel_->send(protocol::ErrorMessage{*code, failure.what()});
           channel_->close();
         } catch (...) {
         }
@@ -342,6 +341,7 @@ class Session {
   }
 
   void couple() {
+    coupling_ = true;
     timings_.coupled.start();
     const double dt = scene_.solver.step_size;
     const auto steps = static_cast<std::uint64_t>(std::llround(scene_.solver.end_time / dt));
@@ -598,6 +598,7 @@ class Session {
   std::array<double, 2> applied_total_force_{};
   Timings timings_;
   Checks checks_;
+  bool coupling_ = false;  // the set-up is done, the coupled steps have begun
   std::uint64_t steps_done_ = 0;
   std::uint64_t snapshots_ = 0;
   std::string status_ = "started";

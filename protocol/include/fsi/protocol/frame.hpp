@@ -56,6 +56,21 @@ class ProtocolError : public fsi::Error {
   using fsi::Error::Error;
 };
 
+// The faults that docs/protocol.md §7 answers with an Error code of their own (error_code_for in
+// messages.hpp); every other ProtocolError is answered with MalformedMessage.
+class VersionMismatchError : public ProtocolError {  // a frame of another major version
+ public:
+  using ProtocolError::ProtocolError;
+};
+class UnexpectedMessageError : public ProtocolError {  // a well-formed message out of turn
+ public:
+  using ProtocolError::ProtocolError;
+};
+class PeerTimeoutError : public ProtocolError {  // a bounded wait for the peer ran out
+ public:
+  using ProtocolError::ProtocolError;
+};
+
 struct FrameHeader {
   std::uint16_t major = kMajorVersion;
   std::uint16_t minor = kMinorVersion;

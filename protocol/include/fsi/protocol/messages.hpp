@@ -7,6 +7,8 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <exception>
+#include <optional>
 #include <span>
 #include <string>
 #include <variant>
@@ -48,6 +50,12 @@ class PeerReportedError : public ProtocolError {
   ErrorCode code_;
   std::string peer_text_;
 };
+
+// The code of the Error this side sends when `failure` ends its session (docs/protocol.md §7):
+// VersionMismatch, UnexpectedMessage, PeerAborted (timeouts) or MalformedMessage for protocol
+// faults, `otherwise` for everything else (a scene, script or solver failure); nullopt for the
+// peer's own Error, which is never answered.
+std::optional<ErrorCode> error_code_for(const std::exception& failure, ErrorCode otherwise);
 
 struct Hello {  // client -> server; layout frozen in every major version
   static constexpr MessageType kType = MessageType::Hello;
