@@ -108,16 +108,21 @@ TEST(MbdConnectors, PrismaticJointSlidesDownTheIncline) {
   EXPECT_NEAR(reaction.z(), -3.0, 1e-9);
 }
 
-// Body b is clamped to a freely spinning body a at (0.5, 0) in a's frame: the pair turns as one
-// rigid body, keeps b's pose in a's frame and conserves energy and angular momentum.
+// Body b is clamped to a freely spinning body a at (0.5, 0) in a's frame and 0.5 rad relative
+// to it: the pair turns as one rigid body, keeps b's pose in a's frame and conserves energy and
+// momentum.
 TEST(MbdConnectors, ClampedPairTurnsAsOneBody) {
   Model model;
+  const double omega = 2.0, start = 0.4;
   RigidBody2DSpec a = rigid("hub", 3.0, 0.4);
-  a.angular_velocity = 2.0;
+  a.angle = start;
+  a.angular_velocity = omega;
+  const Eigen::Vector2d arm_offset = Eigen::Rotation2Dd(start) * Eigen::Vector2d(0.5, 0.0);
   RigidBody2DSpec b = rigid("arm", 1.0, 0.05);
-  b.position = {0.5, 0.0};
-  b.velocity = {0.0, 1.0};  // omega x r
-  b.angular_velocity = 2.0;
+  b.position = arm_offset;
+  b.velocity = omega * Eigen::Vector2d(-arm_offset.y(), arm_offset.x());  // omega x r
+  b.angle = start + 0.5;
+  b.angular_velocity = omega;
   const BodyId hub = model.add_rigid_body(a);
   const BodyId arm = model.add_rigid_body(b);
   const int row = model.add_clamp({.name = "weld", .body = arm, .to = hub});
@@ -135,14 +140,15 @@ TEST(MbdConnectors, ClampedPairTurnsAsOneBody) {
   const Eigen::Vector2d in_hub = Eigen::Rotation2Dd(phi).inverse() * offset;
   EXPECT_NEAR(in_hub.x(), 0.5, 1e-10);
   EXPECT_NEAR(in_hub.y(), 0.0, 1e-10);
-  EXPECT_NEAR(model.coordinate(state, arm, Coordinate::Angle), phi, 1e-12);
+  EXPECT_NEAR(model.coordinate(state, arm, Coordinate::Angle), phi + 0.5, 1e-12);
   EXPECT_NEAR(model.kinetic_energy(state), energy, 1e-8 * energy);
-  // The combined centre of mass starts at (0.125, 0) with momentum (0, 1) N s on 4 kg: it moves
-  // uniformly at (0, 0.25) m/s.
-  const double centre_y = (3.0 * model.coordinate(state, hub, Coordinate::Y) +
-                           1.0 * model.coordinate(state, arm, Coordinate::Y)) /
-                          4.0;
-  EXPECT_NEAR(centre_y, 0.25, 1e-10);
+  // The combined centre of mass moves uniformly with the momentum m_b v_b over 4 kg.
+  for (const Coordinate c : {Coordinate::X, Coordinate::Y}) {
+    const int k = static_cast<int>(c);
+    const double centre =
+        (3.0 * model.coordinate(state, hub, c) + 1.0 * model.coordinate(state, arm, c)) / 4.0;
+    EXPECT_NEAR(centre, (arm_offset(k) + 1.0 * b.velocity(k)) / 4.0, 1e-10);
+  }
 }
 
 TEST(MbdConnectors, ClampToGroundHoldsTheBodyAgainstGravity) {
