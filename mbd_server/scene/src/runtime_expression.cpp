@@ -4,6 +4,7 @@
 
 #include <deque>
 #include <limits>
+#include <numbers>
 
 #include "fsi/common/error.hpp"
 
@@ -21,6 +22,9 @@ RuntimeExpression::RuntimeExpression(const std::string& text,
   for (const std::string& name : variables)
     allowed += (allowed.empty() ? "" : ", ") + name;
   try {
+    // The constants of the scene language's own expressions.
+    parser_->parser.DefineConst("pi", std::numbers::pi);
+    parser_->parser.DefineConst("e", std::numbers::e);
     for (const std::string& name : variables) {
       parser_->values.push_back(0.0);
       parser_->parser.DefineVar(name, &parser_->values.back());
