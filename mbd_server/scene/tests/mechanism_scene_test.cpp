@@ -97,6 +97,10 @@ TEST_F(MechanismScene, EveryBlockBuildsAndItsSensorsReadTheModel) {
   EXPECT_NEAR(structure_sensor_value(model, scene.sensors[5], state), 0.0, 1e-12);
   EXPECT_NEAR(structure_sensor_value(model, scene.sensors[3], state), 1.0, 1e-12);
   EXPECT_NEAR(structure_sensor_value(model, scene.sensors[6], state), 0.0, 1e-15);
+  // The rail carries the weight of the slider and the lid welded to it, 1.5 * 9.81 N/m; the flap
+  // hangs at rest on its hinge at its centre of mass: no horizontal force.
+  EXPECT_NEAR(structure_sensor_value(model, scene.sensors[0], state), 1.5 * 9.81, 1e-9);
+  EXPECT_NEAR(structure_sensor_value(model, scene.sensors[2], state), 0.0, 1e-9);
   // Potential: gravity of the bodies above y = 0 (lid 0.5 * 9.81 * 0.1, flap 0.3 * 9.81 * 1), the
   // coil 5 * 0.04 / 2, the cubic spring 50 * 0.04 + 2500 * 0.0016.
   const double potential = 0.5 * 9.81 * 0.1 + 0.3 * 9.81 + 0.1 + 2.0 + 4.0;
@@ -134,6 +138,16 @@ RotationalSpringDamper { name = "s"; body_a = "arn"; stiffness = 1 }
   EXPECT_NE(text.find("needs component"), std::string::npos) << text;
   EXPECT_NE(text.find("a kinetic_energy sensor takes no body"), std::string::npos) << text;
   EXPECT_NE(text.find("m.scene:9:"), std::string::npos) << text;  // body_a = "arn"
+}
+
+TEST_F(MechanismScene, ElementNamesAreUnique) {
+  const std::string text = problems(
+      R"scene(RigidBody2D { name = "arm"; mass = 1; inertia = 1; Mesh { points = [[0, 0], [1, 0]] } }
+RevoluteJoint { name = "pin"; body_a = "arm" }
+SpringDamper { name = "pin"; body_a = "arm"; point_b = [1, 1]; stiffness = 1 }
+)scene");
+  EXPECT_NE(text.find("m.scene:5:"), std::string::npos) << text;
+  EXPECT_NE(text.find("a second element is named 'pin'"), std::string::npos) << text;
 }
 
 TEST_F(MechanismScene, RedundantAndContradictoryJointsAreNamed) {
