@@ -25,26 +25,10 @@ using json = nlohmann::json;
 // The scene's sensors without a fluid: fluid forces are zero (no point loads are set).
 std::vector<double> sensor_values(const scene::Scene& scene, const mbd::State& state) {
   std::vector<double> values;
-  const mbd::Model& model = scene.model;
   for (const auto& sensor : scene.sensors) {
-    const int component = static_cast<int>(sensor.component);
-    switch (sensor.type) {
-      case scene::SensorType::Position:
-        values.push_back(model.coordinate(state, sensor.body, sensor.component));
-        break;
-      case scene::SensorType::Velocity:
-        values.push_back(model.velocity(state, sensor.body, sensor.component));
-        break;
-      case scene::SensorType::FluidForce:
-        values.push_back(model.point_load_resultant(state, sensor.body)(component));
-        break;
-      case scene::SensorType::ConstraintForce:
-        values.push_back(model.constraint_force(state, sensor.body, sensor.component));
-        break;
-      case scene::SensorType::TotalFluidForce:
-        values.push_back(0.0);
-        break;
-    }
+    values.push_back(sensor.type == scene::SensorType::TotalFluidForce
+                         ? 0.0
+                         : scene::structure_sensor_value(scene.model, sensor, state));
   }
   return values;
 }

@@ -335,6 +335,12 @@ class Session {
         case scene::SensorType::TotalFluidForce:
           values.push_back(applied_total_force_[component]);
           break;
+        case scene::SensorType::JointForce:
+        case scene::SensorType::SpringForce:
+        case scene::SensorType::KineticEnergy:
+        case scene::SensorType::PotentialEnergy:
+          values.push_back(scene::structure_sensor_value(model, sensor, state_));
+          break;
       }
     }
     return values;

@@ -181,13 +181,18 @@ void Model::add_force_element(std::unique_ptr<ForceElement> element) {
   data_->force_elements.push_back(std::move(element));
 }
 
-int Model::add_revolute_joint(const BodyPointSpec& a, const BodyPointSpec& b) {
-  const std::string user = "revolute joint " + std::to_string(constraint_count());
+int Model::add_revolute_joint(const BodyPointSpec& a, const BodyPointSpec& b,
+                              const std::string& joint_name) {
+  const std::string user = joint_name.empty()
+                               ? "revolute joint " + std::to_string(constraint_count())
+                               : "revolute joint '" + joint_name + "'";
   const detail::BodyPoint first = data_->point(a, user);
   const detail::BodyPoint second = data_->point(b, user);
   data_->check_pair(a, b, user);
   const std::string name =
-      "revolute joint " + data_->point_name(a) + "-" + data_->point_name(b) + " (";
+      (joint_name.empty() ? "revolute joint " + data_->point_name(a) + "-" + data_->point_name(b)
+                          : user) +
+      " (";
   const int x_row = constraint_count();
   for (int axis = 0; axis < 2; ++axis) {
     data_->constraints.push_back(std::make_unique<detail::PointConstraint>(
@@ -197,8 +202,11 @@ int Model::add_revolute_joint(const BodyPointSpec& a, const BodyPointSpec& b) {
 }
 
 int Model::add_distance_constraint(const BodyPointSpec& a, const BodyPointSpec& b,
-                                   std::optional<double> length) {
-  const std::string user = "distance constraint " + std::to_string(constraint_count());
+                                   std::optional<double> length,
+                                   const std::string& constraint_name) {
+  const std::string user = constraint_name.empty()
+                               ? "distance constraint " + std::to_string(constraint_count())
+                               : "distance constraint '" + constraint_name + "'";
   const detail::BodyPoint first = data_->point(a, user);
   const detail::BodyPoint second = data_->point(b, user);
   data_->check_pair(a, b, user);
@@ -209,8 +217,10 @@ int Model::add_distance_constraint(const BodyPointSpec& a, const BodyPointSpec& 
                 "give a positive length, or place the points apart initially");
   }
   data_->constraints.push_back(std::make_unique<detail::DistanceConstraint>(
-      "distance constraint " + data_->point_name(a) + "-" + data_->point_name(b), first, second,
-      rod));
+      constraint_name.empty()
+          ? "distance constraint " + data_->point_name(a) + "-" + data_->point_name(b)
+          : user,
+      first, second, rod));
   return constraint_count() - 1;
 }
 
@@ -296,6 +306,34 @@ ConstraintLevel Model::constraint_level(int constraint) const {
 
 const Eigen::Vector2d& Model::gravity() const {
   return data_->gravity;
+}
+
+int Model::force_element_count() const {
+  return static_cast<int>(data_->force_elements.size());
+}
+
+const ForceElement& Model::force_element(int element) const {
+  FSI_ASSERT(element >= 0 && element < force_element_count(), "force element index out of range");
+  return *data_->force_elements[element];
+}
+
+std::string Model::coordinate_description(int index) const {
+  FSI_ASSERT(index >= 0 && index < coordinate_count(), "coordinate index out of range");
+  std::size_t b = 0;
+  while (b + 1 < data_->bodies.size() && data_->offsets[b + 1] <= index)
+    ++b;
+  const int local = index - data_->offsets[b];
+  const bool rigid = dynamic_cast<const detail::RigidBody2D*>(data_->bodies[b].get()) != nullptr;
+  return "body '" + data_->bodies[b]->name() + "' coordinate " +
+         (rigid ? std::string(name(static_cast<Coordinate>(local))) : std::to_string(local));
+}
+
+detail::BodyPoint Model::body_point(const BodyPointSpec& spec, const std::string& user) const {
+  return data_->point(spec, user);
+}
+
+Eigen::Vector2d Model::initial_point_position(const BodyPointSpec& spec) const {
+  return data_->initial_position(spec);
 }
 
 // --- initial state and its consistency ---
@@ -618,6 +656,8 @@ double Model::potential_energy(const State& state) const {
   double energy = 0.0;
   for (int b = 0; b < body_count(); ++b)
     energy += data_->bodies[b]->gravity_potential(data_->segment(state.q, b), data_->gravity);
+  for (const auto& element : data_->force_elements)
+    energy += element->potential_energy(state.q);
   return energy;
 }
 

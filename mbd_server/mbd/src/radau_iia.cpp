@@ -153,6 +153,10 @@ struct RadauIIA::Workspace {
       }
       increment = sparse ? Eigen::VectorXd(-sparse_lu.solve(residual))
                          : Eigen::VectorXd(-lu.solve(residual));
+      if (!increment.allFinite()) {  // keep the last finite iterate for the message
+        attempt.reason = "the Newton increment is not finite (singular Newton matrix?)";
+        return attempt;
+      }
       unknowns += increment;
       ++stats.newton_iterations;
       attempt.iterations = iteration;
@@ -188,6 +192,36 @@ struct RadauIIA::Workspace {
     return attempt;
   }
 
+  // The element a failed attempt points at, for the message: the source of a non-finite value,
+  // or else the equation with the largest residual (a stage's rows are n kinematic, n dynamic,
+  // then m constraint rows).
+  std::string culprit(const State& state, double h) const {
+    const Model& model = *current_model;
+    const int n = model.coordinate_count();
+    const int block = 2 * n + model.constraint_count();
+    if (!residual.allFinite() || !increment.allFinite()) {
+      for (int i = 0; i < equations.stages(); ++i) {
+        const std::string source =
+            model.non_finite_source(state.time + tableau.c(i) * h, equations.position(unknowns, i),
+                                    equations.velocity(unknowns, i));
+        if (!source.empty()) return "; not finite: " + source;
+      }
+      return "; every element is finite at the stage values (a singular Newton matrix: "
+             "redundant constraints in this configuration?)";
+    }
+    if (residual.size() == 0 || block == 0) return {};
+    Eigen::Index largest = 0;
+    residual.cwiseAbs().maxCoeff(&largest);
+    const int row = static_cast<int>(largest % block);
+    if (row < n)
+      return "; largest residual in the kinematics of " + model.coordinate_description(row);
+    if (row < 2 * n) {
+      return "; largest residual in the equation of motion of " +
+             model.coordinate_description(row - n);
+    }
+    return "; largest residual in " + model.constraint_description(row - 2 * n);
+  }
+
   // --- accept or reject ---
   void accept_or_reject(const Attempt& attempt, const State& state, double h) {
     if (attempt.converged) return;
@@ -199,7 +233,7 @@ struct RadauIIA::Workspace {
                   "and the residual of the scaled stage equations |r|_inf = %.3g",
                   tableau.name.c_str(), equations.stages(), state.time, h, attempt.reason,
                   attempt.iterations, attempt.increment, attempt.residual);
-    throw Error(text, "multibody integration",
+    throw Error(text + culprit(state, h), "multibody integration",
                 "reduce the step size; check that the constraints are consistent with each other "
                 "and with the initial state, and that loads and force elements are finite; or "
                 "raise the Newton iteration limit");

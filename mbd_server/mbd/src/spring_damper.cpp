@@ -13,6 +13,11 @@ double SpringDamper::tension(const Eigen::VectorXd& q, const Eigen::VectorXd& v)
   return stiffness_ * (length - rest_length_) + damping_ * rate;
 }
 
+double SpringDamper::potential_energy(const Eigen::VectorXd& q) const {
+  const double stretch = (b_.position(q) - a_.position(q)).norm() - rest_length_;
+  return 0.5 * stiffness_ * stretch * stretch;
+}
+
 void SpringDamper::add_force(double, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
                              Eigen::VectorXd& force) const {
   const Eigen::Vector2d d = b_.position(q) - a_.position(q);

@@ -9,10 +9,11 @@
 
 #include "body_point.hpp"
 #include "fsi/mbd/force_element.hpp"
+#include "measured_force.hpp"
 
 namespace fsi::mbd::detail {
 
-class SpringDamper final : public ForceElement {
+class SpringDamper final : public ForceElement, public MeasuredForce {
  public:
   SpringDamper(BodyPoint a, BodyPoint b, double stiffness, double damping, double rest_length);
 
@@ -24,6 +25,12 @@ class SpringDamper final : public ForceElement {
   bool add_jacobians(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
                      Eigen::MatrixXd& force_by_position,
                      Eigen::MatrixXd& force_by_velocity) const override;
+  std::string description() const override { return "spring-damper"; }
+  // k (l - rest_length)^2 / 2.
+  double potential_energy(const Eigen::VectorXd& q) const override;
+  double measured_force(double, const Eigen::VectorXd& q, const Eigen::VectorXd& v) const override {
+    return tension(q, v);
+  }
 
  private:
   BodyPoint a_;

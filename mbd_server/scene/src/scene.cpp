@@ -12,6 +12,7 @@
 
 #include "fsi/common/error.hpp"
 #include "fsi/scene/fluid_region.hpp"
+#include "scene_elements.hpp"
 
 namespace fsi::scene {
 namespace {
@@ -158,7 +159,7 @@ BlockSpec make_schema() {
   // Elements between two body points; body_b absent: point_b is a fixed point of the world.
   auto two_points = [](std::vector<ParameterSpec> extra) {
     std::vector<ParameterSpec> parameters = {
-        text("body_a", "name of a RigidBody2D"),
+        detail::element_name_spec(), text("body_a", "name of a RigidBody2D"),
         with_default(vector("point_a", 2, "m", "point on body_a, body coordinates"),
                      vector_value({0.0, 0.0})),
         optional(text("body_b", "name of a RigidBody2D; absent: the ground")),
@@ -186,12 +187,22 @@ BlockSpec make_schema() {
   BlockSpec sensor = repeated(block(
       "Sensor", "A column of sensors.csv, written every Output.sensor_every_steps steps.",
       {text("name", "column name"),
-       choice(
-           text("type", "what is measured (total_fluid_force: on every boundary, walls included)"),
-           {"position", "velocity", "fluid_force", "constraint_force", "total_fluid_force"}),
-       optional(text("body", "name of a RigidBody2D (not for total_fluid_force)")),
-       choice(text("component", "x, y, angle (torque for forces)"),
-              {"x", "y", "angle", "torque"})}));
+       choice(text("type",
+                   "what is measured (total_fluid_force: on every boundary, walls included; "
+                   "joint_force: what the joint exerts on its body_a (Clamp: body); spring_force: "
+                   "tension, or torque of a RotationalSpringDamper; energies of the whole system, "
+                   "potential = gravity + springs)"),
+              {"position", "velocity", "fluid_force", "constraint_force", "total_fluid_force",
+               "joint_force", "spring_force", "kinetic_energy", "potential_energy"}),
+       optional(text("body",
+                     "name of a RigidBody2D (position, velocity, fluid and constraint "
+                     "forces)")),
+       optional(text("joint", "joint_force: the name of a joint block")),
+       optional(text("element", "spring_force: the name of a spring block")),
+       optional(choice(text("component",
+                            "x, y, angle (torque for forces); not for spring_force "
+                            "and energies"),
+                       {"x", "y", "angle", "torque"}))}));
 
   BlockSpec fluid = block(
       "FluidRegion",
@@ -260,11 +271,19 @@ BlockSpec make_schema() {
                  revolute,
                  distance,
                  spring,
-                 sensor,
                  fluid,
                  liggghts,
                  sph,
                  coupling};
+  // The connectors, force elements and loads of scene_elements.cpp, then the sensors.
+  const auto elements = detail::element_block_specs();
+  const auto after_springs =
+      std::find_if(root.blocks.begin(), root.blocks.end(),
+                   [](const BlockSpec& b) { return b.name == "SpringDamper"; }) +
+      1;
+  const auto sensors = root.blocks.insert(after_springs, elements.begin(), elements.end()) +
+                       static_cast<std::ptrdiff_t>(elements.size());
+  root.blocks.insert(sensors, sensor);
   return root;
 }
 
@@ -573,11 +592,27 @@ Scene build_scene(const std::string& path, const std::vector<Override>& override
       throw Error(error.fault(), element.location().text(), error.remedy());
     }
   };
+  detail::NamedElements named;
+  detail::ElementBuilder elements{
+      model,
+      named,
+      [&](const SourceLocation& where, const std::function<void()>& step) { guard(where, step); },
+      [&](const View& element, std::string_view key) { return find_body(element, key); },
+      [&](const View& element, const std::string& side) { return point_spec(element, side); },
+      [&](const View& element, const std::function<void()>& add) { placed(element, add); },
+      [&](const SourceLocation& where, const std::string& message, const std::string& fix) {
+        problems.push_back({where, message, fix});
+      }};
+  auto name_of = [](const View& element) {
+    return element.has("name") ? element.string("name") : std::string();
+  };
   for (const View& j : root.blocks("RevoluteJoint")) {
     guard(j.location(), [&] {
       const auto a = point_spec(j, "a");
       const auto b = point_spec(j, "b");
-      placed(j, [&] { model.add_revolute_joint(a, b); });
+      int row = 0;
+      placed(j, [&] { row = model.add_revolute_joint(a, b, name_of(j)); });
+      detail::register_joint(elements, j, {row, 2, a.body, "revolute joint"});
     });
   }
   for (const View& c : root.blocks("DistanceConstraint")) {
@@ -586,7 +621,9 @@ Scene build_scene(const std::string& path, const std::vector<Override>& override
       const auto b = point_spec(c, "b");
       std::optional<double> length;
       if (c.has("length")) length = c.number("length");
-      placed(c, [&] { model.add_distance_constraint(a, b, length); });
+      int row = 0;
+      placed(c, [&] { row = model.add_distance_constraint(a, b, length, name_of(c)); });
+      detail::register_joint(elements, c, {row, 1, a.body, "distance constraint"});
     });
   }
   for (const View& f : root.blocks("SpringDamper")) {
@@ -598,58 +635,107 @@ Scene build_scene(const std::string& path, const std::vector<Override>& override
       spec.damping = f.number("damping");
       if (f.has("rest_length")) spec.rest_length = f.number("rest_length");
       placed(f, [&] { model.add_spring_damper(spec); });
+      detail::register_force_element(elements, f, model.force_element_count() - 1, false);
     });
   }
+  detail::build_elements(root, elements);
   for (const View& s : root.blocks("Sensor")) {
     guard(s.location(), [&] {
       SensorSpec sensor;
       sensor.name = s.string("name");
       const std::string type = s.string("type");
-      const std::string component = s.string("component");
+      const std::string component = s.has("component") ? s.string("component") : std::string();
       sensor.type = type == "position"           ? SensorType::Position
                     : type == "velocity"         ? SensorType::Velocity
                     : type == "fluid_force"      ? SensorType::FluidForce
                     : type == "constraint_force" ? SensorType::ConstraintForce
+                    : type == "joint_force"      ? SensorType::JointForce
+                    : type == "spring_force"     ? SensorType::SpringForce
+                    : type == "kinetic_energy"   ? SensorType::KineticEnergy
+                    : type == "potential_energy" ? SensorType::PotentialEnergy
                                                  : SensorType::TotalFluidForce;
-      const bool force = sensor.type != SensorType::Position && sensor.type != SensorType::Velocity;
-      if (force && component == "angle") {
-        problems.push_back({s.location("component"), "a force sensor has components x, y or torque",
-                            "write torque"});
-      }
-      if (!force && component == "torque") {
-        problems.push_back({s.location("component"),
-                            "a " + type + " sensor has components x, y or angle", "write angle"});
-      }
-      sensor.component = coordinate_of(component);
-      const bool rotational = sensor.component == mbd::Coordinate::Angle;
-      sensor.unit = sensor.type == SensorType::Position   ? (rotational ? "rad" : "m")
-                    : sensor.type == SensorType::Velocity ? (rotational ? "rad/s" : "m/s")
-                                                          : (rotational ? "N m/m" : "N/m");
       for (const auto& other : scene.sensors) {
         if (other.name == sensor.name) {
           problems.push_back(
               {s.location("name"), "a second sensor is named '" + sensor.name + "'", "rename it"});
         }
       }
-      if (sensor.type == SensorType::TotalFluidForce) {
-        if (s.has("body")) {
-          problems.push_back(
-              {s.location("body"),
-               "a total_fluid_force sensor sums over all boundaries and takes no body",
-               "remove body, or use type = \"fluid_force\""});
+      // Which of body, joint, element and component the type takes.
+      const bool on_body =
+          sensor.type == SensorType::Position || sensor.type == SensorType::Velocity ||
+          sensor.type == SensorType::FluidForce || sensor.type == SensorType::ConstraintForce;
+      const bool energy =
+          sensor.type == SensorType::KineticEnergy || sensor.type == SensorType::PotentialEnergy;
+      const bool has_component = !energy && sensor.type != SensorType::SpringForce;
+      const bool force = sensor.type != SensorType::Position && sensor.type != SensorType::Velocity;
+      bool complete = true;
+      auto forbid = [&](const char* key, const std::string& fix) {
+        if (!s.has(key)) return;
+        problems.push_back({s.location(key), "a " + type + " sensor takes no " + key, fix});
+        complete = false;
+      };
+      auto need = [&](const char* key, const std::string& example) {
+        if (s.has(key)) return;
+        problems.push_back({s.location("name"), "sensor '" + sensor.name + "' needs " + key,
+                            std::string("add ") + key + " = " + example});
+        complete = false;
+      };
+      if (!on_body)
+        forbid("body", sensor.type == SensorType::TotalFluidForce
+                           ? "remove body, or use type = \"fluid_force\""
+                           : "remove it");
+      if (sensor.type != SensorType::JointForce) forbid("joint", "remove it");
+      if (sensor.type != SensorType::SpringForce) forbid("element", "remove it");
+      if (!has_component) forbid("component", "remove it");
+      if (has_component) need("component", "\"x\"");
+      if (on_body) need("body", "\"...\"");
+      if (sensor.type == SensorType::JointForce) need("joint", "\"...\" (a joint's name)");
+      if (sensor.type == SensorType::SpringForce) need("element", "\"...\" (a spring's name)");
+      if (has_component && !component.empty()) {
+        if (force && component == "angle") {
+          problems.push_back({s.location("component"),
+                              "a force sensor has components x, y or torque", "write torque"});
         }
-        if (component == "torque") {
+        if (!force && component == "torque") {
+          problems.push_back({s.location("component"),
+                              "a " + type + " sensor has components x, y or angle", "write angle"});
+        }
+        if (sensor.type == SensorType::TotalFluidForce && component == "torque") {
           problems.push_back({s.location("component"), "total_fluid_force has components x and y",
                               "write x or y"});
         }
-        scene.sensors.push_back(sensor);
-      } else if (!s.has("body")) {
-        problems.push_back({s.location("name"), "sensor '" + sensor.name + "' needs a body",
-                            "add body = \"...\""});
-      } else {
-        sensor.body = find_body(s, "body");
-        scene.sensors.push_back(sensor);
+        sensor.component = coordinate_of(component);
       }
+      if (!complete) return;
+      const bool rotational = sensor.component == mbd::Coordinate::Angle;
+      sensor.unit = sensor.type == SensorType::Position   ? (rotational ? "rad" : "m")
+                    : sensor.type == SensorType::Velocity ? (rotational ? "rad/s" : "m/s")
+                    : energy                              ? "J/m"
+                                                          : (rotational ? "N m/m" : "N/m");
+      if (on_body) sensor.body = find_body(s, "body");
+      if (sensor.type == SensorType::JointForce) {
+        const auto found = named.joints.find(s.string("joint"));
+        if (found == named.joints.end()) {
+          problems.push_back({s.location("joint"), "no joint named '" + s.string("joint") + "'",
+                              "give the joint block name = \"" + s.string("joint") + "\""});
+          return;
+        }
+        sensor.body = found->second.body;
+        sensor.first_row = found->second.first_row;
+        sensor.rows = found->second.rows;
+      }
+      if (sensor.type == SensorType::SpringForce) {
+        const auto found = named.force_elements.find(s.string("element"));
+        if (found == named.force_elements.end() || found->second < 0) {
+          problems.push_back({s.location("element"),
+                              "no spring named '" + s.string("element") + "'",
+                              "give the spring block name = \"" + s.string("element") + "\""});
+          return;
+        }
+        sensor.force_element = found->second;
+        if (named.rotational[found->first]) sensor.unit = "N m/m";
+      }
+      scene.sensors.push_back(sensor);
     });
   }
 

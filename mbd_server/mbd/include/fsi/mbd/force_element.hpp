@@ -4,6 +4,8 @@
 
 #include <Eigen/Dense>
 
+#include <string>
+
 namespace fsi::mbd {
 
 class ForceElement {
@@ -23,6 +25,12 @@ class ForceElement {
                              Eigen::MatrixXd& /*force_by_velocity*/) const {
     return false;
   }
+
+  // Names the element in messages (non-finite forces, sensors).
+  virtual std::string description() const { return "force element"; }
+  // The elastic energy stored in the element at q (zero for non-conservative elements); summed
+  // into Model::potential_energy.
+  virtual double potential_energy(const Eigen::VectorXd& /*q*/) const { return 0.0; }
 };
 
 }  // namespace fsi::mbd

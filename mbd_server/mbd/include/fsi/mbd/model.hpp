@@ -22,11 +22,13 @@
 
 #include <Eigen/Dense>
 
+#include <functional>
 #include <memory>
 #include <optional>
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "fsi/mbd/constraint_element.hpp"
 #include "fsi/mbd/force_element.hpp"
@@ -75,6 +77,86 @@ struct SpringDamperSpec {
   std::optional<double> rest_length;  // [m]; default: the initial distance
 };
 
+// Prismatic joint (2D): point b slides along the line through point a in the direction `axis`
+// (body-fixed on a; a world direction if a is on the ground), and the relative rotation of the
+// two bodies stays at its initial value. Two rows: the offset of b normal to the line,
+// (axis x (r_b - r_a)) / |axis| (lambda: the force normal to the axis [N]), then the relative
+// angle (lambda: the torque [N m]). Point b must lie on the line initially.
+struct PrismaticJointSpec {
+  std::string name;  // in messages; default "prismatic joint <row>"
+  BodyPointSpec a;
+  BodyPointSpec b;
+  Eigen::Vector2d axis = Eigen::Vector2d::UnitX();  // any non-zero length
+};
+
+// Rigid clamp: `body` keeps its initial position and angle relative to `to` (another planar
+// rigid body, or kGround). Three rows: x and y of the clamped body's centre of mass seen from
+// `to`, then the relative angle.
+struct ClampSpec {
+  std::string name;  // in messages; default "clamp <row>"
+  BodyId body = kGround;
+  BodyId to = kGround;
+};
+
+// Rotational spring-damper between the angles of two planar rigid bodies (b = kGround: angle 0):
+// torque on a = -stiffness (phi_a - phi_b - rest_angle) - damping (omega_a - omega_b), the
+// opposite torque on b.
+struct RotationalSpringDamperSpec {
+  std::string name;  // in messages and sensors; default "rotational spring-damper <k>"
+  BodyId a = kGround;
+  BodyId b = kGround;
+  double stiffness = 0.0;                           // [N m/rad]
+  double damping = 0.0;                             // [N m s/rad]
+  std::optional<double> rest_angle = std::nullopt;  // [rad]; default: the initial relative angle
+};
+
+// Spring-damper along the line between two points whose tension is a user function of the
+// elongation l - rest_length [m] and its rate dl/dt [m/s]; positive tension pulls the points
+// together (as SpringDamperSpec). Its derivatives are taken by central differences of the
+// function; its energy (potential_energy) is the integral of tension(s, 0) ds from 0.
+using TensionFunction = std::function<double(double elongation, double rate)>;
+struct NonlinearSpringDamperSpec {
+  std::string name;  // default "nonlinear spring-damper <k>"
+  BodyPointSpec a;
+  BodyPointSpec b;
+  TensionFunction tension;
+  std::optional<double> rest_length = std::nullopt;  // [m]; default: the initial distance
+};
+
+// The "spring actor" of thesis §6.5: a passive control element along the line between two
+// points whose tension is a piecewise-linear function of the elongation, given as a table of
+// (elongation [m], tension [N]) points in increasing elongation and continued beyond its ends
+// with the end segments' slopes, plus linear damping. Its equilibrium is at rest_length (the
+// closed valve). A one-sided actor (acting in compression only, like the thesis' actor 2, or a
+// stiff stop in tension, like actor 1) has a zero-tension segment on the other side.
+struct SpringActorSpec {
+  std::string name;  // default "spring actor <k>"
+  BodyPointSpec a;
+  BodyPointSpec b;
+  std::vector<Eigen::Vector2d> characteristic;       // at least 2 points, elongations increasing
+  double damping = 0.0;                              // [N s/m]
+  std::optional<double> rest_length = std::nullopt;  // [m]; default: the initial distance
+};
+
+// A world-frame force that is a function of time, at a body point (evaluated at every stage
+// time of the integrator, not held over the step like the fluid's point loads).
+struct PointForceSpec {
+  std::string name;  // default "point force <k>"
+  BodyPointSpec point;
+  std::function<Eigen::Vector2d(double time)> force;  // [N]
+};
+
+// A torque on a planar rigid body that is a function of time (evaluated at stage times).
+struct TorqueSpec {
+  std::string name;  // default "torque <k>"
+  BodyId body = kGround;
+  std::function<double(double time)> torque;  // [N m]
+};
+
+namespace detail {
+class BodyPoint;
+}
+
 class Model {
  public:
   Model();
@@ -101,17 +183,33 @@ class Model {
   // non-finite values. Whether the initial state satisfies them is checked by initial_state().
   // Revolute joint (2D): r_a - r_b = 0, two rows (x, then y); returns the index of the x row.
   // With b on the ground it fixes a body point in the world (ground joint).
-  int add_revolute_joint(const BodyPointSpec& a, const BodyPointSpec& b);
+  // `name` (optional) appears in messages: "revolute joint 'hinge' (x)".
+  int add_revolute_joint(const BodyPointSpec& a, const BodyPointSpec& b,
+                         const std::string& name = {});
   // Massless rod: |r_b - r_a| = length (default: the initial distance; must be positive).
   // One row, written (|d|^2 - length^2) / (2 length) so that lambda is the rod force, tension
   // positive. Returns its index.
   int add_distance_constraint(const BodyPointSpec& a, const BodyPointSpec& b,
-                              std::optional<double> length = std::nullopt);
+                              std::optional<double> length = std::nullopt,
+                              const std::string& name = {});
   // A user's constraint row (e.g. a prescribed time-dependent motion); returns its index.
   int add_constraint_element(std::unique_ptr<ConstraintElement> element);
   // Throws fsi::Error for negative stiffness or damping or a negative rest length; the points
   // must never coincide (the direction of the force is undefined there).
   void add_spring_damper(const SpringDamperSpec& spec);
+
+  // Connectors, force elements and time-dependent loads of planar rigid bodies
+  // (src/model_elements.cpp). All throw fsi::Error naming the element for unknown bodies, bodies
+  // that are not planar rigid bodies where an angle is needed, both ends on the same body, and
+  // invalid or non-finite values. Joints return the index of their first row, force elements
+  // their index among the force elements.
+  int add_prismatic_joint(const PrismaticJointSpec& spec);
+  int add_clamp(const ClampSpec& spec);
+  int add_rotational_spring_damper(const RotationalSpringDamperSpec& spec);
+  int add_nonlinear_spring_damper(const NonlinearSpringDamperSpec& spec);
+  int add_spring_actor(const SpringActorSpec& spec);
+  int add_point_force(const PointForceSpec& spec);
+  int add_torque(const TorqueSpec& spec);
 
   // --- structure ---
   int coordinate_count() const;
@@ -127,6 +225,10 @@ class Model {
   std::string constraint_description(int constraint) const;  // "velocity constraint on piston.y"
   ConstraintLevel constraint_level(int constraint) const;
   const Eigen::Vector2d& gravity() const;
+  int force_element_count() const;
+  const ForceElement& force_element(int element) const;
+  // "body 'link' coordinate angle" (planar rigid bodies) or "body 'beam' coordinate 4".
+  std::string coordinate_description(int index) const;
 
   // --- initial state and its consistency ---
   // q and v from the body specs; lambda consistent with the accelerations at t = 0 (solves
@@ -196,13 +298,31 @@ class Model {
   // Resultant of the point loads on a body: force x, force y, torque about the centre of mass.
   Eigen::Vector3d point_load_resultant(const State& state, BodyId body) const;
   double kinetic_energy(const State& state) const;
-  double potential_energy(const State& state) const;  // of gravity, zero at the origin
+  // Gravity (zero at the origin) plus the elastic energy of the force elements
+  // (ForceElement::potential_energy).
+  double potential_energy(const State& state) const;
+  // What a force element measures (src/model_elements.cpp): the tension of a spring-damper
+  // along its line [N] (linear, nonlinear, spring actor), the torque on body a of a rotational
+  // spring-damper [N m]; throws fsi::Error for elements that measure nothing (loads).
+  double force_element_force(const State& state, int element) const;
+  // The force (x, y) and the torque about the centre of mass that the constraint rows
+  // first_row .. first_row + rows - 1 (one joint) exert on `body`: its part of -G^T lambda.
+  Eigen::Vector3d joint_reaction(const State& state, int first_row, int rows, BodyId body) const;
+  // The first element whose contribution is not finite at (t, q, v): a force element, a point
+  // load or a constraint row, by description; empty when all are finite. For error messages.
+  std::string non_finite_source(double time, const Eigen::VectorXd& q,
+                                const Eigen::VectorXd& v) const;
   // Largest |C| over position-level rows.
   double position_constraint_drift(const State& state) const;
   // Largest velocity-level residual: |G v - g| of velocity rows and |G v + C_t| of position rows.
   double velocity_constraint_drift(const State& state) const;
 
  private:
+  // A body point as the elements see it; throws naming `user` (src/model_elements.cpp).
+  detail::BodyPoint body_point(const BodyPointSpec& spec, const std::string& user) const;
+  // World position of a body point in the bodies' initial state.
+  Eigen::Vector2d initial_point_position(const BodyPointSpec& spec) const;
+
   struct Data;
   std::unique_ptr<Data> data_;
 };

@@ -63,15 +63,36 @@ struct LiggghtsSetup {
 };
 
 // TotalFluidForce: the force of the fluid on every boundary, static walls included (no body).
-enum class SensorType { Position, Velocity, FluidForce, ConstraintForce, TotalFluidForce };
+// JointForce: force and torque a joint's rows exert on its body (-G^T lambda of those rows);
+// SpringForce: a spring's tension or a rotational spring's torque; the energies are the system's
+// (potential: gravity plus the springs' elastic energy).
+enum class SensorType {
+  Position,
+  Velocity,
+  FluidForce,
+  ConstraintForce,
+  TotalFluidForce,
+  JointForce,
+  SpringForce,
+  KineticEnergy,
+  PotentialEnergy
+};
 
 struct SensorSpec {
   std::string name;
   SensorType type = SensorType::Position;
-  mbd::BodyId body = 0;                            // unused for TotalFluidForce
+  mbd::BodyId body = 0;                            // unused for TotalFluidForce and energies
   mbd::Coordinate component = mbd::Coordinate::X;  // Angle means the torque for force sensors
   std::string unit;
+  int first_row = 0;  // JointForce: the joint's constraint rows
+  int rows = 0;
+  int force_element = -1;  // SpringForce: index among the model's force elements
 };
+
+// The value of a sensor that the multibody state alone determines (every type but
+// TotalFluidForce; FluidForce from the point loads set on the model).
+double structure_sensor_value(const mbd::Model& model, const SensorSpec& sensor,
+                              const mbd::State& state);
 
 struct Scene {
   std::string file;

@@ -1,0 +1,79 @@
+#pragma once
+// Constraint rows of the 2D connectors beyond the revolute joint (internal; built by
+// Model::add_prismatic_joint and Model::add_clamp in model_elements.cpp):
+//
+//   prismatic row    C = (e x d) / |axis|,  e = r_tip - r_origin,  d = r_slider - r_origin
+//                    (2D cross product); origin and tip are two points of body a on the
+//                    sliding line, so e = R(phi_a) axis, and the slider point of body b stays
+//                    on that line. At consistent states G is the unit normal, lambda a force.
+//   relative angle   C = phi_a - phi_b - offset   (phi of the ground: 0), lambda a torque.
+//
+// A clamp is two PointConstraint rows (the clamped body's centre of mass, constraint.hpp) and one
+// relative angle row.
+
+#include <Eigen/Dense>
+
+#include <string>
+
+#include "body_point.hpp"
+#include "fsi/mbd/constraint_element.hpp"
+
+namespace fsi::mbd::detail {
+
+class PrismaticConstraint final : public ConstraintElement {
+ public:
+  // |tip - origin| in body a's frame is the axis length the row is divided by.
+  PrismaticConstraint(std::string description, BodyPoint origin, BodyPoint tip, BodyPoint slider,
+                      double axis_length);
+
+  std::string description() const override { return description_; }
+  ConstraintLevel level() const override { return ConstraintLevel::Position; }
+  double residual(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v) const override;
+  void jacobian_row(double time, const Eigen::VectorXd& q, RowRef row) const override;
+  double explicit_time_derivative(double, const Eigen::VectorXd&) const override { return 0.0; }
+  double acceleration_remainder(double time, const Eigen::VectorXd& q,
+                                const Eigen::VectorXd& v) const override;
+  void add_force_derivative(double time, const Eigen::VectorXd& q, double multiplier,
+                            Eigen::MatrixXd& derivative) const override;
+
+ private:
+  struct Geometry {
+    Eigen::Vector2d axis;                 // e
+    Eigen::Vector2d separation;           // d
+    Eigen::MatrixXd axis_jacobian;        // de/dq (2 x n)
+    Eigen::MatrixXd separation_jacobian;  // dd/dq (2 x n)
+  };
+  Geometry geometry(const Eigen::VectorXd& q) const;
+
+  std::string description_;
+  BodyPoint origin_;
+  BodyPoint tip_;
+  BodyPoint slider_;
+  double axis_length_;
+};
+
+// phi_a - phi_b - offset = 0; an angle index < 0 stands for the ground.
+class RelativeAngleConstraint final : public ConstraintElement {
+ public:
+  RelativeAngleConstraint(std::string description, int angle_a, int angle_b, double offset);
+
+  std::string description() const override { return description_; }
+  ConstraintLevel level() const override { return ConstraintLevel::Position; }
+  double residual(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v) const override;
+  void jacobian_row(double time, const Eigen::VectorXd& q, RowRef row) const override;
+  double explicit_time_derivative(double, const Eigen::VectorXd&) const override { return 0.0; }
+  double acceleration_remainder(double, const Eigen::VectorXd&,
+                                const Eigen::VectorXd&) const override {
+    return 0.0;  // linear in q
+  }
+  void add_force_derivative(double, const Eigen::VectorXd&, double,
+                            Eigen::MatrixXd&) const override {}
+
+ private:
+  std::string description_;
+  int angle_a_;
+  int angle_b_;
+  double offset_;
+};
+
+}  // namespace fsi::mbd::detail

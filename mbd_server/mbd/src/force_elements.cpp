@@ -1,0 +1,227 @@
+#include "force_elements.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <utility>
+
+namespace fsi::mbd::detail {
+
+// ---- rotational spring-damper ----
+
+RotationalSpringDamper::RotationalSpringDamper(std::string description, int angle_a, int angle_b,
+                                               double stiffness, double damping, double rest_angle)
+    : description_(std::move(description)),
+      angle_a_(angle_a),
+      angle_b_(angle_b),
+      stiffness_(stiffness),
+      damping_(damping),
+      rest_angle_(rest_angle) {}
+
+double RotationalSpringDamper::measured_force(double, const Eigen::VectorXd& q,
+                                              const Eigen::VectorXd& v) const {
+  const double twist = angle(q, angle_a_) - angle(q, angle_b_) - rest_angle_;
+  const double twist_rate = angle(v, angle_a_) - angle(v, angle_b_);
+  return -stiffness_ * twist - damping_ * twist_rate;
+}
+
+void RotationalSpringDamper::add_force(double time, const Eigen::VectorXd& q,
+                                       const Eigen::VectorXd& v, Eigen::VectorXd& force) const {
+  const double torque = measured_force(time, q, v);
+  if (angle_a_ >= 0) force(angle_a_) += torque;
+  if (angle_b_ >= 0) force(angle_b_) -= torque;
+}
+
+bool RotationalSpringDamper::add_jacobians(double, const Eigen::VectorXd&, const Eigen::VectorXd&,
+                                           Eigen::MatrixXd& force_by_position,
+                                           Eigen::MatrixXd& force_by_velocity) const {
+  // The torque depends on phi_a - phi_b only: the pattern [-1 1; 1 -1] times k and c.
+  const std::array<std::pair<int, double>, 2> ends = {{{angle_a_, 1.0}, {angle_b_, -1.0}}};
+  for (const auto& [row, row_sign] : ends) {
+    for (const auto& [column, column_sign] : ends) {
+      if (row < 0 || column < 0) continue;
+      force_by_position(row, column) -= row_sign * column_sign * stiffness_;
+      force_by_velocity(row, column) -= row_sign * column_sign * damping_;
+    }
+  }
+  return true;
+}
+
+double RotationalSpringDamper::potential_energy(const Eigen::VectorXd& q) const {
+  const double twist = angle(q, angle_a_) - angle(q, angle_b_) - rest_angle_;
+  return 0.5 * stiffness_ * twist * twist;
+}
+
+// ---- tension laws ----
+
+PiecewiseLinearTension::PiecewiseLinearTension(std::vector<Eigen::Vector2d> points, double damping)
+    : points_(std::move(points)), damping_(damping) {}
+
+std::size_t PiecewiseLinearTension::segment(double elongation) const {
+  // Segment k joins points k and k + 1; upper_bound finds the first point beyond.
+  const auto beyond =
+      std::upper_bound(points_.begin(), points_.end(), elongation,
+                       [](double x, const Eigen::Vector2d& point) { return x < point.x(); });
+  const auto index = static_cast<std::size_t>(beyond - points_.begin());
+  return std::clamp<std::size_t>(index, 1, points_.size() - 1) - 1;
+}
+
+double PiecewiseLinearTension::spring(double elongation) const {
+  const std::size_t k = segment(elongation);
+  const Eigen::Vector2d& left = points_[k];
+  const Eigen::Vector2d& right = points_[k + 1];
+  const double slope = (right.y() - left.y()) / (right.x() - left.x());
+  return left.y() + slope * (elongation - left.x());
+}
+
+Tension PiecewiseLinearTension::at(double elongation, double rate) const {
+  const std::size_t k = segment(elongation);
+  const double slope =
+      (points_[k + 1].y() - points_[k].y()) / (points_[k + 1].x() - points_[k].x());
+  return {spring(elongation) + damping_ * rate, slope, damping_};
+}
+
+double PiecewiseLinearTension::energy(double elongation) const {
+  // Exact: the trapezoidal rule between 0, the table points in between, and the elongation.
+  std::vector<double> nodes = {0.0};
+  const double low = std::min(0.0, elongation);
+  const double high = std::max(0.0, elongation);
+  for (const Eigen::Vector2d& point : points_) {
+    if (point.x() > low && point.x() < high) nodes.push_back(point.x());
+  }
+  nodes.push_back(elongation);
+  std::sort(nodes.begin(), nodes.end());
+  double work = 0.0;
+  for (std::size_t k = 0; k + 1 < nodes.size(); ++k)
+    work += 0.5 * (spring(nodes[k]) + spring(nodes[k + 1])) * (nodes[k + 1] - nodes[k]);
+  return elongation >= 0.0 ? work : -work;
+}
+
+UserTension::UserTension(std::function<double(double, double)> tension)
+    : tension_(std::move(tension)) {}
+
+Tension UserTension::at(double elongation, double rate) const {
+  // The step balances truncation (~step^2) against cancellation (~eps |T| / step); its floor,
+  // 6e-6 m and 6e-6 m/s, keeps the cancellation small where elongation or rate are near zero
+  // while the tension is not (a small rate term next to a large spring force). The partials only
+  // steer Newton; the solution depends on the law alone.
+  const double factor = std::cbrt(std::numeric_limits<double>::epsilon());
+  const double de = factor * std::max(std::abs(elongation), 1.0);
+  const double dr = factor * std::max(std::abs(rate), 1.0);
+  return {tension_(elongation, rate),
+          (tension_(elongation + de, rate) - tension_(elongation - de, rate)) / (2.0 * de),
+          (tension_(elongation, rate + dr) - tension_(elongation, rate - dr)) / (2.0 * dr)};
+}
+
+double UserTension::energy(double elongation) const {
+  // Five-point Gauss-Legendre: exact for polynomial laws up to degree 9.
+  constexpr std::array<double, 5> nodes = {0.0, -0.5384693101056831, 0.5384693101056831,
+                                           -0.9061798459386640, 0.9061798459386640};
+  constexpr std::array<double, 5> weights = {0.5688888888888889, 0.4786286704993665,
+                                             0.4786286704993665, 0.2369268850561891,
+                                             0.2369268850561891};
+  const double half = 0.5 * elongation;
+  double sum = 0.0;
+  for (std::size_t k = 0; k < nodes.size(); ++k)
+    sum += weights[k] * tension_(half * (1.0 + nodes[k]), 0.0);
+  return half * sum;
+}
+
+// ---- point-to-point force ----
+
+PointToPointForce::PointToPointForce(std::string description, BodyPoint a, BodyPoint b,
+                                     double rest_length, std::shared_ptr<const TensionLaw> law)
+    : description_(std::move(description)),
+      a_(a),
+      b_(b),
+      rest_length_(rest_length),
+      law_(std::move(law)) {}
+
+double PointToPointForce::measured_force(double, const Eigen::VectorXd& q,
+                                         const Eigen::VectorXd& v) const {
+  const Eigen::Vector2d d = b_.position(q) - a_.position(q);
+  const double length = d.norm();
+  const double rate = d.dot(b_.velocity(q, v) - a_.velocity(q, v)) / length;
+  return law_->at(length - rest_length_, rate).value;
+}
+
+void PointToPointForce::add_force(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                                  Eigen::VectorXd& force) const {
+  // +T e on a, -T e on b: Q = -(dd/dq)^T T e.
+  const Eigen::Vector2d d = b_.position(q) - a_.position(q);
+  const Eigen::Vector2d pull = measured_force(time, q, v) / d.norm() * d;
+  Eigen::MatrixXd separation = Eigen::MatrixXd::Zero(2, q.size());
+  b_.add_jacobian(q, 1.0, separation);
+  a_.add_jacobian(q, -1.0, separation);
+  force -= separation.transpose() * pull;
+}
+
+bool PointToPointForce::add_jacobians(double, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                                      Eigen::MatrixXd& force_by_position,
+                                      Eigen::MatrixXd& force_by_velocity) const {
+  const auto n = q.size();
+  const Eigen::Vector2d d = b_.position(q) - a_.position(q);
+  const double length = d.norm();
+  const Eigen::Vector2d e = d / length;
+  const Eigen::Vector2d u = b_.velocity(q, v) - a_.velocity(q, v);
+  const Tension tension = law_->at(length - rest_length_, e.dot(u));
+  // P = (I - e e^T) / l is de/dd; D = dd/dq; W = d(dd/dt)/dq at fixed v.
+  const Eigen::Matrix2d projector = (Eigen::Matrix2d::Identity() - e * e.transpose()) / length;
+  Eigen::MatrixXd separation = Eigen::MatrixXd::Zero(2, n);
+  b_.add_jacobian(q, 1.0, separation);
+  a_.add_jacobian(q, -1.0, separation);
+  Eigen::MatrixXd separation_rate = Eigen::MatrixXd::Zero(2, n);
+  b_.add_velocity_jacobian(q, v, 1.0, separation_rate);
+  a_.add_velocity_jacobian(q, v, -1.0, separation_rate);
+
+  // l_q = e^T D; rate_q = u^T P D + e^T W; rate_v = e^T D.
+  const Eigen::RowVectorXd length_by_q = e.transpose() * separation;
+  const Eigen::RowVectorXd rate_by_q =
+      u.transpose() * projector * separation + e.transpose() * separation_rate;
+  const Eigen::RowVectorXd tension_by_q =
+      tension.by_elongation * length_by_q + tension.by_rate * rate_by_q;
+  const Eigen::RowVectorXd tension_by_v = tension.by_rate * length_by_q;
+  // The pull T e: d/dq = e T_q + T P D, d/dv = e T_v; Q = -D^T (T e) plus D^T differentiated
+  // at the fixed pull (point loads +pull on a, -pull on b).
+  const Eigen::MatrixXd pull_by_q = e * tension_by_q + tension.value * projector * separation;
+  force_by_position -= separation.transpose() * pull_by_q;
+  force_by_velocity -= separation.transpose() * (e * tension_by_v);
+  const Eigen::Vector2d pull = tension.value * e;
+  a_.add_load_derivative(q, pull, force_by_position);
+  b_.add_load_derivative(q, -pull, force_by_position);
+  return true;
+}
+
+double PointToPointForce::potential_energy(const Eigen::VectorXd& q) const {
+  return law_->energy((b_.position(q) - a_.position(q)).norm() - rest_length_);
+}
+
+// ---- time-dependent loads ----
+
+PointForce::PointForce(std::string description, BodyPoint point,
+                       std::function<Eigen::Vector2d(double)> force)
+    : description_(std::move(description)), point_(point), force_(std::move(force)) {}
+
+void PointForce::add_force(double time, const Eigen::VectorXd& q, const Eigen::VectorXd&,
+                           Eigen::VectorXd& force) const {
+  Eigen::MatrixXd jacobian = Eigen::MatrixXd::Zero(2, q.size());
+  point_.add_jacobian(q, 1.0, jacobian);
+  force += jacobian.transpose() * force_(time);
+}
+
+bool PointForce::add_jacobians(double time, const Eigen::VectorXd& q, const Eigen::VectorXd&,
+                               Eigen::MatrixXd& force_by_position, Eigen::MatrixXd&) const {
+  point_.add_load_derivative(q, force_(time), force_by_position);
+  return true;
+}
+
+Torque::Torque(std::string description, int angle, std::function<double(double)> torque)
+    : description_(std::move(description)), angle_(angle), torque_(std::move(torque)) {}
+
+void Torque::add_force(double time, const Eigen::VectorXd&, const Eigen::VectorXd&,
+                       Eigen::VectorXd& force) const {
+  force(angle_) += torque_(time);
+}
+
+}  // namespace fsi::mbd::detail

@@ -1,0 +1,154 @@
+#pragma once
+// Force elements of planar connectors and time-dependent loads (internal; built in
+// model_elements.cpp). All give exact dQ/dq and dQ/dv, except where a user function is
+// differentiated by central differences (UserTension).
+//
+//   RotationalSpringDamper   torque on a: T = -k (phi_a - phi_b - phi_0) - c (omega_a - omega_b),
+//                            -T on b (an angle index < 0 is the ground)
+//   PointToPointForce        tension T(l - l_0, dl/dt) along the line of two points, as the linear
+//                            spring-damper (spring_damper.hpp), with a TensionLaw
+//   PointForce, Torque       f(t) at a body point (world frame), tau(t) on a body angle
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "body_point.hpp"
+#include "fsi/mbd/force_element.hpp"
+#include "measured_force.hpp"
+
+namespace fsi::mbd::detail {
+
+class RotationalSpringDamper final : public ForceElement, public MeasuredForce {
+ public:
+  RotationalSpringDamper(std::string description, int angle_a, int angle_b, double stiffness,
+                         double damping, double rest_angle);
+
+  void add_force(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                 Eigen::VectorXd& force) const override;
+  bool add_jacobians(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                     Eigen::MatrixXd& force_by_position,
+                     Eigen::MatrixXd& force_by_velocity) const override;
+  std::string description() const override { return description_; }
+  double potential_energy(const Eigen::VectorXd& q) const override;
+  // The torque on body a [N m].
+  double measured_force(double time, const Eigen::VectorXd& q,
+                        const Eigen::VectorXd& v) const override;
+
+ private:
+  double angle(const Eigen::VectorXd& x, int index) const { return index >= 0 ? x(index) : 0.0; }
+
+  std::string description_;
+  int angle_a_;
+  int angle_b_;
+  double stiffness_;
+  double damping_;
+  double rest_angle_;
+};
+
+// The tension of a point-to-point element and its partial derivatives.
+struct Tension {
+  double value = 0.0;
+  double by_elongation = 0.0;
+  double by_rate = 0.0;
+};
+
+class TensionLaw {
+ public:
+  virtual ~TensionLaw() = default;
+  virtual Tension at(double elongation, double rate) const = 0;
+  // The work stored by stretching from 0 to `elongation` at zero rate.
+  virtual double energy(double elongation) const = 0;
+};
+
+// Piecewise-linear in the elongation through the table points, continued with the end slopes,
+// plus damping * rate (the spring actor of thesis §6.5).
+class PiecewiseLinearTension final : public TensionLaw {
+ public:
+  PiecewiseLinearTension(std::vector<Eigen::Vector2d> points, double damping);
+  Tension at(double elongation, double rate) const override;
+  double energy(double elongation) const override;
+
+ private:
+  // The segment whose line holds at `elongation` (the end ones beyond the table).
+  std::size_t segment(double elongation) const;
+  double spring(double elongation) const;
+
+  std::vector<Eigen::Vector2d> points_;
+  double damping_;
+};
+
+// A user function; partial derivatives by central differences, energy by Gauss-Legendre
+// quadrature over [0, elongation].
+class UserTension final : public TensionLaw {
+ public:
+  explicit UserTension(std::function<double(double, double)> tension);
+  Tension at(double elongation, double rate) const override;
+  double energy(double elongation) const override;
+
+ private:
+  std::function<double(double, double)> tension_;
+};
+
+class PointToPointForce final : public ForceElement, public MeasuredForce {
+ public:
+  PointToPointForce(std::string description, BodyPoint a, BodyPoint b, double rest_length,
+                    std::shared_ptr<const TensionLaw> law);
+
+  void add_force(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                 Eigen::VectorXd& force) const override;
+  bool add_jacobians(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                     Eigen::MatrixXd& force_by_position,
+                     Eigen::MatrixXd& force_by_velocity) const override;
+  std::string description() const override { return description_; }
+  double potential_energy(const Eigen::VectorXd& q) const override;
+  // The tension [N].
+  double measured_force(double time, const Eigen::VectorXd& q,
+                        const Eigen::VectorXd& v) const override;
+
+ private:
+  std::string description_;
+  BodyPoint a_;
+  BodyPoint b_;
+  double rest_length_;
+  std::shared_ptr<const TensionLaw> law_;
+};
+
+class PointForce final : public ForceElement {
+ public:
+  PointForce(std::string description, BodyPoint point,
+             std::function<Eigen::Vector2d(double)> force);
+
+  void add_force(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                 Eigen::VectorXd& force) const override;
+  bool add_jacobians(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                     Eigen::MatrixXd& force_by_position,
+                     Eigen::MatrixXd& force_by_velocity) const override;
+  std::string description() const override { return description_; }
+
+ private:
+  std::string description_;
+  BodyPoint point_;
+  std::function<Eigen::Vector2d(double)> force_;
+};
+
+class Torque final : public ForceElement {
+ public:
+  Torque(std::string description, int angle, std::function<double(double)> torque);
+
+  void add_force(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                 Eigen::VectorXd& force) const override;
+  bool add_jacobians(double, const Eigen::VectorXd&, const Eigen::VectorXd&, Eigen::MatrixXd&,
+                     Eigen::MatrixXd&) const override {
+    return true;  // independent of q and v
+  }
+  std::string description() const override { return description_; }
+
+ private:
+  std::string description_;
+  int angle_;
+  std::function<double(double)> torque_;
+};
+
+}  // namespace fsi::mbd::detail

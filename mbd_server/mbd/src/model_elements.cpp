@@ -1,0 +1,284 @@
+// Model's connectors (prismatic joint, clamp), force elements (rotational, nonlinear and
+// piecewise-linear spring-dampers), time-dependent loads, and the readouts of elements for
+// sensors and messages. Built only on the public model and the body points, so that new element
+// types stay out of model.cpp.
+
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <string>
+
+#include "body_point.hpp"
+#include "connectors.hpp"
+#include "constraint.hpp"
+#include "force_elements.hpp"
+#include "fsi/common/error.hpp"
+#include "fsi/mbd/model.hpp"
+#include "measured_force.hpp"
+
+namespace fsi::mbd {
+namespace {
+
+std::string number(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.9g", value);
+  return text;
+}
+
+// "prismatic joint 'slider'" for a named element, "prismatic joint 3" otherwise.
+std::string element_name(const std::string& kind, const std::string& name, int index) {
+  return name.empty() ? kind + " " + std::to_string(index) : kind + " '" + name + "'";
+}
+
+void require_two_ends(BodyId a, BodyId b, const std::string& user) {
+  if (a == b) {
+    throw Error(a == kGround ? "both ends are on the ground" : "both ends are on the same body",
+                user, "connect two different bodies, or a body and the ground");
+  }
+}
+
+bool non_negative(double value) {
+  return std::isfinite(value) && value >= 0.0;
+}
+
+// The index of a planar rigid body's angle in q, -1 for the ground.
+int angle_index(const Model& model, BodyId body, const std::string& user) {
+  if (body == kGround) return -1;
+  if (body < 0 || body >= model.body_count()) {
+    throw Error("refers to body index " + std::to_string(body) + " but the model has " +
+                    std::to_string(model.body_count()) + " bodies",
+                user, "refer to a body that has been added");
+  }
+  try {
+    return model.coordinate_index(body, Coordinate::Angle);
+  } catch (const Error&) {
+    throw Error("needs the angle of a planar rigid body", user,
+                "connect RigidBody2D bodies (or the ground)");
+  }
+}
+
+}  // namespace
+
+int Model::add_prismatic_joint(const PrismaticJointSpec& spec) {
+  const int first_row = constraint_count();
+  const std::string user = element_name("prismatic joint", spec.name, first_row);
+  require_two_ends(spec.a.body, spec.b.body, user);
+  const double axis_length = spec.axis.norm();
+  if (!(axis_length > 0.0) || !std::isfinite(axis_length)) {
+    throw Error("the axis must be a finite, non-zero vector", user, "give e.g. axis = [1, 0]");
+  }
+  const detail::BodyPoint origin = body_point(spec.a, user);
+  const detail::BodyPoint tip = body_point({spec.a.body, spec.a.local + spec.axis}, user);
+  const detail::BodyPoint slider = body_point(spec.b, user);
+  const int angle_a = angle_index(*this, spec.a.body, user);
+  const int angle_b = angle_index(*this, spec.b.body, user);
+  const double offset = (angle_a >= 0 ? body(spec.a.body).angle : 0.0) -
+                        (angle_b >= 0 ? body(spec.b.body).angle : 0.0);
+  add_constraint_element(std::make_unique<detail::PrismaticConstraint>(user + " (normal)", origin,
+                                                                       tip, slider, axis_length));
+  add_constraint_element(std::make_unique<detail::RelativeAngleConstraint>(
+      user + " (angle)", angle_a, angle_b, offset));
+  return first_row;
+}
+
+int Model::add_clamp(const ClampSpec& spec) {
+  const int first_row = constraint_count();
+  const std::string user = element_name("clamp", spec.name, first_row);
+  if (spec.body == kGround) {
+    throw Error("the clamped body is the ground", user, "clamp a body to the ground or a body");
+  }
+  require_two_ends(spec.body, spec.to, user);
+  const int angle_body = angle_index(*this, spec.body, user);
+  const int angle_to = angle_index(*this, spec.to, user);
+  const RigidBody2DSpec& clamped = body(spec.body);
+  // The clamped body's centre of mass in the frame of `to` (world frame for the ground).
+  Eigen::Vector2d seen_from_to = clamped.position;
+  double offset = clamped.angle;
+  if (spec.to != kGround) {
+    const RigidBody2DSpec& holder = body(spec.to);
+    seen_from_to =
+        Eigen::Rotation2Dd(holder.angle).inverse() * (clamped.position - holder.position);
+    offset -= holder.angle;
+  }
+  const detail::BodyPoint centre = body_point({spec.body, Eigen::Vector2d::Zero()}, user);
+  const detail::BodyPoint held = body_point({spec.to, seen_from_to}, user);
+  for (int axis = 0; axis < 2; ++axis) {
+    add_constraint_element(std::make_unique<detail::PointConstraint>(
+        user + (axis == 0 ? " (x)" : " (y)"), centre, held, axis));
+  }
+  add_constraint_element(std::make_unique<detail::RelativeAngleConstraint>(
+      user + " (angle)", angle_body, angle_to, offset));
+  return first_row;
+}
+
+int Model::add_rotational_spring_damper(const RotationalSpringDamperSpec& spec) {
+  const int index = force_element_count();
+  const std::string user = element_name("rotational spring-damper", spec.name, index);
+  if (spec.a == kGround) {
+    throw Error("body a is the ground", user, "put the ground, if any, at end b");
+  }
+  require_two_ends(spec.a, spec.b, user);
+  const int angle_a = angle_index(*this, spec.a, user);
+  const int angle_b = angle_index(*this, spec.b, user);
+  const double initial = body(spec.a).angle - (spec.b == kGround ? 0.0 : body(spec.b).angle);
+  const double rest = spec.rest_angle.value_or(initial);
+  if (!non_negative(spec.stiffness) || !non_negative(spec.damping) || !std::isfinite(rest)) {
+    throw Error("stiffness and damping must be finite and non-negative and the rest angle finite",
+                user, "check stiffness, damping and rest_angle");
+  }
+  add_force_element(std::make_unique<detail::RotationalSpringDamper>(
+      user, angle_a, angle_b, spec.stiffness, spec.damping, rest));
+  return index;
+}
+
+namespace {
+
+// The rest length of a point-to-point element, checked.
+double rest_length_of(const std::optional<double>& given, double initial, const std::string& user) {
+  if (!(initial > 0.0)) {
+    throw Error("the two points coincide initially (the direction of the force is undefined)", user,
+                "place the points apart");
+  }
+  const double rest = given.value_or(initial);
+  if (!non_negative(rest)) {
+    throw Error("the rest length must be finite and non-negative, got " + number(rest), user,
+                "give rest_length >= 0 or none (the initial distance)");
+  }
+  return rest;
+}
+
+}  // namespace
+
+int Model::add_nonlinear_spring_damper(const NonlinearSpringDamperSpec& spec) {
+  const int index = force_element_count();
+  const std::string user = element_name("nonlinear spring-damper", spec.name, index);
+  require_two_ends(spec.a.body, spec.b.body, user);
+  if (!spec.tension) throw Error("no tension function", user, "give tension(elongation, rate)");
+  const detail::BodyPoint a = body_point(spec.a, user);
+  const detail::BodyPoint b = body_point(spec.b, user);
+  const double rest = rest_length_of(
+      spec.rest_length, (initial_point_position(spec.b) - initial_point_position(spec.a)).norm(),
+      user);
+  add_force_element(std::make_unique<detail::PointToPointForce>(
+      user, a, b, rest, std::make_shared<detail::UserTension>(spec.tension)));
+  return index;
+}
+
+int Model::add_spring_actor(const SpringActorSpec& spec) {
+  const int index = force_element_count();
+  const std::string user = element_name("spring actor", spec.name, index);
+  require_two_ends(spec.a.body, spec.b.body, user);
+  const auto& table = spec.characteristic;
+  if (table.size() < 2) {
+    throw Error(
+        "the characteristic has " + std::to_string(table.size()) + " points, it needs at least 2",
+        user, "give (elongation, tension) points, e.g. [[-0.01, 0], [0, 0], [0.01, 50]]");
+  }
+  for (std::size_t k = 0; k < table.size(); ++k) {
+    if (!table[k].allFinite() || (k > 0 && !(table[k].x() > table[k - 1].x()))) {
+      throw Error("characteristic point " + std::to_string(k) +
+                      " is not finite or its elongation does not increase",
+                  user, "list the points with strictly increasing elongations");
+    }
+  }
+  if (!non_negative(spec.damping)) {
+    throw Error("damping must be finite and non-negative", user, "check damping");
+  }
+  const detail::BodyPoint a = body_point(spec.a, user);
+  const detail::BodyPoint b = body_point(spec.b, user);
+  const double rest = rest_length_of(
+      spec.rest_length, (initial_point_position(spec.b) - initial_point_position(spec.a)).norm(),
+      user);
+  add_force_element(std::make_unique<detail::PointToPointForce>(
+      user, a, b, rest, std::make_shared<detail::PiecewiseLinearTension>(table, spec.damping)));
+  return index;
+}
+
+int Model::add_point_force(const PointForceSpec& spec) {
+  const int index = force_element_count();
+  const std::string user = element_name("point force", spec.name, index);
+  if (spec.point.body == kGround) {
+    throw Error("the point is on the ground, where a force does nothing", user,
+                "apply the force to a body");
+  }
+  if (!spec.force) throw Error("no force function", user, "give force(t)");
+  add_force_element(
+      std::make_unique<detail::PointForce>(user, body_point(spec.point, user), spec.force));
+  return index;
+}
+
+int Model::add_torque(const TorqueSpec& spec) {
+  const int index = force_element_count();
+  const std::string user = element_name("torque", spec.name, index);
+  if (spec.body == kGround) {
+    throw Error("the torque acts on the ground, where it does nothing", user,
+                "apply the torque to a body");
+  }
+  if (!spec.torque) throw Error("no torque function", user, "give torque(t)");
+  add_force_element(
+      std::make_unique<detail::Torque>(user, angle_index(*this, spec.body, user), spec.torque));
+  return index;
+}
+
+// --- readouts ---
+
+double Model::force_element_force(const State& state, int element) const {
+  const auto* measured = dynamic_cast<const detail::MeasuredForce*>(&force_element(element));
+  if (measured == nullptr) {
+    throw Error(force_element(element).description() + " measures no force", "spring force sensor",
+                "measure a spring-damper, nonlinear spring-damper, spring actor or rotational "
+                "spring-damper");
+  }
+  return measured->measured_force(state.time, state.q, state.v);
+}
+
+Eigen::Vector3d Model::joint_reaction(const State& state, int first_row, int rows,
+                                      BodyId body) const {
+  FSI_ASSERT(first_row >= 0 && rows >= 0 && first_row + rows <= constraint_count(),
+             "joint rows out of range");
+  Eigen::MatrixXd jacobian;
+  constraint_jacobian(state.time, state.q, jacobian);
+  const Eigen::VectorXd force =
+      -jacobian.middleRows(first_row, rows).transpose() * state.lambda.segment(first_row, rows);
+  if (body == kGround) return Eigen::Vector3d::Zero();
+  return {force(coordinate_index(body, Coordinate::X)),
+          force(coordinate_index(body, Coordinate::Y)),
+          force(coordinate_index(body, Coordinate::Angle))};
+}
+
+std::string Model::non_finite_source(double time, const Eigen::VectorXd& q,
+                                     const Eigen::VectorXd& v) const {
+  for (int i = 0; i < coordinate_count(); ++i) {
+    if (!std::isfinite(q(i)) || !std::isfinite(v(i))) return coordinate_description(i);
+  }
+  // A force element's force, or its derivatives where it gives them (they enter the Newton
+  // matrix).
+  Eigen::VectorXd force;
+  Eigen::MatrixXd by_position, by_velocity;
+  for (int k = 0; k < force_element_count(); ++k) {
+    force.setZero(coordinate_count());
+    force_element(k).add_force(time, q, v, force);
+    if (!force.allFinite()) return force_element(k).description();
+    by_position.setZero(coordinate_count(), coordinate_count());
+    by_velocity.setZero(coordinate_count(), coordinate_count());
+    if (force_element(k).add_jacobians(time, q, v, by_position, by_velocity) &&
+        (!by_position.allFinite() || !by_velocity.allFinite())) {
+      return force_element(k).description() + " (its derivatives)";
+    }
+  }
+  const auto loads = point_loads();
+  for (std::size_t k = 0; k < loads.size(); ++k) {
+    if (!std::isfinite(loads[k])) return "point load on marker " + std::to_string(k / 2);
+  }
+  Eigen::VectorXd residual;
+  constraint_residual(time, q, v, residual);
+  Eigen::MatrixXd jacobian;
+  constraint_jacobian(time, q, jacobian);
+  for (int k = 0; k < constraint_count(); ++k) {
+    if (!std::isfinite(residual(k)) || !jacobian.row(k).allFinite())
+      return constraint_description(k);
+  }
+  return {};
+}
+
+}  // namespace fsi::mbd

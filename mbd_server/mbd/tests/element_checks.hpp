@@ -1,0 +1,86 @@
+#pragma once
+// Finite-difference checks of element derivatives, shared by the connector and force-element
+// tests: a constraint row's G, d(G^T lambda)/dq and acceleration remainder, and a force element's
+// dQ/dq and dQ/dv, each against central differences of the function it differentiates.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "fsi/mbd/constraint_element.hpp"
+#include "fsi/mbd/force_element.hpp"
+
+namespace fsi::mbd::testing {
+
+inline Eigen::RowVectorXd jacobian_row_of(const ConstraintElement& row, const Eigen::VectorXd& q) {
+  Eigen::MatrixXd jacobian = Eigen::MatrixXd::Zero(1, q.size());
+  row.jacobian_row(0.0, q, jacobian.row(0));
+  return jacobian.row(0);
+}
+
+// Differences of C for G (to 1e-9), of G for mu d(G^T)/dq (to 1e-8), and the second difference
+// of C along q + v t for the acceleration remainder (relative 1e-6).
+inline void expect_exact_row_derivatives(const ConstraintElement& row, const Eigen::VectorXd& q,
+                                         const Eigen::VectorXd& v, const std::string& what) {
+  const auto n = q.size();
+  const double step = 1e-6;
+  const double multiplier = -2.3;
+  const Eigen::RowVectorXd g = jacobian_row_of(row, q);
+  Eigen::MatrixXd force_derivative = Eigen::MatrixXd::Zero(n, n);
+  row.add_force_derivative(0.0, q, multiplier, force_derivative);
+  for (Eigen::Index j = 0; j < n; ++j) {
+    Eigen::VectorXd plus = q, minus = q;
+    plus(j) += step;
+    minus(j) -= step;
+    const double by_difference =
+        (row.residual(0.0, plus, v) - row.residual(0.0, minus, v)) / (2.0 * step);
+    EXPECT_NEAR(g(j), by_difference, 1e-9) << what << ": G(" << j << ")";
+    const Eigen::RowVectorXd g_by_difference =
+        (jacobian_row_of(row, plus) - jacobian_row_of(row, minus)) / (2.0 * step);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      EXPECT_NEAR(force_derivative(i, j), multiplier * g_by_difference(i), 1e-8)
+          << what << ": d(G^T lambda)/dq(" << i << ", " << j << ")";
+    }
+  }
+  const double dt = 1e-4;
+  const double second = (row.residual(0.0, q + dt * v, v) - 2.0 * row.residual(0.0, q, v) +
+                         row.residual(0.0, q - dt * v, v)) /
+                        (dt * dt);
+  EXPECT_NEAR(row.acceleration_remainder(0.0, q, v), second, 1e-6 * (1.0 + std::abs(second)))
+      << what << ": acceleration remainder";
+}
+
+// dQ/dq and dQ/dv against central differences of Q, relative 1e-6 (plus 1e-6 absolute).
+inline void expect_exact_force_derivatives(const ForceElement& element, double time,
+                                           const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                                           const std::string& what) {
+  const auto n = q.size();
+  Eigen::MatrixXd by_position = Eigen::MatrixXd::Zero(n, n), by_velocity = by_position;
+  ASSERT_TRUE(element.add_jacobians(time, q, v, by_position, by_velocity)) << what;
+  const double step = 1e-6;
+  auto force_at = [&](const Eigen::VectorXd& position, const Eigen::VectorXd& velocity) {
+    Eigen::VectorXd force = Eigen::VectorXd::Zero(n);
+    element.add_force(time, position, velocity, force);
+    return force;
+  };
+  for (Eigen::Index j = 0; j < n; ++j) {
+    Eigen::VectorXd plus = q, minus = q;
+    plus(j) += step;
+    minus(j) -= step;
+    const Eigen::VectorXd by_q = (force_at(plus, v) - force_at(minus, v)) / (2.0 * step);
+    plus = v;
+    minus = v;
+    plus(j) += step;
+    minus(j) -= step;
+    const Eigen::VectorXd by_v = (force_at(q, plus) - force_at(q, minus)) / (2.0 * step);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      EXPECT_NEAR(by_position(i, j), by_q(i), 1e-6 * (1.0 + std::abs(by_q(i))))
+          << what << ": dQ/dq(" << i << ", " << j << ")";
+      EXPECT_NEAR(by_velocity(i, j), by_v(i), 1e-6 * (1.0 + std::abs(by_v(i))))
+          << what << ": dQ/dv(" << i << ", " << j << ")";
+    }
+  }
+}
+
+}  // namespace fsi::mbd::testing

@@ -1,0 +1,220 @@
+// Rotational, nonlinear and piecewise-linear spring-dampers and time-dependent loads: exact
+// derivatives against finite differences, their laws and energies against closed forms, a torsion
+// oscillator against cos(omega t), and a sine force integrated at the stage times.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "body.hpp"
+#include "body_point.hpp"
+#include "element_checks.hpp"
+#include "force_elements.hpp"
+#include "fsi/common/error.hpp"
+#include "fsi/mbd/integrator.hpp"
+#include "fsi/mbd/model.hpp"
+
+namespace fsi::mbd {
+namespace {
+
+constexpr NewtonOptions kTight{.relative_tolerance = 1e-12, .max_iterations = 20};
+
+RigidBody2DSpec rigid(const std::string& name, double mass, double inertia) {
+  RigidBody2DSpec spec;
+  spec.name = name;
+  spec.mass = mass;
+  spec.inertia = inertia;
+  return spec;
+}
+
+struct Pair {
+  detail::RigidBody2D first{rigid("first", 2.0, 0.3)};
+  detail::RigidBody2D second{rigid("second", 1.5, 0.2)};
+  Eigen::VectorXd q{{0.3, -0.2, 0.7, 1.1, 0.4, -2.1}};
+  Eigen::VectorXd v{{0.5, -1.5, 2.0, -0.7, 0.9, 3.0}};
+  std::vector<std::pair<detail::BodyPoint, detail::BodyPoint>> ends() const {
+    const detail::BodyPoint on_first(&first, 0, {0.2, -0.15});
+    const detail::BodyPoint on_second(&second, 3, {-0.1, 0.35});
+    const detail::BodyPoint on_ground(nullptr, 0, {-0.4, 0.25});
+    return {{on_first, on_second}, {on_first, on_ground}, {on_ground, on_second}};
+  }
+};
+
+TEST(MbdForceElements, RotationalSpringDamperTorqueAndDerivatives) {
+  const Pair pair;
+  const detail::RotationalSpringDamper spring("torsion", 2, 5, 40.0, 1.5, 0.5);
+  // -k (0.7 + 2.1 - 0.5) - c (2 - 3) = -92 + 1.5 on a, the opposite on b.
+  Eigen::VectorXd force = Eigen::VectorXd::Zero(6);
+  spring.add_force(0.0, pair.q, pair.v, force);
+  EXPECT_DOUBLE_EQ(force(2), -40.0 * 2.3 + 1.5);
+  EXPECT_DOUBLE_EQ(force(5), 40.0 * 2.3 - 1.5);
+  EXPECT_DOUBLE_EQ(spring.potential_energy(pair.q), 0.5 * 40.0 * 2.3 * 2.3);
+  testing::expect_exact_force_derivatives(spring, 0.0, pair.q, pair.v, "two bodies");
+  const detail::RotationalSpringDamper grounded("torsion", -1, 5, 40.0, 1.5, 0.5);
+  testing::expect_exact_force_derivatives(grounded, 0.0, pair.q, pair.v, "to the ground");
+}
+
+TEST(MbdForceElements, NonlinearSpringDamperHasExactDerivatives) {
+  const Pair pair;
+  auto law = std::make_shared<detail::UserTension>(
+      [](double e, double r) { return 300.0 * e + 4e4 * e * e * e + 15.0 * r + 2.0 * r * r * r; });
+  int index = 0;
+  for (const auto& [a, b] : pair.ends()) {
+    const detail::PointToPointForce spring("cubic", a, b, 0.9, law);
+    testing::expect_exact_force_derivatives(spring, 0.0, pair.q, pair.v,
+                                            "ends " + std::to_string(index++));
+  }
+}
+
+TEST(MbdForceElements, SpringActorHasExactDerivativesAwayFromItsKinks) {
+  const Pair pair;
+  // The ends are 1.030, 1.045 and 1.854 m apart: elongations 0.53, 0.54 and 1.35 m from the rest
+  // length 0.5, inside segments, not at a kink.
+  auto law = std::make_shared<detail::PiecewiseLinearTension>(
+      std::vector<Eigen::Vector2d>{{-1.0, -20.0}, {0.0, 0.0}, {0.1, 0.0}, {1.0, 900.0}}, 7.0);
+  int index = 0;
+  for (const auto& [a, b] : pair.ends()) {
+    const detail::PointToPointForce actor("actor", a, b, 0.5, law);
+    testing::expect_exact_force_derivatives(actor, 0.0, pair.q, pair.v,
+                                            "ends " + std::to_string(index++));
+  }
+}
+
+TEST(MbdForceElements, SpringActorCharacteristicIsPiecewiseLinear) {
+  // Compression up to 2 cm at 50 N/m, tension up to 1 cm at 5000 N/m, continued beyond.
+  const detail::PiecewiseLinearTension actor({{-0.02, -1.0}, {0.0, 0.0}, {0.01, 50.0}}, 3.0);
+  EXPECT_DOUBLE_EQ(actor.at(-0.03, 0.0).value, -1.5);  // extrapolated with 50 N/m
+  EXPECT_DOUBLE_EQ(actor.at(0.005, 0.0).value, 25.0);
+  EXPECT_DOUBLE_EQ(actor.at(0.02, 0.0).value, 100.0);  // extrapolated with 5000 N/m
+  EXPECT_DOUBLE_EQ(actor.at(0.005, 0.0).by_elongation, 5000.0);
+  EXPECT_DOUBLE_EQ(actor.at(-0.01, 2.0).value, -0.5 + 6.0);
+  EXPECT_DOUBLE_EQ(actor.at(-0.01, 2.0).by_rate, 3.0);
+  // Energies: 5000 (0.01)^2 / 2 = 0.25 J, 50 (0.02)^2 / 2 = 0.01 J, 0.25 + 50 * 0.01 + 5000 *
+  // 0.01^2 / 2 = 1.0 J at 2 cm.
+  EXPECT_NEAR(actor.energy(0.01), 0.25, 1e-15);
+  EXPECT_NEAR(actor.energy(-0.02), 0.01, 1e-15);
+  EXPECT_NEAR(actor.energy(0.02), 1.0, 1e-14);
+}
+
+TEST(MbdForceElements, UserTensionEnergyIsTheIntegralOfTheLaw) {
+  const detail::UserTension law([](double e, double) { return 300.0 * e + 4e4 * e * e * e; });
+  const double e = 0.07;
+  EXPECT_NEAR(law.energy(e), 150.0 * e * e + 1e4 * e * e * e * e, 1e-14);
+  EXPECT_NEAR(law.energy(-e), 150.0 * e * e + 1e4 * e * e * e * e, 1e-14);
+  const detail::Tension t = law.at(e, 0.0);
+  // Central differences of 6e-6 m: truncation 2e-9 relative.
+  EXPECT_NEAR(t.by_elongation, 300.0 + 1.2e5 * e * e, 1e-8 * 888.0);
+}
+
+TEST(MbdForceElements, PointForceHasExactDerivatives) {
+  const Pair pair;
+  const detail::PointForce force("push", detail::BodyPoint(&pair.first, 0, {0.2, -0.15}),
+                                 [](double t) { return Eigen::Vector2d(std::sin(t), 3.0 * t); });
+  testing::expect_exact_force_derivatives(force, 0.4, pair.q, pair.v, "body point");
+}
+
+// J phi'' = -k phi: phi(t) = phi0 cos(sqrt(k / J) t); the energy stays 0.5 k phi0^2.
+TEST(MbdForceElements, TorsionOscillatorFollowsTheCosine) {
+  Model model;
+  RigidBody2DSpec spec = rigid("wheel", 1.0, 0.25);
+  spec.angle = 0.2;
+  const BodyId wheel = model.add_rigid_body(spec);
+  model.add_coordinate_constraint(wheel, Coordinate::X);
+  model.add_coordinate_constraint(wheel, Coordinate::Y);
+  const int element = model.add_rotational_spring_damper(
+      {.name = "torsion bar", .a = wheel, .b = kGround, .stiffness = 9.0, .rest_angle = 0.0});
+  State state = model.initial_state();
+  EXPECT_DOUBLE_EQ(model.potential_energy(state), 0.5 * 9.0 * 0.04);
+  RadauIIA integrator(3, kTight);
+  for (int n = 0; n < 1000; ++n)
+    integrator.step(model, state, 1e-3);
+  const double omega = std::sqrt(9.0 / 0.25);  // 6 rad/s
+  EXPECT_NEAR(model.coordinate(state, wheel, Coordinate::Angle), 0.2 * std::cos(omega), 1e-10);
+  EXPECT_NEAR(model.kinetic_energy(state) + model.potential_energy(state), 0.18, 1e-10);
+  EXPECT_NEAR(model.force_element_force(state, element),
+              -9.0 * model.coordinate(state, wheel, Coordinate::Angle), 1e-12);
+}
+
+// m x'' = sin(t) from rest: x(t) = t - sin(t). At h = 0.05 Radau IIA (order 5) gives it to
+// about 1e-9; a force held at the step start would be off by about h / 2 * (1 - cos 1) = 1e-2.
+TEST(MbdForceElements, TimeDependentForceIsEvaluatedAtTheStageTimes) {
+  Model model;
+  const BodyId body = model.add_rigid_body(rigid("cart", 1.0, 1.0));
+  model.add_point_force({.name = "drive", .point = {body, {0.0, 0.5}}, .force = [](double t) {
+                           return Eigen::Vector2d(std::sin(t), 0.0);
+                         }});
+  model.add_coordinate_constraint(body, Coordinate::Angle);
+  State state = model.initial_state();
+  RadauIIA integrator(3, kTight);
+  for (int n = 0; n < 20; ++n)
+    integrator.step(model, state, 0.05);
+  EXPECT_NEAR(model.coordinate(state, body, Coordinate::X), 1.0 - std::sin(1.0), 1e-9);
+  // The torque of the force about the centre of mass, -0.5 sin(1), is taken up by the held angle.
+  EXPECT_NEAR(model.constraint_force(state, body, Coordinate::Angle), 0.5 * std::sin(1.0), 1e-9);
+}
+
+TEST(MbdForceElements, SpringForcesAreMeasuredAndStoreEnergy) {
+  Model model;
+  RigidBody2DSpec spec = rigid("valve", 1.0, 1.0);
+  spec.position = {0.3, 0.0};
+  const BodyId valve = model.add_rigid_body(spec);
+  const int actor = model.add_spring_actor({.name = "actor",
+                                            .a = {kGround, {0.0, 0.0}},
+                                            .b = {valve, {0.0, 0.0}},
+                                            .characteristic = {{-1.0, -10.0}, {0.0, 0.0}},
+                                            .damping = 0.0,
+                                            .rest_length = 0.2});
+  const int cubic = model.add_nonlinear_spring_damper(
+      {.name = "cubic",
+       .a = {kGround, {0.0, 0.0}},
+       .b = {valve, {0.0, 0.0}},
+       .tension = [](double e, double) { return 1000.0 * e * e * e; },
+       .rest_length = 0.1});
+  const State state = model.initial_state();
+  // The actor's table has slope 10 N/m continued beyond 0: 0.1 m -> 1 N, 0.05 J; the cubic law
+  // 1000 (0.2)^3 = 8 N, 250 (0.2)^4 = 0.4 J.
+  EXPECT_NEAR(model.force_element_force(state, actor), 1.0, 1e-14);
+  EXPECT_NEAR(model.force_element_force(state, cubic), 8.0, 1e-13);
+  EXPECT_NEAR(model.potential_energy(state), 0.05 + 0.4, 1e-13);
+  EXPECT_NE(model.force_element(cubic).description().find("'cubic'"), std::string::npos);
+}
+
+TEST(MbdForceElements, InvalidElementsAreErrorsNamingThem) {
+  Model model;
+  const BodyId body = model.add_rigid_body(rigid("arm", 1.0, 1.0));
+  auto message = [](auto&& add) -> std::string {
+    try {
+      add();
+    } catch (const fsi::Error& error) {
+      return error.what();
+    }
+    return "accepted";
+  };
+  EXPECT_NE(message([&] {
+              model.add_rotational_spring_damper(
+                  {.name = "coil", .a = body, .b = kGround, .stiffness = -1.0});
+            }).find("rotational spring-damper 'coil'"),
+            std::string::npos);
+  EXPECT_NE(message([&] {
+              model.add_spring_actor({.name = "stop",
+                                      .a = {kGround, {1, 0}},
+                                      .b = {body, {0, 0}},
+                                      .characteristic = {{0.0, 0.0}, {0.0, 1.0}}});
+            }).find("spring actor 'stop'"),
+            std::string::npos);
+  EXPECT_NE(message([&] {
+              model.add_nonlinear_spring_damper(
+                  {.name = "soft", .a = {kGround, {0, 0}}, .b = {body, {0, 0}}, .tension = {}});
+            }).find("nonlinear spring-damper 'soft'"),
+            std::string::npos);
+  EXPECT_NE(
+      message([&] {
+        model.add_torque({.name = "motor", .body = kGround, .torque = [](double) { return 1.0; }});
+      }).find("torque 'motor'"),
+      std::string::npos);
+}
+
+}  // namespace
+}  // namespace fsi::mbd

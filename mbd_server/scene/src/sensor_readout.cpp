@@ -1,0 +1,36 @@
+// The sensors a coupled run and an --mbd-only run share: everything the multibody state
+// determines.
+
+#include "fsi/common/error.hpp"
+#include "fsi/scene/scene.hpp"
+
+namespace fsi::scene {
+
+double structure_sensor_value(const mbd::Model& model, const SensorSpec& sensor,
+                              const mbd::State& state) {
+  const int component = static_cast<int>(sensor.component);
+  switch (sensor.type) {
+    case SensorType::Position:
+      return model.coordinate(state, sensor.body, sensor.component);
+    case SensorType::Velocity:
+      return model.velocity(state, sensor.body, sensor.component);
+    case SensorType::FluidForce:
+      return model.point_load_resultant(state, sensor.body)(component);
+    case SensorType::ConstraintForce:
+      return model.constraint_force(state, sensor.body, sensor.component);
+    case SensorType::JointForce:
+      return model.joint_reaction(state, sensor.first_row, sensor.rows, sensor.body)(component);
+    case SensorType::SpringForce:
+      return model.force_element_force(state, sensor.force_element);
+    case SensorType::KineticEnergy:
+      return model.kinetic_energy(state);
+    case SensorType::PotentialEnergy:
+      return model.potential_energy(state);
+    case SensorType::TotalFluidForce:
+      break;
+  }
+  FSI_ASSERT(false, "sensor '" + sensor.name + "' needs the fluid forces of the coupled run");
+  return 0.0;
+}
+
+}  // namespace fsi::scene

@@ -1,0 +1,175 @@
+// Scene blocks of the 2D connectors, springs, time-dependent loads and their sensors: a scene
+// with every block builds the expected model, its sensors read what the model says, and bad
+// mechanisms (unknown names, bad expressions, redundant joints, a zero mass) are problems at
+// their file:line.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "fsi/common/error.hpp"
+#include "fsi/mbd/integrator.hpp"
+#include "fsi/scene/scene.hpp"
+
+namespace fsi::scene {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A scene file of `body` plus what every scene needs, in a fresh folder.
+class MechanismScene : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    folder_ = fs::temp_directory_path() /
+              ("fsi_mechanism_scene_" +
+               std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::create_directories(folder_);
+    std::ofstream(folder_ / "s.in") << "# script\n";
+  }
+  void TearDown() override { fs::remove_all(folder_); }
+
+  std::string write(const std::string& body) {
+    const fs::path path = folder_ / "m.scene";
+    std::ofstream(path) << "scene_language = 1\n"
+                           "SolverOptions { end_time = 1; Timeint { step_size = 1e-3 } }\n"
+                        << body
+                        << "LIGGGHTS { script1 = \"s.in\"; script2 = \"s.in\" }\n"
+                           "Coupling { refinement_resolution = 0.002 }\n";
+    return path.string();
+  }
+
+  // The problems of a scene that must not build ("" if it builds).
+  std::string problems(const std::string& body) {
+    try {
+      build_scene(write(body));
+    } catch (const fsi::Error& error) {
+      return error.what();
+    }
+    return "";
+  }
+
+  fs::path folder_;
+};
+
+const char* const kMechanism = R"scene(Gravity { acceleration = [0, -9.81] }
+RigidBody2D { name = "frame"; mass = 2; inertia = 0.1; Mesh { points = [[0, 0], [1, 0]] } }
+RigidBody2D { name = "slider"; mass = 1; inertia = 0.05 }
+RigidBody2D { name = "lid"; mass = 0.5; inertia = 0.01; position = [0.2, 0.1] }
+RigidBody2D { name = "flap"; mass = 0.3; inertia = 0.01; position = [0, 1] }
+Clamp { name = "base"; body = "frame" }
+PrismaticJoint { name = "rail"; body_a = "slider"; body_b = "frame"; axis = [1, 0] }
+Clamp { name = "weld"; body = "lid"; to = "slider" }
+RevoluteJoint { name = "hinge"; body_a = "flap"; point_b = [0, 1] }
+RotationalSpringDamper { name = "coil"; body_a = "flap"; stiffness = 5; damping = 0.1; rest_angle = 0.2 }
+NonlinearSpringDamper { name = "cubic"; body_a = "slider"; point_b = [-1, 0];
+                        tension = "100*elongation + 1e4*elongation^3 + 2*rate"; rest_length = 0.8 }
+SpringActor { name = "stop"; body_a = "slider"; point_b = [1, 0];
+              characteristic = [[-0.1, -50], [0, 0], [0.1, 0]]; rest_length = 1 }
+PointForce { name = "push"; body = "slider"; point = [0, 0.1]; force_x = "3*sin(t)"; force_y = "-t" }
+Torque { name = "motor"; body = "flap"; torque = "0.5 + t" }
+Sensor { name = "rail_normal"; type = "joint_force"; joint = "rail"; component = "y" }
+Sensor { name = "rail_torque"; type = "joint_force"; joint = "rail"; component = "torque" }
+Sensor { name = "hinge_x"; type = "joint_force"; joint = "hinge"; component = "x" }
+Sensor { name = "coil_torque"; type = "spring_force"; element = "coil" }
+Sensor { name = "cubic_tension"; type = "spring_force"; element = "cubic" }
+Sensor { name = "stop_tension"; type = "spring_force"; element = "stop" }
+Sensor { name = "kinetic"; type = "kinetic_energy" }
+Sensor { name = "potential"; type = "potential_energy" }
+)scene";
+
+TEST_F(MechanismScene, EveryBlockBuildsAndItsSensorsReadTheModel) {
+  Scene scene = build_scene(write(kMechanism));
+  mbd::Model& model = scene.model;
+  // Rows: base 3, rail 2, weld 3, hinge 2. Force elements: coil, cubic, stop, push, motor.
+  EXPECT_EQ(model.constraint_count(), 10);
+  EXPECT_EQ(model.force_element_count(), 5);
+  ASSERT_EQ(scene.sensors.size(), 8u);
+  EXPECT_EQ(scene.sensors[1].unit, "N m/m");
+  EXPECT_EQ(scene.sensors[3].unit, "N m/m");
+  EXPECT_EQ(scene.sensors[4].unit, "N/m");
+  EXPECT_EQ(scene.sensors[6].unit, "J/m");
+  mbd::State state = model.initial_state();
+  // At t = 0: the cubic spring is stretched by 0.2 m: 100 * 0.2 + 1e4 * 0.008 = 100 N; the stop
+  // is compressed by 0 m: 0 N; the coil twisted by -0.2 rad: torque 1 N m.
+  EXPECT_NEAR(structure_sensor_value(model, scene.sensors[4], state), 100.0, 1e-9);
+  EXPECT_NEAR(structure_sensor_value(model, scene.sensors[5], state), 0.0, 1e-12);
+  EXPECT_NEAR(structure_sensor_value(model, scene.sensors[3], state), 1.0, 1e-12);
+  EXPECT_NEAR(structure_sensor_value(model, scene.sensors[6], state), 0.0, 1e-15);
+  // The rail carries the weight of the slider and the lid welded to it, 1.5 * 9.81 N/m; the flap
+  // hangs at rest on its hinge at its centre of mass: no horizontal force.
+  EXPECT_NEAR(structure_sensor_value(model, scene.sensors[0], state), 1.5 * 9.81, 1e-9);
+  EXPECT_NEAR(structure_sensor_value(model, scene.sensors[2], state), 0.0, 1e-9);
+  // Potential: gravity of the bodies above y = 0 (lid 0.5 * 9.81 * 0.1, flap 0.3 * 9.81 * 1), the
+  // coil 5 * 0.04 / 2, the cubic spring 50 * 0.04 + 2500 * 0.0016.
+  const double potential = 0.5 * 9.81 * 0.1 + 0.3 * 9.81 + 0.1 + 2.0 + 4.0;
+  EXPECT_NEAR(structure_sensor_value(model, scene.sensors[7], state), potential, 1e-12);
+  mbd::RadauIIA integrator(3);
+  for (int n = 0; n < 50; ++n)
+    integrator.step(model, state, 1e-3);
+  for (const SensorSpec& sensor : scene.sensors) {
+    EXPECT_TRUE(std::isfinite(structure_sensor_value(model, sensor, state))) << sensor.name;
+  }
+  // The slider stays on the rail and keeps its angle; the lid keeps its pose on the slider.
+  const mbd::BodyId slider = model.find_body("slider");
+  const mbd::BodyId lid = model.find_body("lid");
+  EXPECT_NEAR(model.coordinate(state, slider, mbd::Coordinate::Y), 0.0, 1e-12);
+  EXPECT_NEAR(model.coordinate(state, slider, mbd::Coordinate::Angle), 0.0, 1e-12);
+  EXPECT_NEAR(model.coordinate(state, lid, mbd::Coordinate::X) -
+                  model.coordinate(state, slider, mbd::Coordinate::X),
+              0.2, 1e-12);
+}
+
+TEST_F(MechanismScene, BadNamesAndExpressionsAreProblemsAtTheirLines) {
+  const std::string text = problems(
+      R"scene(RigidBody2D { name = "arm"; mass = 1; inertia = 1; Mesh { points = [[0, 0], [1, 0]] } }
+PointForce { body = "arm"; force_x = "3*sin(time)" }
+NonlinearSpringDamper { name = "s"; body_a = "arm"; point_b = [1, 1]; tension = "elongation +" }
+Sensor { name = "a"; type = "spring_force"; element = "nothing" }
+Sensor { name = "b"; type = "joint_force"; joint = "s" }
+Sensor { name = "c"; type = "kinetic_energy"; body = "arm" }
+RotationalSpringDamper { name = "s"; body_a = "arn"; stiffness = 1 }
+)scene");
+  EXPECT_NE(text.find("m.scene:4:"), std::string::npos) << text;  // force_x
+  EXPECT_NE(text.find("3*sin(time)"), std::string::npos) << text;
+  EXPECT_NE(text.find("m.scene:5:"), std::string::npos) << text;  // tension
+  EXPECT_NE(text.find("no spring named 'nothing'"), std::string::npos) << text;
+  EXPECT_NE(text.find("needs component"), std::string::npos) << text;
+  EXPECT_NE(text.find("a kinetic_energy sensor takes no body"), std::string::npos) << text;
+  EXPECT_NE(text.find("m.scene:9:"), std::string::npos) << text;  // body_a = "arn"
+}
+
+TEST_F(MechanismScene, ElementNamesAreUnique) {
+  const std::string text = problems(
+      R"scene(RigidBody2D { name = "arm"; mass = 1; inertia = 1; Mesh { points = [[0, 0], [1, 0]] } }
+RevoluteJoint { name = "pin"; body_a = "arm" }
+SpringDamper { name = "pin"; body_a = "arm"; point_b = [1, 1]; stiffness = 1 }
+)scene");
+  EXPECT_NE(text.find("m.scene:5:"), std::string::npos) << text;
+  EXPECT_NE(text.find("a second element is named 'pin'"), std::string::npos) << text;
+}
+
+TEST_F(MechanismScene, RedundantAndContradictoryJointsAreNamed) {
+  const std::string text = problems(
+      R"scene(RigidBody2D { name = "door"; mass = 1; inertia = 1; Mesh { points = [[0, 0], [1, 0]] } }
+Clamp { name = "frame"; body = "door" }
+RevoluteJoint { name = "hinge"; body_a = "door" }
+CoordinateConstraint { body = "door"; coordinate = "x"; value = 0.5 }
+)scene");
+  EXPECT_NE(text.find("revolute joint 'hinge' (x): redundant"), std::string::npos) << text;
+  EXPECT_NE(text.find("coordinate constraint on door.x: position residual C = -0.5"),
+            std::string::npos)
+      << text;
+}
+
+TEST_F(MechanismScene, ZeroMassIsAProblemAtItsLine) {
+  const std::string text = problems(
+      "RigidBody2D { name = \"wheel\"; mass = 0; inertia = 1; Mesh { points = [[0, 0], [1, 0]] } "
+      "}\n");
+  EXPECT_NE(text.find("m.scene:3:"), std::string::npos) << text;
+  EXPECT_NE(text.find("'RigidBody2D.mass' = 0 kg/m is out of range"), std::string::npos) << text;
+}
+
+}  // namespace
+}  // namespace fsi::scene
