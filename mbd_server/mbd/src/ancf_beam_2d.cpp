@@ -181,6 +181,12 @@ AncfBeam2D::AncfBeam2D(const AncfBeamSpec& spec) : spec_(spec) {
   if (!(std::isfinite(spec.bending_stiffness) && spec.bending_stiffness > 0.0)) {
     problems += " bending stiffness EI = " + number(spec.bending_stiffness) + " is not positive;";
   }
+  if (!(std::isfinite(spec.axial_damping) && spec.axial_damping >= 0.0)) {
+    problems += " axial damping = " + number(spec.axial_damping) + " is negative;";
+  }
+  if (!(std::isfinite(spec.bending_damping) && spec.bending_damping >= 0.0)) {
+    problems += " bending damping = " + number(spec.bending_damping) + " is negative;";
+  }
   if (!(std::isfinite(spec.mass_per_length) && spec.mass_per_length > 0.0)) {
     problems += " mass per length rho A = " + number(spec.mass_per_length) + " is not positive;";
   }
@@ -192,8 +198,8 @@ AncfBeam2D::AncfBeam2D(const AncfBeamSpec& spec) : spec_(spec) {
   if (!problems.empty()) {
     problems.pop_back();
     throw Error("invalid parameters:" + problems, where,
-                "give at least one element, positive EA, EI and rho A (2D: per unit depth) and "
-                "two distinct end points");
+                "give at least one element, positive EA, EI and rho A (2D: per unit depth), "
+                "non-negative damping and two distinct end points");
   }
   element_length_ = length_ / spec.element_count;
 }
@@ -274,53 +280,69 @@ double AncfBeam2D::strain_energy(const ConstVector& q) const {
   return energy;
 }
 
-void AncfBeam2D::add_internal_force(const ConstVector& q, const ConstVector& /*v*/,
+void AncfBeam2D::add_internal_force(const ConstVector& q, const ConstVector& v,
                                     Eigen::Ref<Eigen::VectorXd> force) const {
-  // Q = -dU/dq: the axial force N = EA eps and the bending moment M = EI kappa do the virtual
-  // work integral (N d(eps) + M d(kappa)) dx.
+  // The axial force N = EA eps + d_eps deps/dt and the bending moment M = EI kappa +
+  // d_kappa dkappa/dt do the virtual work integral (N d(eps) + M d(kappa)) dx; Q = -that
+  // (-dU/dq for the elastic part).
   const double l = element_length_;
   const GaussRule axial = gauss_rule(kAxialPoints);
   const GaussRule bending = gauss_rule(kBendingPoints);
   for (int e = 0; e < spec_.element_count; ++e) {
     const Vector8 qe = q.segment<8>(4 * e);
-    Vector8 gradient = Vector8::Zero();
+    const Vector8 ve = v.segment<8>(4 * e);
+    Vector8 work = Vector8::Zero();
     for (int i = 0; i < axial.size; ++i) {
       const Deformation d = deformation(qe, shape(0.5 * l * (axial.points[i] + 1.0), l), false);
-      gradient +=
-          0.5 * l * axial.weights[i] * spec_.axial_stiffness * d.axial_strain * d.axial_gradient;
+      const double normal_force =
+          spec_.axial_stiffness * d.axial_strain + spec_.axial_damping * d.axial_gradient.dot(ve);
+      work += 0.5 * l * axial.weights[i] * normal_force * d.axial_gradient;
     }
     for (int i = 0; i < bending.size; ++i) {
       const Deformation d = deformation(qe, shape(0.5 * l * (bending.points[i] + 1.0), l), false);
-      gradient += 0.5 * l * bending.weights[i] * spec_.bending_stiffness * d.curvature *
-                  d.curvature_gradient;
+      const double moment = spec_.bending_stiffness * d.curvature +
+                            spec_.bending_damping * d.curvature_gradient.dot(ve);
+      work += 0.5 * l * bending.weights[i] * moment * d.curvature_gradient;
     }
-    force.segment<8>(4 * e) -= gradient;
+    force.segment<8>(4 * e) -= work;
   }
 }
 
-void AncfBeam2D::add_internal_force_derivatives(const ConstVector& q, const ConstVector& /*v*/,
+void AncfBeam2D::add_internal_force_derivatives(const ConstVector& q, const ConstVector& v,
                                                 Eigen::Ref<Eigen::MatrixXd> by_position,
-                                                Eigen::Ref<Eigen::MatrixXd> /*by_velocity*/) const {
-  // dQ/dq = -d^2U/dq^2 = -integral (EA (eps' eps'^T + eps eps'') + EI (...kappa...)) dx.
+                                                Eigen::Ref<Eigen::MatrixXd> by_velocity) const {
+  // For a strain measure e (eps or kappa) with stiffness k and damping c, the force
+  // -(k e + c de/dt) grad e, de/dt = grad e . v, has
+  //   d/dq = -(k grad e grad e^T + (k e + c de/dt) hess e + c grad e (hess e v)^T),
+  //   d/dv = -c grad e grad e^T.
   const double l = element_length_;
   const GaussRule axial = gauss_rule(kAxialPoints);
   const GaussRule bending = gauss_rule(kBendingPoints);
+  auto add = [](double weight, double stiffness, double damping, double measure,
+                const Vector8& gradient, const Matrix8& hessian, const Vector8& ve,
+                Matrix8& position, Matrix8& velocity) {
+    const double resultant = stiffness * measure + damping * gradient.dot(ve);
+    position += weight * (stiffness * gradient * gradient.transpose() + resultant * hessian +
+                          damping * gradient * (hessian * ve).transpose());
+    velocity += weight * damping * gradient * gradient.transpose();
+  };
   for (int e = 0; e < spec_.element_count; ++e) {
     const Vector8 qe = q.segment<8>(4 * e);
-    Matrix8 stiffness = Matrix8::Zero();
+    const Vector8 ve = v.segment<8>(4 * e);
+    Matrix8 position = Matrix8::Zero();
+    Matrix8 velocity = Matrix8::Zero();
     for (int i = 0; i < axial.size; ++i) {
       const Deformation d = deformation(qe, shape(0.5 * l * (axial.points[i] + 1.0), l), true);
-      stiffness +=
-          0.5 * l * axial.weights[i] * spec_.axial_stiffness *
-          (d.axial_gradient * d.axial_gradient.transpose() + d.axial_strain * d.axial_hessian);
+      add(0.5 * l * axial.weights[i], spec_.axial_stiffness, spec_.axial_damping, d.axial_strain,
+          d.axial_gradient, d.axial_hessian, ve, position, velocity);
     }
     for (int i = 0; i < bending.size; ++i) {
       const Deformation d = deformation(qe, shape(0.5 * l * (bending.points[i] + 1.0), l), true);
-      stiffness += 0.5 * l * bending.weights[i] * spec_.bending_stiffness *
-                   (d.curvature_gradient * d.curvature_gradient.transpose() +
-                    d.curvature * d.curvature_hessian);
+      add(0.5 * l * bending.weights[i], spec_.bending_stiffness, spec_.bending_damping, d.curvature,
+          d.curvature_gradient, d.curvature_hessian, ve, position, velocity);
     }
-    by_position.block<8, 8>(4 * e, 4 * e) -= stiffness;
+    by_position.block<8, 8>(4 * e, 4 * e) -= position;
+    by_velocity.block<8, 8>(4 * e, 4 * e) -= velocity;
   }
 }
 

@@ -7,6 +7,8 @@
 // interpolation r(x) = S(x) q_e along the undeformed arc length x; the stress-free reference is
 // the straight line of the spec (|r'| = 1, no curvature). Strain energy per unit length
 // 1/2 EA eps^2 + 1/2 EI kappa^2 with eps = |r'| - 1 and kappa = (r' x r'') / |r'|^2.
+// Optional viscous damping adds d_eps deps/dt to the axial force and d_kappa dkappa/dt to the
+// bending moment.
 //
 // Material points: local = (s, eta), s in [0, L] along the undeformed centre line, eta along
 // the unit normal n = e_z x r' / |r'| of the deformed line (left of the direction start -> end):

@@ -110,8 +110,43 @@ TEST(MbdAncfBeam, ElasticStiffnessMatchesDifferencesOfTheForce) {
         },
         q, 1e-6);
     EXPECT_LT(relative_error(by_position, reference), 1e-7) << "trial " << trial;
-    EXPECT_EQ(by_velocity.cwiseAbs().maxCoeff(), 0.0) << "the beam has no damping";
+    EXPECT_EQ(by_velocity.cwiseAbs().maxCoeff(), 0.0) << "this beam has no damping";
     EXPECT_LT(relative_error(by_position, by_position.transpose()), 1e-12) << "conservative";
+  }
+}
+
+TEST(MbdAncfBeam, DampedForceAndItsDerivativesMatchDifferences) {
+  std::mt19937 rng(5);
+  AncfBeamSpec spec = beam_spec(3);
+  spec.axial_damping = 40.0;
+  spec.bending_damping = 0.3;
+  const detail::AncfBeam2D beam(spec);
+  const detail::AncfBeam2D undamped(beam_spec(3));
+  const int n = beam.coordinate_count();
+  for (int trial = 0; trial < 5; ++trial) {
+    const Eigen::VectorXd q = deformed(beam, rng);
+    const Eigen::VectorXd v = 3.0 * random_vector(n, rng);
+    auto force = [&](const detail::AncfBeam2D& b, const Eigen::VectorXd& x,
+                     const Eigen::VectorXd& u) {
+      Eigen::VectorXd f = Eigen::VectorXd::Zero(n);
+      b.add_internal_force(x, u, f);
+      return f;
+    };
+    Eigen::MatrixXd by_position = Eigen::MatrixXd::Zero(n, n);
+    Eigen::MatrixXd by_velocity = Eigen::MatrixXd::Zero(n, n);
+    beam.add_internal_force_derivatives(q, v, by_position, by_velocity);
+    const Eigen::MatrixXd position_differences =
+        differences([&](const Eigen::VectorXd& x) { return force(beam, x, v); }, q, 1e-6);
+    const Eigen::MatrixXd velocity_differences =
+        differences([&](const Eigen::VectorXd& u) { return force(beam, q, u); }, v, 1e-6);
+    EXPECT_LT(relative_error(by_position, position_differences), 1e-7) << "trial " << trial;
+    EXPECT_LT(relative_error(by_velocity, velocity_differences), 1e-7) << "trial " << trial;
+    // Damping dissipates: the damping force does negative power.
+    const Eigen::VectorXd damping_force = force(beam, q, v) - force(undamped, q, v);
+    EXPECT_LT(damping_force.dot(v), 0.0);
+    EXPECT_LT((force(beam, q, Eigen::VectorXd::Zero(n)) - force(undamped, q, v)).norm(),
+              1e-12 * force(undamped, q, v).norm())
+        << "at rest only the elastic force acts";
   }
 }
 
@@ -304,6 +339,8 @@ TEST(MbdAncfBeam, VertexForcesOnBothFacesGiveTheGeneralisedForceOfVirtualWork) {
 TEST(MbdAncfBeam, NewtonMatrixWithABeamMatchesDifferencesOfTheResidual) {
   Model model;
   AncfBeamSpec spec = beam_spec(2);
+  spec.axial_damping = 20.0;  // dF/dv of the beam in the matrix too
+  spec.bending_damping = 0.2;
   const BodyId beam_id = model.add_ancf_beam(spec);
   model.set_gravity({0.0, -9.81});
   model.add_beam_clamp(beam_id, 0);

@@ -152,6 +152,14 @@ BlockSpec make_schema() {
        positive(number("axial_stiffness", "N/m", "EA (per unit depth in 2D)")),
        positive(number("bending_stiffness", "N m", "EI (per unit depth in 2D)")),
        positive(number("mass_per_length", "kg/m^2", "rho A (per unit depth in 2D)")),
+       with_default(at_least(number("axial_damping", "N s/m",
+                                    "viscous axial damping: N = EA eps + this * deps/dt"),
+                             0.0),
+                    number_value(0.0)),
+       with_default(at_least(number("bending_damping", "N m s",
+                                    "viscous bending damping: M = EI kappa + this * dkappa/dt"),
+                             0.0),
+                    number_value(0.0)),
        positive(number("thickness", "m", "h: distance of the two faces the mesh follows")),
        with_default(at_least(integer("face_points_per_element",
                                      "mesh segments per element on each face (0: no surface mesh)"),
@@ -563,6 +571,8 @@ Scene build_scene(const std::string& path, const std::vector<Override>& override
       spec.axial_stiffness = beam.number("axial_stiffness");
       spec.bending_stiffness = beam.number("bending_stiffness");
       spec.mass_per_length = beam.number("mass_per_length");
+      spec.axial_damping = beam.number("axial_damping");
+      spec.bending_damping = beam.number("bending_damping");
       const double half_thickness = 0.5 * beam.number("thickness");
       const auto per_element = static_cast<int>(beam.integer("face_points_per_element"));
       mbd::BodyId id = 0;

@@ -298,7 +298,7 @@ TEST(Scene, AnAncfBeamWithClampJointAndAMeshOnBothFaces) {
 SolverOptions { end_time = 1; Timeint { step_size = 1e-5 } }
 AncfBeam2D { name = "valve"; start = [0, 0]; end = [0, 0.1]; elements = 4; thickness = 0.004
              axial_stiffness = 2e6; bending_stiffness = 2.7; mass_per_length = 8;
-             face_points_per_element = 2 }
+             face_points_per_element = 2; bending_damping = 1e-3 }
 RigidBody2D { name = "tip"; mass = 0.01; inertia = 1e-6; position = [0, 0.1] }
 BeamClamp { beam = "valve" }
 RevoluteJoint { body_a = "valve"; point_a = [0.1, 0]; body_b = "tip" }
@@ -311,6 +311,8 @@ Coupling { refinement_resolution = 0.002 }
   ASSERT_EQ(model.body_count(), 2);
   const mbd::BodyId valve = model.find_body("valve");
   EXPECT_TRUE(model.is_beam(valve));
+  EXPECT_EQ(model.beam(valve).bending_damping, 1e-3);
+  EXPECT_EQ(model.beam(valve).axial_damping, 0.0);
   EXPECT_EQ(model.coordinate_count(), 4 * 5 + 3);
   EXPECT_EQ(model.constraint_count(), 3 + 2);  // clamp (direction), revolute
   // Closed outline: 9 points on each face, all dynamic, one segment per vertex.

@@ -76,6 +76,10 @@ struct AncfBeamSpec {
   double axial_stiffness = 0.0;    // EA [N] (2D: per unit depth, N/m)
   double bending_stiffness = 0.0;  // EI [N m^2] (2D: N m)
   double mass_per_length = 0.0;    // rho A [kg/m] (2D: kg/m^2)
+  // Viscous structural damping: N = EA eps + axial_damping deps/dt,
+  // M = EI kappa + bending_damping dkappa/dt.
+  double axial_damping = 0.0;    // [N s] (2D: N s/m)
+  double bending_damping = 0.0;  // [N m^2 s] (2D: N m s)
 };
 
 // The four coordinates of a beam node.
