@@ -525,11 +525,13 @@ class Session {
       const auto& body = scene_.model.body(b);
       bodies.push_back({{"name", body.name}, {"mass", body.mass}, {"inertia", body.inertia}});
     }
-    manifest["model"] = {{"gravity", {scene_.model.gravity().x(), scene_.model.gravity().y()}},
-                         {"bodies", bodies},
-                         {"constraints", scene_.model.constraint_count()},
-                         {"integrator", integrator_->tableau().name + ", " +
-                                            std::to_string(scene_.solver.stages) + " stages"}};
+    manifest["model"] = {
+        {"gravity", {scene_.model.gravity().x(), scene_.model.gravity().y()}},
+        {"bodies", bodies},
+        {"constraints", scene_.model.constraint_count()},
+        {"integrator",  // from the scene: the integrator is not made when the handshake fails
+         mbd::butcher_tableau(scene_.solver.family, scene_.solver.stages).name + ", " +
+             std::to_string(scene_.solver.stages) + " stages"}};
     manifest["fluid"] = {
         {"particle_count", ready_.particle_count ? ready_.particle_count : scene_.fluid.count()},
         {"generated_particles", scene_.fluid.count()},
