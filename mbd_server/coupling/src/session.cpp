@@ -516,6 +516,14 @@ class Session {
     manifest["parameters_flat"] = scene::flatten_numbers(scene_.parameters);
     json bodies = json::array();
     for (int b = 0; b < scene_.model.body_count(); ++b) {
+      if (scene_.model.is_beam(b)) {
+        const auto& beam = scene_.model.beam(b);
+        bodies.push_back({{"name", beam.name},
+                          {"type", "ancf_beam"},
+                          {"mass", beam.mass_per_length * (beam.end - beam.start).norm()},
+                          {"elements", beam.element_count}});
+        continue;
+      }
       const auto& body = scene_.model.body(b);
       bodies.push_back({{"name", body.name}, {"mass", body.mass}, {"inertia", body.inertia}});
     }

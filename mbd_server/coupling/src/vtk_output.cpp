@@ -58,6 +58,7 @@ void VtkOutput::write(const ParticleSnapshot& particles, const mbd::Model& model
   frames.time = state.time;
   std::vector<double> body_positions, body_velocities, angles;
   for (mbd::BodyId b = 0; b < model.body_count(); ++b) {
+    if (model.is_beam(b)) continue;  // no rigid frame; its centre line is the open item below
     frames.names.push_back(model.body(b).name);
     body_positions.push_back(model.coordinate(state, b, mbd::Coordinate::X));
     body_positions.push_back(model.coordinate(state, b, mbd::Coordinate::Y));

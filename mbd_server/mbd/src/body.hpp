@@ -1,8 +1,8 @@
 #pragma once
 // Body element interface (internal): what the model needs from a body to assemble the equations
 // of motion and to move its material points. A body owns a contiguous block of n_b generalised
-// coordinates; every function receives only that block. Later element types (3D rigid bodies,
-// ANCF beams) implement this interface; the integrator never sees it.
+// coordinates; every function receives only that block. Element types (planar rigid bodies,
+// planar ANCF beams; later 3D bodies) implement this interface; the integrator never sees it.
 
 #include <Eigen/Dense>
 
@@ -30,6 +30,22 @@ class Body {
                                  Eigen::Ref<Eigen::VectorXd> force) const = 0;
   virtual double gravity_potential(const ConstVector& q,
                                    const Eigen::Vector2d& acceleration) const = 0;
+
+  // Internal generalised force Q_int(q, v) of a deformable body (elastic and, if modelled,
+  // dissipative), added to `force`; it enters F like any applied force. Rigid bodies have none.
+  virtual void add_internal_force(const ConstVector& /*q*/, const ConstVector& /*v*/,
+                                  Eigen::Ref<Eigen::VectorXd> /*force*/) const {}
+  // Its exact derivatives dQ_int/dq and dQ_int/dv (n_b x n_b each), added: the Newton matrix
+  // and the static solver use them directly.
+  virtual void add_internal_force_derivatives(const ConstVector& /*q*/, const ConstVector& /*v*/,
+                                              Eigen::Ref<Eigen::MatrixXd> /*by_position*/,
+                                              Eigen::Ref<Eigen::MatrixXd> /*by_velocity*/) const {}
+  // The potential of the elastic part of Q_int (strain energy), zero for rigid bodies.
+  virtual double internal_energy(const ConstVector& /*q*/) const { return 0.0; }
+  // Throws fsi::Error naming `user` if `local` is not a material point of the body (e.g. an
+  // axial coordinate beyond a beam's end). Every point of the plane belongs to a rigid body.
+  virtual void check_local_coordinates(const Eigen::Vector2d& /*local*/,
+                                       const std::string& /*user*/) const {}
 
   // Material point with body-fixed local coordinates.
   virtual Eigen::Vector2d position(const ConstVector& q, const Eigen::Vector2d& local) const = 0;

@@ -38,6 +38,32 @@ class CoordinateConstraint final : public Constraint {
   double value_;
 };
 
+// sum_k w_k q_(i_k) - value = 0: a fixed linear combination of coordinates (a clamped beam
+// slope's direction).
+class LinearCoordinateConstraint final : public Constraint {
+ public:
+  LinearCoordinateConstraint(std::string description, Eigen::VectorXi indices,
+                             Eigen::VectorXd weights, double value);
+
+  std::string description() const override { return description_; }
+  ConstraintLevel level() const override { return ConstraintLevel::Position; }
+  double residual(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v) const override;
+  void jacobian_row(double time, const Eigen::VectorXd& q, RowRef row) const override;
+  double explicit_time_derivative(double, const Eigen::VectorXd&) const override { return 0.0; }
+  double acceleration_remainder(double, const Eigen::VectorXd&,
+                                const Eigen::VectorXd&) const override {
+    return 0.0;
+  }
+  void add_force_derivative(double, const Eigen::VectorXd&, double,
+                            Eigen::MatrixXd&) const override {}
+
+ private:
+  std::string description_;
+  Eigen::VectorXi indices_;
+  Eigen::VectorXd weights_;
+  double value_;
+};
+
 // dq_i/dt - velocity = 0.
 class VelocityConstraint final : public Constraint {
  public:

@@ -17,6 +17,27 @@ void CoordinateConstraint::jacobian_row(double, const Eigen::VectorXd&, RowRef r
   row(index_) = 1.0;
 }
 
+LinearCoordinateConstraint::LinearCoordinateConstraint(std::string description,
+                                                       Eigen::VectorXi indices,
+                                                       Eigen::VectorXd weights, double value)
+    : description_(std::move(description)),
+      indices_(std::move(indices)),
+      weights_(std::move(weights)),
+      value_(value) {}
+
+double LinearCoordinateConstraint::residual(double, const Eigen::VectorXd& q,
+                                            const Eigen::VectorXd&) const {
+  double sum = -value_;
+  for (Eigen::Index k = 0; k < indices_.size(); ++k)
+    sum += weights_(k) * q(indices_(k));
+  return sum;
+}
+
+void LinearCoordinateConstraint::jacobian_row(double, const Eigen::VectorXd&, RowRef row) const {
+  for (Eigen::Index k = 0; k < indices_.size(); ++k)
+    row(indices_(k)) += weights_(k);
+}
+
 VelocityConstraint::VelocityConstraint(std::string description, int coordinate_index,
                                        double velocity)
     : description_(std::move(description)), index_(coordinate_index), velocity_(velocity) {}

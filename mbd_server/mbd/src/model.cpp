@@ -6,6 +6,7 @@
 #include <limits>
 #include <vector>
 
+#include "ancf_beam_2d.hpp"
 #include "body.hpp"
 #include "body_point.hpp"
 #include "constraint.hpp"
@@ -76,6 +77,38 @@ struct Model::Data {
     }
     return *rigid;
   }
+  const detail::AncfBeam2D& ancf_beam(BodyId body, const std::string& user) const {
+    check_body(body, user);
+    const auto* beam = dynamic_cast<const detail::AncfBeam2D*>(bodies[body].get());
+    if (beam == nullptr) {
+      throw Error(user + " needs an ANCF beam but '" + bodies[body]->name() + "' is not one",
+                  "multibody model", "refer to a body added with add_ancf_beam");
+    }
+    return *beam;
+  }
+  const detail::AncfBeam2D& beam_node(BodyId body, int node, const std::string& user) const {
+    const auto& beam = ancf_beam(body, user);
+    if (node < 0 || node >= beam.node_count()) {
+      throw Error(user + " refers to node " + std::to_string(node) + " of ANCF beam '" +
+                      beam.name() + "', which has nodes 0.." +
+                      std::to_string(beam.node_count() - 1),
+                  "multibody model", "refer to an existing node (0 is the start)");
+    }
+    return beam;
+  }
+  BodyId add_body(std::unique_ptr<detail::Body> body, const std::string& kind) {
+    for (const auto& other : bodies) {
+      if (other->name() == body->name()) {
+        throw Error("a second body is named '" + body->name() + "'",
+                    kind + " '" + body->name() + "'", "give every body its own name");
+      }
+    }
+    offsets.push_back(coordinates);
+    coordinates += body->coordinate_count();
+    bodies.push_back(std::move(body));
+    mass_valid = false;
+    return static_cast<BodyId>(bodies.size()) - 1;
+  }
   // A body point as the elements see it; throws naming `user` for unknown bodies or
   // non-finite coordinates.
   detail::BodyPoint point(const BodyPointSpec& spec, const std::string& user) const {
@@ -84,6 +117,7 @@ struct Model::Data {
     }
     if (spec.body == kGround) return {nullptr, 0, spec.local};
     check_body(spec.body, user);
+    bodies[spec.body]->check_local_coordinates(spec.local, user);
     return {bodies[spec.body].get(), offsets[spec.body], spec.local};
   }
   // World position of a body point in the bodies' initial state.
@@ -119,18 +153,11 @@ Model& Model::operator=(Model&&) noexcept = default;
 // --- building ---
 
 BodyId Model::add_rigid_body(const RigidBody2DSpec& spec) {
-  auto body = std::make_unique<detail::RigidBody2D>(spec);
-  for (const auto& other : data_->bodies) {
-    if (other->name() == spec.name) {
-      throw Error("a second body is named '" + spec.name + "'", "rigid body '" + spec.name + "'",
-                  "give every body its own name");
-    }
-  }
-  data_->offsets.push_back(data_->coordinates);
-  data_->coordinates += body->coordinate_count();
-  data_->bodies.push_back(std::move(body));
-  data_->mass_valid = false;
-  return static_cast<BodyId>(data_->bodies.size()) - 1;
+  return data_->add_body(std::make_unique<detail::RigidBody2D>(spec), "rigid body");
+}
+
+BodyId Model::add_ancf_beam(const AncfBeamSpec& spec) {
+  return data_->add_body(std::make_unique<detail::AncfBeam2D>(spec), "ANCF beam");
 }
 
 void Model::set_gravity(const Eigen::Vector2d& acceleration) {
@@ -145,6 +172,7 @@ int Model::add_marker(BodyId body, const Eigen::Vector2d& local_coordinates) {
   if (!local_coordinates.allFinite()) {
     throw Error("marker coordinates are not finite", "multibody model", "check the mesh points");
   }
+  if (body != kGround) data_->bodies[body]->check_local_coordinates(local_coordinates, "a marker");
   data_->markers.push_back({body, local_coordinates});
   data_->point_loads.resize(2 * data_->markers.size(), 0.0);
   return static_cast<int>(data_->markers.size()) - 1;
@@ -162,6 +190,37 @@ int Model::add_coordinate_constraint(BodyId body, Coordinate coordinate,
   data_->constraints.push_back(std::make_unique<detail::CoordinateConstraint>(
       "coordinate constraint on " + target, coordinate_index(body, coordinate), held));
   return static_cast<int>(data_->constraints.size()) - 1;
+}
+
+int Model::add_beam_clamp(BodyId beam_id, int node, BeamClamp clamp) {
+  const auto& beam = data_->beam_node(beam_id, node, "a beam clamp");
+  const Eigen::VectorXd reference = beam.reference_coordinates();
+  const std::string target = beam.name() + " node " + std::to_string(node);
+  auto index = [&](BeamNodeCoordinate c) { return beam_coordinate_index(beam_id, node, c); };
+  auto initial = [&](BeamNodeCoordinate c) { return reference(4 * node + static_cast<int>(c)); };
+  const int first = constraint_count();
+  for (const auto c : {BeamNodeCoordinate::X, BeamNodeCoordinate::Y}) {
+    data_->constraints.push_back(std::make_unique<detail::CoordinateConstraint>(
+        "beam clamp on " + target + (c == BeamNodeCoordinate::X ? " (x)" : " (y)"), index(c),
+        initial(c)));
+  }
+  if (clamp == BeamClamp::Full) {
+    for (const auto c : {BeamNodeCoordinate::SlopeX, BeamNodeCoordinate::SlopeY}) {
+      data_->constraints.push_back(std::make_unique<detail::CoordinateConstraint>(
+          "beam clamp on " + target +
+              (c == BeamNodeCoordinate::SlopeX ? " (slope x)" : " (slope y)"),
+          index(c), initial(c)));
+    }
+    return first;
+  }
+  // n_0 . r' = 0 with the initial normal n_0 = (-t_y, t_x).
+  Eigen::VectorXi indices(2);
+  indices << index(BeamNodeCoordinate::SlopeX), index(BeamNodeCoordinate::SlopeY);
+  Eigen::VectorXd weights(2);
+  weights << -initial(BeamNodeCoordinate::SlopeY), initial(BeamNodeCoordinate::SlopeX);
+  data_->constraints.push_back(std::make_unique<detail::LinearCoordinateConstraint>(
+      "beam clamp on " + target + " (slope direction)", indices, weights, 0.0));
+  return first;
 }
 
 int Model::add_velocity_constraint(BodyId body, Coordinate coordinate, double velocity) {
@@ -267,6 +326,24 @@ int Model::marker_count() const {
 
 const RigidBody2DSpec& Model::body(BodyId body) const {
   return data_->rigid_body(body, "a body lookup").spec();
+}
+
+bool Model::is_beam(BodyId body) const {
+  data_->check_body(body, "a body lookup");
+  return dynamic_cast<const detail::AncfBeam2D*>(data_->bodies[body].get()) != nullptr;
+}
+
+const AncfBeamSpec& Model::beam(BodyId beam) const {
+  return data_->ancf_beam(beam, "a beam lookup").spec();
+}
+
+int Model::beam_node_count(BodyId beam) const {
+  return data_->ancf_beam(beam, "a beam lookup").node_count();
+}
+
+int Model::beam_coordinate_index(BodyId beam, int node, BeamNodeCoordinate coordinate) const {
+  (void)data_->beam_node(beam, node, "a beam coordinate index");
+  return data_->offsets[beam] + 4 * node + static_cast<int>(coordinate);
 }
 
 BodyId Model::find_body(std::string_view body_name) const {
@@ -444,8 +521,10 @@ void Model::applied_force(double time, const Eigen::VectorXd& q, const Eigen::Ve
   force.setZero(coordinate_count());
   for (std::size_t b = 0; b < data_->bodies.size(); ++b) {
     const auto& body = *data_->bodies[b];
-    body.add_gravity_force(data_->gravity,
-                           force.segment(data_->offsets[b], body.coordinate_count()));
+    const int o = data_->offsets[b];
+    const int nb = body.coordinate_count();
+    body.add_gravity_force(data_->gravity, force.segment(o, nb));
+    body.add_internal_force(q.segment(o, nb), v.segment(o, nb), force.segment(o, nb));
   }
   Eigen::MatrixXd point_jacobian;
   for (std::size_t k = 0; k < data_->markers.size(); ++k) {
@@ -468,6 +547,14 @@ void Model::applied_force_derivatives(double time, const Eigen::VectorXd& q,
   const int n = coordinate_count();
   by_position.setZero(n, n);
   by_velocity.setZero(n, n);
+  for (std::size_t b = 0; b < data_->bodies.size(); ++b) {
+    const auto& body = *data_->bodies[b];
+    const int o = data_->offsets[b];
+    const int nb = body.coordinate_count();
+    body.add_internal_force_derivatives(q.segment(o, nb), v.segment(o, nb),
+                                        by_position.block(o, o, nb, nb),
+                                        by_velocity.block(o, o, nb, nb));
+  }
   for (std::size_t k = 0; k < data_->markers.size(); ++k) {
     const Marker& marker = data_->markers[k];
     const Eigen::Vector2d load(data_->point_loads[2 * k], data_->point_loads[2 * k + 1]);
@@ -658,6 +745,13 @@ double Model::potential_energy(const State& state) const {
     energy += data_->bodies[b]->gravity_potential(data_->segment(state.q, b), data_->gravity);
   for (const auto& element : data_->force_elements)
     energy += element->potential_energy(state.q);
+  return energy;
+}
+
+double Model::strain_energy(const State& state) const {
+  double energy = 0.0;
+  for (int b = 0; b < body_count(); ++b)
+    energy += data_->bodies[b]->internal_energy(data_->segment(state.q, b));
   return energy;
 }
 

@@ -100,11 +100,24 @@ void RadauStageEquations::jacobian(const Eigen::VectorXd& unknowns, Eigen::Matri
   const double h = step_size_;
   const Eigen::MatrixXd& mass = model.mass_matrix();
   jacobian.setZero(size(), size());
+  force_rounding_ = 0.0;
+  force_velocity_rounding_ = 0.0;
   for (int j = 0; j < stages_; ++j) {
     q_ = position(unknowns, j);
     v_ = velocity(unknowns, j);
     const double t = stage_time(j);
     model.applied_force_derivatives(t, q_, v_, by_position_, by_velocity_);
+    // F_r is evaluated from coordinates of size |q|: its rounding is ~eps sum_k |dF_r/dq_k| |q_k|
+    // (plus the same for v). Newton passes it to V_r damped by the inertia and the stiffness.
+    const Eigen::VectorXd rounding =
+        by_position_.cwiseAbs() * q_.cwiseAbs() + by_velocity_.cwiseAbs() * v_.cwiseAbs();
+    for (int r = 0; r < n_; ++r) {
+      const double resistance = mass(r, r) + h * std::abs(by_velocity_(r, r)) +
+                                h * h * std::abs(by_position_(r, r)) +
+                                std::numeric_limits<double>::min();
+      force_rounding_ = std::max(force_rounding_, rounding(r));
+      force_velocity_rounding_ = std::max(force_velocity_rounding_, h * rounding(r) / resistance);
+    }
     model.constraint_jacobian(t, q_, stage_constraint_jacobian_[j]);
     lambda_ = unknowns.segment(l_offset(j), m_);
     // d/dZ_j (G(Q_j)^T L_j) = h * [d(G^T mu)/dq at mu = L_j].
@@ -165,10 +178,11 @@ double RadauStageEquations::increment_norm(const Eigen::VectorXd& unknowns,
   // |C| / eps is the size whose rounding |C| can be, at most |q|; a held coordinate has C = 0.
   const double constraint_rounding =
       std::min(position_residual_ / std::numeric_limits<double>::epsilon(), position_scale) / h;
-  const double multiplier_rounding =
-      multiplier_scale + mass_size * (velocity_scale + constraint_rounding / h) / h;
+  const double multiplier_rounding = multiplier_scale + force_rounding_ +
+                                     mass_size * (velocity_scale + constraint_rounding / h) / h;
   return std::max({position_step / weight(position_scale, position_scale),
-                   velocity_step / weight(velocity_scale, velocity_scale + constraint_rounding),
+                   velocity_step / weight(velocity_scale, velocity_scale + constraint_rounding +
+                                                              force_velocity_rounding_),
                    multiplier_step / weight(multiplier_scale, multiplier_rounding)});
 }
 

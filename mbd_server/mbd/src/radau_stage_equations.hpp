@@ -59,8 +59,10 @@ class RadauStageEquations {
   // criterion reachable in floating point (multipliers: L / h carries the rounding of M V / h;
   // and the rounding of the position rows' C / h in the last residual() call reaches the
   // velocities as |q| / h and the multipliers as M |q| / h^2: the index-3 floor; held
-  // coordinates have C = 0 exactly and no such term).
-  // Uses the stage forces of the last residual() call.
+  // coordinates have C = 0 exactly and no such term). Stiff forces (an elastic beam) add the
+  // rounding of F they are computed from, sum_k |dF_j/dq_k| |q_k| per coordinate j, to the
+  // multipliers and, through h / (M_jj + h^2 |dF_j/dq_j|), to the velocities (from the last
+  // jacobian() call). Uses the stage forces of the last residual() call.
   double increment_norm(const Eigen::VectorXd& unknowns, const Eigen::VectorXd& increment,
                         const NewtonOptions& options) const;
 
@@ -87,6 +89,9 @@ class RadauStageEquations {
   int block_ = 0;
   std::vector<bool> position_level_;
   double position_residual_ = 0.0;  // max |C(Q_i)| of position rows in the last residual() call
+  // Sizes whose rounding the stiff forces carry (last jacobian() call, see increment_norm).
+  double force_rounding_ = 0.0;
+  double force_velocity_rounding_ = 0.0;
   // Scratch, per stage where needed.
   std::vector<Eigen::VectorXd> stage_force_;
   std::vector<Eigen::MatrixXd> stage_constraint_jacobian_;

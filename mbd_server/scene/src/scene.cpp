@@ -140,6 +140,33 @@ BlockSpec make_schema() {
                     number_value(0.0))},
       {mesh}));
 
+  BlockSpec beam = repeated(block(
+      "AncfBeam2D",
+      "A planar ANCF beam (Gerstmayr's elastic line, docs/theory.md): straight and stress-free "
+      "from start to end, at rest; 4 coordinates per node (x, y, slope x, slope y). Its points "
+      "(joints, springs) are [s, eta]: s along the undeformed centre line from start, eta along "
+      "the deformed line's normal, left of start -> end. Its surface mesh is the closed outline "
+      "of both faces eta = +-thickness/2.",
+      {text("name", "unique name, used by clamps, joints and sensors"),
+       vector("start", 2, "m", "first node (s = 0)"), vector("end", 2, "m", "last node (s = L)"),
+       at_least(integer("elements", "number of equal elements"), 1),
+       positive(number("axial_stiffness", "N/m", "EA (per unit depth in 2D)")),
+       positive(number("bending_stiffness", "N m", "EI (per unit depth in 2D)")),
+       positive(number("mass_per_length", "kg/m^2", "rho A (per unit depth in 2D)")),
+       with_default(at_least(number("axial_damping", "N s/m",
+                                    "viscous axial damping: N = EA eps + this * deps/dt"),
+                             0.0),
+                    number_value(0.0)),
+       with_default(at_least(number("bending_damping", "N m s",
+                                    "viscous bending damping: M = EI kappa + this * dkappa/dt"),
+                             0.0),
+                    number_value(0.0)),
+       positive(number("thickness", "m", "h: distance of the two faces the mesh follows")),
+       with_default(at_least(integer("face_points_per_element",
+                                     "mesh segments per element on each face (0: no surface mesh)"),
+                             0),
+                    number_value(4))}));
+
   BlockSpec ground = repeated(
       block("Ground", "Static geometry fixed in space (its meshes are static boundary vertices).",
             {}, {mesh}));
@@ -151,6 +178,18 @@ BlockSpec make_schema() {
       "Holds a body coordinate at a value (position level; force from a Lagrange multiplier).",
       {body_name, coordinate,
        optional(number("value", "m or rad", "held value (default: the initial coordinate)"))}));
+  BlockSpec beam_clamp = repeated(block(
+      "BeamClamp",
+      "Clamps a node of an AncfBeam2D to the ground at its initial position and slope direction "
+      "(rows x, y, slope direction); slope = \"full\" also holds the slope's length (4 rows).",
+      {text("beam", "name of an AncfBeam2D"),
+       with_default(at_least(integer("node", "node index: 0 at start, elements at end"), 0),
+                    number_value(0)),
+       with_default(choice(text("slope",
+                                "direction: the axial stretch at the clamp stays free "
+                                "(Gerstmayr & Irschik); full: held too"),
+                           {"direction", "full"}),
+                    text_value("direction"))}));
   BlockSpec velocity_constraint = repeated(block(
       "VelocityConstraint",
       "Prescribes the velocity of a body coordinate (velocity level, thesis §6.3 piston).",
@@ -159,13 +198,15 @@ BlockSpec make_schema() {
   // Elements between two body points; body_b absent: point_b is a fixed point of the world.
   auto two_points = [](std::vector<ParameterSpec> extra) {
     std::vector<ParameterSpec> parameters = {
-        detail::element_name_spec(), text("body_a", "name of a RigidBody2D"),
-        with_default(vector("point_a", 2, "m", "point on body_a, body coordinates"),
-                     vector_value({0.0, 0.0})),
-        optional(text("body_b", "name of a RigidBody2D; absent: the ground")),
+        detail::element_name_spec(), text("body_a", "name of a RigidBody2D or AncfBeam2D"),
         with_default(
-            vector("point_b", 2, "m", "point on body_b (body coordinates) or in the world"),
-            vector_value({0.0, 0.0}))};
+            vector("point_a", 2, "m", "point on body_a: body coordinates, [s, eta] on a beam"),
+            vector_value({0.0, 0.0})),
+        optional(text("body_b", "name of a RigidBody2D or AncfBeam2D; absent: the ground")),
+        with_default(vector("point_b", 2, "m",
+                            "point on body_b (body coordinates, [s, eta] on a beam) or in the "
+                            "world"),
+                     vector_value({0.0, 0.0}))};
     parameters.insert(parameters.end(), extra.begin(), extra.end());
     return parameters;
   };
@@ -196,7 +237,7 @@ BlockSpec make_schema() {
                "joint_force", "spring_force", "kinetic_energy", "potential_energy"}),
        optional(text("body",
                      "name of a RigidBody2D (position, velocity, fluid and constraint "
-                     "forces)")),
+                     "forces), or of an AncfBeam2D (fluid_force)")),
        optional(text("joint", "joint_force: the name of a joint block")),
        optional(text("element", "spring_force: the name of a spring block")),
        optional(choice(text("component",
@@ -265,9 +306,11 @@ BlockSpec make_schema() {
                  output,
                  gravity,
                  body,
+                 beam,
                  ground,
                  coordinate_constraint,
                  velocity_constraint,
+                 beam_clamp,
                  revolute,
                  distance,
                  spring,
@@ -530,6 +573,49 @@ Scene build_scene(const std::string& path, const std::vector<Override>& override
     for (const View& mesh : body.blocks("Mesh"))
       guard(mesh.location(), [&] { add_mesh(mesh, *id); });
   }
+  for (const View& beam : root.blocks("AncfBeam2D")) {
+    const Parameter* name_given = beam.raw().find("name");
+    if (name_given && name_given->failed) unnamed_body_skipped = true;
+    guard(beam.location(), [&] {
+      mbd::AncfBeamSpec spec;
+      spec.name = beam.string("name");
+      skipped_bodies.push_back(spec.name);
+      const auto start = beam.vector("start");
+      const auto end = beam.vector("end");
+      spec.start = {start[0], start[1]};
+      spec.end = {end[0], end[1]};
+      spec.element_count = static_cast<int>(beam.integer("elements"));
+      spec.axial_stiffness = beam.number("axial_stiffness");
+      spec.bending_stiffness = beam.number("bending_stiffness");
+      spec.mass_per_length = beam.number("mass_per_length");
+      spec.axial_damping = beam.number("axial_damping");
+      spec.bending_damping = beam.number("bending_damping");
+      const double half_thickness = 0.5 * beam.number("thickness");
+      const auto per_element = static_cast<int>(beam.integer("face_points_per_element"));
+      mbd::BodyId id = 0;
+      try {
+        id = model.add_ancf_beam(spec);
+      } catch (const Error& error) {
+        problems.push_back({beam.location("name"), error.fault(), error.remedy()});
+        return;
+      }
+      skipped_bodies.pop_back();
+      if (per_element == 0) return;
+      // The closed outline: the upper face from s = 0 to L, the lower face back.
+      const double length = (spec.end - spec.start).norm();
+      const int count = spec.element_count * per_element;
+      const auto first = static_cast<std::uint32_t>(model.marker_count());
+      for (int k = 0; k <= count; ++k)
+        model.add_marker(id, {length * k / count, half_thickness});
+      for (int k = count; k >= 0; --k)
+        model.add_marker(id, {length * k / count, -half_thickness});
+      const auto vertices = static_cast<std::uint32_t>(2 * (count + 1));
+      for (std::uint32_t k = 0; k < vertices; ++k) {
+        scene.boundary.segments.insert(scene.boundary.segments.end(),
+                                       {first + k, first + (k + 1) % vertices});
+      }
+    });
+  }
   scene.boundary.dynamic_vertex_count = static_cast<std::size_t>(model.marker_count());
   for (const View& ground : root.blocks("Ground")) {
     for (const View& mesh : ground.blocks("Mesh"))
@@ -606,6 +692,15 @@ Scene build_scene(const std::string& path, const std::vector<Override>& override
   auto name_of = [](const View& element) {
     return element.has("name") ? element.string("name") : std::string();
   };
+  for (const View& c : root.blocks("BeamClamp")) {
+    guard(c.location(), [&] {
+      const mbd::BodyId beam = find_body(c, "beam");
+      const auto node = static_cast<int>(c.integer("node"));
+      const auto slope =
+          c.string("slope") == "full" ? mbd::BeamClamp::Full : mbd::BeamClamp::Direction;
+      placed(c, [&] { model.add_beam_clamp(beam, node, slope); });
+    });
+  }
   for (const View& j : root.blocks("RevoluteJoint")) {
     guard(j.location(), [&] {
       const auto a = point_spec(j, "a");
@@ -713,6 +808,13 @@ Scene build_scene(const std::string& path, const std::vector<Override>& override
                     : energy                              ? "J/m"
                                                           : (rotational ? "N m/m" : "N/m");
       if (on_body) sensor.body = find_body(s, "body");
+      if (on_body && model.is_beam(sensor.body) && sensor.type != SensorType::FluidForce) {
+        problems.push_back({s.location("type"),
+                            "a " + type + " sensor reads rigid-body coordinates, and '" +
+                                s.string("body") + "' is an AncfBeam2D",
+                            "use type = \"fluid_force\" on a beam"});
+        return;
+      }
       if (sensor.type == SensorType::JointForce) {
         const auto found = named.joints.find(s.string("joint"));
         if (found == named.joints.end()) {
@@ -721,6 +823,15 @@ Scene build_scene(const std::string& path, const std::vector<Override>& override
           return;
         }
         sensor.body = found->second.body;
+        if (sensor.body != mbd::kGround && model.is_beam(sensor.body)) {
+          problems.push_back({s.location("joint"),
+                              "joint '" + s.string("joint") +
+                                  "' holds an AncfBeam2D as its first body; joint_force reads a "
+                                  "rigid body's force and torque",
+                              "give the joint a rigid body as body_a, or measure the beam with "
+                              "a fluid_force sensor"});
+          return;
+        }
         sensor.first_row = found->second.first_row;
         sensor.rows = found->second.rows;
       }

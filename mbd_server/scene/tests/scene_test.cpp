@@ -290,11 +290,81 @@ Coupling { refinement_resolution = 0.002 }
   fs::remove_all(folder);
 }
 
+TEST(Scene, AnAncfBeamWithClampJointAndAMeshOnBothFaces) {
+  const fs::path folder = fs::temp_directory_path() / "fsi_scene_beam_test";
+  fs::create_directories(folder);
+  std::ofstream(folder / "s.in") << "# script\n";
+  std::ofstream(folder / "b.scene") << R"(scene_language = 1
+SolverOptions { end_time = 1; Timeint { step_size = 1e-5 } }
+AncfBeam2D { name = "valve"; start = [0, 0]; end = [0, 0.1]; elements = 4; thickness = 0.004
+             axial_stiffness = 2e6; bending_stiffness = 2.7; mass_per_length = 8;
+             face_points_per_element = 2; bending_damping = 1e-3 }
+RigidBody2D { name = "tip"; mass = 0.01; inertia = 1e-6; position = [0, 0.1] }
+BeamClamp { beam = "valve" }
+RevoluteJoint { body_a = "valve"; point_a = [0.1, 0]; body_b = "tip" }
+Sensor { name = "fx"; type = "fluid_force"; body = "valve"; component = "x" }
+LIGGGHTS { script1 = "s.in"; script2 = "s.in" }
+Coupling { refinement_resolution = 0.002 }
+)";
+  const Scene scene = build_scene((folder / "b.scene").string());
+  const mbd::Model& model = scene.model;
+  ASSERT_EQ(model.body_count(), 2);
+  const mbd::BodyId valve = model.find_body("valve");
+  EXPECT_TRUE(model.is_beam(valve));
+  EXPECT_EQ(model.beam(valve).bending_damping, 1e-3);
+  EXPECT_EQ(model.beam(valve).axial_damping, 0.0);
+  EXPECT_EQ(model.coordinate_count(), 4 * 5 + 3);
+  EXPECT_EQ(model.constraint_count(), 3 + 2);  // clamp (direction), revolute
+  // Closed outline: 9 points on each face, all dynamic, one segment per vertex.
+  EXPECT_EQ(scene.boundary.dynamic_vertex_count, 18u);
+  EXPECT_EQ(scene.boundary.vertex_count, 18u);
+  EXPECT_EQ(scene.boundary.segments.size(), 2u * 18);
+  const mbd::State state = model.initial_state();
+  // The beam runs along +y: its left normal is -x. Upper face first (s = 0 .. L), then back.
+  EXPECT_NEAR(model.marker_position(state, 0).x(), -0.002, 1e-15);
+  EXPECT_NEAR(model.marker_position(state, 8).y(), 0.1, 1e-15);
+  EXPECT_NEAR(model.marker_position(state, 9).x(), 0.002, 1e-15);
+  EXPECT_NEAR(model.marker_position(state, 17).y(), 0.0, 1e-15);
+  ASSERT_EQ(scene.sensors.size(), 1u);
+  EXPECT_EQ(scene.sensors[0].body, valve);
+
+  std::ofstream(folder / "b.scene") << R"(scene_language = 1
+SolverOptions { end_time = 1; Timeint { step_size = 1e-5 } }
+AncfBeam2D { name = "valve"; start = [0, 0]; end = [0, 0.1]; elements = 0; thickness = 0.004
+             axial_stiffness = 2e6; bending_stiffness = 2.7; mass_per_length = 8 }
+AncfBeam2D { name = "reed"; start = [1, 0]; end = [1, 0.1]; elements = 2; thickness = 0.004
+             axial_stiffness = 2e6; bending_stiffness = 2.7; mass_per_length = 8 }
+RigidBody2D { name = "block"; mass = 1; inertia = 1; Mesh { points = [[0, 0], [1, 0]] } }
+BeamClamp { beam = "block" }
+BeamClamp { beam = "reed"; node = 3 }
+Sensor { name = "y"; type = "position"; body = "reed"; component = "y" }
+LIGGGHTS { script1 = "s.in"; script2 = "s.in" }
+Coupling { refinement_resolution = 0.002 }
+)";
+  std::string message;
+  try {
+    build_scene((folder / "b.scene").string());
+  } catch (const fsi::Error& error) {
+    message = error.what();
+  }
+  EXPECT_NE(message.find("b.scene:3:62: 'AncfBeam2D[0].elements' = 0 is out of range"),
+            std::string::npos)
+      << message;
+  EXPECT_NE(message.find("b.scene:8:1: a beam clamp needs an ANCF beam"), std::string::npos)
+      << message;
+  EXPECT_NE(message.find("b.scene:9:1: a beam clamp refers to node 3"), std::string::npos)
+      << message;
+  EXPECT_NE(message.find("b.scene:10:22: a position sensor reads rigid-body coordinates"),
+            std::string::npos)
+      << message;
+  fs::remove_all(folder);
+}
+
 TEST(Scene, SchemaDocumentsEveryBlock) {
   const std::string markdown = render_markdown(scene_schema());
-  for (const char* block :
-       {"SolverOptions", "RigidBody2D", "RigidBody2D.Mesh", "CoordinateConstraint",
-        "VelocityConstraint", "Sensor", "FluidRegion", "LIGGGHTS", "Coupling"}) {
+  for (const char* block : {"SolverOptions", "RigidBody2D", "RigidBody2D.Mesh", "AncfBeam2D",
+                            "BeamClamp", "CoordinateConstraint", "VelocityConstraint", "Sensor",
+                            "FluidRegion", "LIGGGHTS", "Coupling"}) {
     EXPECT_NE(markdown.find(std::string("## `") + block + "`"), std::string::npos) << block;
   }
 }

@@ -15,7 +15,9 @@
 // frame) on a material point r(q) contributes Q = (dr/dq)^T f (virtual work, thesis eq. 2.6-2.8).
 //
 // This version has planar rigid bodies (x, y, phi of the centre of mass, mass matrix
-// diag(m, m, J)), coordinate constraints on position or velocity level, and force elements.
+// diag(m, m, J)), planar ANCF beams (Gerstmayr & Irschik's elastic-line element: position and
+// slope per node, constant consistent mass matrix, elastic forces inside F), coordinate
+// constraints on position or velocity level, beam clamps, joints and force elements.
 // Bodies and constraints are internal element classes behind narrow interfaces
 // (src/body.hpp, src/constraint.hpp) so that later element types plug in without changing the
 // integrator.
@@ -58,6 +60,41 @@ struct RigidBody2DSpec {
   double angle = 0.0;                                  // [rad]
   Eigen::Vector2d velocity = Eigen::Vector2d::Zero();  // [m/s]
   double angular_velocity = 0.0;                       // [rad/s]
+};
+
+// A planar ANCF beam (Gerstmayr & Irschik 2008, "ANCF cable 2D") of element_count equal
+// elements along the straight, stress-free line start -> end, initially at rest there. Per node
+// four coordinates: position (x, y) and slope r' = dr/ds (x, y), s the arc length of the
+// undeformed line; cubic Hermite elements. Axial strain eps = |r'| - 1, curvature
+// kappa = (r' x r'') / |r'|^2; EA and EI per unit depth in 2D. Equations: docs/theory.md.
+// Material points (markers, joint points) have local = (s, eta): s in [0, L] along the undeformed
+// centre line, eta along the deformed line's unit normal n = e_z x r' / |r'| (left of start ->
+// end), so eta = +-h/2 follow the two faces of a beam of thickness h.
+struct AncfBeamSpec {
+  std::string name;
+  Eigen::Vector2d start = Eigen::Vector2d::Zero();  // [m]
+  Eigen::Vector2d end = Eigen::Vector2d::UnitX();   // [m]
+  int element_count = 1;
+  double axial_stiffness = 0.0;    // EA [N] (2D: per unit depth, N/m)
+  double bending_stiffness = 0.0;  // EI [N m^2] (2D: N m)
+  double mass_per_length = 0.0;    // rho A [kg/m] (2D: kg/m^2)
+  // Viscous structural damping: N = EA eps + axial_damping deps/dt,
+  // M = EI kappa + bending_damping dkappa/dt.
+  double axial_damping = 0.0;    // [N s] (2D: N s/m)
+  double bending_damping = 0.0;  // [N m^2 s] (2D: N m s)
+};
+
+// The four coordinates of a beam node.
+enum class BeamNodeCoordinate { X = 0, Y = 1, SlopeX = 2, SlopeY = 3 };
+
+// How add_beam_clamp holds a node's slope (its position is always held).
+enum class BeamClamp {
+  // The slope's direction is held (n_0 . r' = 0, n_0 the initial normal), its length |r'| = 1 +
+  // eps is free: the wall fixes the cross-section's position and rotation but not the axial
+  // strain of the extensible beam there (Gerstmayr & Irschik's clamp, 3 rows).
+  Direction,
+  // Both slope components are held at their initial values (4 rows): also eps = 0 at the node.
+  Full,
 };
 
 // A material point of a body at body-fixed local coordinates, or, with body = kGround, a fixed
@@ -168,13 +205,21 @@ class Model {
   // Throws fsi::Error naming the body if mass or inertia are not positive and finite, a value is
   // not finite, or the name is taken.
   BodyId add_rigid_body(const RigidBody2DSpec& spec);
+  // Throws fsi::Error naming the beam for fewer than one element, non-positive EA, EI or rho A,
+  // coincident or non-finite end points, or a taken name.
+  BodyId add_ancf_beam(const AncfBeamSpec& spec);
   void set_gravity(const Eigen::Vector2d& acceleration);
-  // A material point at body-fixed local coordinates p, r = x + R(phi) p; for kGround, p is the
-  // fixed world position. Returns the marker index (the boundary-mesh vertex index).
+  // A material point at body-fixed local coordinates p, r = x + R(phi) p; on a beam
+  // p = (s, eta), r = r(s) + eta n(s) (AncfBeamSpec; throws for s outside [0, L]); for kGround, p
+  // is the fixed world position. Returns the marker index (the boundary-mesh vertex index).
   int add_marker(BodyId body, const Eigen::Vector2d& local_coordinates);
   // Position level: q_i - value = 0; value defaults to the body's initial coordinate.
   int add_coordinate_constraint(BodyId body, Coordinate coordinate,
                                 std::optional<double> value = std::nullopt);
+  // Clamps node `node` of a beam to the ground in its initial position and slope direction
+  // (BeamClamp): position-level rows x, y, then the slope row(s); returns the index of the first.
+  // Throws fsi::Error for a body that is not a beam or a node out of range.
+  int add_beam_clamp(BodyId beam, int node, BeamClamp clamp = BeamClamp::Direction);
   // Velocity level: dq_i/dt - velocity = 0 (thesis §6.3: the piston's dy/dt = v0).
   int add_velocity_constraint(BodyId body, Coordinate coordinate, double velocity);
   void add_force_element(std::unique_ptr<ForceElement> element);
@@ -216,7 +261,14 @@ class Model {
   int constraint_count() const;
   int body_count() const;
   int marker_count() const;
+  // Throws fsi::Error if the body is not a rigid body.
   const RigidBody2DSpec& body(BodyId body) const;
+  bool is_beam(BodyId body) const;
+  // Throws fsi::Error if the body is not an ANCF beam.
+  const AncfBeamSpec& beam(BodyId beam) const;
+  int beam_node_count(BodyId beam) const;
+  // Index in q of one coordinate of a beam node; throws for other bodies or nodes out of range.
+  int beam_coordinate_index(BodyId beam, int node, BeamNodeCoordinate coordinate) const;
   // Throws fsi::Error listing the known names.
   BodyId find_body(std::string_view name) const;
   int coordinate_index(BodyId body, Coordinate coordinate) const;
@@ -246,11 +298,12 @@ class Model {
   // --- assembly of the DAE (used by the integrators) ---
   // Constant for all current element types.
   const Eigen::MatrixXd& mass_matrix() const;
-  // F(t, q, v): gravity, point loads (held constant) and force elements.
+  // F(t, q, v): gravity, point loads (held constant), the bodies' internal (elastic) forces and
+  // force elements.
   void applied_force(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
                      Eigen::VectorXd& force) const;
-  // dF/dq and dF/dv: analytic for gravity and point loads, analytic or central differences for
-  // force elements (ForceElement::add_jacobians).
+  // dF/dq and dF/dv: analytic for gravity, point loads and internal forces, analytic or central
+  // differences for force elements (ForceElement::add_jacobians).
   void applied_force_derivatives(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
                                  Eigen::MatrixXd& by_position, Eigen::MatrixXd& by_velocity) const;
   // C(q, t) for position-level rows, G v - g(t) for velocity-level rows (size m).
@@ -312,6 +365,7 @@ class Model {
   // load or a constraint row, by description; empty when all are finite. For error messages.
   std::string non_finite_source(double time, const Eigen::VectorXd& q,
                                 const Eigen::VectorXd& v) const;
+  double strain_energy(const State& state) const;  // of the beams' elastic deformation
   // Largest |C| over position-level rows.
   double position_constraint_drift(const State& state) const;
   // Largest velocity-level residual: |G v - g| of velocity rows and |G v + C_t| of position rows.
