@@ -24,7 +24,8 @@ fs::path created(const fs::path& directory) {
 }  // namespace
 
 VtkOutput::VtkOutput(const fs::path& directory)
-    : fluid_(created(directory), "fluid", "vtu"),
+    : directory_(directory),
+      fluid_(created(directory), "fluid", "vtu"),
       boundary_(directory, "boundary", "vtu"),
       bodies_(directory, "bodies", "vtp") {}
 
@@ -58,7 +59,7 @@ void VtkOutput::write(const ParticleSnapshot& particles, const mbd::Model& model
   frames.time = state.time;
   std::vector<double> body_positions, body_velocities, angles;
   for (mbd::BodyId b = 0; b < model.body_count(); ++b) {
-    if (model.is_beam(b)) continue;  // no rigid frame; its centre line is the open item below
+    if (model.is_beam(b)) continue;  // no rigid frame: its centre line goes to beams.pvd
     frames.names.push_back(model.body(b).name);
     body_positions.push_back(model.coordinate(state, b, mbd::Coordinate::X));
     body_positions.push_back(model.coordinate(state, b, mbd::Coordinate::Y));
@@ -70,9 +71,38 @@ void VtkOutput::write(const ParticleSnapshot& particles, const mbd::Model& model
   frames.velocities = body_velocities;
   frames.angles = angles;
   bodies_.write(particles.step, state.time, output::encode_bodies(frames));
-  // ANCF beams (once the model has them): sample each element's centre line r(x) at a few points,
-  // fill an output::CentreLineFrame (one line per beam) and write it to a fourth series
-  // "beams" (.vtp) here, at the same steps.
+  write_centre_lines(particles.step, model, state);
+}
+
+void VtkOutput::write_centre_lines(std::uint64_t step, const mbd::Model& model,
+                                   const mbd::State& state) {
+  output::CentreLineFrame lines;
+  lines.time = state.time;
+  std::vector<std::size_t> counts;
+  std::vector<double> positions, velocities;
+  for (mbd::BodyId b = 0; b < model.body_count(); ++b) {
+    if (!model.is_beam(b)) continue;
+    const mbd::AncfBeamSpec& beam = model.beam(b);
+    const double length = (beam.end - beam.start).norm();
+    const int samples = kCentreLineSamplesPerElement * beam.element_count;
+    for (int i = 0; i <= samples; ++i) {
+      // s = L i / samples, the last exactly L (a point past the beam's end is refused).
+      const double s = i == samples ? length : length * i / samples;
+      const mbd::BodyPointSpec point{b, {s, 0.0}};
+      const Eigen::Vector2d r = model.point_position(state, point);
+      const Eigen::Vector2d v = model.point_velocity(state, point);
+      positions.insert(positions.end(), {r.x(), r.y()});
+      velocities.insert(velocities.end(), {v.x(), v.y()});
+    }
+    lines.names.push_back(beam.name);
+    counts.push_back(static_cast<std::size_t>(samples + 1));
+  }
+  if (counts.empty()) return;  // no beams, no beams.pvd
+  lines.point_counts = counts;
+  lines.positions = positions;
+  lines.velocities = velocities;
+  if (!beams_) beams_.emplace(directory_, "beams", "vtp");
+  beams_->write(step, state.time, output::encode_centre_lines(lines));
 }
 
 }  // namespace fsi::coupling

@@ -409,6 +409,14 @@ detail::BodyPoint Model::body_point(const BodyPointSpec& spec, const std::string
   return data_->point(spec, user);
 }
 
+Eigen::Vector2d Model::point_position(const State& state, const BodyPointSpec& point) const {
+  return body_point(point, "a position readout").position(state.q);
+}
+
+Eigen::Vector2d Model::point_velocity(const State& state, const BodyPointSpec& point) const {
+  return body_point(point, "a velocity readout").velocity(state.q, state.v);
+}
+
 Eigen::Vector2d Model::initial_point_position(const BodyPointSpec& spec) const {
   return data_->initial_position(spec);
 }

@@ -1,8 +1,12 @@
 #pragma once
 // The run's ParaView files in DIR/vtk/: fluid particles (fluid.pvd), boundary mesh
-// (boundary.pvd) and rigid-body frames (bodies.pvd), one file each per particle snapshot.
+// (boundary.pvd), rigid-body frames (bodies.pvd) and, in scenes with ANCF beams, the beams'
+// centre lines (beams.pvd: one polyline per beam, kCentreLineSamplesPerElement segments per
+// element, with point velocities), one file each per particle snapshot.
 
+#include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <span>
 
 #include "fsi/coupling/output.hpp"
@@ -22,8 +26,15 @@ class VtkOutput {
   void write(const ParticleSnapshot& particles, const mbd::Model& model, const mbd::State& state,
              const scene::BoundaryMesh& boundary, std::span<const double> fluid_forces);
 
+  // Polyline segments per beam element in beams.pvd (each element's centre line is a cubic).
+  static constexpr int kCentreLineSamplesPerElement = 8;
+
  private:
+  void write_centre_lines(std::uint64_t step, const mbd::Model& model, const mbd::State& state);
+
+  std::filesystem::path directory_;
   output::Series fluid_, boundary_, bodies_;
+  std::optional<output::Series> beams_;  // made at the first snapshot with beams
 };
 
 }  // namespace fsi::coupling

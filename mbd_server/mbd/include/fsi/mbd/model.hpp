@@ -366,6 +366,11 @@ class Model {
   std::string non_finite_source(double time, const Eigen::VectorXd& q,
                                 const Eigen::VectorXd& v) const;
   double strain_energy(const State& state) const;  // of the beams' elastic deformation
+  // World position and velocity of a body point in `state` (on a beam local = (s, eta)); throws
+  // fsi::Error for an unknown body or a point outside a beam. Readouts such as the VTK centre
+  // lines of beams.
+  Eigen::Vector2d point_position(const State& state, const BodyPointSpec& point) const;
+  Eigen::Vector2d point_velocity(const State& state, const BodyPointSpec& point) const;
   // Largest |C| over position-level rows.
   double position_constraint_drift(const State& state) const;
   // Largest velocity-level residual: |G v - g| of velocity rows and |G v + C_t| of position rows.
