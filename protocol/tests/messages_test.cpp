@@ -579,10 +579,12 @@ TEST(ProtocolMessages, DecodeIntoReusesTheStorageOfItsVectors) {
   Forces sent = sample_forces();
   sent.forces.assign(50000, 0.5);
   Forces received;
+  received.forces.reserve(60000);  // a fresh vector would get exactly the 50000 that arrive
   const auto first_bytes = encode(sent);
   TricklingSource first(first_bytes, 1);
   decode_into(first, received);
   EXPECT_EQ(received, sent);
+  EXPECT_EQ(received.forces.capacity(), 60000u);
   const double* storage = received.forces.data();
   sent.step = 8;
   for (std::size_t i = 0; i < sent.forces.size(); ++i)
@@ -592,6 +594,7 @@ TEST(ProtocolMessages, DecodeIntoReusesTheStorageOfItsVectors) {
   decode_into(second, received);
   EXPECT_EQ(received, sent);
   EXPECT_EQ(received.forces.data(), storage);  // filled in place, no allocation
+  EXPECT_EQ(received.forces.capacity(), 60000u);
 }
 
 // A payload that announces 100 MB of doubles but breaks off early: the decoder must not have
