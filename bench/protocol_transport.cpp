@@ -151,48 +151,41 @@ void throughput(std::size_t doubles, int repeats) {
 
   // The receiver decodes into one Forces reused for every message (Channel::expect_into), as the
   // raw baseline reads into one buffer; "fresh" decodes into a new Forces each time (expect<>),
-  // which adds allocating and first touching 8 bytes per double.
+  // which adds allocating and first touching 8 bytes per double. The three are measured in turn
+  // within every repetition, so that the load of a shared machine, which drifts over seconds,
+  // weighs on all three alike.
   std::vector<double> framed, fresh, raw;
-  {
-    ChannelPair pair = channel_pair();
-    protocol::Forces received;
-    for (int r = 0; r < repeats + 1; ++r) {
-      const auto start = Clock::now();
-      std::thread sender([&] { pair.client.send(message); });
-      pair.server.expect_into(received, std::chrono::seconds(60));
-      sender.join();
-      const double s = seconds_since(start);
-      if (received.forces.size() != doubles) throw std::runtime_error("short Forces message");
-      if (r > 0) framed.push_back(s);
-    }
-    if (received.forces != message.forces) throw std::runtime_error("Forces changed on the way");
-    for (int r = 0; r < repeats + 1; ++r) {
-      const auto start = Clock::now();
-      std::thread sender([&] { pair.client.send(message); });
-      const auto new_message = pair.server.expect<protocol::Forces>(std::chrono::seconds(60));
-      sender.join();
-      const double s = seconds_since(start);
-      if (new_message.forces.size() != doubles) throw std::runtime_error("short Forces message");
-      if (r > 0) fresh.push_back(s);
-    }
+  ChannelPair channels = channel_pair();
+  RawPair sockets;
+  protocol::Forces received;
+  std::vector<double> buffer(doubles);
+  for (int r = 0; r < repeats + 1; ++r) {
+    auto start = Clock::now();
+    std::thread sender([&] { channels.client.send(message); });
+    channels.server.expect_into(received, std::chrono::seconds(60));
+    sender.join();
+    if (r > 0) framed.push_back(seconds_since(start));
+    if (received.forces.size() != doubles) throw std::runtime_error("short Forces message");
+
+    start = Clock::now();
+    sender = std::thread([&] { channels.client.send(message); });
+    const auto new_message = channels.server.expect<protocol::Forces>(std::chrono::seconds(60));
+    sender.join();
+    if (r > 0) fresh.push_back(seconds_since(start));
+    if (new_message.forces.size() != doubles) throw std::runtime_error("short Forces message");
+
+    start = Clock::now();
+    sender = std::thread([&] { write_all(sockets.client, message.forces.data(), bytes); });
+    read_all(sockets.server, buffer.data(), bytes);
+    sender.join();
+    if (r > 0) raw.push_back(seconds_since(start));
   }
-  {
-    RawPair pair;
-    std::vector<double> buffer(doubles);
-    for (int r = 0; r < repeats + 1; ++r) {
-      const auto start = Clock::now();
-      std::thread sender([&] { write_all(pair.client, message.forces.data(), bytes); });
-      read_all(pair.server, buffer.data(), bytes);
-      sender.join();
-      const double s = seconds_since(start);
-      if (r > 0) raw.push_back(s);
-    }
-  }
+  if (received.forces != message.forces) throw std::runtime_error("Forces changed on the way");
   const double framed_rate = static_cast<double>(doubles) / median(framed);
   const double fresh_rate = static_cast<double>(doubles) / median(fresh);
   const double raw_rate = static_cast<double>(doubles) / median(raw);
-  std::printf("throughput, %zu doubles (%.1f MB) per message, median of %d:\n", doubles,
-              static_cast<double>(bytes) / 1e6, repeats);
+  std::printf("throughput, %zu doubles (%.1f MB) per message, median of %d (interleaved):\n",
+              doubles, static_cast<double>(bytes) / 1e6, repeats);
   std::printf(
       "  fsi::protocol Forces (CRC+gathered send, receive+CRC into a reused Forces): "
       "%.3g doubles/s\n",
@@ -205,8 +198,12 @@ void throughput(std::size_t doubles, int repeats) {
       "  raw socket, same bytes, no framing:                                         "
       "%.3g doubles/s\n",
       raw_rate);
-  std::printf("  ratio protocol/raw: %.3f (new Forces each time: %.3f)\n\n", framed_rate / raw_rate,
+  std::vector<double> paired;  // raw time / protocol time within one repetition
+  for (std::size_t i = 0; i < framed.size(); ++i)
+    paired.push_back(raw[i] / framed[i]);
+  std::printf("  ratio protocol/raw: %.3f (new Forces each time: %.3f)\n", framed_rate / raw_rate,
               fresh_rate / raw_rate);
+  std::printf("  median of the %d per-repetition ratios: %.3f\n\n", repeats, median(paired));
 }
 
 void latency(std::size_t vertices, int round_trips) {
