@@ -147,20 +147,46 @@ struct Channel::Impl {
     if (!ignored) peer = endpoint_text(remote);
   }
 
+  // Fills `into` from the socket. Straight system calls rather than an Asio operation: a frame
+  // of megabytes arrives in hundreds of pieces, and each Asio read would cost a pass through the
+  // io_context (an epoll_wait) besides the recv. recv asks for everything that is left; poll
+  // waits, up to the deadline, only when nothing is there.
   Transfer read(std::span<std::byte> into, const Deadline& deadline) {
     Transfer transfer;
-    bool finished = false;
-    asio::async_read(socket, asio::buffer(into.data(), into.size()), TransferAllAtOnce{},
-                     [&](const error_code& error, std::size_t bytes) {
-                       transfer.error = error;
-                       transfer.bytes = bytes;
-                       finished = true;
-                     });
-    const bool expired = run_until(context, finished, deadline, [this] {
-      error_code ignored;
-      socket.cancel(ignored);
-    });
-    transfer.timed_out = expired && transfer.error == asio::error::operation_aborted;
+    const int handle = socket.native_handle();
+    while (transfer.bytes < into.size()) {
+      const ssize_t received =
+          ::recv(handle, into.data() + transfer.bytes, into.size() - transfer.bytes, MSG_DONTWAIT);
+      if (received > 0) {
+        transfer.bytes += static_cast<std::size_t>(received);
+        continue;
+      }
+      if (received == 0) {
+        transfer.error = asio::error::eof;
+        break;
+      }
+      if (errno == EINTR) continue;
+      if (errno != EAGAIN && errno != EWOULDBLOCK) {
+        transfer.error = error_code(errno, boost::system::system_category());
+        break;
+      }
+      int wait_milliseconds = -1;
+      if (deadline) {
+        const auto left = *deadline - Clock::now();
+        if (left <= Clock::duration::zero()) {
+          transfer.timed_out = true;
+          break;
+        }
+        // Rounded up, so that the wait does not end just before the deadline.
+        wait_milliseconds = static_cast<int>(
+            std::min<Clock::rep>(std::chrono::ceil<Milliseconds>(left).count(), 1 << 30));
+      }
+      pollfd wait_for_data{handle, POLLIN, 0};
+      if (::poll(&wait_for_data, 1, wait_milliseconds) < 0 && errno != EINTR) {
+        transfer.error = error_code(errno, boost::system::system_category());
+        break;
+      }
+    }
     return transfer;
   }
 
