@@ -286,9 +286,10 @@ class PayloadSource {
   // verifies the CRC here, so a damaged frame is reported as such).
   virtual void end() {}
 };
-// Decodes a T from source into message, reusing the capacity of its vectors: a vector already
-// holding as many elements as arrive is filled in place, without allocation. Throws ProtocolError
-// as decode_as does; message then holds an unspecified mix of old and new values.
+// Decodes a T from source into message, reusing the capacity of its vectors: a vector with room
+// for the elements that arrive is filled in place, without allocation (and without zeroing, if it
+// already holds as many). Throws ProtocolError as decode_as does; message then holds an
+// unspecified mix of old and new values.
 template <class T>
 void decode_into(PayloadSource& source, T& message);
 Message decode(MessageType type, PayloadSource& source);
