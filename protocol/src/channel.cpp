@@ -403,6 +403,26 @@ class Channel::Impl::FrameSource final : public PayloadSource {
     consumed_ += rest.size();
   }
 
+  // Into payload_buffer, which the channel keeps from frame to frame; it grows in steps doubling
+  // from 1 MiB as the bytes arrive, so memory still follows the bytes that actually arrive.
+  std::span<const std::byte> read_buffered(std::size_t bytes) override {
+    auto& buffer = channel_.payload_buffer;
+    const std::size_t staged = std::min(bytes, available());
+    if (buffer.size() < staged) buffer.resize(staged);
+    if (staged > 0) std::memcpy(buffer.data(), channel_.staging.data() + staged_begin_, staged);
+    staged_begin_ += staged;
+    std::size_t filled = staged;
+    while (filled < bytes) {
+      const std::size_t target =
+          std::min(bytes, std::max({buffer.size(), 2 * filled, kFirstPayloadPiece}));
+      if (buffer.size() < target) buffer.resize(target);
+      receive_checked(std::span(buffer).subspan(filled, target - filled));
+      filled = target;
+    }
+    consumed_ += bytes;
+    return std::span<const std::byte>(buffer).first(bytes);
+  }
+
   void end() override { check_crc(); }
 
   // After a fault in the content: reads what is left of the frame and checks its CRC.

@@ -456,6 +456,18 @@ class Reader {
   template <class Container>
   void fill(Container& values, std::size_t count) {
     using Element = typename Container::value_type;
+    const std::size_t bytes = count * sizeof(Element);
+    if (count > values.capacity() && bytes > source_.available()) {
+      // Growing the destination step by step would copy and first-touch it several times; a
+      // buffer the source reuses from frame to frame costs one copy.
+      const auto buffered = source_.read_buffered(bytes);
+      if (buffered.size() == bytes) {
+        offset_ += bytes;
+        values.resize(count);
+        std::memcpy(values.data(), buffered.data(), bytes);
+        return;
+      }
+    }
     const std::size_t at_once = std::max({values.capacity(), source_.available() / sizeof(Element),
                                           kFirstPieceBytes / sizeof(Element)});
     std::size_t filled = 0;

@@ -282,6 +282,13 @@ class PayloadSource {
   virtual std::size_t available() const = 0;
   // Fills `into` (at most remaining() bytes) with the next payload bytes.
   virtual void read(std::span<std::byte> into) = 0;
+  // For a destination that would have to grow: the next `bytes` (at most remaining()) payload
+  // bytes in a buffer the source keeps, valid until the next call; or nothing, if the source has
+  // no such buffer (the decoder then grows the destination as the bytes arrive).
+  virtual std::span<const std::byte> read_buffered(std::size_t bytes) {
+    static_cast<void>(bytes);
+    return {};
+  }
   // Called when every field is read and nothing remains, before the content checks (a channel
   // verifies the CRC here, so a damaged frame is reported as such).
   virtual void end() {}
