@@ -12,6 +12,8 @@
 #include <array>
 #include <cerrno>
 #include <cstdio>
+#include <cstring>
+#include <limits>
 #include <thread>
 #include <vector>
 
@@ -30,6 +32,12 @@ namespace {
 // with the bytes that actually arrive, so a header announcing a huge payload costs nothing until
 // the data is there.
 constexpr std::size_t kFirstPayloadPiece = std::size_t{1} << 20;
+
+// Decoding straight from the socket: fields are read through a staging buffer of this size;
+// longer reads go into the destination directly, in pieces whose CRC runs (on data still in the
+// cache) while the peer sends the next piece.
+constexpr std::size_t kStagingBytes = std::size_t{64} << 10;
+constexpr std::size_t kCrcPieceBytes = std::size_t{256} << 10;
 
 constexpr const char* kPeerEnded =
     "the other program ended or lost the network; its output or log says why";
@@ -97,6 +105,14 @@ void enable_keep_alive(tcp::socket& socket) {
   ::setsockopt(handle, IPPROTO_TCP, TCP_KEEPCNT, &probe_count, sizeof probe_count);
 }
 
+// Asio's transfer_all moves at most 64 KiB per system call, so a frame of megabytes would take
+// hundreds of calls and as many wake-ups; this completion condition asks for all that is left.
+struct TransferAllAtOnce {
+  std::size_t operator()(const error_code& error, std::size_t) const {
+    return error ? 0 : std::numeric_limits<std::size_t>::max();
+  }
+};
+
 struct Transfer {
   error_code error;
   std::size_t bytes = 0;
@@ -115,9 +131,11 @@ struct Channel::Impl {
   std::uint64_t heartbeats_received = 0;
   std::array<std::byte, kHeaderSize> header_bytes{};
   std::vector<std::byte> payload_buffer;  // reused from frame to frame
-  std::vector<std::byte> send_buffer;     // reused for every encoded message
-  std::string unusable_because;           // set once the incoming stream can no longer be trusted
-  std::string send_unusable_because;      // set once a frame went out only in part
+  std::vector<std::byte> staging;         // for decoding from the socket (FrameSource)
+  GatheredPayload gathered;               // reused for every sent message
+  std::vector<asio::const_buffer> send_buffers;
+  std::string unusable_because;       // set once the incoming stream can no longer be trusted
+  std::string send_unusable_because;  // set once a frame went out only in part
 
   explicit Impl(const ChannelOptions& channel_options) : options(channel_options) {}
 
@@ -129,20 +147,46 @@ struct Channel::Impl {
     if (!ignored) peer = endpoint_text(remote);
   }
 
+  // Fills `into` from the socket. Straight system calls rather than an Asio operation: a frame
+  // of megabytes arrives in hundreds of pieces, and each Asio read would cost a pass through the
+  // io_context (an epoll_wait) besides the recv. recv asks for everything that is left; poll
+  // waits, up to the deadline, only when nothing is there.
   Transfer read(std::span<std::byte> into, const Deadline& deadline) {
     Transfer transfer;
-    bool finished = false;
-    asio::async_read(socket, asio::buffer(into.data(), into.size()),
-                     [&](const error_code& error, std::size_t bytes) {
-                       transfer.error = error;
-                       transfer.bytes = bytes;
-                       finished = true;
-                     });
-    const bool expired = run_until(context, finished, deadline, [this] {
-      error_code ignored;
-      socket.cancel(ignored);
-    });
-    transfer.timed_out = expired && transfer.error == asio::error::operation_aborted;
+    const int handle = socket.native_handle();
+    while (transfer.bytes < into.size()) {
+      const ssize_t received =
+          ::recv(handle, into.data() + transfer.bytes, into.size() - transfer.bytes, MSG_DONTWAIT);
+      if (received > 0) {
+        transfer.bytes += static_cast<std::size_t>(received);
+        continue;
+      }
+      if (received == 0) {
+        transfer.error = asio::error::eof;
+        break;
+      }
+      if (errno == EINTR) continue;
+      if (errno != EAGAIN && errno != EWOULDBLOCK) {
+        transfer.error = error_code(errno, boost::system::system_category());
+        break;
+      }
+      int wait_milliseconds = -1;
+      if (deadline) {
+        const auto left = *deadline - Clock::now();
+        if (left <= Clock::duration::zero()) {
+          transfer.timed_out = true;
+          break;
+        }
+        // Rounded up, so that the wait does not end just before the deadline.
+        wait_milliseconds = static_cast<int>(
+            std::min<Clock::rep>(std::chrono::ceil<Milliseconds>(left).count(), 1 << 30));
+      }
+      pollfd wait_for_data{handle, POLLIN, 0};
+      if (::poll(&wait_for_data, 1, wait_milliseconds) < 0 && errno != EINTR) {
+        transfer.error = error_code(errno, boost::system::system_category());
+        break;
+      }
+    }
     return transfer;
   }
 
@@ -187,8 +231,24 @@ struct Channel::Impl {
     throw ProtocolError(error.fault(), where, error.remedy());
   }
 
+  class FrameSource;
+
+  // A header that was read and checked, and the deadline of its frame.
+  struct Incoming {
+    FrameHeader header;
+    Deadline deadline;
+  };
+
   // Reads one frame; its payload is the first payload_length bytes of payload_buffer.
   FrameHeader receive_frame(std::optional<Milliseconds> timeout, std::string_view waiting_for) {
+    const Incoming incoming = receive_header(timeout, waiting_for);
+    read_payload(incoming, timeout, waiting_for);
+    return incoming.header;
+  }
+
+  // Reads frame headers, consuming Heartbeat frames, until one of another type arrives; its
+  // payload is next on the socket.
+  Incoming receive_header(std::optional<Milliseconds> timeout, std::string_view waiting_for) {
     if (!socket.is_open()) {
       throw ProtocolError(
           "cannot wait for " + std::string(waiting_for) + ": the channel to " + peer + " is closed",
@@ -203,8 +263,10 @@ struct Channel::Impl {
     // Heartbeats (1.1) say "still computing": each one starts the timeout again, so the timeout
     // measures the peer's silence rather than its compute time.
     while (true) {
-      const FrameHeader header = receive_one_frame(timeout, waiting_for);
-      if (header.type != MessageType::Heartbeat) return header;
+      const Incoming incoming = receive_one_header(timeout, waiting_for);
+      const FrameHeader& header = incoming.header;
+      if (header.type != MessageType::Heartbeat) return incoming;
+      read_payload(incoming, timeout, waiting_for);
       if (header.payload_length != 0) {
         fail_frame(
             ProtocolError("malformed Heartbeat message: " + std::to_string(header.payload_length) +
@@ -218,10 +280,8 @@ struct Channel::Impl {
     }
   }
 
-  // One frame of any type; its payload is the first payload_length bytes of payload_buffer.
-  FrameHeader receive_one_frame(std::optional<Milliseconds> timeout, std::string_view waiting_for) {
+  Incoming receive_one_header(std::optional<Milliseconds> timeout, std::string_view waiting_for) {
     const Deadline deadline = deadline_after(timeout);
-
     const Transfer head = read(header_bytes, deadline);
     if (head.error || head.timed_out) {
       fail_read(head, timeout, waiting_for, 0,
@@ -235,7 +295,19 @@ struct Channel::Impl {
     }
     peer_major = header.major;
     peer_minor = header.minor;
+    return Incoming{header, deadline};
+  }
 
+  std::string payload_progress(std::size_t received, const FrameHeader& header) const {
+    return "received " + std::to_string(received) + " of the " +
+           std::to_string(header.payload_length) + " payload bytes of a " + name(header.type) +
+           " frame";
+  }
+
+  // Reads the payload of the frame whose header came last into payload_buffer and checks the CRC.
+  void read_payload(const Incoming& incoming, std::optional<Milliseconds> timeout,
+                    std::string_view waiting_for) {
+    const FrameHeader& header = incoming.header;
     const std::size_t length = header.payload_length;
     std::size_t filled = 0;
     // The CRC runs over each piece as it arrives, while the peer still sends the rest.
@@ -245,13 +317,12 @@ struct Channel::Impl {
           std::min(length, std::max({payload_buffer.size(), 2 * filled, kFirstPayloadPiece}));
       if (payload_buffer.size() < target) payload_buffer.resize(target);
       const Transfer piece =
-          read(std::span(payload_buffer).subspan(filled, target - filled), deadline);
+          read(std::span(payload_buffer).subspan(filled, target - filled), incoming.deadline);
       crc = crc32c(std::span<const std::byte>(payload_buffer).subspan(filled, piece.bytes), crc);
       filled += piece.bytes;
       if (piece.error || piece.timed_out) {
         fail_read(piece, timeout, waiting_for, kHeaderSize + filled - piece.bytes,
-                  "received " + std::to_string(filled) + " of the " + std::to_string(length) +
-                      " payload bytes of a " + name(header.type) + " frame");
+                  payload_progress(filled, header));
       }
     }
     try {
@@ -259,8 +330,14 @@ struct Channel::Impl {
     } catch (const ProtocolError& error) {
       fail_frame(error, waiting_for);
     }
-    return header;
   }
+
+  // Decodes the payload of the frame whose header came last straight from the socket. A fault in
+  // the content is reported once the rest of the frame is read and its CRC is right (a damaged
+  // frame is reported as damaged, and the stream stays in step).
+  template <class Decode>
+  void decode_payload(const Incoming& incoming, std::optional<Milliseconds> timeout,
+                      std::string_view waiting_for, Decode&& decode);
 
   void close() {
     if (!socket.is_open()) return;
@@ -288,6 +365,138 @@ struct Channel::Impl {
     socket.close(ignored);
   }
 };
+
+// The payload of the frame whose header was just read, as it arrives from the socket. Small reads
+// are served from a staging buffer; reads of kStagingBytes or more go straight into the
+// destination. The CRC runs over every byte as it comes in and is checked at the end.
+class Channel::Impl::FrameSource final : public PayloadSource {
+ public:
+  FrameSource(Channel::Impl& channel, const Channel::Impl::Incoming& incoming,
+              std::optional<Milliseconds> timeout, std::string_view waiting_for)
+      : channel_(channel),
+        incoming_(incoming),
+        timeout_(timeout),
+        waiting_for_(waiting_for),
+        crc_(crc32c(std::span<const std::byte>(channel.header_bytes).first(16))) {
+    if (channel_.staging.size() < kStagingBytes) channel_.staging.resize(kStagingBytes);
+  }
+
+  std::size_t remaining() const override { return length() - consumed_; }
+  std::size_t available() const override { return staged_end_ - staged_begin_; }
+
+  void read(std::span<std::byte> into) override {
+    const std::size_t staged = std::min(into.size(), available());
+    if (staged > 0) std::memcpy(into.data(), channel_.staging.data() + staged_begin_, staged);
+    staged_begin_ += staged;
+    consumed_ += staged;
+    const auto rest = into.subspan(staged);
+    if (rest.empty()) return;
+    if (rest.size() >= kStagingBytes) {
+      receive_checked(rest);
+      consumed_ += rest.size();
+      return;
+    }
+    // rest.size() <= remaining() = length() - received_, since nothing is staged any more.
+    const std::size_t refill = std::min(kStagingBytes, length() - received_);
+    receive_checked(std::span(channel_.staging).first(refill));
+    std::memcpy(rest.data(), channel_.staging.data(), rest.size());
+    staged_begin_ = rest.size();
+    staged_end_ = refill;
+    consumed_ += rest.size();
+  }
+
+  // Into payload_buffer, which the channel keeps from frame to frame; it grows in steps doubling
+  // from 1 MiB as the bytes arrive, so memory still follows the bytes that actually arrive.
+  std::span<const std::byte> read_buffered(std::size_t bytes) override {
+    auto& buffer = channel_.payload_buffer;
+    const std::size_t staged = std::min(bytes, available());
+    if (buffer.size() < staged) buffer.resize(staged);
+    if (staged > 0) std::memcpy(buffer.data(), channel_.staging.data() + staged_begin_, staged);
+    staged_begin_ += staged;
+    std::size_t filled = staged;
+    while (filled < bytes) {
+      const std::size_t target =
+          std::min(bytes, std::max({buffer.size(), 2 * filled, kFirstPayloadPiece}));
+      if (buffer.size() < target) buffer.resize(target);
+      receive_checked(std::span(buffer).subspan(filled, target - filled));
+      filled = target;
+    }
+    consumed_ += bytes;
+    return std::span<const std::byte>(buffer).first(bytes);
+  }
+
+  void end() override { check_crc(); }
+
+  // After a fault in the content: reads what is left of the frame and checks its CRC.
+  void finish_after_content_fault() {
+    staged_begin_ = staged_end_;
+    while (received_ < length()) {
+      const std::size_t piece = std::min(kStagingBytes, length() - received_);
+      receive_checked(std::span(channel_.staging).first(piece));
+    }
+    consumed_ = length();
+    if (!crc_checked_) check_crc();
+  }
+
+  // Whether the fault thrown was the connection's or the CRC's rather than the content's.
+  bool connection_failed() const { return connection_failed_; }
+
+ private:
+  std::size_t length() const { return incoming_.header.payload_length; }
+
+  void receive_checked(std::span<std::byte> into) {
+    std::size_t done = 0;
+    while (done < into.size()) {
+      const std::size_t piece = std::min(kCrcPieceBytes, into.size() - done);
+      const Transfer transfer = channel_.read(into.subspan(done, piece), incoming_.deadline);
+      crc_ = crc32c(into.subspan(done, transfer.bytes), crc_);
+      done += transfer.bytes;
+      received_ += transfer.bytes;
+      if (transfer.error || transfer.timed_out) {
+        connection_failed_ = true;
+        channel_.fail_read(transfer, timeout_, waiting_for_,
+                           kHeaderSize + received_ - transfer.bytes,
+                           channel_.payload_progress(received_, incoming_.header));
+      }
+    }
+  }
+
+  void check_crc() {
+    crc_checked_ = true;
+    try {
+      fsi::protocol::check_crc(incoming_.header, crc_, length());
+    } catch (const ProtocolError& error) {
+      connection_failed_ = true;
+      channel_.fail_frame(error, waiting_for_);
+    }
+  }
+
+  Channel::Impl& channel_;
+  const Channel::Impl::Incoming& incoming_;
+  std::optional<Milliseconds> timeout_;
+  std::string_view waiting_for_;
+  std::uint32_t crc_;
+  std::size_t received_ = 0;  // from the socket
+  std::size_t consumed_ = 0;  // by the decoder
+  std::size_t staged_begin_ = 0;
+  std::size_t staged_end_ = 0;
+  bool crc_checked_ = false;
+  bool connection_failed_ = false;
+};
+
+template <class Decode>
+void Channel::Impl::decode_payload(const Incoming& incoming, std::optional<Milliseconds> timeout,
+                                   std::string_view waiting_for, Decode&& decode) {
+  FrameSource source(*this, incoming, timeout, waiting_for);
+  try {
+    decode(static_cast<PayloadSource&>(source));
+  } catch (const ProtocolError& error) {
+    if (source.connection_failed()) throw;
+    source.finish_after_content_fault();
+    // The frame was whole, so the stream is still in step; the caller decides what to do.
+    throw ProtocolError(error.fault(), error.location() + " from " + peer, error.remedy());
+  }
+}
 
 Channel::Channel(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 Channel::Channel(Channel&&) noexcept = default;
@@ -370,6 +579,10 @@ Channel Channel::connect(const std::string& host, std::uint16_t port, Millisecon
 }
 
 void Channel::send(MessageType type, std::span<const std::byte> payload) {
+  send_pieces(type, std::span(&payload, 1));
+}
+
+void Channel::send_pieces(MessageType type, std::span<const std::span<const std::byte>> pieces) {
   Impl& impl = *impl_;
   if (!impl.socket.is_open()) {
     throw ProtocolError(
@@ -381,19 +594,29 @@ void Channel::send(MessageType type, std::span<const std::byte> payload) {
                             impl.send_unusable_because + ", so the peer can no longer find frames",
                         "connection to " + impl.peer, "close the channel and reconnect");
   }
-  const auto header = encode_header(type, payload, impl.options.major, impl.options.minor);
-  const std::array<asio::const_buffer, 2> pieces{asio::buffer(header.data(), header.size()),
-                                                 asio::buffer(payload.data(), payload.size())};
+  const auto header =
+      encode_header_for_pieces(type, pieces, impl.options.major, impl.options.minor);
+  std::size_t payload_size = 0;
+  auto& buffers = impl.send_buffers;
+  buffers.clear();
+  buffers.push_back(asio::buffer(header.data(), header.size()));
+  for (const auto& piece : pieces) {
+    if (piece.empty()) continue;
+    buffers.push_back(asio::buffer(piece.data(), piece.size()));
+    payload_size += piece.size();
+  }
+  const auto& pieces_to_write = buffers;
   Transfer transfer;
   if (!impl.options.send_timeout) {
-    asio::write(impl.socket, pieces, transfer.error);
+    asio::write(impl.socket, pieces_to_write, TransferAllAtOnce{}, transfer.error);
   } else {
     bool finished = false;
-    asio::async_write(impl.socket, pieces, [&](const error_code& error, std::size_t bytes) {
-      transfer.error = error;
-      transfer.bytes = bytes;
-      finished = true;
-    });
+    asio::async_write(impl.socket, pieces_to_write, TransferAllAtOnce{},
+                      [&](const error_code& error, std::size_t bytes) {
+                        transfer.error = error;
+                        transfer.bytes = bytes;
+                        finished = true;
+                      });
     const bool expired =
         run_until(impl.context, finished, deadline_after(impl.options.send_timeout), [&] {
           error_code ignored;
@@ -408,8 +631,8 @@ void Channel::send(MessageType type, std::span<const std::byte> payload) {
     impl.send_unusable_because = "an earlier send timed out part-way";
     throw ProtocolError("timed out after " + duration_text(*impl.options.send_timeout) +
                             " sending a " + name(type) + " frame of " +
-                            std::to_string(kHeaderSize + payload.size()) + " bytes to " +
-                            impl.peer + " (" + std::to_string(transfer.bytes) + " sent)",
+                            std::to_string(kHeaderSize + payload_size) + " bytes to " + impl.peer +
+                            " (" + std::to_string(transfer.bytes) + " sent)",
                         where, "the peer does not read; check that it is alive");
   }
   if (is_disconnect(transfer.error)) {
@@ -425,8 +648,8 @@ void Channel::send(const Message& message) {
   std::visit([this](const auto& alternative) { send(alternative); }, message);
 }
 
-std::vector<std::byte>& Channel::send_buffer() {
-  return impl_->send_buffer;
+GatheredPayload& Channel::gathered_payload() {
+  return impl_->gathered;
 }
 
 Frame Channel::receive(std::optional<Milliseconds> timeout, std::string_view waiting_for) {
@@ -443,15 +666,47 @@ Frame Channel::receive(std::optional<Milliseconds> timeout, std::string_view wai
 Message Channel::receive_message(std::optional<Milliseconds> timeout,
                                  std::string_view waiting_for) {
   Impl& impl = *impl_;
-  const FrameHeader header = impl.receive_frame(timeout, waiting_for);
-  const auto payload = std::span(impl.payload_buffer).first(header.payload_length);
-  try {
-    return decode(header.type, payload);
-  } catch (const ProtocolError& error) {
-    // The frame was whole, so the stream is still in step; the caller decides what to do.
-    throw ProtocolError(error.fault(), error.location() + " from " + impl.peer, error.remedy());
-  }
+  const Impl::Incoming incoming = impl.receive_header(timeout, waiting_for);
+  Message message;
+  impl.decode_payload(incoming, timeout, waiting_for, [&](PayloadSource& source) {
+    message = decode(incoming.header.type, source);
+  });
+  return message;
 }
+
+template <class T>
+void Channel::expect_into(T& message, std::optional<Milliseconds> timeout) {
+  Impl& impl = *impl_;
+  const std::string waiting_for = name(T::kType);
+  const Impl::Incoming incoming = impl.receive_header(timeout, waiting_for);
+  if (incoming.header.type == T::kType) {
+    impl.decode_payload(incoming, timeout, waiting_for,
+                        [&](PayloadSource& source) { decode_into(source, message); });
+    return;
+  }
+  Message other;
+  impl.decode_payload(incoming, timeout, waiting_for,
+                      [&](PayloadSource& source) { other = decode(incoming.header.type, source); });
+  throw_unexpected(T::kType, other);
+}
+
+template void Channel::expect_into(Hello&, std::optional<Milliseconds>);
+template void Channel::expect_into(Welcome&, std::optional<Milliseconds>);
+template void Channel::expect_into(ErrorMessage&, std::optional<Milliseconds>);
+template void Channel::expect_into(AuthChallenge&, std::optional<Milliseconds>);
+template void Channel::expect_into(AuthResponse&, std::optional<Milliseconds>);
+template void Channel::expect_into(AuthProof&, std::optional<Milliseconds>);
+template void Channel::expect_into(Heartbeat&, std::optional<Milliseconds>);
+template void Channel::expect_into(Setup&, std::optional<Milliseconds>);
+template void Channel::expect_into(Mesh&, std::optional<Milliseconds>);
+template void Channel::expect_into(Particles&, std::optional<Milliseconds>);
+template void Channel::expect_into(Ready&, std::optional<Milliseconds>);
+template void Channel::expect_into(Step&, std::optional<Milliseconds>);
+template void Channel::expect_into(Forces&, std::optional<Milliseconds>);
+template void Channel::expect_into(SnapshotRequest&, std::optional<Milliseconds>);
+template void Channel::expect_into(Snapshot&, std::optional<Milliseconds>);
+template void Channel::expect_into(Shutdown&, std::optional<Milliseconds>);
+template void Channel::expect_into(Goodbye&, std::optional<Milliseconds>);
 
 void Channel::throw_unexpected(MessageType expected, const Message& received) const {
   const std::string where =

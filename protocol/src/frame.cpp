@@ -114,9 +114,17 @@ bool is_version_independent(MessageType type) {
 std::array<std::byte, kHeaderSize> encode_header(MessageType type,
                                                  std::span<const std::byte> payload,
                                                  std::uint16_t major, std::uint16_t minor) {
-  if (payload.size() > std::numeric_limits<std::uint32_t>::max()) {
-    throw ProtocolError("cannot send a " + name(type) + " payload of " +
-                            std::to_string(payload.size()) +
+  return encode_header_for_pieces(type, std::span(&payload, 1), major, minor);
+}
+
+std::array<std::byte, kHeaderSize> encode_header_for_pieces(
+    MessageType type, std::span<const std::span<const std::byte>> payload_pieces,
+    std::uint16_t major, std::uint16_t minor) {
+  std::size_t size = 0;
+  for (const auto& piece : payload_pieces)
+    size += piece.size();
+  if (size > std::numeric_limits<std::uint32_t>::max()) {
+    throw ProtocolError("cannot send a " + name(type) + " payload of " + std::to_string(size) +
                             " bytes: a frame carries less than 4 GiB",
                         "encoding a " + name(type) + " frame",
                         "send less data per message (e.g. snapshots of fewer particles)");
@@ -127,8 +135,11 @@ std::array<std::byte, kHeaderSize> encode_header(MessageType type,
   store_u16(&header[6], minor);
   store_u16(&header[8], static_cast<std::uint16_t>(type));
   store_u16(&header[10], 0);
-  store_u32(&header[12], static_cast<std::uint32_t>(payload.size()));
-  store_u32(&header[16], crc32c(payload, crc32c(std::span(header).first(16))));
+  store_u32(&header[12], static_cast<std::uint32_t>(size));
+  std::uint32_t crc = crc32c(std::span(header).first(16));
+  for (const auto& piece : payload_pieces)
+    crc = crc32c(piece, crc);
+  store_u32(&header[16], crc);
   return header;
 }
 

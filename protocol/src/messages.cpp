@@ -4,6 +4,7 @@
 // that must agree, indices in range) live in check() and run after a complete read.
 #include "fsi/protocol/messages.hpp"
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <concepts>
@@ -189,11 +190,7 @@ class Writer {
     put(&value, sizeof(T));
   }
   void text(const char* field, const std::string& value) {
-    if (value.size() > std::numeric_limits<std::uint32_t>::max()) {
-      throw ProtocolError("cannot encode " + name(type_) + " field '" + field + "': a string of " +
-                              std::to_string(value.size()) + " bytes does not fit a u32 length",
-                          "encoding " + name(type_), "shorten the text");
-    }
+    check_text_length(field, value.size());
     const auto length = static_cast<std::uint32_t>(value.size());
     put(&length, sizeof length);
     put(value.data(), value.size());
@@ -214,6 +211,18 @@ class Writer {
   void finish() const {
     FSI_ASSERT(offset_ == bytes_.size(), "size counter and writer disagree on " + name(type_));
   }
+  // For Gatherer, whose bytes may be the first part of a larger buffer.
+  void finish_part() const {
+    FSI_ASSERT(offset_ <= bytes_.size(), "gather counter and gatherer disagree on " + name(type_));
+  }
+  std::size_t offset() const { return offset_; }
+  void check_text_length(const char* field, std::size_t size) const {
+    if (size > std::numeric_limits<std::uint32_t>::max()) {
+      throw ProtocolError("cannot encode " + name(type_) + " field '" + field + "': a string of " +
+                              std::to_string(size) + " bytes does not fit a u32 length",
+                          "encoding " + name(type_), "shorten the text");
+    }
+  }
 
  private:
   void put(const void* data, std::size_t size) {
@@ -227,27 +236,138 @@ class Writer {
   std::size_t offset_ = 0;
 };
 
+// Gathering: like Writer, but arrays and strings of at least kGatherMinimumBytes stay where they
+// are and become pieces of their own. Doubles and integers are sent as the bytes they are stored
+// in, which is the wire format on a little-endian IEEE-754 host (static_assert above); another
+// host would copy them, converted, like the small fields.
+constexpr bool kStorageIsWireFormat = std::endian::native == std::endian::little;
+
+bool referenced(std::size_t bytes) {
+  return kStorageIsWireFormat && bytes >= kGatherMinimumBytes;
+}
+
+// The bytes that Gatherer copies into GatheredPayload::encoded.
+class GatherCounter {
+ public:
+  template <class T>
+  void scalar(const char*, const T&) {
+    size_ += sizeof(T);
+  }
+  void text(const char*, const std::string& value) {
+    size_ += sizeof(std::uint32_t) + (referenced(value.size()) ? 0 : value.size());
+  }
+  template <class T>
+  void array(const char*, const std::vector<T>& values) {
+    const std::size_t bytes = values.size() * sizeof(T);
+    size_ += sizeof(std::uint64_t) + (referenced(bytes) ? 0 : bytes);
+  }
+  template <class T, class Each>
+  void records(const char*, const std::vector<T>& items, std::size_t, Each&& each) {
+    size_ += sizeof(std::uint64_t);
+    for (const T& item : items)
+      each(*this, item);
+  }
+  std::size_t size() const { return size_; }
+
+ private:
+  std::size_t size_ = 0;
+};
+
+class Gatherer {
+ public:
+  // payload.encoded holds at least as many bytes as GatherCounter counted.
+  Gatherer(MessageType type, GatheredPayload& payload)
+      : copy_(type, payload.encoded), out_(payload) {
+    out_.pieces.clear();
+    out_.size = 0;
+  }
+  template <class T>
+  void scalar(const char* field, const T& value) {
+    copy_.scalar(field, value);
+  }
+  void text(const char* field, const std::string& value) {
+    if (!referenced(value.size())) return copy_.text(field, value);
+    copy_.check_text_length(field, value.size());
+    const auto length = static_cast<std::uint32_t>(value.size());
+    copy_.scalar(field, length);
+    reference(value.data(), value.size());
+  }
+  template <class T>
+  void array(const char* field, const std::vector<T>& values) {
+    const std::size_t bytes = values.size() * sizeof(T);
+    if (!referenced(bytes)) return copy_.array(field, values);
+    const std::uint64_t count = values.size();
+    copy_.scalar(field, count);
+    reference(values.data(), bytes);
+  }
+  template <class T, class Each>
+  void records(const char*, const std::vector<T>& items, std::size_t, Each&& each) {
+    const std::uint64_t count = items.size();
+    copy_.scalar("", count);
+    for (const T& item : items)
+      each(*this, item);
+  }
+  void finish() {
+    close_encoded_piece();
+    copy_.finish_part();
+  }
+
+ private:
+  void reference(const void* data, std::size_t size) {
+    close_encoded_piece();
+    out_.pieces.emplace_back(static_cast<const std::byte*>(data), size);
+    out_.size += size;
+  }
+  void close_encoded_piece() {
+    const std::size_t end = copy_.offset();
+    if (end > piece_start_) {
+      out_.pieces.push_back(
+          std::span<const std::byte>(out_.encoded).subspan(piece_start_, end - piece_start_));
+      out_.size += end - piece_start_;
+    }
+    piece_start_ = end;
+  }
+
+  Writer copy_;
+  GatheredPayload& out_;
+  std::size_t piece_start_ = 0;
+};
+
+// Where Reader gets its bytes when the whole payload is in memory.
+class SpanSource final : public PayloadSource {
+ public:
+  explicit SpanSource(std::span<const std::byte> bytes) : bytes_(bytes) {}
+  std::size_t remaining() const override { return bytes_.size() - offset_; }
+  std::size_t available() const override { return remaining(); }
+  void read(std::span<std::byte> into) override {
+    if (!into.empty()) std::memcpy(into.data(), bytes_.data() + offset_, into.size());
+    offset_ += into.size();
+  }
+
+ private:
+  std::span<const std::byte> bytes_;
+  std::size_t offset_ = 0;
+};
+
 class Reader {
  public:
-  Reader(MessageType type, std::span<const std::byte> bytes) : type_(type), bytes_(bytes) {}
+  Reader(MessageType type, PayloadSource& source)
+      : type_(type), source_(source), size_(source.remaining()) {}
 
   template <class T>
   void scalar(const char* field, T& value) {
     static_assert(std::is_trivially_copyable_v<T>);
     begin(field);
     need(sizeof(T), "a " + std::to_string(sizeof(T)) + "-byte value");
-    std::memcpy(&value, bytes_.data() + offset_, sizeof(T));
-    offset_ += sizeof(T);
+    take(&value, sizeof(T));
   }
   void text(const char* field, std::string& value) {
     begin(field);
     std::uint32_t length = 0;
     need(sizeof length, "its 4-byte length");
-    std::memcpy(&length, bytes_.data() + offset_, sizeof length);
-    offset_ += sizeof length;
+    take(&length, sizeof length);
     need(length, "a string of " + std::to_string(length) + " bytes");
-    value.assign(reinterpret_cast<const char*>(bytes_.data() + offset_), length);
-    offset_ += length;
+    fill(value, length);
   }
   template <class T>
   void array(const char* field, std::vector<T>& values) {
@@ -258,9 +378,7 @@ class Reader {
       fail_here("announces " + std::to_string(count) + " elements of " + std::to_string(sizeof(T)) +
                 " bytes but only " + std::to_string(remaining()) + " bytes remain");
     }
-    values.resize(static_cast<std::size_t>(count));
-    if (count > 0) std::memcpy(values.data(), bytes_.data() + offset_, count * sizeof(T));
-    offset_ += count * sizeof(T);
+    fill(values, static_cast<std::size_t>(count));
   }
   template <class T, class Each>
   void records(const char* field, std::vector<T>& items, std::size_t minimum_record_size,
@@ -284,16 +402,17 @@ class Reader {
   }
 
   void finish() {
-    if (offset_ != bytes_.size()) {
+    if (offset_ != size_) {
       current_field_ = "(end of message)";
-      fail_here(std::to_string(bytes_.size() - offset_) +
+      fail_here(std::to_string(size_ - offset_) +
                 " bytes follow the last field; the message has fewer");
     }
+    source_.end();
   }
 
   // For content checks after the read: names the field and the offset where it began.
   [[noreturn]] void fail(std::string_view field, const std::string& problem) const {
-    std::size_t offset = bytes_.size();
+    std::size_t offset = size_;
     for (const auto& [started, at] : field_offsets_) {
       if (started == field) {
         offset = at;
@@ -309,6 +428,10 @@ class Reader {
     std::uint64_t index;
   };
 
+  // The first part of a vector or string is read into at most this much memory unless the bytes
+  // are already here; it then doubles with the bytes that actually arrive.
+  static constexpr std::size_t kFirstPieceBytes = std::size_t{1} << 20;
+
   void begin(const char* field) {
     current_field_ =
         record_ ? std::string(record_->field) + "[" + std::to_string(record_->index) + "]." + field
@@ -316,18 +439,49 @@ class Reader {
     field_start_ = offset_;
     if (!record_) field_offsets_.emplace_back(field, offset_);
   }
-  std::size_t remaining() const { return bytes_.size() - offset_; }
+  std::size_t remaining() const { return size_ - offset_; }
   void need(std::size_t size, const std::string& what) const {
     if (size > remaining()) {
       fail_here("is truncated: needs " + what + ", but only " + std::to_string(remaining()) +
                 " bytes remain");
     }
   }
+  void take(void* into, std::size_t size) {
+    source_.read(std::span(static_cast<std::byte*>(into), size));
+    offset_ += size;
+  }
+  // Reads count elements (already checked against remaining()) into a vector or string. Storage
+  // that is big enough is reused as it is; otherwise it grows only as far as the bytes that are
+  // here or have arrived, so a false count cannot make us allocate memory the peer never fills.
+  template <class Container>
+  void fill(Container& values, std::size_t count) {
+    using Element = typename Container::value_type;
+    const std::size_t bytes = count * sizeof(Element);
+    if (count > values.capacity() && bytes > source_.available()) {
+      // Growing the destination step by step would copy and first-touch it several times; a
+      // buffer the source reuses from frame to frame costs one copy.
+      const auto buffered = source_.read_buffered(bytes);
+      if (buffered.size() == bytes) {
+        offset_ += bytes;
+        values.resize(count);
+        std::memcpy(values.data(), buffered.data(), bytes);
+        return;
+      }
+    }
+    const std::size_t at_once = std::max({values.capacity(), source_.available() / sizeof(Element),
+                                          kFirstPieceBytes / sizeof(Element)});
+    std::size_t filled = 0;
+    do {
+      const std::size_t target = std::min(count, std::max(at_once, 2 * filled));
+      values.resize(target);
+      take(values.data() + filled, (target - filled) * sizeof(Element));
+      filled = target;
+    } while (filled < count);
+  }
   std::uint64_t read_count() {
     std::uint64_t count = 0;
     need(sizeof count, "its 8-byte element count");
-    std::memcpy(&count, bytes_.data() + offset_, sizeof count);
-    offset_ += sizeof count;
+    take(&count, sizeof count);
     return count;
   }
   [[noreturn]] void fail_here(const std::string& problem) const {
@@ -335,15 +489,16 @@ class Reader {
   }
   [[noreturn]] void throw_error(const std::string& field, std::size_t offset,
                                 const std::string& problem) const {
-    throw ProtocolError("malformed " + name(type_) + " message: field '" + field + "' " + problem,
-                        name(type_) + " payload byte " + std::to_string(offset) + " of " +
-                            std::to_string(bytes_.size()),
-                        "the peer is faulty or speaks another protocol version; use matching "
-                        "releases of fsi-server and fsi-client");
+    throw ProtocolError(
+        "malformed " + name(type_) + " message: field '" + field + "' " + problem,
+        name(type_) + " payload byte " + std::to_string(offset) + " of " + std::to_string(size_),
+        "the peer is faulty or speaks another protocol version; use matching "
+        "releases of fsi-server and fsi-client");
   }
 
   MessageType type_;
-  std::span<const std::byte> bytes_;
+  PayloadSource& source_;
+  std::size_t size_;
   std::size_t offset_ = 0;
   std::string current_field_;
   std::size_t field_start_ = 0;
@@ -492,6 +647,16 @@ std::span<const std::byte> encode_message_into(const T& message, std::vector<std
 }
 
 template <class T>
+void gather_message(const T& message, GatheredPayload& payload) {
+  GatherCounter counter;
+  layout(counter, message);
+  if (payload.encoded.size() < counter.size()) payload.encoded.resize(counter.size());
+  Gatherer gatherer(T::kType, payload);
+  layout(gatherer, message);
+  gatherer.finish();
+}
+
+template <class T>
 std::vector<std::byte> encode_message(const T& message) {
   std::vector<std::byte> bytes;
   encode_message_into(message, bytes);
@@ -619,12 +784,59 @@ template std::span<const std::byte> encode_into(const Shutdown&, std::vector<std
 template std::span<const std::byte> encode_into(const Goodbye&, std::vector<std::byte>&);
 
 template <class T>
-T decode_as(std::span<const std::byte> payload) {
-  Reader in(T::kType, payload);
-  T message{};
+void encode_gathered(const T& message, GatheredPayload& payload) {
+  gather_message(message, payload);
+}
+
+template void encode_gathered(const Hello&, GatheredPayload&);
+template void encode_gathered(const Welcome&, GatheredPayload&);
+template void encode_gathered(const ErrorMessage&, GatheredPayload&);
+template void encode_gathered(const AuthChallenge&, GatheredPayload&);
+template void encode_gathered(const AuthResponse&, GatheredPayload&);
+template void encode_gathered(const AuthProof&, GatheredPayload&);
+template void encode_gathered(const Heartbeat&, GatheredPayload&);
+template void encode_gathered(const Setup&, GatheredPayload&);
+template void encode_gathered(const Mesh&, GatheredPayload&);
+template void encode_gathered(const Particles&, GatheredPayload&);
+template void encode_gathered(const Ready&, GatheredPayload&);
+template void encode_gathered(const Step&, GatheredPayload&);
+template void encode_gathered(const Forces&, GatheredPayload&);
+template void encode_gathered(const SnapshotRequest&, GatheredPayload&);
+template void encode_gathered(const Snapshot&, GatheredPayload&);
+template void encode_gathered(const Shutdown&, GatheredPayload&);
+template void encode_gathered(const Goodbye&, GatheredPayload&);
+
+template <class T>
+void decode_into(PayloadSource& source, T& message) {
+  Reader in(T::kType, source);
   layout(in, message);
   in.finish();
   check(in, message);
+}
+
+template void decode_into(PayloadSource&, Hello&);
+template void decode_into(PayloadSource&, Welcome&);
+template void decode_into(PayloadSource&, ErrorMessage&);
+template void decode_into(PayloadSource&, AuthChallenge&);
+template void decode_into(PayloadSource&, AuthResponse&);
+template void decode_into(PayloadSource&, AuthProof&);
+template void decode_into(PayloadSource&, Heartbeat&);
+template void decode_into(PayloadSource&, Setup&);
+template void decode_into(PayloadSource&, Mesh&);
+template void decode_into(PayloadSource&, Particles&);
+template void decode_into(PayloadSource&, Ready&);
+template void decode_into(PayloadSource&, Step&);
+template void decode_into(PayloadSource&, Forces&);
+template void decode_into(PayloadSource&, SnapshotRequest&);
+template void decode_into(PayloadSource&, Snapshot&);
+template void decode_into(PayloadSource&, Shutdown&);
+template void decode_into(PayloadSource&, Goodbye&);
+
+template <class T>
+T decode_as(std::span<const std::byte> payload) {
+  SpanSource source(payload);
+  T message{};
+  decode_into(source, message);
   return message;
 }
 
@@ -647,41 +859,55 @@ template Shutdown decode_as<Shutdown>(std::span<const std::byte>);
 template Goodbye decode_as<Goodbye>(std::span<const std::byte>);
 
 Message decode(MessageType type, std::span<const std::byte> payload) {
+  SpanSource source(payload);
+  return decode(type, source);
+}
+
+namespace {
+template <class T>
+Message decode_new(PayloadSource& source) {
+  T message{};
+  decode_into(source, message);
+  return message;
+}
+}  // namespace
+
+Message decode(MessageType type, PayloadSource& source) {
   switch (type) {
     case MessageType::Hello:
-      return decode_as<Hello>(payload);
+      return decode_new<Hello>(source);
     case MessageType::Welcome:
-      return decode_as<Welcome>(payload);
+      return decode_new<Welcome>(source);
     case MessageType::Error:
-      return decode_as<ErrorMessage>(payload);
+      return decode_new<ErrorMessage>(source);
     case MessageType::AuthChallenge:
-      return decode_as<AuthChallenge>(payload);
+      return decode_new<AuthChallenge>(source);
     case MessageType::AuthResponse:
-      return decode_as<AuthResponse>(payload);
+      return decode_new<AuthResponse>(source);
     case MessageType::AuthProof:
-      return decode_as<AuthProof>(payload);
+      return decode_new<AuthProof>(source);
     case MessageType::Heartbeat:
-      return decode_as<Heartbeat>(payload);
+      return decode_new<Heartbeat>(source);
     case MessageType::Setup:
-      return decode_as<Setup>(payload);
+      return decode_new<Setup>(source);
     case MessageType::Mesh:
-      return decode_as<Mesh>(payload);
+      return decode_new<Mesh>(source);
     case MessageType::Particles:
-      return decode_as<Particles>(payload);
+      return decode_new<Particles>(source);
     case MessageType::Ready:
-      return decode_as<Ready>(payload);
+      return decode_new<Ready>(source);
     case MessageType::Step:
-      return decode_as<Step>(payload);
+      return decode_new<Step>(source);
     case MessageType::Forces:
-      return decode_as<Forces>(payload);
+      return decode_new<Forces>(source);
     case MessageType::SnapshotRequest:
-      return decode_as<SnapshotRequest>(payload);
+      return decode_new<SnapshotRequest>(source);
     case MessageType::Snapshot:
-      return decode_as<Snapshot>(payload);
+      return decode_new<Snapshot>(source);
     case MessageType::Shutdown:
-      return decode_as<Shutdown>(payload);
+      return decode_new<Shutdown>(source);
     case MessageType::Goodbye:
-      return decode_as<Goodbye>(payload);
+      return decode_new<Goodbye>(source);
   }
   throw ProtocolError("cannot decode a message of " + name(type) + ", which protocol " +
                           version_text(kMajorVersion, kMinorVersion) + " does not define",

@@ -6,7 +6,9 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstring>
 #include <future>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -356,6 +358,146 @@ TEST(ProtocolChannel, MalformedMessageIsNamedButTheStreamStaysInStep) {
         << error.what();
   }
   EXPECT_NO_THROW(server.expect<Goodbye>(5s));
+}
+
+// ---- large messages: sent from the caller's arrays, read straight into the receiver's ----
+
+// Doubles whose bits all matter: signs, subnormals, a NaN with a payload.
+std::vector<double> awkward_doubles(std::size_t count, std::uint64_t seed) {
+  std::vector<double> values(count);
+  std::uint64_t bits = seed;
+  for (auto& value : values) {
+    bits = bits * 6364136223846793005u + 1442695040888963407u;
+    std::memcpy(&value, &bits, sizeof value);
+  }
+  return values;
+}
+
+bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
+}
+
+// Writes a frame from a thread (a large one fills the socket buffers until the channel reads).
+std::future<void> write_later(RawPeer& peer, std::vector<std::byte> bytes) {
+  return std::async(std::launch::async,
+                    [&peer, bytes = std::move(bytes)] { peer.write(std::span(bytes)); });
+}
+
+TEST(ProtocolChannel, LargeMessagesArriveBitExactInTheReusedStorage) {
+  Listener listener("127.0.0.1", 0);
+  Forces first;
+  first.step = 1;
+  first.forces = awkward_doubles(1'000'000, 1);
+  Forces second = first;
+  second.step = 2;
+  second.forces = awkward_doubles(1'000'000, 2);
+  auto client = std::async(std::launch::async, [&, port = listener.port()] {
+    Channel channel = Channel::connect("127.0.0.1", port, 5s);
+    channel.send(first);
+    channel.send(second);
+    channel.send(Goodbye{2, 0.5});
+  });
+  Channel server = listener.accept(5s);
+  Forces received;
+  received.forces.reserve(1'200'000);  // a fresh vector would get exactly what arrives
+  server.expect_into(received, 10s);
+  EXPECT_EQ(received.step, 1u);
+  EXPECT_EQ(received.forces.capacity(), 1'200'000u);
+  EXPECT_TRUE(same_bits(received.forces, first.forces));
+  const double* storage = received.forces.data();
+  server.expect_into(received, 10s);
+  EXPECT_EQ(received.step, 2u);
+  EXPECT_TRUE(same_bits(received.forces, second.forces));
+  EXPECT_EQ(received.forces.data(), storage);  // read in place: no allocation, no copy
+  EXPECT_EQ(received.forces.capacity(), 1'200'000u);
+  EXPECT_EQ(server.expect<Goodbye>(5s).steps_done, 2u);
+  server.close();
+  client.get();
+}
+
+TEST(ProtocolChannel, DamagedLargeFrameIsACrcMismatchEvenIfItsContentIsAlsoWrong) {
+  Listener listener("127.0.0.1", 0, quick_close());
+  Step step{3, 0.5, 1e-3, awkward_doubles(300'000, 3), awkward_doubles(300'000, 4)};
+  auto frame = encode_frame(MessageType::Step, encode(step));
+  frame[frame.size() / 2] ^= std::byte{0x01};
+  Step wrong = step;  // velocities no longer match the positions
+  wrong.velocities.pop_back();
+  auto wrong_frame = encode_frame(MessageType::Step, encode(wrong));
+  wrong_frame[wrong_frame.size() / 3] ^= std::byte{0x10};
+  for (auto* bytes : {&frame, &wrong_frame}) {
+    RawPeer peer(listener.port());
+    Channel server = listener.accept(5s);
+    auto writer = write_later(peer, *bytes);
+    Step received;
+    try {
+      server.expect_into(received, 10s);
+      FAIL() << "a damaged Step was accepted";
+    } catch (const ProtocolError& error) {
+      EXPECT_TRUE(contains(error.what(), "CRC-32C mismatch in Step frame")) << error.what();
+    }
+    writer.get();
+    EXPECT_THROW(server.expect<Step>(1s), ProtocolError);  // the stream is not trusted any more
+  }
+}
+
+TEST(ProtocolChannel, MalformedLargeMessageIsReadToItsEndSoTheStreamStaysInStep) {
+  Listener listener("127.0.0.1", 0, quick_close());
+  RawPeer peer(listener.port());
+  Channel server = listener.accept(5s);
+  Step step{3, 0.5, 1e-3, awkward_doubles(300'000, 5), awkward_doubles(299'999, 6)};
+  auto frames = encode_frame(MessageType::Step, encode(step));
+  auto overlong = encode(Forces{4, awkward_doubles(200'000, 7), {}});
+  overlong.resize(overlong.size() + 100000);  // more than the channel stages at once
+  const auto overlong_frame = encode_frame(MessageType::Forces, overlong);
+  const auto goodbye = encode_frame(MessageType::Goodbye, encode(Goodbye{9, 1.0}));
+  frames.insert(frames.end(), overlong_frame.begin(), overlong_frame.end());
+  frames.insert(frames.end(), goodbye.begin(), goodbye.end());
+  auto writer = write_later(peer, frames);
+  Step received_step;
+  try {
+    server.expect_into(received_step, 10s);
+    FAIL() << "a Step with fewer velocities than positions was accepted";
+  } catch (const ProtocolError& error) {
+    EXPECT_TRUE(
+        contains(error.what(), "malformed Step message: field 'velocities' has 299999 values"))
+        << error.what();
+  }
+  Forces received_forces;
+  try {
+    server.expect_into(received_forces, 10s);
+    FAIL() << "a Forces with trailing bytes was accepted";
+  } catch (const ProtocolError& error) {
+    EXPECT_TRUE(contains(error.what(), "100000 bytes follow the last field")) << error.what();
+  }
+  EXPECT_EQ(server.expect<Goodbye>(5s).steps_done, 9u);
+  writer.get();
+}
+
+TEST(ProtocolChannel, PeerClosingInsideALargeArrayNamesTheBytesReceived) {
+  Listener listener("127.0.0.1", 0, quick_close());
+  const auto frame =
+      encode_frame(MessageType::Forces, encode(Forces{1, awkward_doubles(500'000, 8), {}}));
+  Channel server = [&] {
+    auto peer = std::make_unique<RawPeer>(listener.port());
+    Channel accepted = listener.accept(5s);
+    auto writer = std::async(std::launch::async, [&] {
+      peer->write(std::span(frame).first(kHeaderSize + 1'000'000));
+      peer.reset();  // closes the connection
+    });
+    Forces received;
+    try {
+      accepted.expect_into(received, 10s);
+      ADD_FAILURE() << "a truncated Forces was accepted";
+    } catch (const ProtocolError& error) {
+      EXPECT_TRUE(contains(error.what(), "connection closed by peer")) << error.what();
+      EXPECT_TRUE(contains(error.what(), "received 1000000 of the " +
+                                             std::to_string(frame.size() - kHeaderSize) +
+                                             " payload bytes of a Forces frame"))
+          << error.what();
+    }
+    writer.get();
+    return accepted;
+  }();
 }
 
 TEST(ProtocolChannel, ErrorFromPeerIsReportedByExpect) {

@@ -463,6 +463,174 @@ TEST(ProtocolMessages, UnknownErrorCodesAndEmptyValuesDecode) {
   EXPECT_EQ(decode_as<Snapshot>(encode(empty)), empty);
 }
 
+// ---- gathered encoding and decoding from a source (the channel's zero-copy paths) ----
+
+// Every sample, and versions whose arrays and strings are large enough to be referenced.
+std::vector<Message> samples_small_and_large() {
+  std::vector<Message> messages = all_samples();
+  Setup setup = sample_setup();
+  setup.script1_text.assign(3 * kGatherMinimumBytes, 'x');
+  messages.emplace_back(setup);
+  Step step = sample_step();
+  step.positions.assign(5000, 0.25);
+  step.velocities.assign(5000, -0.5);
+  messages.emplace_back(step);
+  Forces forces = sample_forces();
+  forces.forces.assign(kGatherMinimumBytes / sizeof(double), 1.5);  // exactly at the threshold
+  messages.emplace_back(forces);
+  Snapshot snapshot = sample_snapshot();
+  snapshot.ids.assign(3000, 4);
+  snapshot.positions.assign(6000, 0.5);
+  snapshot.velocities.assign(6000, 0.25);
+  snapshot.density.assign(3000, 1000);
+  snapshot.pressure.assign(100, 1);  // small: copied
+  snapshot.pressure.resize(3000, 2);
+  messages.emplace_back(snapshot);
+  return messages;
+}
+
+std::vector<std::byte> concatenated(const GatheredPayload& payload) {
+  std::vector<std::byte> bytes;
+  for (const auto& piece : payload.pieces)
+    bytes.insert(bytes.end(), piece.begin(), piece.end());
+  return bytes;
+}
+
+TEST(ProtocolMessages, GatheredPiecesAreExactlyTheEncodedBytes) {
+  GatheredPayload payload;  // reused across messages, as a channel does
+  for (const Message& message : samples_small_and_large()) {
+    std::visit([&](const auto& m) { encode_gathered(m, payload); }, message);
+    const auto expected = encode(message);
+    EXPECT_EQ(payload.size, expected.size()) << name(type_of(message));
+    EXPECT_EQ(concatenated(payload), expected) << name(type_of(message));
+  }
+}
+
+TEST(ProtocolMessages, GatheringReferencesLargeArraysWhereTheyLie) {
+  Forces forces = sample_forces();
+  forces.forces.assign(100000, 0.125);
+  GatheredPayload payload;
+  encode_gathered(forces, payload);
+  // step and count encoded, the array itself, the diagnostics encoded.
+  ASSERT_EQ(payload.pieces.size(), 3u);
+  EXPECT_EQ(payload.pieces[1].data(), reinterpret_cast<const std::byte*>(forces.forces.data()));
+  EXPECT_EQ(payload.pieces[1].size(), forces.forces.size() * sizeof(double));
+  EXPECT_LT(payload.encoded.size(), std::size_t{1024});  // nothing large was copied
+
+  Step small = sample_step();
+  encode_gathered(small, payload);
+  ASSERT_EQ(payload.pieces.size(), 1u);  // small arrays are copied: one piece
+  EXPECT_EQ(payload.pieces[0].data(), payload.encoded.data());
+}
+
+// Hands out the payload in small pieces and says that only a few bytes are ever there at once,
+// as a socket does.
+class TricklingSource final : public PayloadSource {
+ public:
+  TricklingSource(std::span<const std::byte> bytes, unsigned seed)
+      : bytes_(bytes), generator_(seed) {}
+  std::size_t remaining() const override { return bytes_.size() - offset_; }
+  std::size_t available() const override { return std::min<std::size_t>(remaining(), 7); }
+  void read(std::span<std::byte> into) override {
+    EXPECT_LE(into.size(), remaining());
+    std::size_t done = 0;
+    while (done < into.size()) {
+      const std::size_t piece = std::min(into.size() - done, 1 + generator_() % 300);
+      std::memcpy(into.data() + done, bytes_.data() + offset_, piece);
+      done += piece;
+      offset_ += piece;
+    }
+  }
+  void end() override {
+    EXPECT_EQ(remaining(), 0u);
+    ++ends;
+  }
+  int ends = 0;
+
+ private:
+  std::span<const std::byte> bytes_;
+  std::size_t offset_ = 0;
+  std::mt19937 generator_;
+};
+
+TEST(ProtocolMessages, DecodingFromATricklingSourceAgreesWithDecodingABuffer) {
+  unsigned seed = 1;
+  for (const Message& message : samples_small_and_large()) {
+    const auto bytes = encode(message);
+    TricklingSource source(bytes, seed++);
+    EXPECT_EQ(decode(type_of(message), source), message) << name(type_of(message));
+    EXPECT_EQ(source.ends, 1);
+  }
+  // Faults are worded the same way, at the same offsets.
+  auto truncated = encode(sample_step());
+  truncated.pop_back();
+  TricklingSource source(truncated, 99);
+  std::string from_source;
+  try {
+    decode(MessageType::Step, source);
+  } catch (const ProtocolError& error) {
+    from_source = error.what();
+  }
+  EXPECT_EQ(from_source, decode_error(MessageType::Step, truncated));
+  EXPECT_EQ(source.ends, 0);  // end() only after a complete read
+}
+
+TEST(ProtocolMessages, DecodeIntoReusesTheStorageOfItsVectors) {
+  Forces sent = sample_forces();
+  sent.forces.assign(50000, 0.5);
+  Forces received;
+  received.forces.reserve(60000);  // a fresh vector would get exactly the 50000 that arrive
+  const auto first_bytes = encode(sent);
+  TricklingSource first(first_bytes, 1);
+  decode_into(first, received);
+  EXPECT_EQ(received, sent);
+  EXPECT_EQ(received.forces.capacity(), 60000u);
+  const double* storage = received.forces.data();
+  sent.step = 8;
+  for (std::size_t i = 0; i < sent.forces.size(); ++i)
+    sent.forces[i] = static_cast<double>(i);
+  const auto second_bytes = encode(sent);
+  TricklingSource second(second_bytes, 2);
+  decode_into(second, received);
+  EXPECT_EQ(received, sent);
+  EXPECT_EQ(received.forces.data(), storage);  // filled in place, no allocation
+  EXPECT_EQ(received.forces.capacity(), 60000u);
+}
+
+// A payload that announces 100 MB of doubles but breaks off early: the decoder must not have
+// allocated for more than it received (doubling from 1 MiB as bytes arrive).
+class BreakingSource final : public PayloadSource {
+ public:
+  std::size_t remaining() const override { return kAnnounced - offset_; }
+  std::size_t available() const override { return 0; }
+  void read(std::span<std::byte> into) override {
+    if (offset_ == 0) {  // the 8-byte step, then the element count
+      ASSERT_EQ(into.size(), 8u);
+      std::memset(into.data(), 0, 8);
+    } else if (offset_ == 8) {
+      ASSERT_EQ(into.size(), 8u);
+      const std::uint64_t count = (kAnnounced - 16 - 104) / sizeof(double);
+      std::memcpy(into.data(), &count, 8);
+    } else {
+      if (offset_ + into.size() > kBreakAfter) throw ProtocolError("broke off", "test", "none");
+      std::memset(into.data(), 0, into.size());
+    }
+    offset_ += into.size();
+  }
+
+ private:
+  static constexpr std::size_t kAnnounced = 100'000'000;
+  static constexpr std::size_t kBreakAfter = 3'000'000;
+  std::size_t offset_ = 0;
+};
+
+TEST(ProtocolMessages, DecodeIntoAllocatesOnlyAsTheBytesArrive) {
+  BreakingSource source;
+  Forces received;
+  EXPECT_THROW(decode_into(source, received), ProtocolError);
+  EXPECT_LE(received.forces.capacity() * sizeof(double), std::size_t{8} << 20);
+}
+
 TEST(ProtocolMessages, UnknownTypeCannotBeDecoded) {
   EXPECT_NE(decode_error(static_cast<MessageType>(0x50), {}).find("unknown type 0x0050"),
             std::string::npos);

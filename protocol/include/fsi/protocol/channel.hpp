@@ -58,9 +58,14 @@ class Channel {
 
   // One frame, header and payload gathered into one write.
   void send(MessageType type, std::span<const std::byte> payload);
+  // A message's large arrays go out from where they lie (encode_gathered), without a copy.
   template <class T>
   requires requires { T::kType; }
-  void send(const T& message) { send(T::kType, encode_into(message, send_buffer())); }
+  void send(const T& message) {
+    GatheredPayload& payload = gathered_payload();
+    encode_gathered(message, payload);
+    send_pieces(T::kType, payload.pieces);
+  }
   void send(const Message& message);
 
   // Receives one complete frame with a checked header and CRC, skipping Heartbeat frames: each
@@ -68,17 +73,22 @@ class Channel {
   // ever; waiting_for words the errors ("Forces", "the set-up", ...). A timeout before the first
   // byte of a frame leaves the channel usable; any other receive fault makes later receives throw.
   Frame receive(std::optional<Milliseconds> timeout, std::string_view waiting_for = "a message");
-  // Receives and decodes one message; the payload goes through a buffer the channel reuses.
+  // Receives and decodes one message; large arrays are read straight into the message's vectors.
   Message receive_message(std::optional<Milliseconds> timeout,
                           std::string_view waiting_for = "a message");
   // Receives a T. An Error message throws "peer reported: <its text>"; any other message throws
   // naming the expected and the received type.
   template <class T>
   T expect(std::optional<Milliseconds> timeout) {
-    Message message = receive_message(timeout, name(T::kType));
-    if (auto* wanted = std::get_if<T>(&message)) return std::move(*wanted);
-    throw_unexpected(T::kType, message);
+    T message{};
+    expect_into(message, timeout);
+    return message;
   }
+  // The same, decoding into message with the payload read from the socket straight into its
+  // vectors: a message reused from step to step costs no allocation and no copy (decode_into).
+  // After a throw, message holds an unspecified mix of old and new values.
+  template <class T>
+  void expect_into(T& message, std::optional<Milliseconds> timeout);
 
   // "127.0.0.1:40312"
   std::string peer_description() const;
@@ -98,8 +108,10 @@ class Channel {
   // Sends one Heartbeat frame without blocking; false if it did not go out (socket buffer full,
   // connection gone). Only for HeartbeatSender, while the owning thread leaves the channel alone.
   bool try_send_heartbeat();
-  // Reused for every message this channel encodes (keeps the largest size it has needed).
-  std::vector<std::byte>& send_buffer();
+  // Reused for every message this channel sends (keeps the largest size it has needed).
+  GatheredPayload& gathered_payload();
+  // One frame whose payload is the concatenation of pieces, all gathered into one write.
+  void send_pieces(MessageType type, std::span<const std::span<const std::byte>> pieces);
   struct Impl;
   explicit Channel(std::unique_ptr<Impl> impl);
   [[noreturn]] void throw_unexpected(MessageType expected, const Message& received) const;

@@ -94,6 +94,10 @@ std::array<std::byte, kHeaderSize> encode_header(MessageType type,
                                                  std::span<const std::byte> payload,
                                                  std::uint16_t major = kMajorVersion,
                                                  std::uint16_t minor = kMinorVersion);
+// The same for a payload that is the concatenation of pieces (sent by scatter-gather).
+std::array<std::byte, kHeaderSize> encode_header_for_pieces(
+    MessageType type, std::span<const std::span<const std::byte>> payload_pieces,
+    std::uint16_t major = kMajorVersion, std::uint16_t minor = kMinorVersion);
 // Header and payload in one buffer (tests, fuzzing, fake peers).
 std::vector<std::byte> encode_frame(MessageType type, std::span<const std::byte> payload,
                                     std::uint16_t major = kMajorVersion,

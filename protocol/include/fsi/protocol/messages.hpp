@@ -258,11 +258,56 @@ std::vector<std::byte> encode(const Message& message);
 template <class T>
 std::span<const std::byte> encode_into(const T& message, std::vector<std::byte>& buffer);
 
+// A payload as byte ranges to be sent one after another (scatter-gather): the small fields
+// encoded into `encoded`, arrays and strings of at least kGatherMinimumBytes referenced where they
+// lie in the message, so that nothing large is copied. The pieces in order are exactly the bytes
+// encode() gives. They point into the message and into this object, so they are valid until
+// either changes. Reused for many messages, it allocates nothing for sizes it has seen.
+struct GatheredPayload {
+  std::vector<std::byte> encoded;
+  std::vector<std::span<const std::byte>> pieces;
+  std::size_t size = 0;  // sum of the pieces' sizes
+};
+inline constexpr std::size_t kGatherMinimumBytes = 4096;
+template <class T>
+void encode_gathered(const T& message, GatheredPayload& payload);
+
 // Decodes the payload of a frame of the given type. Throws ProtocolError.
 Message decode(MessageType type, std::span<const std::byte> payload);
 // Decodes a payload known to hold a T (one of the alternatives of Message).
 template <class T>
 T decode_as(std::span<const std::byte> payload);
+
+// The payload of one frame as it arrives, for decoding straight into a message's own storage
+// (Channel implements it over the socket). The decoder asks only for bytes that remain.
+class PayloadSource {
+ public:
+  virtual ~PayloadSource() = default;
+  // Payload bytes not yet read.
+  virtual std::size_t remaining() const = 0;
+  // Of those, how many are already here; a decoder allocates for an announced array up to this
+  // much at once, beyond it only as the bytes arrive (a false length costs no memory).
+  virtual std::size_t available() const = 0;
+  // Fills `into` (at most remaining() bytes) with the next payload bytes.
+  virtual void read(std::span<std::byte> into) = 0;
+  // For a destination that would have to grow: the next `bytes` (at most remaining()) payload
+  // bytes in a buffer the source keeps, valid until the next call; or nothing, if the source has
+  // no such buffer (the decoder then grows the destination as the bytes arrive).
+  virtual std::span<const std::byte> read_buffered(std::size_t bytes) {
+    static_cast<void>(bytes);
+    return {};
+  }
+  // Called when every field is read and nothing remains, before the content checks (a channel
+  // verifies the CRC here, so a damaged frame is reported as such).
+  virtual void end() {}
+};
+// Decodes a T from source into message, reusing the capacity of its vectors: a vector with room
+// for the elements that arrive is filled in place, without allocation (and without zeroing, if it
+// already holds as many). Throws ProtocolError as decode_as does; message then holds an
+// unspecified mix of old and new values.
+template <class T>
+void decode_into(PayloadSource& source, T& message);
+Message decode(MessageType type, PayloadSource& source);
 
 MessageType type_of(const Message& message);
 
