@@ -1,15 +1,18 @@
 #!/usr/bin/python3
-"""Writes box.stl: the closed surface of the axis-aligned box [0, a] x [0, b] x [0, c] in metres,
-12 triangles, outward normals (counter-clockwise seen from outside). fix fsi/sph treats both sides
-of a triangle alike, so the fluid inside sees the box's inner faces.
+"""Writes the closed surface of the axis-aligned box [0, a] x [0, b] x [0, c] in metres, shifted
+by (x, y, z), as ASCII STL: 12 triangles, outward normals (counter-clockwise seen from outside).
+fix fsi/sph treats both sides of a triangle alike, so the fluid inside sees the inner faces.
 
-  python3 make_box_stl.py [a b c] > box.stl      (default 0.012 0.012 0.02)
+  python3 make_box_stl.py > box.stl                     (the container: 0.012 0.012 0.02)
+  python3 make_box_stl.py 0.0096 0.0096 0.008 0.0012 0.0012 0.0008 > fluid.stl   (the fluid block)
 """
 import sys
 
 
-def box_triangles(a, b, c):
-    corner = [(x, y, z) for z in (0.0, c) for y in (0.0, b) for x in (0.0, a)]  # index x + 2y + 4z
+def box_triangles(a, b, c, offset=(0.0, 0.0, 0.0)):
+    ox, oy, oz = offset
+    corner = [(ox + x, oy + y, oz + z) for z in (0.0, c) for y in (0.0, b)
+              for x in (0.0, a)]  # index x + 2y + 4z
     # Each face as 4 corners counter-clockwise seen from outside, with its outward normal.
     faces = [((0, 2, 3, 1), (0, 0, -1)),  # bottom z = 0
              ((4, 5, 7, 6), (0, 0, 1)),   # top z = c
@@ -23,9 +26,13 @@ def box_triangles(a, b, c):
 
 
 def main():
-    a, b, c = (float(v) for v in sys.argv[1:4]) if len(sys.argv) == 4 else (0.012, 0.012, 0.02)
+    values = [float(v) for v in sys.argv[1:]]
+    if len(values) not in (0, 3, 6):
+        sys.exit("usage: make_box_stl.py [a b c [x y z]]")
+    a, b, c = values[0:3] if values else (0.012, 0.012, 0.02)
+    offset = values[3:6] if len(values) == 6 else (0.0, 0.0, 0.0)
     out = ["solid box"]
-    for normal, triangle in box_triangles(a, b, c):
+    for normal, triangle in box_triangles(a, b, c, offset):
         out.append("  facet normal %g %g %g" % normal)
         out.append("    outer loop")
         for vertex in triangle:
