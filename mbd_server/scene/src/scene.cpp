@@ -803,13 +803,16 @@ Scene build_scene(const std::string& path, const std::vector<Override>& override
                     : type == "constraint_force" ? SensorType::ConstraintForce
                                                  : SensorType::TotalFluidForce;
       const bool force = sensor.type != SensorType::Position && sensor.type != SensorType::Velocity;
-      if (component == "z" && (sensor.type != SensorType::TotalFluidForce || !spatial)) {
+      if (spatial && sensor.type != SensorType::TotalFluidForce) {
+        problems.push_back({s.location("type"),
+                            "a " + type + " sensor measures a body; 3D scenes have no bodies yet",
+                            "use type = \"total_fluid_force\" (component x, y or z)"});
+        return;
+      }
+      if (component == "z" && !spatial) {
         problems.push_back({s.location("component"),
-                            spatial ? "only total_fluid_force sensors have a z component (3D "
-                                      "scenes have no bodies yet)"
-                                    : "component z needs a 3D scene (dimension = 2 here)",
-                            spatial ? "write type = \"total_fluid_force\""
-                                    : "write x or y, or set dimension = 3"});
+                            "component z needs a 3D scene (dimension = 2 here)",
+                            "write x or y, or set dimension = 3"});
         return;
       }
       sensor.axis = component == "z" ? 2 : component == "y" ? 1 : 0;
