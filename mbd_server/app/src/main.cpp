@@ -97,12 +97,15 @@ void print_summary(const fsi::scene::Scene& scene) {
   std::printf("scene %s is valid:\n", scene.file.c_str());
   std::printf("  %d bodies, %d constraints, %zu sensors\n", scene.model.body_count(),
               scene.model.constraint_count(), scene.sensors.size());
-  std::printf(
-      "  boundary mesh: %zu vertices (%zu dynamic), %zu segments, refinement resolution %g m\n",
-      scene.boundary.vertex_count, scene.boundary.dynamic_vertex_count,
-      scene.boundary.segments.size() / 2, scene.boundary.refinement_resolution);
-  std::printf("  fluid: %zu particles, spacing %g m, mass %g kg/m, density %g kg/m^3\n",
-              scene.fluid.count(), scene.fluid.spacing, scene.fluid.mass, scene.fluid.density);
+  const bool spatial = scene.dimension == 3;
+  std::printf("  dimension %d\n", scene.dimension);
+  std::printf("  boundary mesh: %zu vertices (%zu dynamic), %zu %s, refinement resolution %g m\n",
+              scene.boundary.vertex_count, scene.boundary.dynamic_vertex_count,
+              scene.boundary.element_count(), spatial ? "triangles" : "segments",
+              scene.boundary.refinement_resolution);
+  std::printf("  fluid: %zu particles, spacing %g m, mass %g %s, density %g kg/m^3\n",
+              scene.fluid.count(), scene.fluid.spacing, scene.fluid.mass, spatial ? "kg" : "kg/m",
+              scene.fluid.density);
   std::printf("  time: %g s in steps of %g s (Radau IIA, %d stages); %llu equilibration steps\n",
               scene.solver.end_time, scene.solver.step_size, scene.solver.stages,
               static_cast<unsigned long long>(scene.liggghts.equilibration_steps));
@@ -324,6 +327,13 @@ int main(int argc, char** argv) {
   for (const fsi::scene::Diagnostic& diagnostic : diagnostics) {
     if (diagnostic.severity == fsi::scene::Severity::Warning)
       options.warnings.push_back(diagnostic.text());
+  }
+  if (mbd_only && scene.dimension == 3) {
+    std::fprintf(stderr,
+                 "error: --mbd-only runs the planar multibody system; the 3D scene %s has none "
+                 "(static ground only)\n  fix: run it coupled (without --mbd-only)\n",
+                 scene.file.c_str());
+    return 2;
   }
   if (mbd_only) {
     fsi::coupling::MbdOnlyOptions mbd_options;

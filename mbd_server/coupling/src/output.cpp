@@ -55,13 +55,18 @@ void write_snapshot_csv(const std::string& path, const ParticleSnapshot& snapsho
     throw Error("cannot write " + path + ": " + std::strerror(errno), "snapshot output",
                 "free disk space");
   }
-  std::fprintf(file, "# SPH particles at step %llu, t = %.17g s\nid,x,y,vx,vy,density,pressure\n",
-               static_cast<unsigned long long>(snapshot.step), snapshot.time);
+  const bool spatial = snapshot.dimension == 3;
+  std::fprintf(file, "# SPH particles at step %llu, t = %.17g s\n%s\n",
+               static_cast<unsigned long long>(snapshot.step), snapshot.time,
+               spatial ? "id,x,y,z,vx,vy,vz,density,pressure" : "id,x,y,vx,vy,density,pressure");
+  const auto dimension = static_cast<std::size_t>(snapshot.dimension);
   for (std::size_t i = 0; i < snapshot.ids.size(); ++i) {
-    std::fprintf(file, "%llu,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n",
-                 static_cast<unsigned long long>(snapshot.ids[i]), snapshot.positions[2 * i],
-                 snapshot.positions[2 * i + 1], snapshot.velocities[2 * i],
-                 snapshot.velocities[2 * i + 1], snapshot.density[i], snapshot.pressure[i]);
+    std::fprintf(file, "%llu", static_cast<unsigned long long>(snapshot.ids[i]));
+    for (const auto* values : {&snapshot.positions, &snapshot.velocities}) {
+      for (std::size_t k = 0; k < dimension; ++k)
+        std::fprintf(file, ",%.17g", (*values)[dimension * i + k]);
+    }
+    std::fprintf(file, ",%.17g,%.17g\n", snapshot.density[i], snapshot.pressure[i]);
   }
   std::fclose(file);
 }

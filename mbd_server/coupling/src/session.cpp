@@ -193,15 +193,21 @@ class Session {
   void send_boundary_setup() {
     const auto& boundary = scene_.boundary;
     protocol::Mesh mesh;
-    mesh.dimension = 2;
+    mesh.dimension = static_cast<std::uint32_t>(boundary.dimension);
     mesh.dynamic_vertex_count = static_cast<std::uint32_t>(boundary.dynamic_vertex_count);
     mesh.refinement_option = static_cast<std::uint32_t>(boundary.refinement_option);
     mesh.refinement_resolution = boundary.refinement_resolution;
-    mesh.positions.resize(2 * boundary.vertex_count);
-    mesh.velocities.resize(2 * boundary.vertex_count);
-    scene_.model.marker_positions(state_, mesh.positions);
-    scene_.model.marker_velocities(state_, mesh.velocities);
-    mesh.element_vertices = boundary.segments;
+    if (boundary.dimension == 3) {
+      // Static ground triangles only: their positions are sent once, here.
+      mesh.positions = boundary.static_positions;
+      mesh.velocities.assign(mesh.positions.size(), 0.0);
+    } else {
+      mesh.positions.resize(2 * boundary.vertex_count);
+      mesh.velocities.resize(2 * boundary.vertex_count);
+      scene_.model.marker_positions(state_, mesh.positions);
+      scene_.model.marker_velocities(state_, mesh.velocities);
+    }
+    mesh.element_vertices = boundary.elements();
     channel_->send(mesh);
   }
 
@@ -211,7 +217,7 @@ class Session {
     integrator_ = std::make_unique<mbd::RadauIIA>(scene_.solver.integrator_options());
 
     protocol::Setup setup;
-    setup.dimension = 2;
+    setup.dimension = static_cast<std::uint32_t>(scene_.dimension);
     setup.time_step = scene_.solver.step_size;
     setup.equilibration_steps = scene_.liggghts.equilibration_steps;
     for (const auto& [name, value] : scene_.liggghts.variables)
@@ -223,19 +229,20 @@ class Session {
     channel_->send(setup);
     send_boundary_setup();
     protocol::Particles particles;
-    particles.dimension = 2;
+    particles.dimension = static_cast<std::uint32_t>(scene_.fluid.dimension);
     particles.atom_type = static_cast<std::uint32_t>(scene_.fluid.atom_type);
     particles.mass = scene_.fluid.mass;
     particles.density = scene_.fluid.density;
     particles.positions = scene_.fluid.positions;
     particles.velocities = scene_.fluid.velocities;
     channel_->send(particles);
+    const bool spatial = scene_.dimension == 3;
     spdlog::info(
-        "sent set-up: {} particles (m = {:.6g} kg/m), {} boundary vertices ({} dynamic), {} "
-        "segments; "
-        "client runs script 1, {} equilibration steps, script 2",
-        scene_.fluid.count(), scene_.fluid.mass, scene_.boundary.vertex_count,
-        scene_.boundary.dynamic_vertex_count, scene_.boundary.segments.size() / 2,
+        "sent set-up ({}D): {} particles (m = {:.6g} {}), {} boundary vertices ({} dynamic), {} "
+        "{}; client runs script 1, {} equilibration steps, script 2",
+        scene_.dimension, scene_.fluid.count(), scene_.fluid.mass, spatial ? "kg" : "kg/m",
+        scene_.boundary.vertex_count, scene_.boundary.dynamic_vertex_count,
+        scene_.boundary.element_count(), spatial ? "triangles" : "segments",
         scene_.liggghts.equilibration_steps);
     // Set-up and equilibration may take long: a client that sends heartbeats (1.1) is waited for
     // as long as it computes; one of protocol 1.0 (no heartbeats) as long as it takes.
@@ -262,9 +269,10 @@ class Session {
                       std::to_string(expected_step) + " was expected",
                   "coupled step", "use matching fsi-server and fsi-client releases");
     }
-    const std::size_t dynamic_values = 2 * scene_.boundary.dynamic_vertex_count;
+    const auto dimension = static_cast<std::size_t>(scene_.dimension);
+    const std::size_t dynamic_values = dimension * scene_.boundary.dynamic_vertex_count;
     if (forces.forces.size() != dynamic_values) {
-      throw Error("Forces carry " + std::to_string(forces.forces.size() / 2) +
+      throw Error("Forces carry " + std::to_string(forces.forces.size() / dimension) +
                       " vertices, the mesh has " +
                       std::to_string(scene_.boundary.dynamic_vertex_count) + " dynamic ones",
                   "step " + std::to_string(expected_step),
@@ -279,10 +287,12 @@ class Session {
     }
     // Held for the sensors of the step these forces act in (like the point loads).
     applied_total_force_ = {forces.diagnostics.force_on_structure[0],
-                            forces.diagnostics.force_on_structure[1]};
-    loads_.assign(2 * scene_.boundary.vertex_count, 0.0);
+                            forces.diagnostics.force_on_structure[1],
+                            forces.diagnostics.force_on_structure[2]};
+    loads_.assign(dimension * scene_.boundary.vertex_count, 0.0);
     std::copy(forces.forces.begin(), forces.forces.end(), loads_.begin());
-    scene_.model.set_point_loads(loads_);
+    // 3D: every vertex is static ground, the (empty) planar model takes no loads.
+    if (scene_.dimension == 2) scene_.model.set_point_loads(loads_);
 
     const auto& d = forces.diagnostics;
     timings_.client_liggghts += d.seconds_liggghts;
@@ -333,7 +343,7 @@ class Session {
           values.push_back(model.constraint_force(state_, sensor.body, sensor.component));
           break;
         case scene::SensorType::TotalFluidForce:
-          values.push_back(applied_total_force_[component]);
+          values.push_back(applied_total_force_[static_cast<std::size_t>(sensor.axis)]);
           break;
         case scene::SensorType::JointForce:
         case scene::SensorType::SpringForce:
@@ -351,8 +361,11 @@ class Session {
     timings_.coupled.start();
     const double dt = scene_.solver.step_size;
     const auto steps = static_cast<std::uint64_t>(std::llround(scene_.solver.end_time / dt));
-    const std::size_t dynamic_values = 2 * scene_.boundary.dynamic_vertex_count;
-    std::vector<double> positions(2 * scene_.boundary.vertex_count), velocities(positions.size());
+    // 3D: no markers (static ground only), every Step carries zero dynamic vertices.
+    const bool planar = scene_.dimension == 2;
+    const std::size_t dynamic_values = planar ? 2 * scene_.boundary.dynamic_vertex_count : 0;
+    std::vector<double> positions(planar ? 2 * scene_.boundary.vertex_count : 0),
+        velocities(positions.size());
     spdlog::info("coupled phase: {} steps of {:.3g} s to t = {:.6g} s", steps, dt, steps * dt);
     coupled_begin_ = std::chrono::steady_clock::now();
     last_log_ = last_live_ = coupled_begin_;
@@ -366,7 +379,7 @@ class Session {
       auto computing = heartbeat_->busy();
       {
         ScopedTimer timer(timings_.mbd);
-        integrator_->step(scene_.model, state_, dt);
+        if (planar) integrator_->step(scene_.model, state_, dt);
         state_.time = static_cast<double>(n) * dt;  // no drift of the clock over many steps
       }
       {
@@ -375,8 +388,10 @@ class Session {
         if (n % static_cast<std::uint64_t>(scene_.output.sensor_every_steps) == 0)
           sensors_->write(state_.time, sensor_values());
       }
-      scene_.model.marker_positions(state_, positions);
-      scene_.model.marker_velocities(state_, velocities);
+      if (planar) {
+        scene_.model.marker_positions(state_, positions);
+        scene_.model.marker_velocities(state_, velocities);
+      }
       protocol::Step step;
       step.step = n;
       step.time = state_.time;
@@ -445,6 +460,7 @@ class Session {
     ParticleSnapshot snapshot;
     snapshot.step = reply.step;
     snapshot.time = reply.time;
+    snapshot.dimension = static_cast<int>(reply.dimension);
     snapshot.ids = std::move(reply.ids);
     snapshot.positions = std::move(reply.positions);
     snapshot.velocities = std::move(reply.velocities);
@@ -527,7 +543,11 @@ class Session {
       const auto& body = scene_.model.body(b);
       bodies.push_back({{"name", body.name}, {"mass", body.mass}, {"inertia", body.inertia}});
     }
-    manifest["model"] = {{"gravity", {scene_.model.gravity().x(), scene_.model.gravity().y()}},
+    const bool spatial = scene_.dimension == 3;
+    const json gravity = spatial ? json{scene_.gravity[0], scene_.gravity[1], scene_.gravity[2]}
+                                 : json{scene_.model.gravity().x(), scene_.model.gravity().y()};
+    manifest["dimension"] = scene_.dimension;
+    manifest["model"] = {{"gravity", gravity},
                          {"bodies", bodies},
                          {"constraints", scene_.model.constraint_count()},
                          {"integrator", scene_.solver.integrator_description()}};
@@ -539,7 +559,7 @@ class Session {
         {"spacing", scene_.fluid.spacing}};
     manifest["mesh"] = {{"vertices", scene_.boundary.vertex_count},
                         {"dynamic_vertices", scene_.boundary.dynamic_vertex_count},
-                        {"segments", scene_.boundary.segments.size() / 2},
+                        {spatial ? "triangles" : "segments", scene_.boundary.element_count()},
                         {"refinement_resolution", scene_.boundary.refinement_resolution}};
     manifest["time_step"] = scene_.solver.step_size;
     manifest["end_time"] = scene_.solver.end_time;
@@ -609,7 +629,7 @@ class Session {
   std::unique_ptr<mbd::RadauIIA> integrator_;
   mbd::State state_;
   std::vector<double> loads_;
-  std::array<double, 2> applied_total_force_{};
+  std::array<double, 3> applied_total_force_{};
   Timings timings_;
   Checks checks_;
   bool coupling_ = false;  // the set-up is done, the coupled steps have begun

@@ -33,7 +33,7 @@ void VtkOutput::write(const ParticleSnapshot& particles, const mbd::Model& model
                       const mbd::State& state, const scene::BoundaryMesh& boundary,
                       std::span<const double> fluid_forces) {
   output::ParticleFrame fluid;
-  fluid.dimension = 2;
+  fluid.dimension = particles.dimension;
   fluid.time = particles.time;
   fluid.ids = particles.ids;
   fluid.positions = particles.positions;
@@ -42,17 +42,24 @@ void VtkOutput::write(const ParticleSnapshot& particles, const mbd::Model& model
   fluid.pressure = particles.pressure;
   fluid_.write(particles.step, particles.time, output::encode_particles(fluid));
 
-  std::vector<double> positions(2 * boundary.vertex_count), velocities(positions.size());
-  model.marker_positions(state, positions);
-  model.marker_velocities(state, velocities);
+  const auto dimension = static_cast<std::size_t>(boundary.dimension);
+  std::vector<double> positions(dimension * boundary.vertex_count), velocities(positions.size());
+  if (boundary.dimension == 3) {
+    positions = boundary.static_positions;  // every 3D vertex is static (at rest)
+  } else {
+    model.marker_positions(state, positions);
+    model.marker_velocities(state, velocities);
+  }
+  const std::vector<double> no_forces(positions.size(), 0.0);
   output::BoundaryFrame mesh;
-  mesh.dimension = 2;
+  mesh.dimension = boundary.dimension;
   mesh.time = state.time;
   mesh.positions = positions;
   mesh.velocities = velocities;
-  mesh.fluid_forces = fluid_forces;
+  mesh.fluid_forces =
+      fluid_forces.size() == positions.size() ? fluid_forces : std::span<const double>(no_forces);
   mesh.dynamic_vertex_count = boundary.dynamic_vertex_count;
-  mesh.elements = boundary.segments;
+  mesh.elements = boundary.elements();
   boundary_.write(particles.step, state.time, output::encode_boundary(mesh));
 
   output::BodyFrame frames;

@@ -407,6 +407,36 @@ double enclosed_volume(const TriangleMesh& mesh) {
   return six_volume / 6.0;
 }
 
+std::vector<double> fill_box_3d(const Point3& lower, const Point3& upper,
+                                const LatticeOptions& options, std::size_t max_points) {
+  check_options(options, "the fluid box");
+  const double d = options.spacing;
+  std::array<long, 3> n{};
+  for (std::size_t k = 0; k < 3; ++k)
+    n[k] = count_along(lower[k], upper[k], d);
+  if (n[0] < 1 || n[1] < 1 || n[2] < 1) {
+    throw Error(
+        "the fluid box holds no lattice point (upper must exceed lower by at least one "
+        "spacing in x, y and z)",
+        "", "check lower, upper and spacing");
+  }
+  check_count(static_cast<double>(n[0]) * static_cast<double>(n[1]) * static_cast<double>(n[2]),
+              max_points, "the fluid box");
+  std::vector<double> points;
+  points.reserve(static_cast<std::size_t>(3 * n[0] * n[1] * n[2]));
+  for (long kz = 0; kz < n[2]; ++kz) {
+    for (long ky = 0; ky < n[1]; ++ky) {
+      for (long kx = 0; kx < n[0]; ++kx) {
+        points.push_back(lower[0] + (static_cast<double>(kx) + 0.5) * d);
+        points.push_back(lower[1] + (static_cast<double>(ky) + 0.5) * d);
+        points.push_back(lower[2] + (static_cast<double>(kz) + 0.5) * d);
+      }
+    }
+  }
+  displace(points, options);
+  return points;
+}
+
 std::vector<double> fill_closed_surface(const TriangleMesh& mesh, const LatticeOptions& options,
                                         std::size_t max_points) {
   check_options(options, "the fluid surface region");

@@ -129,7 +129,7 @@ struct Quantity {
 
 struct GravityInput {
   double magnitude = 0.0;
-  std::optional<Point> direction;  // unit vector; unknown when only |g| is given
+  std::optional<Eigen::Vector3d> direction;  // unit vector (2D: z = 0); unknown for |g| only
   SourceLocation location;
 };
 
@@ -226,7 +226,10 @@ class Inputs {
     if (const Block* block = root_.child("Gravity")) {
       const Parameter* acceleration = block->find("acceleration");
       if (acceleration == nullptr) return GravityInput{0.0, std::nullopt, block->location};
-      const Point g(acceleration->value.vector.at(0), acceleration->value.vector.at(1));
+      const auto& components = acceleration->value.vector;
+      Eigen::Vector3d g = Eigen::Vector3d::Zero();
+      for (std::size_t k = 0; k < std::min<std::size_t>(3, components.size()); ++k)
+        g[static_cast<Eigen::Index>(k)] = components[k];
       GravityInput input{g.norm(), std::nullopt, acceleration->location};
       if (input.magnitude > 0.0) input.direction = g / input.magnitude;
       return input;
@@ -237,30 +240,34 @@ class Inputs {
     return std::nullopt;
   }
 
-  // Height of the fluid box along gravity (along y when only |g| is known).
+  // Height of the fluid box along gravity (along y in 2D, z in 3D when only |g| is known).
   std::optional<Quantity> fluid_height(const GravityInput& gravity) {
     if (!has_fluid_region()) {
       add_missing("no FluidRegion (the height of the fluid is not known)");
       return std::nullopt;
     }
-    Point extent;
+    const auto dimension = static_cast<std::size_t>(scene_.fluid.dimension);
+    Eigen::Vector3d extent = Eigen::Vector3d::Zero();
     if (const Parameter* lower = root_.lookup("FluidRegion.lower")) {
       const auto& upper = root_.lookup("FluidRegion.upper")->value.vector;
-      extent =
-          Point(upper.at(0) - lower->value.vector.at(0), upper.at(1) - lower->value.vector.at(1));
+      for (std::size_t k = 0; k < dimension; ++k)
+        extent[static_cast<Eigen::Index>(k)] = upper.at(k) - lower->value.vector.at(k);
     } else {
-      // A polygon: the extent of its particles, plus the d/2 around each.
-      const auto& xy = scene_.fluid.positions;
-      Point low(xy.at(0), xy.at(1)), high = low;
-      for (std::size_t i = 0; i + 1 < xy.size(); i += 2) {
-        low = low.cwiseMin(Point(xy[i], xy[i + 1]));
-        high = high.cwiseMax(Point(xy[i], xy[i + 1]));
+      // A polygon or an STL surface: the extent of its particles, plus the d/2 around each.
+      const auto& xyz = scene_.fluid.positions;
+      for (std::size_t k = 0; k < dimension; ++k) {
+        double low = xyz.at(k), high = low;
+        for (std::size_t i = k; i < xyz.size(); i += dimension) {
+          low = std::min(low, xyz[i]);
+          high = std::max(high, xyz[i]);
+        }
+        extent[static_cast<Eigen::Index>(k)] = high - low + scene_.fluid.spacing;
       }
-      extent = high - low + Point::Constant(scene_.fluid.spacing);
     }
-    const double height =
-        gravity.direction ? extent.cwiseAbs().dot(gravity.direction->cwiseAbs()) : extent.y();
+    const double height = gravity.direction ? extent.cwiseAbs().dot(gravity.direction->cwiseAbs())
+                                            : extent[static_cast<Eigen::Index>(dimension - 1)];
     return Quantity{height, where(root_.lookup("FluidRegion.upper") ? "FluidRegion.upper"
+                                  : root_.lookup("FluidRegion.stl") ? "FluidRegion.stl"
                                                                     : "FluidRegion.points")};
   }
 
@@ -357,6 +364,12 @@ std::string fsi_fix_keyword(const std::string& script, std::string_view keyword)
 void check_contact_time_step(const Scene& scene, Report& report) {
   constexpr std::string_view kCheck = "contact_time_step";
   constexpr std::string_view kTitle = "contact time-step";
+  if (scene.dimension == 3) {
+    // k_eff = r_c max|df/dd| is the stiffness of a segment per unit depth; a triangle surface
+    // integrates the law over an area instead, for which no estimate is derived yet.
+    return report.skip(kCheck, kTitle,
+                       {"a 3D scene (the contact stiffness estimate is for 2D segments only)"});
+  }
   Inputs in(scene);
   for (const std::string* script : {&scene.liggghts.script1_text, &scene.liggghts.script2_text}) {
     const std::string law = fsi_fix_keyword(*script, "law");
@@ -652,6 +665,10 @@ void check_fluid_overlap(const Scene& scene, Report& report) {
     return report.skip(kCheck, "fluid-overlap",
                        {"no FluidRegion (particles made by the LIGGGHTS script)"});
   }
+  if (scene.dimension == 3) {
+    return report.skip(kCheck, "fluid-overlap",
+                       {"a 3D scene (the fluid-to-mesh distance check is 2D only)"});
+  }
   if (!scene.parameters.lookup("FluidRegion.lower")) {
     return report.skip(kCheck, "fluid-overlap",
                        {"a polygon FluidRegion (the check handles boxes only)"});
@@ -713,7 +730,7 @@ void check_gravity(const Scene& scene, Report& report) {
   const LiggghtsSetup& liggghts = scene.liggghts;
   if (liggghts.script1_text.empty() && liggghts.script2_text.empty()) return;
   const Inputs in(scene);
-  const Eigen::Vector3d structure(scene.model.gravity().x(), scene.model.gravity().y(), 0.0);
+  const Eigen::Vector3d structure(scene.gravity[0], scene.gravity[1], scene.gravity[2]);
   const SourceLocation block = in.where("Gravity.acceleration");
   const std::string structure_text =
       "the Gravity block gives the structure g = " + vector_text(structure) + " m/s^2";

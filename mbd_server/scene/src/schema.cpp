@@ -42,6 +42,9 @@ std::string how_to_write(const ParameterSpec& spec) {
     case Kind::String:
       return "write the text in double quotes, e.g. " + spec.key + " = \"...\"";
     case Kind::Vector:
+      if (!spec.length) {  // one component per dimension of the scene
+        return "write a bracketed list, e.g. " + spec.key + " = [x, y] (3D: [x, y, z])";
+      }
       return "write a bracketed list, e.g. " + spec.key + " = [" +
              (spec.length == 2 ? "x, y" : "a, b, c") + "]";
     case Kind::Matrix:

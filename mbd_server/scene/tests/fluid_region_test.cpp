@@ -47,6 +47,25 @@ TEST(FluidRegion, ARectangularPolygonFillsLikeTheBox) {
   EXPECT_DOUBLE_EQ(lattice_particle_mass(1000, 0.1, 3), 1.0);
 }
 
+TEST(FluidRegion, A3DBoxFillsLikeItsStlSurface) {
+  // The box [0, 1] x [0, 0.5] x [0, 0.3] as a closed surface: the same lattice, the same order.
+  TriangleMesh surface;
+  for (double z : {0.0, 0.3})
+    for (double y : {0.0, 0.5})
+      for (double x : {0.0, 1.0})
+        surface.vertices.push_back({x, y, z});
+  surface.triangles = {{0, 2, 3}, {0, 3, 1}, {4, 5, 7}, {4, 7, 6}, {0, 1, 5}, {0, 5, 4},
+                       {2, 6, 7}, {2, 7, 3}, {0, 4, 6}, {0, 6, 2}, {1, 3, 7}, {1, 7, 5}};
+  const auto box = fill_box_3d({0, 0, 0}, {1, 0.5, 0.3}, lattice(0.1));
+  EXPECT_EQ(box.size(), 3u * 10u * 5u * 3u);
+  EXPECT_EQ(fill_closed_surface(surface, lattice(0.1)), box);
+  EXPECT_DOUBLE_EQ(box[2], 0.05);
+  EXPECT_NE(error_of([] {
+              fill_box_3d({0, 0, 0}, {1, 1, 0.05}, lattice(0.1));
+            }).find("holds no lattice point"),
+            std::string::npos);
+}
+
 TEST(FluidRegion, AConcavePolygonInEitherOrientation) {
   // An L: the unit square without [0.4, 1]^2. 100 lattice points minus 6 x 6 = 64.
   Polygon l_shape{{{0, 0}, {1, 0}, {1, 0.4}, {0.4, 0.4}, {0.4, 1}, {0, 1}}, {}};

@@ -227,6 +227,34 @@ TEST(PhysicsChecks, KernelNeighboursTooFewAndTooMany) {
   EXPECT_CONTAINS(warning.message, "= 113 particles");
 }
 
+// The 3D example: the checks that hold in 3D run with 3D geometry (fluid height along z, the
+// 3D neighbour count); the 2D-only ones are skipped with an info, not mis-reported.
+TEST(PhysicsChecks, TheThreeDimensionalBoxGetsThreeDimensionalChecks) {
+  const std::string box3d = FSI_EXAMPLES_DIR "/hydrostatic_box_3d/hydrostatic_box_3d.scene";
+  const auto checks = physics_checks(build_scene(box3d));
+  // Only the example's deliberate wall friction (its README).
+  ASSERT_EQ(of(checks, "wall_viscosity").size(), 1u) << listing(checks);
+  EXPECT_EQ(std::count_if(checks.begin(), checks.end(),
+                          [](const Diagnostic& d) { return d.severity == Severity::Warning; }),
+            1)
+      << listing(checks);
+  for (const char* skipped : {"contact_time_step", "fluid_overlap"}) {
+    const auto infos = of(checks, skipped, Severity::Info);
+    ASSERT_EQ(infos.size(), 1u) << skipped << "\n" << listing(checks);
+    EXPECT_CONTAINS(infos[0].message, "a 3D scene");
+  }
+  // k = 100 N/m^2 against rho0 g H with H = 0.008 m along z (78.5 N/m^2): below 2-20.
+  const auto soft =
+      physics_checks(build_scene(box3d, {{"LIGGGHTS_SPH_parameters.SPH_wall_rep", "100"}}));
+  ASSERT_EQ(of(soft, "wall_repulsion").size(), 1u) << listing(soft);
+  EXPECT_CONTAINS(of(soft, "wall_repulsion")[0].message, "fluid height h_max = 0.008 m");
+  // d = h: 4/3 pi (2h)^3 / d^3 = 33.5 is fine in 3D; d = 1.5 h gives 9.93, too few.
+  const auto sparse = physics_checks(
+      build_scene(box3d, {{"LIGGGHTS_SPH_parameters.particlespacing", "1.5*smoothinglength"}}));
+  ASSERT_EQ(of(sparse, "kernel_neighbours").size(), 1u) << listing(sparse);
+  EXPECT_CONTAINS(of(sparse, "kernel_neighbours")[0].message, "4/3 pi (2h)^3 / d^3 = 9.93");
+}
+
 TEST(PhysicsChecks, WallViscosityMoreThanAFactorThreeOff) {
   // nu rho / h = 1e-3 * 1000 / 0.0016 = 625 N s/m^3.
   const Diagnostic warning =

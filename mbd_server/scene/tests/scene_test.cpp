@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <filesystem>
 #include <fstream>
 
@@ -367,6 +369,179 @@ TEST(Scene, SchemaDocumentsEveryBlock) {
                             "FluidRegion", "LIGGGHTS", "Coupling"}) {
     EXPECT_NE(markdown.find(std::string("## `") + block + "`"), std::string::npos) << block;
   }
+}
+
+// The closed unit box [0, 1]^3 as ASCII STL, 12 triangles, outward normals.
+std::string unit_box_stl(bool drop_last_triangle = false) {
+  const double c[8][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0},
+                          {0, 0, 1}, {1, 0, 1}, {0, 1, 1}, {1, 1, 1}};
+  const int faces[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
+                           {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  std::string text = "solid box\n";
+  int written = 0;
+  for (const auto& f : faces) {
+    for (const auto& t :
+         {std::array<int, 3>{f[0], f[1], f[2]}, std::array<int, 3>{f[0], f[2], f[3]}}) {
+      if (drop_last_triangle && ++written == 12) break;
+      text += " facet normal 0 0 0\n  outer loop\n";
+      for (int v : t) {
+        text += "   vertex " + std::to_string(c[v][0]) + " " + std::to_string(c[v][1]) + " " +
+                std::to_string(c[v][2]) + "\n";
+      }
+      text += "  endloop\n endfacet\n";
+    }
+  }
+  return text + "endsolid box\n";
+}
+
+std::string build_error(const fs::path& file) {
+  try {
+    build_scene(file.string());
+  } catch (const fsi::Error& error) {
+    return error.what();
+  }
+  return "(accepted)";
+}
+
+TEST(Scene, ThreeDimensionalSceneWithAnStlGroundAndABoxOfFluid) {
+  const fs::path folder = fs::temp_directory_path() / "fsi_scene_3d_test";
+  fs::create_directories(folder);
+  std::ofstream(folder / "s.in") << "# script\n";
+  std::ofstream(folder / "box.stl") << unit_box_stl();
+  std::ofstream(folder / "b.scene") << R"(scene_language = 1
+dimension = 3
+SolverOptions { end_time = 1; Timeint { step_size = 1e-5 } }
+Gravity { acceleration = [0, 0, -9.81] }
+Ground { Mesh { stl = "box.stl"; scale = 0.5; offset = [1, 2, 3] } }
+Sensor { name = "fz"; type = "total_fluid_force"; component = "z" }
+FluidRegion { shape = "box"; lower = [1, 2, 3]; upper = [1.5, 2.5, 3.2]; spacing = 0.1
+              density = 1000; velocity = [0, 0, -1] }
+LIGGGHTS { script1 = "s.in"; script2 = "s.in" }
+Coupling { refinement_resolution = 0.2 }
+)";
+  const Scene scene = build_scene((folder / "b.scene").string());
+  EXPECT_EQ(scene.dimension, 3);
+  EXPECT_EQ(scene.gravity[2], -9.81);
+  EXPECT_EQ(scene.boundary.dimension, 3);
+  EXPECT_EQ(scene.boundary.vertex_count, 8u);
+  EXPECT_EQ(scene.boundary.dynamic_vertex_count, 0u);
+  EXPECT_EQ(scene.boundary.element_count(), 12u);
+  EXPECT_TRUE(scene.boundary.segments.empty());
+  ASSERT_EQ(scene.boundary.static_positions.size(), 24u);
+  double high[3] = {0, 0, 0};
+  for (std::size_t i = 0; i < 24; ++i)
+    high[i % 3] = std::max(high[i % 3], scene.boundary.static_positions[i]);
+  EXPECT_DOUBLE_EQ(high[0], 1.5);  // 0.5 * 1 + 1
+  EXPECT_DOUBLE_EQ(high[1], 2.5);
+  EXPECT_DOUBLE_EQ(high[2], 3.5);
+  EXPECT_EQ(scene.model.body_count(), 0);
+  EXPECT_EQ(scene.fluid.dimension, 3);
+  EXPECT_EQ(scene.fluid.count(), 5u * 5u * 2u);
+  EXPECT_DOUBLE_EQ(scene.fluid.mass, 1000 * 0.1 * 0.1 * 0.1);
+  ASSERT_EQ(scene.fluid.velocities.size(), 150u);
+  EXPECT_EQ(scene.fluid.velocities[2], -1.0);
+  ASSERT_EQ(scene.sensors.size(), 1u);
+  EXPECT_EQ(scene.sensors[0].axis, 2);
+  EXPECT_EQ(scene.sensors[0].unit, "N");
+  fs::remove_all(folder);
+}
+
+TEST(Scene, ThreeDimensionalFluidFromAClosedStl) {
+  const fs::path folder = fs::temp_directory_path() / "fsi_scene_3d_stl_test";
+  fs::create_directories(folder);
+  std::ofstream(folder / "s.in") << "# script\n";
+  std::ofstream(folder / "box.stl") << unit_box_stl();
+  std::ofstream(folder / "f.scene") << R"(scene_language = 1
+dimension = 3
+SolverOptions { end_time = 1; Timeint { step_size = 1e-5 } }
+Ground { Mesh { stl = "box.stl"; scale = 2; offset = [-0.5, -0.5, -0.5] } }
+FluidRegion { shape = "stl"; stl = "box.stl"; spacing = 0.25; density = 1000 }
+LIGGGHTS { script1 = "s.in"; script2 = "s.in" }
+Coupling { refinement_resolution = 0.2 }
+)";
+  const Scene scene = build_scene((folder / "f.scene").string());
+  EXPECT_EQ(scene.fluid.count(), 64u);
+  EXPECT_EQ(scene.fluid.positions.size(), 192u);
+  EXPECT_DOUBLE_EQ(scene.fluid.mass, 1000 * 0.25 * 0.25 * 0.25);
+  EXPECT_EQ(scene.fluid.velocities.size(), 192u);
+  fs::remove_all(folder);
+}
+
+// Every 3D mistake at its place, all in one run: planar bodies and joints, vectors of the wrong
+// length, a missing STL, an open STL for the fluid, a 2D-only shape and component.
+TEST(Scene, ThreeDimensionalMistakesAreReportedTogether) {
+  const fs::path folder = fs::temp_directory_path() / "fsi_scene_3d_bad_test";
+  fs::create_directories(folder);
+  std::ofstream(folder / "s.in") << "# script\n";
+  std::ofstream(folder / "open.stl") << unit_box_stl(true);
+  std::ofstream(folder / "bad.scene") << R"(scene_language = 1
+dimension = 3
+SolverOptions { end_time = 1; Timeint { step_size = 1e-5 } }
+Gravity { acceleration = [0, -9.81] }
+RigidBody2D { name = "a"; mass = 1; inertia = 1; Mesh { points = [[0, 0], [1, 0]] } }
+RevoluteJoint { body_a = "a" }
+Ground { Mesh { stl = "nowhere.stl" } }
+Ground { Mesh { points = [[0, 0], [1, 0]] } }
+Sensor { name = "f"; type = "total_fluid_force"; component = "torque" }
+FluidRegion { shape = "stl"; stl = "open.stl"; spacing = 0.1; density = 1000; velocity = [1, 0] }
+LIGGGHTS { script1 = "s.in"; script2 = "s.in" }
+Coupling { refinement_resolution = 0.2 }
+)";
+  const std::string text = build_error(folder / "bad.scene");
+  for (const char* expected :
+       {"bad.scene:4:11: 'acceleration' has 2 components, the scene has dimension = 3",
+        "bad.scene:5:1: RigidBody2D is a planar (2D) element: planar bodies and their joints "
+        "need dimension = 2",
+        "bad.scene:6:1: RevoluteJoint is a planar (2D) element", "bad.scene:7:17: STL file",
+        "nowhere.stl' does not exist",
+        "bad.scene:8:17: a 3D Ground mesh is read from an STL file, not from points",
+        "bad.scene:9:", "total_fluid_force has components x, y and z", "bad.scene:10:",
+        "'velocity' has 2 components, the scene has dimension = 3", "write velocity = [x, y, z]"}) {
+    EXPECT_NE(text.find(expected), std::string::npos) << expected << "\n" << text;
+  }
+  // The open surface once the velocity is right.
+  std::ofstream(folder / "open.scene") << R"(scene_language = 1
+dimension = 3
+SolverOptions { end_time = 1; Timeint { step_size = 1e-5 } }
+Ground { Mesh { stl = "open.stl" } }
+FluidRegion { shape = "stl"; stl = "open.stl"; spacing = 0.1; density = 1000 }
+Sensor { name = "f"; type = "position"; body = "x"; component = "z" }
+LIGGGHTS { script1 = "s.in"; script2 = "s.in" }
+Coupling { refinement_resolution = 0.2 }
+)";
+  const std::string open = build_error(folder / "open.scene");
+  EXPECT_NE(open.find("open.scene:5:30: the STL surface does not enclose a volume"),
+            std::string::npos)
+      << open;
+  EXPECT_NE(open.find("open.scene:6:"), std::string::npos) << open;
+  EXPECT_NE(open.find("a position sensor measures a body; 3D scenes have no bodies yet"),
+            std::string::npos)
+      << open;
+  fs::remove_all(folder);
+}
+
+TEST(Scene, ThreeDimensionalInputInATwoDimensionalScene) {
+  const fs::path folder = fs::temp_directory_path() / "fsi_scene_2d_with_3d_test";
+  fs::create_directories(folder);
+  std::ofstream(folder / "s.in") << "# script\n";
+  std::ofstream(folder / "box.stl") << unit_box_stl();
+  std::ofstream(folder / "bad.scene") << R"(scene_language = 1
+SolverOptions { end_time = 1; Timeint { step_size = 1e-5 } }
+Ground { Mesh { stl = "box.stl" } }
+Ground { Mesh { points = [[0, 0], [1, 0]] } }
+Sensor { name = "f"; type = "total_fluid_force"; component = "z" }
+FluidRegion { shape = "box"; lower = [0, 0, 0]; upper = [1, 1, 1]; spacing = 0.1; density = 1 }
+LIGGGHTS { script1 = "s.in"; script2 = "s.in" }
+Coupling { refinement_resolution = 0.2 }
+)";
+  const std::string text = build_error(folder / "bad.scene");
+  for (const char* expected :
+       {"bad.scene:3:17: STL meshes need a 3D scene (dimension = 2 here)",
+        "bad.scene:5:", "component z needs a 3D scene (dimension = 2 here)", "bad.scene:6:",
+        "'lower' has 3 components, the scene has dimension = 2", "'upper' has 3 components"}) {
+    EXPECT_NE(text.find(expected), std::string::npos) << expected << "\n" << text;
+  }
+  fs::remove_all(folder);
 }
 
 }  // namespace

@@ -31,7 +31,8 @@ struct ParticleSnapshot {
   std::uint64_t step = 0;
   double time = 0.0;
   std::vector<std::uint64_t> ids;
-  std::vector<double> positions, velocities, density, pressure;  // 2D
+  int dimension = 2;  // values per particle in positions and velocities
+  std::vector<double> positions, velocities, density, pressure;
 };
 
 void write_snapshot_csv(const std::string& path, const ParticleSnapshot& snapshot);

@@ -21,8 +21,8 @@ class VtkOutput {
   // Creates the folder.
   explicit VtkOutput(const std::filesystem::path& directory);
 
-  // fluid_forces: two values per boundary vertex (static vertices: 0, the client does not send
-  // them), the forces that act from the snapshot's step on.
+  // fluid_forces: dimension values per boundary vertex (static vertices: 0, the client does not
+  // send them), the forces that act from the snapshot's step on.
   void write(const ParticleSnapshot& particles, const mbd::Model& model, const mbd::State& state,
              const scene::BoundaryMesh& boundary, std::span<const double> fluid_forces);
 

@@ -12,8 +12,7 @@
 // 3D regions: a closed triangle surface read from an STL file (ASCII or binary); inside means a
 // generalised winding number above 1/2 (the solid angle sum of van Oosterom and Strackee), which
 // needs no ray and has no degenerate directions. Its cost is O(triangles) per lattice point.
-// The coupled run is 2D only (the session sends dimension 2); the 3D fill is a tested library
-// function for when the 3D path exists.
+// A scene with dimension = 3 uses the 3D box and the STL fill (docs/user-guide.md, "3D scenes").
 
 #include <array>
 #include <cstdint>
@@ -79,6 +78,10 @@ double winding_number(const TriangleMesh& mesh, const Point3& point);
 bool inside(const TriangleMesh& mesh, const Point3& point);  // |winding number| > 1/2
 // Enclosed volume (divergence theorem; positive for outward orientation).
 double enclosed_volume(const TriangleMesh& mesh);
+
+// x, y, z per particle on the cubic lattice of the box. Throws fsi::Error like the 2D box.
+std::vector<double> fill_box_3d(const Point3& lower, const Point3& upper,
+                                const LatticeOptions& options, std::size_t max_points = 5'000'000);
 
 // x, y, z per particle. Throws fsi::Error for an open surface, a bad spacing or too many points.
 std::vector<double> fill_closed_surface(const TriangleMesh& mesh, const LatticeOptions& options,

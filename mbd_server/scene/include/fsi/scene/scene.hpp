@@ -2,6 +2,7 @@
 // A scene: everything fsi-server needs for one coupled run, built from a parameter file
 // (docs/parameters.md is generated from scene_schema()).
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <utility>
@@ -34,12 +35,23 @@ struct OutputSettings {
   long snapshot_every_steps = 0;  // 0: no particle snapshots
 };
 
-// The structure's surface as the fluid sees it: mesh vertex k is model marker k; dynamic
-// vertices (on bodies) come first, static ones (ground) after (thesis §5.2).
+// The structure's surface as the fluid sees it. 2D: mesh vertex k is model marker k; dynamic
+// vertices (on bodies) come first, static ones (ground) after (thesis §5.2). 3D: the planar model
+// has no markers for them; every vertex is static (Ground STL meshes), held in static_positions.
 struct BoundaryMesh {
+  int dimension = 2;
   std::size_t vertex_count = 0;
   std::size_t dynamic_vertex_count = 0;
-  std::vector<std::uint32_t> segments;  // two vertex indices each
+  std::vector<std::uint32_t> segments;   // 2D: two vertex indices each
+  std::vector<std::uint32_t> triangles;  // 3D: three vertex indices each
+  std::vector<double> static_positions;  // 3D: x, y, z per vertex (world coordinates)
+  // The elements the fluid sees: segments in 2D, triangles in 3D.
+  const std::vector<std::uint32_t>& elements() const {
+    return dimension == 3 ? triangles : segments;
+  }
+  std::size_t element_count() const {
+    return elements().size() / static_cast<std::size_t>(dimension);
+  }
   double refinement_resolution = 0.0;
   int refinement_option = 1;
 };
@@ -50,9 +62,9 @@ struct FluidParticles {
   double mass = 0.0;  // per particle (2D: per unit depth)
   double density = 0.0;
   double spacing = 0.0;
-  std::vector<double> positions;  // x, y per particle
+  std::vector<double> positions;  // dimension values per particle (x, y or x, y, z)
   std::vector<double> velocities;
-  std::size_t count() const { return positions.size() / 2; }
+  std::size_t count() const { return positions.size() / static_cast<std::size_t>(dimension); }
 };
 
 struct LiggghtsSetup {
@@ -83,6 +95,7 @@ struct SensorSpec {
   SensorType type = SensorType::Position;
   mbd::BodyId body = 0;                            // unused for TotalFluidForce and energies
   mbd::Coordinate component = mbd::Coordinate::X;  // Angle means the torque for force sensors
+  int axis = 0;  // TotalFluidForce: 0 x, 1 y, 2 z (3D scenes only)
   std::string unit;
   int first_row = 0;  // JointForce: the joint's constraint rows
   int rows = 0;
@@ -96,7 +109,9 @@ double structure_sensor_value(const mbd::Model& model, const SensorSpec& sensor,
 
 struct Scene {
   std::string file;
-  Block parameters;  // the evaluated parameter tree
+  Block parameters;   // the evaluated parameter tree
+  int dimension = 2;  // root parameter `dimension`; 3: static Ground STL meshes only, no bodies
+  std::array<double, 3> gravity{};  // Gravity.acceleration (2D: z = 0; the model holds x, y)
   mbd::Model model;
   SolverSettings solver;
   OutputSettings output;

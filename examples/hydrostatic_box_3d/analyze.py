@@ -1,0 +1,80 @@
+#!/usr/bin/python3
+"""Evaluates a hydrostatic_box_3d run from DIR/sensors.csv and DIR/run.json.
+
+Prints and writes DIR/analysis.json with the time average of the fluid force on the container
+along z over the settled interval (from --settle-start to the end), against the fluid weight
+N m g (N particles of mass m = rho0 d^3, g = |Gravity.acceleration|), and the particle counts.
+The force on the structure points down (-z): the ratio is -F_z / (N m g).
+Exit status 1 if --weight-tolerance is given and |ratio - 1| exceeds it, or if particles were lost.
+"""
+import argparse
+import csv
+import json
+import math
+import os
+import sys
+
+
+def read_sensors(path):
+    with open(path) as handle:
+        rows = [line for line in handle if not line.startswith("#")]
+    reader = csv.reader(rows)
+    header = next(reader)
+    columns = {name: [] for name in header}
+    for row in reader:
+        for name, value in zip(header, row):
+            columns[name].append(float(value))
+    return columns
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("run_dir")
+    parser.add_argument("--settle-start", type=float,
+                        help="start of the averaging interval [s] (default: half the end time)")
+    parser.add_argument("--weight-tolerance", type=float, help="fail if |F/W - 1| exceeds this")
+    args = parser.parse_args()
+
+    with open(os.path.join(args.run_dir, "run.json")) as handle:
+        run = json.load(handle)
+    sensors = read_sensors(os.path.join(args.run_dir, "sensors.csv"))
+    checks = run["checks"]
+    fluid = run["fluid"]
+    n = checks["particles_final"]
+    m = fluid["particle_mass"]
+    g = math.sqrt(sum(component * component for component in run["model"]["gravity"]))
+    weight = n * m * g
+    time = sensors["time"]
+    start = args.settle_start if args.settle_start is not None else 0.5 * run["end_time"]
+    settled = [f for t, f in zip(time, sensors["total_fluid_force_z"]) if t >= start]
+    if not settled:
+        print("no sensor rows after t = %g s" % start)
+        return 1
+    force = -sum(settled) / len(settled)
+    ratio = force / weight
+    lost = checks["particles_initial"] - checks["particles_final"]
+    result = {"dimension": run.get("dimension"), "particles_initial": checks["particles_initial"],
+              "particles_final": n, "particles_lost": lost, "particle_mass": m, "gravity": g,
+              "weight": weight, "settle_start": start, "samples": len(settled),
+              "mean_force_z": -force, "weight_ratio": ratio,
+              "wall_time_seconds": run["timings_seconds"]["total"]}
+    with open(os.path.join(args.run_dir, "analysis.json"), "w") as handle:
+        json.dump(result, handle, indent=2)
+    print("particles: %d initial, %d final (%d lost)" % (checks["particles_initial"], n, lost))
+    print("weight N m g = %d x %.6g kg x %.4g m/s^2 = %.6g N" % (n, m, g, weight))
+    print("mean fluid force on the container along z over t >= %.4g s (%d samples): %.6g N"
+          % (start, len(settled), -force))
+    print("ratio -F_z / (N m g) = %.4f" % ratio)
+    failed = False
+    if lost > 0:
+        print("FAIL: %d particle(s) lost" % lost)
+        failed = True
+    if args.weight_tolerance is not None and abs(ratio - 1.0) > args.weight_tolerance:
+        print("FAIL: |ratio - 1| = %.4f exceeds %.4f" % (abs(ratio - 1.0), args.weight_tolerance))
+        failed = True
+    return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
