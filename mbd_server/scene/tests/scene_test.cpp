@@ -486,8 +486,14 @@ Sensor { name = "f"; type = "total_fluid_force"; component = "torque" }
 FluidRegion { shape = "stl"; stl = "open.stl"; spacing = 0.1; density = 1000; velocity = [1, 0] }
 LIGGGHTS { script1 = "s.in"; script2 = "s.in" }
 Coupling { refinement_resolution = 0.2 }
+AncfBeam2D { name = "b"; start = [0, 0]; end = [1, 0]; elements = 2; thickness = 0.01; axial_stiffness = 1; bending_stiffness = 1; mass_per_length = 1 }
+PrismaticJoint { body_a = "a"; axis = [1, 0] }
 )";
   const std::string text = build_error(folder / "bad.scene");
+  EXPECT_NE(text.find("bad.scene:13:1: AncfBeam2D is a planar (2D) element"), std::string::npos)
+      << text;
+  EXPECT_NE(text.find("bad.scene:14:1: PrismaticJoint is a planar (2D) element"), std::string::npos)
+      << text;
   for (const char* expected :
        {"bad.scene:4:11: 'acceleration' has 2 components, the scene has dimension = 3",
         "bad.scene:5:1: RigidBody2D is a planar (2D) element: planar bodies and their joints "
