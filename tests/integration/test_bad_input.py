@@ -5,7 +5,7 @@ LIGGGHTS error in a script reach the server with script name and line."""
 import os
 import subprocess
 
-from fsi_test import ENV, binary, check, cleanup, example, read, run_pair, work_dir
+from fsi_test import ENV, binary, check, cleanup, example, manifest, read, run_pair, work_dir
 
 scene = example("static_tank", "static_tank_coarse.scene")
 output = work_dir("bad_input")
@@ -107,4 +107,20 @@ logs = f"\n--- server ---\n{log[-3000:]}\n--- client ---\n{read(run_dir, 'client
 ok = status == 1 and client > 0 and "command refused: 'shell'" in log and "bad_shell.in1:" in log
 check(ok, "a 'shell' command is refused with script and line, both sides non-zero" + ("" if ok else logs))
 check(not os.path.exists(marker), "the refused shell command did not run")
+
+# A script that leaves LIGGGHTS without particles: the run fails and says so, instead of
+# "completing" with a fluid that weighs nothing.
+no_fluid = os.path.join(output, "no_fluid.in2")
+with open(example("static_tank", "static_tank.in2")) as handle:
+    script2 = handle.read()
+with open(no_fluid, "w") as handle:
+    handle.write(script2 + "\ndelete_atoms group all\n")
+run_dir = os.path.join(output, "no_fluid")
+status, client = run_pair(scene, run_dir, 2, [f'LIGGGHTS.script2="{no_fluid}"', "Resolution.equilibration_steps=20"],
+                          timeout=120)
+log = read(run_dir, "server.stderr")
+ok = status == 1 and client > 0 and "LIGGGHTS holds no particle after the set-up" in log
+check(ok, "no particle left after the set-up: both sides non-zero, the server says so" +
+      ("" if ok else f"\n--- server ---\n{log[-3000:]}"))
+check(manifest(run_dir)["status"] == "failed", "run.json says failed")
 cleanup(output)

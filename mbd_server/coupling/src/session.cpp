@@ -252,6 +252,17 @@ class Session {
     checks_.particles_initial = ready_.particle_count;
     spdlog::info("client ready: {} particles in LIGGGHTS; set-up {:.2f} s, equilibration {:.2f} s",
                  ready_.particle_count, ready_.seconds_setup, ready_.seconds_equilibration);
+    if (ready_.particle_count == 0) {
+      // A run without fluid would "complete" and weigh nothing: never silent garbage.
+      throw Error("LIGGGHTS holds no particle after the set-up and the " +
+                      std::to_string(scene_.liggghts.equilibration_steps) +
+                      " equilibration steps (the scene generated " +
+                      std::to_string(scene_.fluid.count()) + ")",
+                  "the client's Ready message",
+                  "the particles left the LIGGGHTS box or were deleted by a script: check the "
+                  "box in script 1 against the fluid region, the particle mass (rho0 d^2 in 2D, "
+                  "rho0 d^3 in 3D), the time step and the equilibration viscosity");
+    }
     if (ready_.particle_count != scene_.fluid.count()) {
       spdlog::warn(
           "LIGGGHTS holds {} particles, the scene generated {} (the scripts create or delete "
@@ -317,6 +328,13 @@ class Session {
     checks_.closest_since_report =
         std::min(checks_.closest_since_report, d.closest_approach_over_r0);
     checks_.particles_final = d.particle_count;
+    if (d.particle_count == 0) {
+      throw Error("every particle has left LIGGGHTS (" + std::to_string(checks_.particles_initial) +
+                      " at the start)",
+                  "step " + std::to_string(expected_step),
+                  "the fluid left the LIGGGHTS box: check the box in script 1, the time step "
+                  "(fsi-server --check lists the physics warnings) and the wall forces");
+    }
     if (d.particle_count < checks_.particles_initial && !checks_.lost_warned) {
       spdlog::warn("step {}: {} particle(s) lost (left the LIGGGHTS box)", expected_step,
                    checks_.particles_initial - d.particle_count);
