@@ -771,7 +771,14 @@ void check_gravity(const Scene& scene, Report& report) {
   };
   scan(liggghts.script1_text, liggghts.script1_name);
   scan(liggghts.script2_text, liggghts.script2_name);
-  if (!unreadable.empty()) {
+  bool any_command = false;
+  for (const std::string* script : {&liggghts.script1_text, &liggghts.script2_text})
+    for_each_command(*script, [&](const std::vector<std::string>&, int) { any_command = true; });
+  if (!any_command && !in.has_fluid_region()) {
+    report.skip(kCheck, "gravity",
+                {"no FluidRegion and no command in the LIGGGHTS scripts (a scene without fluid, "
+                 "e.g. for --mbd-only)"});
+  } else if (!unreadable.empty()) {
     report.skip(kCheck, "gravity", {"cannot read the fluid's gravity at " + unreadable.front()});
   } else if (!fluid_gravity && structure.norm() > 0.0) {
     report.warn(kCheck, block,

@@ -391,6 +391,15 @@ TEST_F(SmallScene, AFluidWithoutGravityUnderAFallingStructureIsFlagged) {
   EXPECT_CONTAINS(found[0].fix, "fix gravity all gravity 9.81 vector X Y 0");
 }
 
+TEST_F(SmallScene, ASceneWithoutFluidIsNotAskedForFluidGravity) {
+  // --mbd-only scenes name two placeholder scripts and no FluidRegion.
+  set_up_script("# placeholder: no LIGGGHTS here\n");
+  const std::vector<Diagnostic> diagnostics = physics_checks(build(kGoodSph, ""));
+  EXPECT_TRUE(of(diagnostics, "gravity").empty()) << listing(diagnostics);
+  ASSERT_EQ(of(diagnostics, "gravity", Severity::Info).size(), 1u) << listing(diagnostics);
+  EXPECT_CONTAINS(of(diagnostics, "gravity", Severity::Info)[0].message, "a scene without fluid");
+}
+
 TEST_F(SmallScene, AGravityTheCheckCannotReadIsSaid) {
   set_up_script("variable g equal 9.81\nfix gravity all gravity v_g vector 0 -1 0\n");
   const std::vector<Diagnostic> diagnostics = physics_checks(build(kGoodSph, kGoodFluid));
