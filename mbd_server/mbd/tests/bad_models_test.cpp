@@ -8,6 +8,7 @@
 #include <limits>
 #include <string>
 
+#include "element_checks.hpp"
 #include "fsi/common/error.hpp"
 #include "fsi/mbd/integrator.hpp"
 #include "fsi/mbd/model.hpp"
@@ -15,13 +16,7 @@
 namespace fsi::mbd {
 namespace {
 
-RigidBody2DSpec rigid(const std::string& name, double mass, double inertia) {
-  RigidBody2DSpec spec;
-  spec.name = name;
-  spec.mass = mass;
-  spec.inertia = inertia;
-  return spec;
-}
+using testing::rigid;
 
 // The message of the fsi::Error that `action` throws ("" if none).
 template <class Action>

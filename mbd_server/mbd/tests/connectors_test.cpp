@@ -22,21 +22,8 @@ namespace {
 
 constexpr NewtonOptions kTight{.relative_tolerance = 1e-12, .max_iterations = 20};
 
-RigidBody2DSpec rigid(const std::string& name, double mass, double inertia) {
-  RigidBody2DSpec spec;
-  spec.name = name;
-  spec.mass = mass;
-  spec.inertia = inertia;
-  return spec;
-}
-
-// Two bodies at a general configuration with general velocities, q = (x, y, phi) of each.
-struct Pair {
-  detail::RigidBody2D first{rigid("first", 2.0, 0.3)};
-  detail::RigidBody2D second{rigid("second", 1.5, 0.2)};
-  Eigen::VectorXd q{{0.3, -0.2, 0.7, 1.1, 0.4, -2.1}};
-  Eigen::VectorXd v{{0.5, -1.5, 2.0, -0.7, 0.9, 3.0}};
-};
+using testing::rigid;
+using Pair = testing::BodyPair;
 
 TEST(MbdConnectors, PrismaticRowHasExactDerivatives) {
   const Pair pair;

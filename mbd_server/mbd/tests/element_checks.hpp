@@ -1,17 +1,36 @@
 #pragma once
 // Finite-difference checks of element derivatives, shared by the connector and force-element
 // tests: a constraint row's G, d(G^T lambda)/dq and acceleration remainder, and a force element's
-// dQ/dq and dQ/dv, each against central differences of the function it differentiates.
+// dQ/dq and dQ/dv, each against central differences of the function it differentiates; and the
+// bodies those tests put the elements between.
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <string>
 
+#include "body.hpp"
 #include "fsi/mbd/constraint_element.hpp"
 #include "fsi/mbd/force_element.hpp"
+#include "fsi/mbd/model.hpp"
 
 namespace fsi::mbd::testing {
+
+inline RigidBody2DSpec rigid(const std::string& name, double mass, double inertia) {
+  RigidBody2DSpec spec;
+  spec.name = name;
+  spec.mass = mass;
+  spec.inertia = inertia;
+  return spec;
+}
+
+// Two bodies at a general configuration with general velocities, q = (x, y, phi) of each.
+struct BodyPair {
+  detail::RigidBody2D first{rigid("first", 2.0, 0.3)};
+  detail::RigidBody2D second{rigid("second", 1.5, 0.2)};
+  Eigen::VectorXd q{{0.3, -0.2, 0.7, 1.1, 0.4, -2.1}};
+  Eigen::VectorXd v{{0.5, -1.5, 2.0, -0.7, 0.9, 3.0}};
+};
 
 inline Eigen::RowVectorXd jacobian_row_of(const ConstraintElement& row, const Eigen::VectorXd& q) {
   Eigen::MatrixXd jacobian = Eigen::MatrixXd::Zero(1, q.size());

@@ -21,19 +21,10 @@ namespace {
 
 constexpr NewtonOptions kTight{.relative_tolerance = 1e-12, .max_iterations = 20};
 
-RigidBody2DSpec rigid(const std::string& name, double mass, double inertia) {
-  RigidBody2DSpec spec;
-  spec.name = name;
-  spec.mass = mass;
-  spec.inertia = inertia;
-  return spec;
-}
+using testing::rigid;
 
-struct Pair {
-  detail::RigidBody2D first{rigid("first", 2.0, 0.3)};
-  detail::RigidBody2D second{rigid("second", 1.5, 0.2)};
-  Eigen::VectorXd q{{0.3, -0.2, 0.7, 1.1, 0.4, -2.1}};
-  Eigen::VectorXd v{{0.5, -1.5, 2.0, -0.7, 0.9, 3.0}};
+// The shared pair with the body points the force elements join.
+struct Pair : testing::BodyPair {
   std::vector<std::pair<detail::BodyPoint, detail::BodyPoint>> ends() const {
     const detail::BodyPoint on_first(&first, 0, {0.2, -0.15});
     const detail::BodyPoint on_second(&second, 3, {-0.1, 0.35});
