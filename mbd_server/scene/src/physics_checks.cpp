@@ -736,8 +736,10 @@ void check_gravity(const Scene& scene, Report& report) {
       "the Gravity block gives the structure g = " + vector_text(structure) + " m/s^2";
   std::vector<std::string> unreadable;
   bool fluid_gravity = false;
+  bool any_command = false;  // placeholder scripts (no fluid at all) have none
   auto scan = [&](const std::string& script, const std::string& script_name) {
     for_each_command(script, [&](const std::vector<std::string>& tokens, int line) {
+      any_command = true;
       if (tokens.size() < 4 || tokens[0] != "fix" || tokens[3] != "gravity") return;
       fluid_gravity = true;
       const SourceLocation where{script_name, line, 1};
@@ -771,9 +773,6 @@ void check_gravity(const Scene& scene, Report& report) {
   };
   scan(liggghts.script1_text, liggghts.script1_name);
   scan(liggghts.script2_text, liggghts.script2_name);
-  bool any_command = false;
-  for (const std::string* script : {&liggghts.script1_text, &liggghts.script2_text})
-    for_each_command(*script, [&](const std::vector<std::string>&, int) { any_command = true; });
   if (!any_command && !in.has_fluid_region()) {
     report.skip(kCheck, "gravity",
                 {"no FluidRegion and no command in the LIGGGHTS scripts (a scene without fluid, "
