@@ -6,20 +6,15 @@
 #include <limits>
 #include <vector>
 
-#include "ancf_beam_2d.hpp"
-#include "body.hpp"
-#include "body_point.hpp"
-#include "constraint.hpp"
 #include "fsi/common/error.hpp"
+#include "model_data.hpp"
+#include "rigid_body_3d.hpp"
 #include "spring_damper.hpp"
 
 namespace fsi::mbd {
 namespace {
 
-struct Marker {
-  BodyId body;
-  Eigen::Vector2d local;  // body frame, or world frame for kGround
-};
+using detail::Marker;
 
 // Nine significant digits: enough to see a residual, short enough to read.
 std::string number(double value) {
@@ -41,109 +36,6 @@ std::string_view name(Coordinate coordinate) {
   }
   return "?";
 }
-
-struct Model::Data {
-  std::vector<std::unique_ptr<detail::Body>> bodies;
-  std::vector<int> offsets;  // index of each body's first coordinate in q
-  int coordinates = 0;
-  std::vector<Marker> markers;
-  std::vector<std::unique_ptr<detail::Constraint>> constraints;
-  std::vector<std::unique_ptr<ForceElement>> force_elements;
-  Eigen::Vector2d gravity = Eigen::Vector2d::Zero();
-  std::vector<double> point_loads;  // x, y per marker
-  mutable Eigen::MatrixXd mass;     // assembled on first use after a structural change
-  mutable bool mass_valid = false;
-
-  void check_body(BodyId body, const std::string& user) const {
-    if (body < 0 || body >= static_cast<BodyId>(bodies.size())) {
-      throw Error(user + " refers to body index " + std::to_string(body) + " but the model has " +
-                      std::to_string(bodies.size()) + " bodies",
-                  "multibody model", "refer to a body that has been added");
-    }
-  }
-  void check_marker(int marker) const {
-    if (marker < 0 || marker >= static_cast<int>(markers.size())) {
-      throw Error("marker index " + std::to_string(marker) + " out of range (the model has " +
-                      std::to_string(markers.size()) + " markers)",
-                  "multibody model", "refer to a marker that has been added");
-    }
-  }
-  const detail::RigidBody2D& rigid_body(BodyId body, const std::string& user) const {
-    check_body(body, user);
-    const auto* rigid = dynamic_cast<const detail::RigidBody2D*>(bodies[body].get());
-    if (rigid == nullptr) {
-      throw Error(user + " needs a planar rigid body but '" + bodies[body]->name() + "' is not one",
-                  "multibody model", "use the coordinates of a RigidBody2D");
-    }
-    return *rigid;
-  }
-  const detail::AncfBeam2D& ancf_beam(BodyId body, const std::string& user) const {
-    check_body(body, user);
-    const auto* beam = dynamic_cast<const detail::AncfBeam2D*>(bodies[body].get());
-    if (beam == nullptr) {
-      throw Error(user + " needs an ANCF beam but '" + bodies[body]->name() + "' is not one",
-                  "multibody model", "refer to a body added with add_ancf_beam");
-    }
-    return *beam;
-  }
-  const detail::AncfBeam2D& beam_node(BodyId body, int node, const std::string& user) const {
-    const auto& beam = ancf_beam(body, user);
-    if (node < 0 || node >= beam.node_count()) {
-      throw Error(user + " refers to node " + std::to_string(node) + " of ANCF beam '" +
-                      beam.name() + "', which has nodes 0.." +
-                      std::to_string(beam.node_count() - 1),
-                  "multibody model", "refer to an existing node (0 is the start)");
-    }
-    return beam;
-  }
-  BodyId add_body(std::unique_ptr<detail::Body> body, const std::string& kind) {
-    for (const auto& other : bodies) {
-      if (other->name() == body->name()) {
-        throw Error("a second body is named '" + body->name() + "'",
-                    kind + " '" + body->name() + "'", "give every body its own name");
-      }
-    }
-    offsets.push_back(coordinates);
-    coordinates += body->coordinate_count();
-    bodies.push_back(std::move(body));
-    mass_valid = false;
-    return static_cast<BodyId>(bodies.size()) - 1;
-  }
-  // A body point as the elements see it; throws naming `user` for unknown bodies or
-  // non-finite coordinates.
-  detail::BodyPoint point(const BodyPointSpec& spec, const std::string& user) const {
-    if (!spec.local.allFinite()) {
-      throw Error("point coordinates are not finite", user, "give finite local coordinates");
-    }
-    if (spec.body == kGround) return {nullptr, 0, spec.local};
-    check_body(spec.body, user);
-    bodies[spec.body]->check_local_coordinates(spec.local, user);
-    return {bodies[spec.body].get(), offsets[spec.body], spec.local};
-  }
-  // World position of a body point in the bodies' initial state.
-  Eigen::Vector2d initial_position(const BodyPointSpec& spec) const {
-    if (spec.body == kGround) return spec.local;
-    const auto& body = *bodies[spec.body];
-    Eigen::VectorXd q(body.coordinate_count()), v(body.coordinate_count());
-    body.initial_state(q, v);
-    return body.position(q, spec.local);
-  }
-  std::string point_name(const BodyPointSpec& spec) const {
-    if (spec.body == kGround) return "ground";
-    return bodies[spec.body]->name();
-  }
-  // Two points of joints must belong to two different bodies, at most one of them the ground.
-  void check_pair(const BodyPointSpec& a, const BodyPointSpec& b, const std::string& user) const {
-    if (a.body == b.body) {
-      throw Error(
-          a.body == kGround ? "both points are on the ground" : "both points are on the same body",
-          user, "connect points of two different bodies, or a body and the ground");
-    }
-  }
-  auto segment(const Eigen::VectorXd& x, BodyId body) const {
-    return x.segment(offsets[body], bodies[body]->coordinate_count());
-  }
-};
 
 Model::Model() : data_(std::make_unique<Data>()) {}
 Model::~Model() = default;
@@ -168,7 +60,8 @@ void Model::set_gravity(const Eigen::Vector2d& acceleration) {
 }
 
 int Model::add_marker(BodyId body, const Eigen::Vector2d& local_coordinates) {
-  if (body != kGround) data_->check_body(body, "a marker");
+  if (body != kGround) (void)data_->point({body, Eigen::Vector2d::Zero()}, "a marker");
+  data_->require_dimension(2, "a planar marker");
   if (!local_coordinates.allFinite()) {
     throw Error("marker coordinates are not finite", "multibody model", "check the mesh points");
   }
@@ -401,8 +294,13 @@ std::string Model::coordinate_description(int index) const {
     ++b;
   const int local = index - data_->offsets[b];
   const bool rigid = dynamic_cast<const detail::RigidBody2D*>(data_->bodies[b].get()) != nullptr;
+  const bool rigid_3d = dynamic_cast<const detail::RigidBody3D*>(data_->bodies[b].get()) != nullptr;
+  static const char* kNatural[12] = {"x",    "y",    "z",    "e1.x", "e1.y", "e1.z",
+                                     "e2.x", "e2.y", "e2.z", "e3.x", "e3.y", "e3.z"};
   return "body '" + data_->bodies[b]->name() + "' coordinate " +
-         (rigid ? std::string(name(static_cast<Coordinate>(local))) : std::to_string(local));
+         (rigid      ? std::string(name(static_cast<Coordinate>(local)))
+          : rigid_3d ? std::string(kNatural[local])
+                     : std::to_string(local));
 }
 
 detail::BodyPoint Model::body_point(const BodyPointSpec& spec, const std::string& user) const {
@@ -531,11 +429,29 @@ void Model::applied_force(double time, const Eigen::VectorXd& q, const Eigen::Ve
     const auto& body = *data_->bodies[b];
     const int o = data_->offsets[b];
     const int nb = body.coordinate_count();
-    body.add_gravity_force(data_->gravity, force.segment(o, nb));
+    if (const auto* spatial = data_->as_spatial(static_cast<BodyId>(b))) {
+      spatial->add_spatial_gravity_force(data_->spatial_gravity, force.segment(o, nb));
+    } else {
+      body.add_gravity_force(data_->gravity, force.segment(o, nb));
+    }
     body.add_internal_force(q.segment(o, nb), v.segment(o, nb), force.segment(o, nb));
   }
   Eigen::MatrixXd point_jacobian;
-  for (std::size_t k = 0; k < data_->markers.size(); ++k) {
+  if (data_->dimension == 3) {
+    for (std::size_t k = 0; k < data_->markers.size(); ++k) {
+      const Marker& marker = data_->markers[k];
+      const Eigen::Vector3d load(data_->point_loads[3 * k], data_->point_loads[3 * k + 1],
+                                 data_->point_loads[3 * k + 2]);
+      if (marker.body == kGround || load.isZero(0.0)) continue;
+      const auto& body = *data_->as_spatial(marker.body);
+      const int nb = body.coordinate_count();
+      point_jacobian.resize(3, nb);
+      body.spatial_position_jacobian(data_->segment(q, marker.body), marker.spatial_local,
+                                     point_jacobian);
+      force.segment(data_->offsets[marker.body], nb) += point_jacobian.transpose() * load;
+    }
+  }
+  for (std::size_t k = 0; data_->dimension != 3 && k < data_->markers.size(); ++k) {
     const Marker& marker = data_->markers[k];
     const Eigen::Vector2d load(data_->point_loads[2 * k], data_->point_loads[2 * k + 1]);
     if (marker.body == kGround || (load.x() == 0.0 && load.y() == 0.0)) continue;
@@ -563,7 +479,18 @@ void Model::applied_force_derivatives(double time, const Eigen::VectorXd& q,
                                         by_position.block(o, o, nb, nb),
                                         by_velocity.block(o, o, nb, nb));
   }
-  for (std::size_t k = 0; k < data_->markers.size(); ++k) {
+  for (std::size_t k = 0; data_->dimension == 3 && k < data_->markers.size(); ++k) {
+    const Marker& marker = data_->markers[k];
+    const Eigen::Vector3d load(data_->point_loads[3 * k], data_->point_loads[3 * k + 1],
+                               data_->point_loads[3 * k + 2]);
+    if (marker.body == kGround || load.isZero(0.0)) continue;
+    const auto& body = *data_->as_spatial(marker.body);
+    const int nb = body.coordinate_count();
+    const int o = data_->offsets[marker.body];
+    body.add_spatial_point_load_derivative(data_->segment(q, marker.body), marker.spatial_local,
+                                           load, by_position.block(o, o, nb, nb));
+  }
+  for (std::size_t k = 0; data_->dimension != 3 && k < data_->markers.size(); ++k) {
     const Marker& marker = data_->markers[k];
     const Eigen::Vector2d load(data_->point_loads[2 * k], data_->point_loads[2 * k + 1]);
     if (marker.body == kGround || (load.x() == 0.0 && load.y() == 0.0)) continue;
@@ -654,7 +581,9 @@ void Model::set_point_loads(std::span<const double> loads) {
   if (loads.size() != data_->point_loads.size()) {
     throw Error("got " + std::to_string(loads.size()) + " point-load values for " +
                     std::to_string(data_->markers.size()) + " markers",
-                "multibody model", "pass one (x, y) pair per marker, in marker order");
+                "multibody model",
+                data_->dimension == 3 ? "pass (x, y, z) per marker, in marker order"
+                                      : "pass one (x, y) pair per marker, in marker order");
   }
   std::copy(loads.begin(), loads.end(), data_->point_loads.begin());
 }
@@ -667,6 +596,7 @@ std::span<const double> Model::point_loads() const {
 
 Eigen::Vector2d Model::marker_position(const State& state, int marker) const {
   data_->check_marker(marker);
+  FSI_ASSERT(data_->dimension != 3, "planar marker readout of a spatial model");
   const Marker& m = data_->markers[marker];
   if (m.body == kGround) return m.local;
   return data_->bodies[m.body]->position(data_->segment(state.q, m.body), m.local);
@@ -674,6 +604,7 @@ Eigen::Vector2d Model::marker_position(const State& state, int marker) const {
 
 Eigen::Vector2d Model::marker_velocity(const State& state, int marker) const {
   data_->check_marker(marker);
+  FSI_ASSERT(data_->dimension != 3, "planar marker readout of a spatial model");
   const Marker& m = data_->markers[marker];
   if (m.body == kGround) return Eigen::Vector2d::Zero();
   return data_->bodies[m.body]->velocity(data_->segment(state.q, m.body),
@@ -692,6 +623,14 @@ Eigen::MatrixXd Model::marker_jacobian(const Eigen::VectorXd& q, int marker) con
 }
 
 void Model::marker_positions(const State& state, std::span<double> xy) const {
+  if (data_->dimension == 3) {
+    FSI_ASSERT(xy.size() >= 3 * data_->markers.size(), "marker position buffer too small");
+    for (int k = 0; k < marker_count(); ++k) {
+      const Eigen::Vector3d r = spatial_marker_position(state, k);
+      std::copy(r.data(), r.data() + 3, xy.begin() + 3 * k);
+    }
+    return;
+  }
   FSI_ASSERT(xy.size() >= 2 * data_->markers.size(), "marker position buffer too small");
   for (int k = 0; k < marker_count(); ++k) {
     const Eigen::Vector2d r = marker_position(state, k);
@@ -701,6 +640,14 @@ void Model::marker_positions(const State& state, std::span<double> xy) const {
 }
 
 void Model::marker_velocities(const State& state, std::span<double> xy) const {
+  if (data_->dimension == 3) {
+    FSI_ASSERT(xy.size() >= 3 * data_->markers.size(), "marker velocity buffer too small");
+    for (int k = 0; k < marker_count(); ++k) {
+      const Eigen::Vector3d u = spatial_marker_velocity(state, k);
+      std::copy(u.data(), u.data() + 3, xy.begin() + 3 * k);
+    }
+    return;
+  }
   FSI_ASSERT(xy.size() >= 2 * data_->markers.size(), "marker velocity buffer too small");
   for (int k = 0; k < marker_count(); ++k) {
     const Eigen::Vector2d u = marker_velocity(state, k);
@@ -731,6 +678,10 @@ double Model::constraint_force(const State& state, BodyId body, Coordinate c) co
 
 Eigen::Vector3d Model::point_load_resultant(const State& state, BodyId body) const {
   data_->check_body(body, "a point-load resultant");
+  if (data_->as_spatial(body) != nullptr) {
+    throw Error("'" + data_->bodies[body]->name() + "' is a spatial body", "a point-load resultant",
+                "use spatial_point_load_resultant for 3D bodies");
+  }
   const Eigen::Vector2d centre =
       data_->bodies[body]->reference_point(data_->segment(state.q, body));
   Eigen::Vector3d resultant = Eigen::Vector3d::Zero();
@@ -749,8 +700,14 @@ double Model::kinetic_energy(const State& state) const {
 
 double Model::potential_energy(const State& state) const {
   double energy = 0.0;
-  for (int b = 0; b < body_count(); ++b)
-    energy += data_->bodies[b]->gravity_potential(data_->segment(state.q, b), data_->gravity);
+  for (int b = 0; b < body_count(); ++b) {
+    const auto q = data_->segment(state.q, b);
+    if (const auto* spatial = data_->as_spatial(b)) {
+      energy += spatial->spatial_gravity_potential(q, data_->spatial_gravity);
+    } else {
+      energy += data_->bodies[b]->gravity_potential(q, data_->gravity);
+    }
+  }
   for (const auto& element : data_->force_elements)
     energy += element->potential_energy(state.q);
   return energy;

@@ -190,6 +190,73 @@ struct TorqueSpec {
   std::function<double(double time)> torque;  // [N m]
 };
 
+// --- spatial (3D) bodies and connectors (src/model_spatial.cpp) ---
+// A model holds planar bodies (above) or spatial ones (below), not both; the first body or
+// marker decides. Spatial bodies have constant mass matrices and material points linear in
+// their coordinates (docs/theory.md, "Spatial bodies").
+
+// A material point of a spatial body at body-fixed local coordinates, or with body = kGround a
+// fixed point of space at `local`. On a rigid body, local is in its body frame relative to the
+// centre of mass; on a cable local = (s, 0, 0), s along the undeformed centre line.
+struct SpatialPointSpec {
+  BodyId body = kGround;
+  Eigen::Vector3d local = Eigen::Vector3d::Zero();
+};
+
+// A rigid body in space in natural coordinates: q = (r, e1, e2, e3), the centre of mass and the
+// world components of the three body axes (12 coordinates), with the six orthonormality rows
+// e_i . e_j = delta_ij added as constraints ("rigid body 'x' orthonormality (e1.e2)"). A body
+// point is r + p1 e1 + p2 e2 + p3 e3, linear in q, and the mass matrix is constant:
+// diag(m I, E (x) I) with E = tr(J)/2 I - J the second moment of the mass. Singularity-free for
+// every orientation, unlike Euler angles; an alternative to Euler parameters with a constant
+// mass matrix, which the stage equations of the integrator need.
+struct RigidBody3DSpec {
+  std::string name;
+  double mass = 0.0;                                          // [kg]
+  Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();          // about the centre of mass, body axes
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();         // centre of mass [m]
+  Eigen::Matrix3d orientation = Eigen::Matrix3d::Identity();  // columns: body axes in the world
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();         // [m/s]
+  Eigen::Vector3d angular_velocity = Eigen::Vector3d::Zero();  // world frame [rad/s]
+};
+
+// A point mass in space: q = (x, y, z), one material point (local = 0).
+struct PointMassSpec {
+  std::string name;
+  double mass = 0.0;                                   // [kg]
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();  // [m]
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();  // [m/s]
+};
+
+// A spatial ANCF cable (Gerstmayr & Shabana 2006): element_count cubic Hermite elements along
+// the straight, stress-free line start -> end, per node the position r and the slope r' (6
+// coordinates, 12 per element). Axial strain eps = |r'| - 1, curvature vector
+// kappa = (r' x r'') / |r'|^2, energy 1/2 EA eps^2 + 1/2 EI |kappa|^2 per length (isotropic
+// bending, no torsion: the cable has no cross-section orientation). A planar cable bends exactly
+// as AncfBeamSpec. Material points lie on the centre line: local = (s, 0, 0).
+struct AncfCableSpec {
+  std::string name;
+  Eigen::Vector3d start = Eigen::Vector3d::Zero();  // [m]
+  Eigen::Vector3d end = Eigen::Vector3d::UnitX();   // [m]
+  int element_count = 1;
+  double axial_stiffness = 0.0;    // EA [N]
+  double bending_stiffness = 0.0;  // EI [N m^2]
+  double mass_per_length = 0.0;    // rho A [kg/m]
+  double axial_damping = 0.0;      // [N s]
+  double bending_damping = 0.0;    // [N m^2 s]
+};
+
+// Revolute joint in space: the points coincide (three rows x, y, z) and the axis, fixed in
+// body a (in a's body frame; a world direction if a is the ground), stays normal to two
+// directions of body b that are normal to it initially (two rows), so b turns about the axis
+// only. The bodies must be rigid bodies (or the ground).
+struct RevoluteJoint3DSpec {
+  std::string name;  // in messages; default "revolute joint <row>"
+  SpatialPointSpec a;
+  SpatialPointSpec b;
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();
+};
+
 namespace detail {
 class BodyPoint;
 }
@@ -255,6 +322,54 @@ class Model {
   int add_spring_actor(const SpringActorSpec& spec);
   int add_point_force(const PointForceSpec& spec);
   int add_torque(const TorqueSpec& spec);
+
+  // --- spatial bodies and connectors (src/model_spatial.cpp) ---
+  // Throw fsi::Error naming the body for invalid values (non-positive mass, an inertia that is
+  // not symmetric positive definite or violates the triangle inequality, an orientation that is
+  // not a rotation, ...), a taken name, or a model of planar bodies.
+  BodyId add_rigid_body_3d(const RigidBody3DSpec& spec);
+  BodyId add_point_mass(const PointMassSpec& spec);
+  BodyId add_ancf_cable(const AncfCableSpec& spec);
+  // Holds node `node` of a cable in its initial position (x, y, z rows) and slope direction (two
+  // rows: the slope stays normal to two initial normals; its length, the axial strain, is free).
+  int add_cable_clamp(BodyId cable, int node);
+  void set_spatial_gravity(const Eigen::Vector3d& acceleration);
+  const Eigen::Vector3d& spatial_gravity() const;
+  // A marker on a spatial body (or a fixed one with kGround); returns its index. Point loads then
+  // have three values (x, y, z) per marker.
+  int add_spatial_marker(BodyId body, const Eigen::Vector3d& local_coordinates);
+  // Spherical joint: r_a - r_b = 0, three rows (x, y, z); returns the index of the x row.
+  int add_spherical_joint(const SpatialPointSpec& a, const SpatialPointSpec& b,
+                          const std::string& name = {});
+  int add_revolute_joint_3d(const RevoluteJoint3DSpec& spec);
+  // Massless rod |r_b - r_a| = length (default: the initial distance), lambda the rod force.
+  int add_spatial_distance_constraint(const SpatialPointSpec& a, const SpatialPointSpec& b,
+                                      std::optional<double> length = std::nullopt,
+                                      const std::string& name = {});
+
+  // 2 for planar models, 3 for spatial ones (2 while the model is empty).
+  int dimension() const;
+  // Throw fsi::Error if the body is not of that kind.
+  const RigidBody3DSpec& rigid_body_3d(BodyId body) const;
+  const AncfCableSpec& cable(BodyId cable) const;
+  bool is_cable(BodyId body) const;
+  int cable_node_count(BodyId cable) const;
+  // Index in q of component `component` (0-2: x, y, z; 3-5: slope x, y, z) of a cable node.
+  int cable_coordinate_index(BodyId cable, int node, int component) const;
+  Eigen::Vector3d spatial_marker_position(const State& state, int marker) const;
+  Eigen::Vector3d spatial_marker_velocity(const State& state, int marker) const;
+  const Eigen::Vector3d& spatial_marker_local_coordinates(int marker) const;
+  // dr/dq (3 x n); zero for ground markers.
+  Eigen::MatrixXd spatial_marker_jacobian(const Eigen::VectorXd& q, int marker) const;
+  Eigen::Vector3d spatial_point_position(const State& state, const SpatialPointSpec& point) const;
+  Eigen::Vector3d spatial_point_velocity(const State& state, const SpatialPointSpec& point) const;
+  // The rotation matrix [e1 e2 e3] of a spatial rigid body (orthonormal up to the constraint
+  // drift) and its angular velocity in the world frame, from dR/dt = [omega]x R.
+  Eigen::Matrix3d orientation(const State& state, BodyId body) const;
+  Eigen::Vector3d angular_velocity(const State& state, BodyId body) const;
+  // Resultant of the point loads on a spatial body: force (x, y, z), then the torque about its
+  // centre of mass.
+  Eigen::Matrix<double, 6, 1> spatial_point_load_resultant(const State& state, BodyId body) const;
 
   // --- structure ---
   int coordinate_count() const;

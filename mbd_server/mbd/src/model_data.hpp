@@ -1,0 +1,187 @@
+#pragma once
+// The model's storage (internal): bodies and their coordinate offsets, markers, constraint rows,
+// force elements, gravity and point loads, with the lookups that name the user in their errors.
+// Shared by model.cpp (planar bodies, assembly) and model_spatial.cpp (spatial bodies).
+
+#include <Eigen/Dense>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "ancf_beam_2d.hpp"
+#include "body.hpp"
+#include "body_point.hpp"
+#include "constraint.hpp"
+#include "fsi/common/error.hpp"
+#include "fsi/mbd/model.hpp"
+#include "spatial_body.hpp"
+
+namespace fsi::mbd {
+namespace detail {
+
+// A marker of a planar model has `local`, one of a spatial model `spatial_local`.
+struct Marker {
+  BodyId body;
+  Eigen::Vector2d local;  // body frame, or world frame for kGround
+  Eigen::Vector3d spatial_local = Eigen::Vector3d::Zero();
+};
+
+}  // namespace detail
+
+struct Model::Data {
+  std::vector<std::unique_ptr<detail::Body>> bodies;
+  std::vector<int> offsets;  // index of each body's first coordinate in q
+  int coordinates = 0;
+  std::vector<detail::Marker> markers;
+  std::vector<std::unique_ptr<detail::Constraint>> constraints;
+  std::vector<std::unique_ptr<ForceElement>> force_elements;
+  Eigen::Vector2d gravity = Eigen::Vector2d::Zero();
+  Eigen::Vector3d spatial_gravity = Eigen::Vector3d::Zero();
+  // 0 until the first body or marker decides: 2 (planar bodies) or 3 (spatial bodies). Point
+  // loads and marker coordinates have this many values per marker.
+  int dimension = 0;
+  std::vector<double> point_loads;  // x, y per marker
+  mutable Eigen::MatrixXd mass;     // assembled on first use after a structural change
+  mutable bool mass_valid = false;
+
+  void check_body(BodyId body, const std::string& user) const {
+    if (body < 0 || body >= static_cast<BodyId>(bodies.size())) {
+      throw Error(user + " refers to body index " + std::to_string(body) + " but the model has " +
+                      std::to_string(bodies.size()) + " bodies",
+                  "multibody model", "refer to a body that has been added");
+    }
+  }
+  void check_marker(int marker) const {
+    if (marker < 0 || marker >= static_cast<int>(markers.size())) {
+      throw Error("marker index " + std::to_string(marker) + " out of range (the model has " +
+                      std::to_string(markers.size()) + " markers)",
+                  "multibody model", "refer to a marker that has been added");
+    }
+  }
+  const detail::RigidBody2D& rigid_body(BodyId body, const std::string& user) const {
+    check_body(body, user);
+    const auto* rigid = dynamic_cast<const detail::RigidBody2D*>(bodies[body].get());
+    if (rigid == nullptr) {
+      throw Error(user + " needs a planar rigid body but '" + bodies[body]->name() + "' is not one",
+                  "multibody model", "use the coordinates of a RigidBody2D");
+    }
+    return *rigid;
+  }
+  const detail::AncfBeam2D& ancf_beam(BodyId body, const std::string& user) const {
+    check_body(body, user);
+    const auto* beam = dynamic_cast<const detail::AncfBeam2D*>(bodies[body].get());
+    if (beam == nullptr) {
+      throw Error(user + " needs an ANCF beam but '" + bodies[body]->name() + "' is not one",
+                  "multibody model", "refer to a body added with add_ancf_beam");
+    }
+    return *beam;
+  }
+  const detail::AncfBeam2D& beam_node(BodyId body, int node, const std::string& user) const {
+    const auto& beam = ancf_beam(body, user);
+    if (node < 0 || node >= beam.node_count()) {
+      throw Error(user + " refers to node " + std::to_string(node) + " of ANCF beam '" +
+                      beam.name() + "', which has nodes 0.." +
+                      std::to_string(beam.node_count() - 1),
+                  "multibody model", "refer to an existing node (0 is the start)");
+    }
+    return beam;
+  }
+  // Fixes the model's dimension at the first use; throws naming `user` on a mix.
+  void require_dimension(int wanted, const std::string& user) {
+    if (dimension == 0) dimension = wanted;
+    if (dimension == wanted) return;
+    throw Error(user + " is " + (wanted == 3 ? "spatial (3D)" : "planar (2D)") +
+                    " but the model already holds " +
+                    (dimension == 3 ? "spatial (3D)" : "planar (2D)") + " bodies or markers",
+                "multibody model",
+                "build a model of planar bodies (RigidBody2D, AncfBeam2D) or of spatial ones "
+                "(RigidBody3D, PointMass, AncfCable3D), not both");
+  }
+  int stride() const { return dimension == 3 ? 3 : 2; }
+  const detail::SpatialBody* as_spatial(BodyId body) const {
+    return dynamic_cast<const detail::SpatialBody*>(bodies[body].get());
+  }
+  const detail::SpatialBody& spatial_body(BodyId body, const std::string& user) const {
+    check_body(body, user);
+    const auto* spatial = as_spatial(body);
+    if (spatial == nullptr) {
+      throw Error(user + " needs a spatial (3D) body but '" + bodies[body]->name() + "' is planar",
+                  "multibody model", "use the planar form of the element for planar bodies");
+    }
+    return *spatial;
+  }
+  // A spatial body point; throws naming `user` for unknown or planar bodies, non-finite or
+  // non-material local coordinates.
+  detail::SpatialPoint spatial_point(const SpatialPointSpec& spec, const std::string& user) const {
+    if (!spec.local.allFinite()) {
+      throw Error("point coordinates are not finite", user, "give finite local coordinates");
+    }
+    if (spec.body == kGround) return {nullptr, 0, spec.local};
+    const auto& body = spatial_body(spec.body, user);
+    body.check_spatial_local(spec.local, user);
+    return {&body, offsets[spec.body], spec.local};
+  }
+  Eigen::Vector3d initial_spatial_position(const SpatialPointSpec& spec) const {
+    if (spec.body == kGround) return spec.local;
+    const auto& body = *as_spatial(spec.body);
+    Eigen::VectorXd q(body.coordinate_count()), v(body.coordinate_count());
+    body.initial_state(q, v);
+    return body.spatial_position(q, spec.local);
+  }
+  BodyId add_body(std::unique_ptr<detail::Body> body, const std::string& kind) {
+    require_dimension(dynamic_cast<const detail::SpatialBody*>(body.get()) != nullptr ? 3 : 2,
+                      kind + " '" + body->name() + "'");
+    for (const auto& other : bodies) {
+      if (other->name() == body->name()) {
+        throw Error("a second body is named '" + body->name() + "'",
+                    kind + " '" + body->name() + "'", "give every body its own name");
+      }
+    }
+    offsets.push_back(coordinates);
+    coordinates += body->coordinate_count();
+    bodies.push_back(std::move(body));
+    mass_valid = false;
+    return static_cast<BodyId>(bodies.size()) - 1;
+  }
+  // A body point as the elements see it; throws naming `user` for unknown bodies or
+  // non-finite coordinates.
+  detail::BodyPoint point(const BodyPointSpec& spec, const std::string& user) const {
+    if (!spec.local.allFinite()) {
+      throw Error("point coordinates are not finite", user, "give finite local coordinates");
+    }
+    if (spec.body == kGround) return {nullptr, 0, spec.local};
+    check_body(spec.body, user);
+    if (as_spatial(spec.body) != nullptr) {
+      throw Error(user + " is planar but '" + bodies[spec.body]->name() + "' is a spatial body",
+                  "multibody model", "use the spatial form of the element for 3D bodies");
+    }
+    bodies[spec.body]->check_local_coordinates(spec.local, user);
+    return {bodies[spec.body].get(), offsets[spec.body], spec.local};
+  }
+  // World position of a body point in the bodies' initial state.
+  Eigen::Vector2d initial_position(const BodyPointSpec& spec) const {
+    if (spec.body == kGround) return spec.local;
+    const auto& body = *bodies[spec.body];
+    Eigen::VectorXd q(body.coordinate_count()), v(body.coordinate_count());
+    body.initial_state(q, v);
+    return body.position(q, spec.local);
+  }
+  std::string point_name(const BodyPointSpec& spec) const {
+    if (spec.body == kGround) return "ground";
+    return bodies[spec.body]->name();
+  }
+  // Two points of joints must belong to two different bodies, at most one of them the ground.
+  void check_pair(const BodyPointSpec& a, const BodyPointSpec& b, const std::string& user) const {
+    if (a.body == b.body) {
+      throw Error(
+          a.body == kGround ? "both points are on the ground" : "both points are on the same body",
+          user, "connect points of two different bodies, or a body and the ground");
+    }
+  }
+  auto segment(const Eigen::VectorXd& x, BodyId body) const {
+    return x.segment(offsets[body], bodies[body]->coordinate_count());
+  }
+};
+
+}  // namespace fsi::mbd

@@ -1,0 +1,321 @@
+// Model's spatial (3D) bodies, connectors, markers and readouts (fsi/mbd/model.hpp, "spatial
+// bodies and connectors"); the planar ones are in model.cpp and model_elements.cpp.
+
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <string>
+
+#include "ancf_cable_3d.hpp"
+#include "constraint.hpp"
+#include "fsi/common/error.hpp"
+#include "fsi/mbd/model.hpp"
+#include "model_data.hpp"
+#include "rigid_body_3d.hpp"
+#include "spatial_constraints.hpp"
+
+namespace fsi::mbd {
+namespace {
+
+std::string number(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.9g", value);
+  return text;
+}
+
+constexpr const char* kAxisNames[3] = {" (x)", " (y)", " (z)"};
+
+std::string joint_name(const std::string& kind, const std::string& name, int row) {
+  return name.empty() ? kind + " " + std::to_string(row) : kind + " '" + name + "'";
+}
+
+// Two unit vectors normal to `axis` and to each other.
+std::pair<Eigen::Vector3d, Eigen::Vector3d> normals(const Eigen::Vector3d& axis) {
+  const Eigen::Vector3d a = axis.normalized();
+  Eigen::Index smallest = 0;
+  a.cwiseAbs().minCoeff(&smallest);
+  const Eigen::Vector3d first = a.cross(Eigen::Vector3d::Unit(smallest)).normalized();
+  return {first, a.cross(first)};
+}
+
+}  // namespace
+
+BodyId Model::add_rigid_body_3d(const RigidBody3DSpec& spec) {
+  auto body = std::make_unique<detail::RigidBody3D>(spec);
+  const BodyId id = data_->add_body(std::move(body), "rigid body");
+  const int offset = data_->offsets[id];
+  static constexpr int kPairs[6][2] = {{0, 0}, {1, 1}, {2, 2}, {0, 1}, {0, 2}, {1, 2}};
+  for (const auto& pair : kPairs) {
+    data_->constraints.push_back(std::make_unique<detail::OrthonormalityConstraint>(
+        "rigid body '" + spec.name + "' orthonormality (e" + std::to_string(pair[0] + 1) + ".e" +
+            std::to_string(pair[1] + 1) + ")",
+        offset, pair[0], pair[1]));
+  }
+  return id;
+}
+
+BodyId Model::add_point_mass(const PointMassSpec& spec) {
+  return data_->add_body(std::make_unique<detail::PointMass3D>(spec), "point mass");
+}
+
+BodyId Model::add_ancf_cable(const AncfCableSpec& spec) {
+  return data_->add_body(std::make_unique<detail::AncfCable3D>(spec), "ANCF cable");
+}
+
+int Model::add_cable_clamp(BodyId cable_id, int node) {
+  const int first = constraint_count();
+  const auto* cable = [&] {
+    data_->check_body(cable_id, "a cable clamp");
+    const auto* c = dynamic_cast<const detail::AncfCable3D*>(data_->bodies[cable_id].get());
+    if (c == nullptr) {
+      throw Error("a cable clamp needs an ANCF cable but '" + data_->bodies[cable_id]->name() +
+                      "' is not one",
+                  "multibody model", "clamp a body added with add_ancf_cable");
+    }
+    return c;
+  }();
+  if (node < 0 || node >= cable->node_count()) {
+    throw Error("a cable clamp refers to node " + std::to_string(node) + " of ANCF cable '" +
+                    cable->name() + "', which has nodes 0.." +
+                    std::to_string(cable->node_count() - 1),
+                "multibody model", "refer to an existing node (0 is the start)");
+  }
+  const Eigen::VectorXd reference = cable->reference_coordinates();
+  const std::string target = "cable clamp on " + cable->name() + " node " + std::to_string(node);
+  const int base = data_->offsets[cable_id] + 6 * node;
+  for (int k = 0; k < 3; ++k) {
+    data_->constraints.push_back(std::make_unique<detail::CoordinateConstraint>(
+        target + kAxisNames[k], base + k, reference(6 * node + k)));
+  }
+  // The slope stays normal to two initial normals n1, n2: its direction is held, its length
+  // (the axial strain at the clamp) is free, as the planar BeamClamp::Direction.
+  const auto [n1, n2] = normals(reference.segment<3>(6 * node + 3));
+  int which = 1;
+  for (const Eigen::Vector3d& n : {n1, n2}) {
+    Eigen::VectorXi indices(3);
+    indices << base + 3, base + 4, base + 5;
+    data_->constraints.push_back(std::make_unique<detail::LinearCoordinateConstraint>(
+        target + " (slope direction " + std::to_string(which++) + ")", indices, n, 0.0));
+  }
+  return first;
+}
+
+void Model::set_spatial_gravity(const Eigen::Vector3d& acceleration) {
+  if (!acceleration.allFinite()) {
+    throw Error("gravity is not finite", "multibody model", "give a finite acceleration vector");
+  }
+  data_->spatial_gravity = acceleration;
+}
+
+const Eigen::Vector3d& Model::spatial_gravity() const {
+  return data_->spatial_gravity;
+}
+
+int Model::add_spatial_marker(BodyId body, const Eigen::Vector3d& local_coordinates) {
+  const detail::SpatialPoint point = data_->spatial_point({body, local_coordinates}, "a marker");
+  (void)point;
+  data_->require_dimension(3, "a spatial marker");
+  data_->markers.push_back({body, Eigen::Vector2d::Zero(), local_coordinates});
+  data_->point_loads.resize(3 * data_->markers.size(), 0.0);
+  return static_cast<int>(data_->markers.size()) - 1;
+}
+
+int Model::add_spherical_joint(const SpatialPointSpec& a, const SpatialPointSpec& b,
+                               const std::string& name) {
+  const int first = constraint_count();
+  const std::string user = joint_name("spherical joint", name, first);
+  const detail::SpatialPoint pa = data_->spatial_point(a, user);
+  const detail::SpatialPoint pb = data_->spatial_point(b, user);
+  data_->check_pair({a.body, {}}, {b.body, {}}, user);
+  for (int axis = 0; axis < 3; ++axis) {
+    data_->constraints.push_back(
+        std::make_unique<detail::SpatialPointConstraint>(user + kAxisNames[axis], pa, pb, axis));
+  }
+  return first;
+}
+
+int Model::add_revolute_joint_3d(const RevoluteJoint3DSpec& spec) {
+  const int first = constraint_count();
+  const std::string user = joint_name("revolute joint", spec.name, first);
+  auto rigid_or_ground = [&](BodyId body) -> const detail::RigidBody3D* {
+    if (body == kGround) return nullptr;
+    const auto& spatial = data_->spatial_body(body, user);
+    const auto* rigid = dynamic_cast<const detail::RigidBody3D*>(&spatial);
+    if (rigid == nullptr) {
+      throw Error("'" + spatial.name() + "' is not a rigid body", user,
+                  "connect RigidBody3D bodies (or the ground); hold a cable with a clamp or a "
+                  "spherical joint");
+    }
+    return rigid;
+  };
+  const detail::RigidBody3D* body_a = rigid_or_ground(spec.a.body);
+  const detail::RigidBody3D* body_b = rigid_or_ground(spec.b.body);
+  const double axis_length = spec.axis.norm();
+  if (!(axis_length > 0.0) || !spec.axis.allFinite()) {
+    throw Error("the axis must be a finite, non-zero vector", user, "give e.g. axis = [0, 0, 1]");
+  }
+  data_->check_pair({spec.a.body, {}}, {spec.b.body, {}}, user);
+  const detail::SpatialPoint pa = data_->spatial_point(spec.a, user);
+  const detail::SpatialPoint pb = data_->spatial_point(spec.b, user);
+  for (int axis = 0; axis < 3; ++axis) {
+    data_->constraints.push_back(
+        std::make_unique<detail::SpatialPointConstraint>(user + kAxisNames[axis], pa, pb, axis));
+  }
+  // The axis in the world and in b's body frame; two directions of b normal to it.
+  const Eigen::Vector3d unit = spec.axis / axis_length;
+  const Eigen::Vector3d world =
+      body_a != nullptr ? Eigen::Vector3d(body_a->spec().orientation * unit) : unit;
+  const Eigen::Matrix3d to_b = body_b != nullptr
+                                   ? Eigen::Matrix3d(body_b->spec().orientation.transpose())
+                                   : Eigen::Matrix3d::Identity();
+  const auto [n1, n2] = normals(to_b * world);
+  const detail::SpatialDirection axis_direction{
+      pa, data_->spatial_point({spec.a.body, spec.a.local + unit}, user)};
+  int which = 1;
+  for (const Eigen::Vector3d& n : {n1, n2}) {
+    const detail::SpatialDirection normal{
+        pb, data_->spatial_point({spec.b.body, spec.b.local + n}, user)};
+    data_->constraints.push_back(std::make_unique<detail::PerpendicularityConstraint>(
+        user + " (axis normal " + std::to_string(which++) + ")", axis_direction, normal));
+  }
+  return first;
+}
+
+int Model::add_spatial_distance_constraint(const SpatialPointSpec& a, const SpatialPointSpec& b,
+                                           std::optional<double> length, const std::string& name) {
+  const std::string user = joint_name("distance constraint", name, constraint_count());
+  const detail::SpatialPoint pa = data_->spatial_point(a, user);
+  const detail::SpatialPoint pb = data_->spatial_point(b, user);
+  data_->check_pair({a.body, {}}, {b.body, {}}, user);
+  const double rod = length.value_or(
+      (data_->initial_spatial_position(b) - data_->initial_spatial_position(a)).norm());
+  if (!(rod > 0.0) || !std::isfinite(rod)) {
+    throw Error("the length must be positive and finite, got " + number(rod), user,
+                "give a positive length, or place the points apart initially");
+  }
+  data_->constraints.push_back(
+      std::make_unique<detail::SpatialDistanceConstraint>(user, pa, pb, rod));
+  return constraint_count() - 1;
+}
+
+int Model::dimension() const {
+  return data_->stride();
+}
+
+const RigidBody3DSpec& Model::rigid_body_3d(BodyId body) const {
+  const auto& spatial = data_->spatial_body(body, "a body lookup");
+  const auto* rigid = dynamic_cast<const detail::RigidBody3D*>(&spatial);
+  if (rigid == nullptr) {
+    throw Error("'" + spatial.name() + "' is not a spatial rigid body", "multibody model",
+                "refer to a body added with add_rigid_body_3d");
+  }
+  return rigid->spec();
+}
+
+bool Model::is_cable(BodyId body) const {
+  data_->check_body(body, "a body lookup");
+  return dynamic_cast<const detail::AncfCable3D*>(data_->bodies[body].get()) != nullptr;
+}
+
+const AncfCableSpec& Model::cable(BodyId cable) const {
+  const auto& spatial = data_->spatial_body(cable, "a cable lookup");
+  const auto* c = dynamic_cast<const detail::AncfCable3D*>(&spatial);
+  if (c == nullptr) {
+    throw Error("'" + spatial.name() + "' is not an ANCF cable", "multibody model",
+                "refer to a body added with add_ancf_cable");
+  }
+  return c->spec();
+}
+
+int Model::cable_node_count(BodyId cable_id) const {
+  return cable(cable_id).element_count + 1;
+}
+
+int Model::cable_coordinate_index(BodyId cable_id, int node, int component) const {
+  const int nodes = cable_node_count(cable_id);
+  FSI_ASSERT(node >= 0 && node < nodes && component >= 0 && component < 6,
+             "cable node or component out of range");
+  return data_->offsets[cable_id] + 6 * node + component;
+}
+
+Eigen::Vector3d Model::spatial_marker_position(const State& state, int marker) const {
+  data_->check_marker(marker);
+  const detail::Marker& m = data_->markers[marker];
+  if (m.body == kGround) return m.spatial_local;
+  return data_->spatial_body(m.body, "a marker")
+      .spatial_position(data_->segment(state.q, m.body), m.spatial_local);
+}
+
+Eigen::Vector3d Model::spatial_marker_velocity(const State& state, int marker) const {
+  data_->check_marker(marker);
+  const detail::Marker& m = data_->markers[marker];
+  if (m.body == kGround) return Eigen::Vector3d::Zero();
+  return data_->spatial_body(m.body, "a marker")
+      .spatial_velocity(data_->segment(state.q, m.body), data_->segment(state.v, m.body),
+                        m.spatial_local);
+}
+
+const Eigen::Vector3d& Model::spatial_marker_local_coordinates(int marker) const {
+  data_->check_marker(marker);
+  return data_->markers[marker].spatial_local;
+}
+
+Eigen::MatrixXd Model::spatial_marker_jacobian(const Eigen::VectorXd& q, int marker) const {
+  data_->check_marker(marker);
+  Eigen::MatrixXd jacobian = Eigen::MatrixXd::Zero(3, coordinate_count());
+  const detail::Marker& m = data_->markers[marker];
+  if (m.body == kGround) return jacobian;
+  const auto& body = data_->spatial_body(m.body, "a marker");
+  body.spatial_position_jacobian(
+      data_->segment(q, m.body), m.spatial_local,
+      jacobian.middleCols(data_->offsets[m.body], body.coordinate_count()));
+  return jacobian;
+}
+
+Eigen::Vector3d Model::spatial_point_position(const State& state,
+                                              const SpatialPointSpec& point) const {
+  return data_->spatial_point(point, "a position readout").position(state.q);
+}
+
+Eigen::Vector3d Model::spatial_point_velocity(const State& state,
+                                              const SpatialPointSpec& point) const {
+  return data_->spatial_point(point, "a velocity readout").velocity(state.q, state.v);
+}
+
+Eigen::Matrix3d Model::orientation(const State& state, BodyId body) const {
+  (void)rigid_body_3d(body);
+  const auto q = data_->segment(state.q, body);
+  Eigen::Matrix3d r;
+  for (int k = 0; k < 3; ++k)
+    r.col(k) = q.segment<3>(3 + 3 * k);
+  return r;
+}
+
+Eigen::Vector3d Model::angular_velocity(const State& state, BodyId body) const {
+  const Eigen::Matrix3d r = orientation(state, body);
+  const auto v = data_->segment(state.v, body);
+  Eigen::Matrix3d rate;
+  for (int k = 0; k < 3; ++k)
+    rate.col(k) = v.segment<3>(3 + 3 * k);
+  // dR/dt = [omega]x R, so [omega]x = dR/dt R^T; its skew part is exact also off the manifold.
+  const Eigen::Matrix3d spin = rate * r.transpose();
+  const Eigen::Matrix3d skew = 0.5 * (spin - spin.transpose());
+  return {skew(2, 1), skew(0, 2), skew(1, 0)};
+}
+
+Eigen::Matrix<double, 6, 1> Model::spatial_point_load_resultant(const State& state,
+                                                                BodyId body) const {
+  const auto& spatial = data_->spatial_body(body, "a point-load resultant");
+  const Eigen::Vector3d centre = spatial.spatial_reference_point(data_->segment(state.q, body));
+  Eigen::Matrix<double, 6, 1> resultant = Eigen::Matrix<double, 6, 1>::Zero();
+  for (int k = 0; k < marker_count(); ++k) {
+    if (data_->markers[k].body != body) continue;
+    const Eigen::Vector3d load(data_->point_loads[3 * k], data_->point_loads[3 * k + 1],
+                               data_->point_loads[3 * k + 2]);
+    resultant.head<3>() += load;
+    resultant.tail<3>() += (spatial_marker_position(state, k) - centre).cross(load);
+  }
+  return resultant;
+}
+
+}  // namespace fsi::mbd

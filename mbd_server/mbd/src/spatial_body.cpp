@@ -1,0 +1,46 @@
+#include "spatial_body.hpp"
+
+#include "fsi/common/error.hpp"
+
+namespace fsi::mbd::detail {
+
+void SpatialBody::planar_call() const {
+  ::fsi::assertion_failed(
+      "planar point function", __FILE__, __LINE__, __func__,
+      "a planar point function was called on the spatial body '" + name() + "'");
+}
+
+Eigen::Vector3d SpatialPoint::position(const Eigen::VectorXd& q) const {
+  return on_ground() ? local_ : body_->spatial_position(block(q), local_);
+}
+
+Eigen::Vector3d SpatialPoint::velocity(const Eigen::VectorXd& q, const Eigen::VectorXd& v) const {
+  return on_ground() ? Eigen::Vector3d::Zero()
+                     : body_->spatial_velocity(block(q), block(v), local_);
+}
+
+void SpatialPoint::add_jacobian(const Eigen::VectorXd& q, double sign,
+                                Eigen::MatrixXd& jacobian) const {
+  if (on_ground()) return;
+  Eigen::MatrixXd own(3, body_->coordinate_count());
+  body_->spatial_position_jacobian(block(q), local_, own);
+  jacobian.middleCols(offset_, own.cols()) += sign * own;
+}
+
+Eigen::Vector3d SpatialPoint::acceleration_remainder(const Eigen::VectorXd& q,
+                                                     const Eigen::VectorXd& v) const {
+  if (on_ground()) return Eigen::Vector3d::Zero();
+  Eigen::MatrixXd own(3, body_->coordinate_count());
+  body_->spatial_velocity_jacobian(block(q), block(v), local_, own);
+  return own * block(v);
+}
+
+void SpatialPoint::add_load_derivative(const Eigen::VectorXd& q, const Eigen::Vector3d& force,
+                                       Eigen::MatrixXd& derivative) const {
+  if (on_ground()) return;
+  const int nb = body_->coordinate_count();
+  body_->add_spatial_point_load_derivative(block(q), local_, force,
+                                           derivative.block(offset_, offset_, nb, nb));
+}
+
+}  // namespace fsi::mbd::detail

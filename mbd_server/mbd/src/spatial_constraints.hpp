@@ -1,0 +1,104 @@
+#pragma once
+// Constraint rows between points of spatial bodies (internal; built in model_spatial.cpp):
+//
+//   point row          (r_a - r_b)_axis = 0: three make a spherical joint, or fix a point
+//   distance row       (|d|^2 - length^2) / (2 length) = 0, d = r_b - r_a: a massless rod,
+//                      lambda the rod force (tension positive), as the planar one
+//   perpendicularity   d_a . d_b = 0 with the body directions d = r(p + u) - r(p), exact for
+//                      rigid bodies; two of them keep a revolute joint's axis
+
+#include <Eigen/Dense>
+
+#include <string>
+
+#include "fsi/mbd/constraint_element.hpp"
+#include "spatial_body.hpp"
+
+namespace fsi::mbd::detail {
+
+class SpatialPointConstraint final : public ConstraintElement {
+ public:
+  SpatialPointConstraint(std::string description, SpatialPoint a, SpatialPoint b, int axis);
+
+  std::string description() const override { return description_; }
+  ConstraintLevel level() const override { return ConstraintLevel::Position; }
+  double residual(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v) const override;
+  void jacobian_row(double time, const Eigen::VectorXd& q, RowRef row) const override;
+  double explicit_time_derivative(double, const Eigen::VectorXd&) const override { return 0.0; }
+  double acceleration_remainder(double time, const Eigen::VectorXd& q,
+                                const Eigen::VectorXd& v) const override;
+  void add_force_derivative(double time, const Eigen::VectorXd& q, double multiplier,
+                            Eigen::MatrixXd& derivative) const override;
+
+ private:
+  std::string description_;
+  SpatialPoint a_;
+  SpatialPoint b_;
+  int axis_;
+};
+
+class SpatialDistanceConstraint final : public ConstraintElement {
+ public:
+  SpatialDistanceConstraint(std::string description, SpatialPoint a, SpatialPoint b, double length);
+
+  std::string description() const override { return description_; }
+  ConstraintLevel level() const override { return ConstraintLevel::Position; }
+  double residual(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v) const override;
+  void jacobian_row(double time, const Eigen::VectorXd& q, RowRef row) const override;
+  double explicit_time_derivative(double, const Eigen::VectorXd&) const override { return 0.0; }
+  double acceleration_remainder(double time, const Eigen::VectorXd& q,
+                                const Eigen::VectorXd& v) const override;
+  void add_force_derivative(double time, const Eigen::VectorXd& q, double multiplier,
+                            Eigen::MatrixXd& derivative) const override;
+
+ private:
+  Eigen::MatrixXd separation_jacobian(const Eigen::VectorXd& q) const;  // d(r_b - r_a)/dq
+
+  std::string description_;
+  SpatialPoint a_;
+  SpatialPoint b_;
+  double length_;
+};
+
+// A body direction as the difference of two of its material points (tip - base).
+struct SpatialDirection {
+  SpatialPoint base;
+  SpatialPoint tip;
+  Eigen::Vector3d value(const Eigen::VectorXd& q) const {
+    return tip.position(q) - base.position(q);
+  }
+  Eigen::Vector3d rate(const Eigen::VectorXd& q, const Eigen::VectorXd& v) const {
+    return tip.velocity(q, v) - base.velocity(q, v);
+  }
+  Eigen::MatrixXd jacobian(const Eigen::VectorXd& q) const;
+  Eigen::Vector3d acceleration_remainder(const Eigen::VectorXd& q, const Eigen::VectorXd& v) const {
+    return tip.acceleration_remainder(q, v) - base.acceleration_remainder(q, v);
+  }
+  void add_load_derivative(const Eigen::VectorXd& q, const Eigen::Vector3d& force,
+                           Eigen::MatrixXd& derivative) const {
+    tip.add_load_derivative(q, force, derivative);
+    base.add_load_derivative(q, -force, derivative);
+  }
+};
+
+class PerpendicularityConstraint final : public ConstraintElement {
+ public:
+  PerpendicularityConstraint(std::string description, SpatialDirection a, SpatialDirection b);
+
+  std::string description() const override { return description_; }
+  ConstraintLevel level() const override { return ConstraintLevel::Position; }
+  double residual(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v) const override;
+  void jacobian_row(double time, const Eigen::VectorXd& q, RowRef row) const override;
+  double explicit_time_derivative(double, const Eigen::VectorXd&) const override { return 0.0; }
+  double acceleration_remainder(double time, const Eigen::VectorXd& q,
+                                const Eigen::VectorXd& v) const override;
+  void add_force_derivative(double time, const Eigen::VectorXd& q, double multiplier,
+                            Eigen::MatrixXd& derivative) const override;
+
+ private:
+  std::string description_;
+  SpatialDirection a_;
+  SpatialDirection b_;
+};
+
+}  // namespace fsi::mbd::detail
