@@ -198,6 +198,37 @@ int Model::add_spatial_distance_constraint(const SpatialPointSpec& a, const Spat
   return constraint_count() - 1;
 }
 
+int Model::add_spatial_point_force(const SpatialPointForceSpec& spec) {
+  const int index = force_element_count();
+  const std::string user = joint_name("point force", spec.name, index);
+  if (spec.point.body == kGround) {
+    throw Error("the point is on the ground, where a force does nothing", user,
+                "apply the force to a body");
+  }
+  if (!spec.force) throw Error("no force function", user, "give force(t)");
+  add_force_element(std::make_unique<detail::SpatialPointForce>(
+      user, data_->spatial_point(spec.point, user), spec.force));
+  return index;
+}
+
+int Model::add_spatial_torque(const SpatialTorqueSpec& spec) {
+  const int index = force_element_count();
+  const std::string user = joint_name("torque", spec.name, index);
+  if (spec.body == kGround) {
+    throw Error("the torque acts on the ground, where it does nothing", user,
+                "apply the torque to a body");
+  }
+  if (!spec.torque) throw Error("no torque function", user, "give torque(t)");
+  const auto& body = data_->spatial_body(spec.body, user);
+  if (dynamic_cast<const detail::RigidBody3D*>(&body) == nullptr) {
+    throw Error("'" + body.name() + "' is not a spatial rigid body", user,
+                "apply torques to RigidBody3D bodies; load a cable or a point mass with forces");
+  }
+  add_force_element(
+      std::make_unique<detail::SpatialTorque>(user, data_->offsets[spec.body] + 3, spec.torque));
+  return index;
+}
+
 int Model::dimension() const {
   return data_->stride();
 }

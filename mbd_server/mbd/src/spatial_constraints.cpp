@@ -114,4 +114,54 @@ void PerpendicularityConstraint::add_force_derivative(double, const Eigen::Vecto
   b_.add_load_derivative(q, multiplier * a_.value(q), derivative);
 }
 
+SpatialPointForce::SpatialPointForce(std::string description, SpatialPoint point,
+                                     std::function<Eigen::Vector3d(double)> force)
+    : description_(std::move(description)), point_(point), force_(std::move(force)) {}
+
+void SpatialPointForce::add_force(double time, const Eigen::VectorXd& q, const Eigen::VectorXd&,
+                                  Eigen::VectorXd& force) const {
+  Eigen::MatrixXd jacobian = Eigen::MatrixXd::Zero(3, q.size());
+  point_.add_jacobian(q, 1.0, jacobian);
+  force += jacobian.transpose() * force_(time);
+}
+
+bool SpatialPointForce::add_jacobians(double time, const Eigen::VectorXd& q, const Eigen::VectorXd&,
+                                      Eigen::MatrixXd& force_by_position, Eigen::MatrixXd&) const {
+  point_.add_load_derivative(q, force_(time), force_by_position);
+  return true;
+}
+
+namespace {
+
+Eigen::Matrix3d cross_matrix(const Eigen::Vector3d& w) {
+  Eigen::Matrix3d m;
+  m << 0.0, -w.z(), w.y(), w.z(), 0.0, -w.x(), -w.y(), w.x(), 0.0;
+  return m;
+}
+
+}  // namespace
+
+SpatialTorque::SpatialTorque(std::string description, int axes_offset,
+                             std::function<Eigen::Vector3d(double)> torque)
+    : description_(std::move(description)), axes_offset_(axes_offset), torque_(std::move(torque)) {}
+
+void SpatialTorque::add_force(double time, const Eigen::VectorXd& q, const Eigen::VectorXd&,
+                              Eigen::VectorXd& force) const {
+  const Eigen::Vector3d tau = torque_(time);
+  for (int k = 0; k < 3; ++k) {
+    const int e = axes_offset_ + 3 * k;
+    force.segment<3>(e) += 0.5 * tau.cross(q.segment<3>(e));
+  }
+}
+
+bool SpatialTorque::add_jacobians(double time, const Eigen::VectorXd&, const Eigen::VectorXd&,
+                                  Eigen::MatrixXd& force_by_position, Eigen::MatrixXd&) const {
+  const Eigen::Matrix3d block = 0.5 * cross_matrix(torque_(time));
+  for (int k = 0; k < 3; ++k) {
+    const int e = axes_offset_ + 3 * k;
+    force_by_position.block<3, 3>(e, e) += block;
+  }
+  return true;
+}
+
 }  // namespace fsi::mbd::detail

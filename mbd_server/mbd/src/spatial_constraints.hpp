@@ -9,9 +9,11 @@
 
 #include <Eigen/Dense>
 
+#include <functional>
 #include <string>
 
 #include "fsi/mbd/constraint_element.hpp"
+#include "fsi/mbd/force_element.hpp"
 #include "spatial_body.hpp"
 
 namespace fsi::mbd::detail {
@@ -99,6 +101,42 @@ class PerpendicularityConstraint final : public ConstraintElement {
   std::string description_;
   SpatialDirection a_;
   SpatialDirection b_;
+};
+
+// Time-dependent loads of spatial bodies (evaluated at the stage times).
+class SpatialPointForce final : public ForceElement {
+ public:
+  SpatialPointForce(std::string description, SpatialPoint point,
+                    std::function<Eigen::Vector3d(double)> force);
+  void add_force(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                 Eigen::VectorXd& force) const override;
+  bool add_jacobians(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                     Eigen::MatrixXd& force_by_position,
+                     Eigen::MatrixXd& force_by_velocity) const override;
+  std::string description() const override { return description_; }
+
+ private:
+  std::string description_;
+  SpatialPoint point_;
+  std::function<Eigen::Vector3d(double)> force_;
+};
+
+// On a RigidBody3D whose axes e_1..e_3 start at q(axes_offset): Q_(e_k) = 1/2 tau x e_k.
+class SpatialTorque final : public ForceElement {
+ public:
+  SpatialTorque(std::string description, int axes_offset,
+                std::function<Eigen::Vector3d(double)> torque);
+  void add_force(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                 Eigen::VectorXd& force) const override;
+  bool add_jacobians(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                     Eigen::MatrixXd& force_by_position,
+                     Eigen::MatrixXd& force_by_velocity) const override;
+  std::string description() const override { return description_; }
+
+ private:
+  std::string description_;
+  int axes_offset_;
+  std::function<Eigen::Vector3d(double)> torque_;
 };
 
 }  // namespace fsi::mbd::detail

@@ -29,6 +29,16 @@ Eigen::Matrix3d rotation(double angle, const Eigen::Vector3d& axis) {
   return Eigen::AngleAxisd(angle, axis.normalized()).toRotationMatrix();
 }
 
+template <typename Function>
+std::string error_of(Function&& function) {
+  try {
+    function();
+  } catch (const Error& error) {
+    return error.what();
+  }
+  return "no error";
+}
+
 RigidBody3DSpec top_spec() {
   RigidBody3DSpec spec;
   spec.name = "top";
@@ -346,6 +356,44 @@ TEST(MbdSpatialJoints, ConicalPendulumOfAPointMassOnARodKeepsItsCone) {
               5e-7 * 0.5 * kGravity / std::cos(theta));
 }
 
+TEST(MbdSpatialLoads, TorqueAndPointForceHaveExactDerivativesAndSpinUpAsNewtonSays) {
+  const SpatialPair pair;
+  const detail::SpatialTorque torque("t", 3,
+                                     [](double t) { return Eigen::Vector3d(0.3, -1.2, 2.0 * t); });
+  testing::expect_exact_force_derivatives(torque, 0.7, pair.q, pair.v, "spatial torque");
+  const detail::SpatialPointForce force("f",
+                                        detail::SpatialPoint(&pair.second, 12, {0.1, 0.2, 0.3}),
+                                        [](double t) { return Eigen::Vector3d(1.0, t, -t * t); });
+  testing::expect_exact_force_derivatives(force, 0.7, pair.q, pair.v, "spatial point force");
+
+  // tau = (0, 0, 6 t) about a principal axis of a turned body: J omega' = tau, omega = 3 t^2 / J.
+  Model model;
+  RigidBody3DSpec spec;
+  spec.name = "rotor";
+  spec.mass = 2.0;
+  spec.inertia = Eigen::Vector3d(2.0, 3.0, 4.0).asDiagonal();
+  spec.orientation = rotation(0.9, {1.0, 1.0, 0.0});
+  const BodyId rotor = model.add_rigid_body_3d(spec);
+  const Eigen::Vector3d axis = spec.orientation.col(2);
+  model.add_spatial_torque(
+      {"drive", rotor, [axis](double t) { return Eigen::Vector3d(6.0 * t * axis); }});
+  model.add_spatial_point_force({"push", {rotor, Eigen::Vector3d::Zero()}, [](double t) {
+                                   return Eigen::Vector3d(0.0, 4.0 * t, 0.0);
+                                 }});
+  RadauIIA integrator({.stages = 3, .newton = kTight});
+  State state = model.initial_state();
+  for (int i = 0; i < 100; ++i)
+    integrator.step(model, state, 0.01);
+  const Eigen::Vector3d omega = model.angular_velocity(state, rotor);
+  EXPECT_NEAR((omega - 3.0 / 4.0 * axis).norm(), 0.0, 1e-10);
+  // m x'' = 4 t: y = 4 t^3 / (6 m) at t = 1.
+  EXPECT_NEAR(state.q(1), 4.0 / 12.0, 1e-10);
+  EXPECT_NE(error_of([&] {
+              model.add_spatial_torque({"", kGround, nullptr});
+            }).find("ground"),
+            std::string::npos);
+}
+
 // --- the cable ---
 
 AncfCableSpec steel_cable(int elements, const Eigen::Vector3d& end) {
@@ -448,16 +496,6 @@ TEST(MbdSpatialCable, BendingFrequenciesComeInPairsAtTheReferenceValues) {
 }
 
 // --- bad input ---
-
-template <typename Function>
-std::string error_of(Function&& function) {
-  try {
-    function();
-  } catch (const Error& error) {
-    return error.what();
-  }
-  return "no error";
-}
 
 TEST(MbdSpatialBadInput, InvalidBodiesAndMixturesAreNamed) {
   {

@@ -257,6 +257,23 @@ struct RevoluteJoint3DSpec {
   Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();
 };
 
+// A world-frame force that is a function of time at a point of a spatial body (evaluated at the
+// stage times, like PointForceSpec).
+struct SpatialPointForceSpec {
+  std::string name;  // default "point force <k>"
+  SpatialPointSpec point;
+  std::function<Eigen::Vector3d(double time)> force;  // [N]
+};
+
+// A world-frame torque that is a function of time on a spatial rigid body. In natural
+// coordinates its generalised force is 1/2 tau x e_k on each axis e_k (virtual work
+// tau . delta theta with delta e_k = delta theta x e_k).
+struct SpatialTorqueSpec {
+  std::string name;  // default "torque <k>"
+  BodyId body = kGround;
+  std::function<Eigen::Vector3d(double time)> torque;  // [N m]
+};
+
 namespace detail {
 class BodyPoint;
 }
@@ -346,6 +363,11 @@ class Model {
   int add_spatial_distance_constraint(const SpatialPointSpec& a, const SpatialPointSpec& b,
                                       std::optional<double> length = std::nullopt,
                                       const std::string& name = {});
+
+  // Return the index among the force elements; throw for the ground, a missing function or a
+  // body that is not of the needed kind.
+  int add_spatial_point_force(const SpatialPointForceSpec& spec);
+  int add_spatial_torque(const SpatialTorqueSpec& spec);
 
   // 2 for planar models, 3 for spatial ones (2 while the model is empty).
   int dimension() const;
