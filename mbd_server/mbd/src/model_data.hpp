@@ -25,6 +25,10 @@ struct Marker {
   BodyId body;
   Eigen::Vector2d local;  // body frame, or world frame for kGround
   Eigen::Vector3d spatial_local = Eigen::Vector3d::Zero();
+  // A vertex of the tube around a cable (Model::add_cable_surface_marker): spatial_local is its
+  // centre-line point (s, 0, 0); these place it on the tube.
+  double tube_radius = 0.0;
+  double tube_angle = 0.0;
 };
 
 }  // namespace detail

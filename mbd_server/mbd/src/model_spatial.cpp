@@ -181,6 +181,94 @@ int Model::add_revolute_joint_3d(const RevoluteJoint3DSpec& spec) {
   return first;
 }
 
+int Model::add_fixed_joint_3d(const FixedJoint3DSpec& spec) {
+  const int first = constraint_count();
+  const std::string user = joint_name("fixed joint", spec.name, first);
+  if (spec.body == kGround) {
+    throw Error("the fixed body is the ground", user, "fix a RigidBody3D to the ground or a body");
+  }
+  data_->check_pair({spec.body, {}}, {spec.to, {}}, user);
+  auto rigid = [&](BodyId body) -> const detail::RigidBody3D* {
+    if (body == kGround) return nullptr;
+    const auto* r = dynamic_cast<const detail::RigidBody3D*>(&data_->spatial_body(body, user));
+    if (r == nullptr) {
+      throw Error("'" + data_->bodies[body]->name() + "' is not a rigid body", user,
+                  "fix RigidBody3D bodies (or to the ground)");
+    }
+    return r;
+  };
+  const detail::RigidBody3D* fixed = rigid(spec.body);
+  const detail::RigidBody3D* holder = rigid(spec.to);
+  // The body's centre and axes in the frame of `to` (the world for the ground).
+  const Eigen::Matrix3d to_frame =
+      holder != nullptr ? Eigen::Matrix3d(holder->spec().orientation) : Eigen::Matrix3d::Identity();
+  const Eigen::Vector3d origin =
+      holder != nullptr ? holder->spec().position : Eigen::Vector3d::Zero();
+  const Eigen::Vector3d centre = to_frame.transpose() * (fixed->spec().position - origin);
+  const Eigen::Matrix3d axes = to_frame.transpose() * fixed->spec().orientation;
+  const detail::SpatialPoint own = data_->spatial_point({spec.body, Eigen::Vector3d::Zero()}, user);
+  const detail::SpatialPoint held = data_->spatial_point({spec.to, centre}, user);
+  for (int axis = 0; axis < 3; ++axis) {
+    data_->constraints.push_back(
+        std::make_unique<detail::SpatialPointConstraint>(user + kAxisNames[axis], own, held, axis));
+  }
+  auto body_axis = [&](int k) {
+    return detail::SpatialDirection{
+        own, data_->spatial_point({spec.body, Eigen::Vector3d::Unit(k)}, user)};
+  };
+  auto held_axis = [&](int k) {
+    return detail::SpatialDirection{held,
+                                    data_->spatial_point({spec.to, centre + axes.col(k)}, user)};
+  };
+  static constexpr int kPairs[3][2] = {{0, 1}, {0, 2}, {1, 2}};
+  for (const auto& pair : kPairs) {
+    data_->constraints.push_back(std::make_unique<detail::PerpendicularityConstraint>(
+        user + " (e" + std::to_string(pair[0] + 1) + " . e" + std::to_string(pair[1] + 1) + "')",
+        body_axis(pair[0]), held_axis(pair[1])));
+  }
+  return first;
+}
+
+int Model::add_cable_surface_marker(BodyId cable_id, double s, double angle, double radius) {
+  (void)cable(cable_id);
+  if (!std::isfinite(angle) || !(radius >= 0.0) || !std::isfinite(radius)) {
+    throw Error("the tube angle or radius is not finite (or the radius negative)",
+                "a tube vertex on '" + data_->bodies[cable_id]->name() + "'",
+                "give a finite angle and a non-negative radius");
+  }
+  const int marker = add_spatial_marker(cable_id, {s, 0.0, 0.0});
+  data_->markers[marker].tube_radius = radius;
+  data_->markers[marker].tube_angle = angle;
+  return marker;
+}
+
+Eigen::Matrix<double, 6, 1> Model::spatial_joint_reaction(const State& state, int first_row,
+                                                          int rows, BodyId body) const {
+  const auto& spatial = data_->spatial_body(body, "a joint reaction");
+  FSI_ASSERT(first_row >= 0 && rows >= 0 && first_row + rows <= constraint_count(),
+             "joint rows out of range");
+  const bool rigid = dynamic_cast<const detail::RigidBody3D*>(&spatial) != nullptr;
+  if (!rigid && dynamic_cast<const detail::PointMass3D*>(&spatial) == nullptr) {
+    throw Error("'" + spatial.name() + "' is neither a spatial rigid body nor a point mass",
+                "a joint reaction", "measure a RigidBody3D or a PointMass");
+  }
+  Eigen::MatrixXd jacobian;
+  constraint_jacobian(state.time, state.q, jacobian);
+  const Eigen::VectorXd generalised =
+      -jacobian.middleRows(first_row, rows).transpose() * state.lambda.segment(first_row, rows);
+  const auto own = data_->segment(generalised, body);
+  const auto q = data_->segment(state.q, body);
+  Eigen::Matrix<double, 6, 1> reaction = Eigen::Matrix<double, 6, 1>::Zero();
+  reaction.head<3>() = own.head<3>();
+  if (rigid) {
+    for (int k = 0; k < 3; ++k) {
+      reaction.tail<3>() += Eigen::Vector3d(q.segment<3>(3 + 3 * k))
+                                .cross(Eigen::Vector3d(own.segment<3>(3 + 3 * k)));
+    }
+  }
+  return reaction;
+}
+
 int Model::add_spatial_distance_constraint(const SpatialPointSpec& a, const SpatialPointSpec& b,
                                            std::optional<double> length, const std::string& name) {
   const std::string user = joint_name("distance constraint", name, constraint_count());
@@ -273,8 +361,21 @@ Eigen::Vector3d Model::spatial_marker_position(const State& state, int marker) c
   data_->check_marker(marker);
   const detail::Marker& m = data_->markers[marker];
   if (m.body == kGround) return m.spatial_local;
-  return data_->spatial_body(m.body, "a marker")
-      .spatial_position(data_->segment(state.q, m.body), m.spatial_local);
+  const auto& body = data_->spatial_body(m.body, "a marker");
+  const auto q = data_->segment(state.q, m.body);
+  const Eigen::Vector3d centre = body.spatial_position(q, m.spatial_local);
+  if (m.tube_radius == 0.0) return centre;
+  // The initial normals turned by the rotation that takes the initial tangent t0 to the current
+  // t: R v = c v + w x v + w (w . v) / (1 + c), w = t0 x t, c = t0 . t (regular unless t = -t0).
+  const auto& cable = dynamic_cast<const detail::AncfCable3D&>(body);
+  const Eigen::Vector3d t0 = (cable.spec().end - cable.spec().start).normalized();
+  const Eigen::Vector3d t = cable.tangent(q, m.spatial_local.x());
+  const auto [n1, n2] = normals(t0);
+  const Eigen::Vector3d offset = std::cos(m.tube_angle) * n1 + std::sin(m.tube_angle) * n2;
+  const Eigen::Vector3d w = t0.cross(t);
+  const double c = t0.dot(t);
+  const Eigen::Vector3d turned = c * offset + w.cross(offset) + w * w.dot(offset) / (1.0 + c);
+  return centre + m.tube_radius * turned;
 }
 
 Eigen::Vector3d Model::spatial_marker_velocity(const State& state, int marker) const {

@@ -394,6 +394,55 @@ TEST(MbdSpatialLoads, TorqueAndPointForceHaveExactDerivativesAndSpinUpAsNewtonSa
             std::string::npos);
 }
 
+TEST(MbdSpatialJoints, FixedJointHoldsABodyAndReportsTheForceAndTorqueItExerts) {
+  // Fixed to the ground, the joint balances gravity and a point load off the centre (reaction
+  // -(weight + load), torque -(arm x load)); fixed to a spinning body, a body turns with it.
+  Model model;
+  model.set_spatial_gravity({0.0, 0.0, -kGravity});
+  RigidBody3DSpec spec = top_spec();
+  spec.velocity.setZero();
+  spec.angular_velocity.setZero();
+  const BodyId body = model.add_rigid_body_3d(spec);
+  const int first = model.add_fixed_joint_3d({"weld", body, kGround});
+  const Eigen::Vector3d local(0.2, -0.1, 0.3);
+  model.add_spatial_marker(body, local);
+  const Eigen::Vector3d load(1.0, -2.0, 0.5);
+  model.set_point_loads(std::vector<double>{load.x(), load.y(), load.z()});
+  State state = model.initial_state();
+  RadauIIA integrator({.stages = 3, .newton = kTight});
+  for (int i = 0; i < 10; ++i)
+    integrator.step(model, state, 1e-2);
+  const Eigen::Matrix<double, 6, 1> reaction = model.spatial_joint_reaction(state, first, 6, body);
+  const Eigen::Vector3d weight(0.0, 0.0, -spec.mass * kGravity);
+  const Eigen::Vector3d arm = spec.orientation * local;
+  EXPECT_LT((reaction.head<3>() + weight + load).norm(), 1e-9);
+  EXPECT_LT((reaction.tail<3>() + arm.cross(load)).norm(), 1e-9);
+  std::printf("fixed joint: force off -(weight + load) by %.2e N, torque off by %.2e N m\n",
+              (reaction.head<3>() + weight + load).norm(),
+              (reaction.tail<3>() + arm.cross(load)).norm());
+  EXPECT_LT((state.q.head<3>() - spec.position).norm(), 1e-12);
+  EXPECT_EQ(model.constraint_description(first + 5), "fixed joint 'weld' (e2 . e3')");
+
+  Model pair;
+  const BodyId holder = pair.add_rigid_body_3d(top_spec());
+  RigidBody3DSpec second = top_spec();
+  second.name = "second";
+  second.position += Eigen::Vector3d(0.5, 0.0, 0.0);
+  second.velocity =
+      top_spec().velocity + top_spec().angular_velocity.cross(Eigen::Vector3d(0.5, 0.0, 0.0));
+  const BodyId carried = pair.add_rigid_body_3d(second);
+  pair.add_fixed_joint_3d({"", carried, holder});
+  State moving = pair.initial_state();
+  for (int i = 0; i < 100; ++i)
+    integrator.step(pair, moving, 1e-2);
+  // The carried body turns with the holder: same orientation change, same relative offset.
+  const Eigen::Matrix3d turn =
+      pair.orientation(moving, holder) * top_spec().orientation.transpose();
+  EXPECT_LT((pair.orientation(moving, carried) - turn * second.orientation).norm(), 1e-9);
+  const Eigen::Vector3d offset = moving.q.segment<3>(12) - moving.q.head<3>();
+  EXPECT_LT((offset - turn * Eigen::Vector3d(0.5, 0.0, 0.0)).norm(), 1e-9);
+}
+
 // --- the cable ---
 
 AncfCableSpec steel_cable(int elements, const Eigen::Vector3d& end) {
@@ -406,6 +455,37 @@ AncfCableSpec steel_cable(int elements, const Eigen::Vector3d& end) {
   spec.bending_stiffness = 2.07e11 * 1e-4 / 12.0;
   spec.mass_per_length = 7800.0 * 0.01;
   return spec;
+}
+
+TEST(MbdSpatialCable, TubeVerticesStayOnTheTubeAroundTheBentCentreLine) {
+  Model model;
+  const double length = 2.0, radius = 0.05;
+  const BodyId cable = model.add_ancf_cable(steel_cable(4, {length, 0.0, 0.0}));
+  model.add_cable_clamp(cable, 0);
+  std::vector<int> vertices;
+  for (double s : {0.3, 1.1, 2.0}) {
+    for (int k = 0; k < 6; ++k)
+      vertices.push_back(
+          model.add_cable_surface_marker(cable, s, k * std::numbers::pi / 3, radius));
+  }
+  const int tip = model.add_spatial_marker(cable, {length, 0.0, 0.0});
+  std::vector<double> loads(3 * model.marker_count(), 0.0);
+  loads[3 * tip + 1] = 1e6;  // bends the cable in the x-y plane, well past small deflection
+  loads[3 * tip + 2] = -5e5;
+  model.set_point_loads(loads);
+  const State bent = solve_static(model, model.initial_state()).state;
+  for (int k = 0; k < static_cast<int>(vertices.size()); ++k) {
+    const double s = model.spatial_marker_local_coordinates(vertices[k]).x();
+    const Eigen::Vector3d centre = model.spatial_point_position(bent, {cable, {s, 0.0, 0.0}});
+    const Eigen::Vector3d offset = model.spatial_marker_position(bent, vertices[k]) - centre;
+    const double h = 1e-6;
+    const Eigen::Vector3d ahead =
+        model.spatial_point_position(bent, {cable, {std::max(0.0, s - h), 0.0, 0.0}});
+    const Eigen::Vector3d tangent = (centre - ahead).normalized();
+    EXPECT_NEAR(offset.norm(), radius, 1e-12) << k;
+    EXPECT_NEAR(offset.normalized().dot(tangent), 0.0, 1e-6) << k;
+  }
+  EXPECT_GT(std::abs(model.spatial_marker_position(bent, tip).y()), 0.5);
 }
 
 TEST(MbdSpatialCable, ElasticForceIsMinusTheGradientOfTheStrainEnergyWithExactDerivatives) {

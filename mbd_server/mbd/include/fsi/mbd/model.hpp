@@ -257,6 +257,16 @@ struct RevoluteJoint3DSpec {
   Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();
 };
 
+// Fixed joint in space: `body` (a RigidBody3D) keeps its initial position and orientation
+// relative to `to` (another RigidBody3D, or kGround). Six rows: x, y, z of the body's centre of
+// mass seen from `to` (spherical rows), then e1 . e2', e1 . e3', e2 . e3' with e_k' the body's
+// initial axes fixed in `to` (perpendicularity rows).
+struct FixedJoint3DSpec {
+  std::string name;  // in messages; default "fixed joint <row>"
+  BodyId body = kGround;
+  BodyId to = kGround;
+};
+
 // A world-frame force that is a function of time at a point of a spatial body (evaluated at the
 // stage times, like PointForceSpec).
 struct SpatialPointForceSpec {
@@ -359,6 +369,13 @@ class Model {
   int add_spherical_joint(const SpatialPointSpec& a, const SpatialPointSpec& b,
                           const std::string& name = {});
   int add_revolute_joint_3d(const RevoluteJoint3DSpec& spec);
+  int add_fixed_joint_3d(const FixedJoint3DSpec& spec);
+  // A boundary vertex on the tube of radius `radius` around a cable: the centre-line point at s
+  // plus radius (cos(angle) n1 + sin(angle) n2), (n1, n2) the normals of the straight initial
+  // cable carried along by the rotation that turns the initial tangent into the current one (the
+  // cable has no torsion). Its velocity is the centre line's and its point load acts on the
+  // centre line (the moment radius x f of a thin tube is neglected). Returns the marker index.
+  int add_cable_surface_marker(BodyId cable, double s, double angle, double radius);
   // Massless rod |r_b - r_a| = length (default: the initial distance), lambda the rod force.
   int add_spatial_distance_constraint(const SpatialPointSpec& a, const SpatialPointSpec& b,
                                       std::optional<double> length = std::nullopt,
@@ -392,6 +409,11 @@ class Model {
   // Resultant of the point loads on a spatial body: force (x, y, z), then the torque about its
   // centre of mass.
   Eigen::Matrix<double, 6, 1> spatial_point_load_resultant(const State& state, BodyId body) const;
+  // The force and the torque about the centre of mass that the rows first_row .. first_row +
+  // rows - 1 exert on a spatial rigid body or point mass: its part of -G^T lambda (force: the
+  // centre-of-mass components; torque: sum_k e_k x Q_(e_k)).
+  Eigen::Matrix<double, 6, 1> spatial_joint_reaction(const State& state, int first_row, int rows,
+                                                     BodyId body) const;
 
   // --- structure ---
   int coordinate_count() const;
