@@ -328,9 +328,9 @@ int main(int argc, char** argv) {
     if (diagnostic.severity == fsi::scene::Severity::Warning)
       options.warnings.push_back(diagnostic.text());
   }
-  if (mbd_only && scene.dimension == 3) {
+  if (mbd_only && scene.model.coordinate_count() == 0) {
     std::fprintf(stderr,
-                 "error: --mbd-only runs the planar multibody system; the 3D scene %s has none "
+                 "error: --mbd-only runs the multibody system, and the scene %s has no bodies "
                  "(static ground only)\n  fix: run it coupled (without --mbd-only)\n",
                  scene.file.c_str());
     return 2;

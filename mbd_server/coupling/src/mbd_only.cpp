@@ -50,7 +50,7 @@ std::string non_finite_entry(const mbd::Model& model, const mbd::State& state) {
   }
   for (int i = 0; i < state.q.size(); ++i) {
     if (!std::isfinite(state.q(i)) || !std::isfinite(state.v(i))) {
-      return "coordinate " + std::to_string(i);
+      return model.coordinate_description(i);
     }
   }
   for (int k = 0; k < model.constraint_count(); ++k) {

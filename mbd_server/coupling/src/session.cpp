@@ -197,16 +197,8 @@ class Session {
     mesh.dynamic_vertex_count = static_cast<std::uint32_t>(boundary.dynamic_vertex_count);
     mesh.refinement_option = static_cast<std::uint32_t>(boundary.refinement_option);
     mesh.refinement_resolution = boundary.refinement_resolution;
-    if (boundary.dimension == 3) {
-      // Static ground triangles only: their positions are sent once, here.
-      mesh.positions = boundary.static_positions;
-      mesh.velocities.assign(mesh.positions.size(), 0.0);
-    } else {
-      mesh.positions.resize(2 * boundary.vertex_count);
-      mesh.velocities.resize(2 * boundary.vertex_count);
-      scene_.model.marker_positions(state_, mesh.positions);
-      scene_.model.marker_velocities(state_, mesh.velocities);
-    }
+    // Every vertex; the static ones are sent only here, the dynamic ones with every Step.
+    scene::boundary_state(boundary, scene_.model, state_, mesh.positions, mesh.velocities);
     mesh.element_vertices = boundary.elements();
     channel_->send(mesh);
   }
@@ -300,10 +292,11 @@ class Session {
     applied_total_force_ = {forces.diagnostics.force_on_structure[0],
                             forces.diagnostics.force_on_structure[1],
                             forces.diagnostics.force_on_structure[2]};
-    loads_.assign(dimension * scene_.boundary.vertex_count, 0.0);
+    // One load per marker: in 2D every vertex is a marker (the ground ones carry none), in 3D
+    // only the dynamic vertices are.
+    loads_.assign(dimension * static_cast<std::size_t>(scene_.model.marker_count()), 0.0);
     std::copy(forces.forces.begin(), forces.forces.end(), loads_.begin());
-    // 3D: every vertex is static ground, the (empty) planar model takes no loads.
-    if (scene_.dimension == 2) scene_.model.set_point_loads(loads_);
+    scene_.model.set_point_loads(loads_);
 
     const auto& d = forces.diagnostics;
     timings_.client_liggghts += d.seconds_liggghts;
@@ -346,30 +339,9 @@ class Session {
     std::vector<double> values;
     const mbd::Model& model = scene_.model;
     for (const auto& sensor : scene_.sensors) {
-      const int component = static_cast<int>(sensor.component);
-      switch (sensor.type) {
-        case scene::SensorType::Position:
-          values.push_back(model.coordinate(state_, sensor.body, sensor.component));
-          break;
-        case scene::SensorType::Velocity:
-          values.push_back(model.velocity(state_, sensor.body, sensor.component));
-          break;
-        case scene::SensorType::FluidForce:
-          values.push_back(model.point_load_resultant(state_, sensor.body)(component));
-          break;
-        case scene::SensorType::ConstraintForce:
-          values.push_back(model.constraint_force(state_, sensor.body, sensor.component));
-          break;
-        case scene::SensorType::TotalFluidForce:
-          values.push_back(applied_total_force_[static_cast<std::size_t>(sensor.axis)]);
-          break;
-        case scene::SensorType::JointForce:
-        case scene::SensorType::SpringForce:
-        case scene::SensorType::KineticEnergy:
-        case scene::SensorType::PotentialEnergy:
-          values.push_back(scene::structure_sensor_value(model, sensor, state_));
-          break;
-      }
+      values.push_back(sensor.type == scene::SensorType::TotalFluidForce
+                           ? applied_total_force_[static_cast<std::size_t>(sensor.axis)]
+                           : scene::structure_sensor_value(model, sensor, state_));
     }
     return values;
   }
@@ -379,11 +351,11 @@ class Session {
     timings_.coupled.start();
     const double dt = scene_.solver.step_size;
     const auto steps = static_cast<std::uint64_t>(std::llround(scene_.solver.end_time / dt));
-    // 3D: no markers (static ground only), every Step carries zero dynamic vertices.
-    const bool planar = scene_.dimension == 2;
-    const std::size_t dynamic_values = planar ? 2 * scene_.boundary.dynamic_vertex_count : 0;
-    std::vector<double> positions(planar ? 2 * scene_.boundary.vertex_count : 0),
-        velocities(positions.size());
+    const std::size_t dynamic_values =
+        static_cast<std::size_t>(scene_.dimension) * scene_.boundary.dynamic_vertex_count;
+    // A model without bodies (a static 3D container) has nothing to integrate.
+    const bool structure = scene_.model.coordinate_count() > 0;
+    std::vector<double> positions, velocities;
     spdlog::info("coupled phase: {} steps of {:.3g} s to t = {:.6g} s", steps, dt, steps * dt);
     coupled_begin_ = std::chrono::steady_clock::now();
     last_log_ = last_live_ = coupled_begin_;
@@ -397,7 +369,7 @@ class Session {
       auto computing = heartbeat_->busy();
       {
         ScopedTimer timer(timings_.mbd);
-        if (planar) integrator_->step(scene_.model, state_, dt);
+        if (structure) integrator_->step(scene_.model, state_, dt);
         state_.time = static_cast<double>(n) * dt;  // no drift of the clock over many steps
       }
       {
@@ -406,10 +378,7 @@ class Session {
         if (n % static_cast<std::uint64_t>(scene_.output.sensor_every_steps) == 0)
           sensors_->write(state_.time, sensor_values());
       }
-      if (planar) {
-        scene_.model.marker_positions(state_, positions);
-        scene_.model.marker_velocities(state_, velocities);
-      }
+      scene::boundary_state(scene_.boundary, scene_.model, state_, positions, velocities);
       protocol::Step step;
       step.step = n;
       step.time = state_.time;
@@ -549,17 +518,14 @@ class Session {
     manifest["parameters"] = scene::to_json(scene_.parameters);
     manifest["parameters_flat"] = scene::flatten_numbers(scene_.parameters);
     json bodies = json::array();
-    for (int b = 0; b < scene_.model.body_count(); ++b) {
-      if (scene_.model.is_beam(b)) {
-        const auto& beam = scene_.model.beam(b);
-        bodies.push_back({{"name", beam.name},
-                          {"type", "ancf_beam"},
-                          {"mass", beam.mass_per_length * (beam.end - beam.start).norm()},
-                          {"elements", beam.element_count}});
-        continue;
-      }
-      const auto& body = scene_.model.body(b);
-      bodies.push_back({{"name", body.name}, {"mass", body.mass}, {"inertia", body.inertia}});
+    const mbd::Model& model = scene_.model;
+    for (int b = 0; b < model.body_count(); ++b) {
+      json body = {
+          {"name", model.body_name(b)}, {"type", model.body_kind(b)}, {"mass", model.body_mass(b)}};
+      if (model.body_kind(b) == "rigid_body_2d") body["inertia"] = model.body(b).inertia;
+      if (model.is_beam(b)) body["elements"] = model.beam(b).element_count;
+      if (model.body_kind(b) == "ancf_cable") body["elements"] = model.cable(b).element_count;
+      bodies.push_back(body);
     }
     const bool spatial = scene_.dimension == 3;
     const json gravity = spatial ? json{scene_.gravity[0], scene_.gravity[1], scene_.gravity[2]}

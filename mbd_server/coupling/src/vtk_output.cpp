@@ -42,14 +42,8 @@ void VtkOutput::write(const ParticleSnapshot& particles, const mbd::Model& model
   fluid.pressure = particles.pressure;
   fluid_.write(particles.step, particles.time, output::encode_particles(fluid));
 
-  const auto dimension = static_cast<std::size_t>(boundary.dimension);
-  std::vector<double> positions(dimension * boundary.vertex_count), velocities(positions.size());
-  if (boundary.dimension == 3) {
-    positions = boundary.static_positions;  // every 3D vertex is static (at rest)
-  } else {
-    model.marker_positions(state, positions);
-    model.marker_velocities(state, velocities);
-  }
+  std::vector<double> positions, velocities;
+  scene::boundary_state(boundary, model, state, positions, velocities);
   const std::vector<double> no_forces(positions.size(), 0.0);
   output::BoundaryFrame mesh;
   mesh.dimension = boundary.dimension;
@@ -65,7 +59,7 @@ void VtkOutput::write(const ParticleSnapshot& particles, const mbd::Model& model
   output::BodyFrame frames;
   frames.time = state.time;
   std::vector<double> body_positions, body_velocities, angles;
-  for (mbd::BodyId b = 0; b < model.body_count(); ++b) {
+  for (mbd::BodyId b = 0; model.dimension() == 2 && b < model.body_count(); ++b) {
     if (model.is_beam(b)) continue;  // no rigid frame: its centre line goes to beams.pvd
     frames.names.push_back(model.body(b).name);
     body_positions.push_back(model.coordinate(state, b, mbd::Coordinate::X));
@@ -87,7 +81,7 @@ void VtkOutput::write_centre_lines(std::uint64_t step, const mbd::Model& model,
   lines.time = state.time;
   std::vector<std::size_t> counts;
   std::vector<double> positions, velocities;
-  for (mbd::BodyId b = 0; b < model.body_count(); ++b) {
+  for (mbd::BodyId b = 0; model.dimension() == 2 && b < model.body_count(); ++b) {
     if (!model.is_beam(b)) continue;
     const mbd::AncfBeamSpec& beam = model.beam(b);
     const double length = (beam.end - beam.start).norm();

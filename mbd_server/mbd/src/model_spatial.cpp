@@ -317,6 +317,33 @@ int Model::add_spatial_torque(const SpatialTorqueSpec& spec) {
   return index;
 }
 
+const std::string& Model::body_name(BodyId body) const {
+  data_->check_body(body, "a body lookup");
+  return data_->bodies[body]->name();
+}
+
+std::string Model::body_kind(BodyId body) const {
+  data_->check_body(body, "a body lookup");
+  const detail::Body* b = data_->bodies[body].get();
+  if (dynamic_cast<const detail::RigidBody2D*>(b)) return "rigid_body_2d";
+  if (dynamic_cast<const detail::AncfBeam2D*>(b)) return "ancf_beam";
+  if (dynamic_cast<const detail::RigidBody3D*>(b)) return "rigid_body_3d";
+  if (dynamic_cast<const detail::PointMass3D*>(b)) return "point_mass";
+  return "ancf_cable";
+}
+
+double Model::body_mass(BodyId body) const {
+  data_->check_body(body, "a body lookup");
+  const detail::Body* b = data_->bodies[body].get();
+  if (const auto* r = dynamic_cast<const detail::RigidBody2D*>(b)) return r->spec().mass;
+  if (const auto* r = dynamic_cast<const detail::RigidBody3D*>(b)) return r->spec().mass;
+  if (const auto* p = dynamic_cast<const detail::PointMass3D*>(b)) return p->spec().mass;
+  if (const auto* beam = dynamic_cast<const detail::AncfBeam2D*>(b))
+    return beam->spec().mass_per_length * beam->length();
+  const auto& c = dynamic_cast<const detail::AncfCable3D&>(*b);
+  return c.spec().mass_per_length * c.length();
+}
+
 int Model::dimension() const {
   return data_->stride();
 }

@@ -14,6 +14,7 @@
 #include "fsi/common/error.hpp"
 #include "fsi/scene/fluid_region.hpp"
 #include "scene_elements.hpp"
+#include "scene_spatial.hpp"
 
 namespace fsi::scene {
 namespace {
@@ -334,7 +335,8 @@ BlockSpec make_schema() {
   root.user_blocks_allowed = true;
   root.parameters = {with_default(
       integer("dimension",
-              "2: planar scene; 3: static Ground STL meshes and a 3D fluid (no bodies yet)")
+              "2: planar scene (RigidBody2D, AncfBeam2D, polyline meshes); 3: spatial scene "
+              "(RigidBody3D, PointMass, AncfCable3D, STL meshes, a 3D fluid)")
           .between(2, 3),
       number_value(2))};
   root.blocks = {solver,
@@ -362,6 +364,11 @@ BlockSpec make_schema() {
   const auto sensors = root.blocks.insert(after_springs, elements.begin(), elements.end()) +
                        static_cast<std::ptrdiff_t>(elements.size());
   root.blocks.insert(sensors, sensor);
+  const auto spatial = detail::spatial_block_specs();
+  const auto after_beam = std::find_if(root.blocks.begin(), root.blocks.end(),
+                                       [](const BlockSpec& b) { return b.name == "AncfBeam2D"; }) +
+                          1;
+  root.blocks.insert(after_beam, spatial.begin(), spatial.end());
   return root;
 }
 
@@ -646,11 +653,14 @@ Scene build_scene(const std::string& path, const std::vector<Override>& override
     if (!gravity) return;
     for (std::size_t k = 0; k < gravity->size(); ++k)
       scene.gravity[k] = (*gravity)[k];
-    model.set_gravity({scene.gravity[0], scene.gravity[1]});
+    if (spatial) {
+      model.set_spatial_gravity({scene.gravity[0], scene.gravity[1], scene.gravity[2]});
+    } else {
+      model.set_gravity({scene.gravity[0], scene.gravity[1]});
+    }
   });
   const fs::path scene_dir = fs::path(path).parent_path();
   if (spatial) {
-    // 3D multibody bodies do not exist yet: a 3D scene is static ground and fluid.
     for (const char* planar :
          {"RigidBody2D", "AncfBeam2D", "CoordinateConstraint", "VelocityConstraint", "BeamClamp",
           "RevoluteJoint", "DistanceConstraint", "SpringDamper", "PrismaticJoint", "Clamp",
@@ -661,8 +671,16 @@ Scene build_scene(const std::string& path, const std::vector<Override>& override
             {element.location(),
              std::string(planar) + " is a planar (2D) element: planar bodies and their joints "
                                    "need dimension = 2",
-             "set dimension = 2, or remove it (3D scenes hold static Ground { Mesh { stl = ... } "
-             "} meshes and fluid only)"});
+             "set dimension = 2, or use its spatial counterpart (RigidBody3D, AncfCable3D, "
+             "SphericalJoint, RevoluteJoint3D, FixedJoint3D, DistanceConstraint3D, CableClamp)"});
+      }
+    }
+  } else {
+    for (const std::string& block_name : detail::spatial_block_names()) {
+      for (const View& element : root.blocks(block_name)) {
+        problems.push_back({element.location(),
+                            block_name + " is a spatial (3D) element: it needs dimension = 3",
+                            "set dimension = 3 at the top of the scene, or use a planar element"});
       }
     }
   }
@@ -685,7 +703,9 @@ Scene build_scene(const std::string& path, const std::vector<Override>& override
     const double scale = mesh.number("scale");
     const auto offset = mesh.vector("offset");
     auto& boundary = scene.boundary;
-    const auto first = static_cast<std::uint32_t>(boundary.static_positions.size() / 3);
+    // Ground vertices follow the bodies' (dynamic) ones.
+    const auto first = static_cast<std::uint32_t>(boundary.dynamic_vertex_count +
+                                                  boundary.static_positions.size() / 3);
     for (const Point3& vertex : surface->vertices) {
       for (std::size_t k = 0; k < 3; ++k)
         boundary.static_positions.push_back(scale * vertex[k] + offset[k]);
@@ -797,6 +817,21 @@ Scene build_scene(const std::string& path, const std::vector<Override>& override
       }
     });
   }
+  if (spatial) {
+    detail::SpatialBodyBuilder bodies{
+        model,
+        scene.boundary,
+        [&](const SourceLocation& where, const std::function<void()>& step) { guard(where, step); },
+        [&](const SourceLocation& where, const std::string& message, const std::string& fix) {
+          problems.push_back({where, message, fix});
+        },
+        [&](const View& mesh, std::string_view key) {
+          return read_scene_stl(mesh, key, scene_dir, problems);
+        },
+        skipped_bodies,
+        unnamed_body_skipped};
+    detail::build_spatial_bodies(root, bodies);
+  }
   scene.boundary.dynamic_vertex_count = static_cast<std::size_t>(model.marker_count());
   for (const View& ground : root.blocks("Ground")) {
     for (const View& mesh : ground.blocks("Mesh")) {
@@ -809,8 +844,9 @@ Scene build_scene(const std::string& path, const std::vector<Override>& override
       });
     }
   }
-  scene.boundary.vertex_count = spatial ? scene.boundary.static_positions.size() / 3
-                                        : static_cast<std::size_t>(model.marker_count());
+  scene.boundary.vertex_count =
+      static_cast<std::size_t>(model.marker_count()) +
+      (spatial ? scene.boundary.static_positions.size() / 3 : std::size_t{0});
   guard(root.location(), [&] {
     const View coupling = root.block("Coupling");
     scene.boundary.refinement_resolution = coupling.number("refinement_resolution");
@@ -927,7 +963,92 @@ Scene build_scene(const std::string& path, const std::vector<Override>& override
       detail::register_force_element(elements, f, model.force_element_count() - 1, false);
     });
   }
-  if (!spatial) detail::build_elements(root, elements);
+  if (spatial) {
+    detail::build_spatial_connectors(root, elements);
+  } else {
+    detail::build_elements(root, elements);
+  }
+  // A sensor of a 3D scene: components x, y, z of the centre of mass (position, velocity of a
+  // RigidBody3D or PointMass) or of a force (fluid_force on any spatial body, joint_force on
+  // its body_a, total_fluid_force), or an energy.
+  auto build_spatial_sensor = [&](const View& s, const std::string& type,
+                                  const std::string& component, SensorSpec& sensor) {
+    if (sensor.type == SensorType::ConstraintForce || sensor.type == SensorType::SpringForce) {
+      problems.push_back({s.location("type"), "a " + type + " sensor has no 3D form yet",
+                          "use joint_force (the force a named joint exerts) or fluid_force"});
+      return;
+    }
+    const bool energy =
+        sensor.type == SensorType::KineticEnergy || sensor.type == SensorType::PotentialEnergy;
+    const bool on_body = sensor.type == SensorType::Position ||
+                         sensor.type == SensorType::Velocity ||
+                         sensor.type == SensorType::FluidForce;
+    bool complete = true;
+    auto check_key = [&](const char* key, bool wanted, const std::string& example) {
+      if (wanted && !s.has(key)) {
+        problems.push_back({s.location("name"), "sensor '" + sensor.name + "' needs " + key,
+                            std::string("add ") + key + " = " + example});
+        complete = false;
+      } else if (!wanted && s.has(key)) {
+        problems.push_back({s.location(key), "a " + type + " sensor takes no " + key, "remove it"});
+        complete = false;
+      }
+    };
+    check_key("body", on_body, "\"...\"");
+    check_key("joint", sensor.type == SensorType::JointForce, "\"...\" (a joint's name)");
+    check_key("element", false, "");
+    check_key("component", !energy, "\"x\"");
+    if (!complete) return;
+    if (!energy) {
+      if (component != "x" && component != "y" && component != "z") {
+        problems.push_back(
+            {s.location("component"), "a 3D " + type + " sensor has components x, y or z",
+             "write x, y or z (torques and angles of 3D bodies are not sensors yet)"});
+        return;
+      }
+      sensor.axis = component == "z" ? 2 : component == "y" ? 1 : 0;
+    }
+    sensor.unit = sensor.type == SensorType::Position   ? "m"
+                  : sensor.type == SensorType::Velocity ? "m/s"
+                  : energy                              ? "J"
+                                                        : "N";
+    if (on_body) sensor.body = find_body(s, "body");
+    if ((sensor.type == SensorType::Position || sensor.type == SensorType::Velocity) &&
+        model.is_cable(sensor.body)) {
+      problems.push_back({s.location("body"),
+                          "a " + type + " sensor reads a centre of mass, and '" + s.string("body") +
+                              "' is an AncfCable3D",
+                          "use type = \"fluid_force\" on a cable"});
+      return;
+    }
+    if (sensor.type == SensorType::JointForce) {
+      const auto found = named.joints.find(s.string("joint"));
+      if (found == named.joints.end()) {
+        problems.push_back({s.location("joint"), "no joint named '" + s.string("joint") + "'",
+                            "give the joint block name = \"" + s.string("joint") + "\""});
+        return;
+      }
+      sensor.body = found->second.body;
+      if (sensor.body == mbd::kGround || model.is_cable(sensor.body)) {
+        problems.push_back(
+            {s.location("joint"),
+             "joint '" + s.string("joint") + "' has no rigid body or point mass as its first body",
+             "give the joint a RigidBody3D or PointMass as body_a (body of a "
+             "FixedJoint3D)"});
+        return;
+      }
+      sensor.first_row = found->second.first_row;
+      sensor.rows = found->second.rows;
+    }
+    for (const auto& other : scene.sensors) {
+      if (other.name == sensor.name) {
+        problems.push_back(
+            {s.location("name"), "a second sensor is named '" + sensor.name + "'", "rename it"});
+        return;
+      }
+    }
+    scene.sensors.push_back(sensor);
+  };
   for (const View& s : root.blocks("Sensor")) {
     guard(s.location(), [&] {
       SensorSpec sensor;
@@ -943,10 +1064,8 @@ Scene build_scene(const std::string& path, const std::vector<Override>& override
                     : type == "kinetic_energy"   ? SensorType::KineticEnergy
                     : type == "potential_energy" ? SensorType::PotentialEnergy
                                                  : SensorType::TotalFluidForce;
-      if (spatial && sensor.type != SensorType::TotalFluidForce) {
-        problems.push_back({s.location("type"),
-                            "a " + type + " sensor measures a body; 3D scenes have no bodies yet",
-                            "use type = \"total_fluid_force\" (component x, y or z)"});
+      if (spatial) {
+        build_spatial_sensor(s, type, component, sensor);
         return;
       }
       if (component == "z" && !spatial) {

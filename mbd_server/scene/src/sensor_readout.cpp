@@ -9,6 +9,22 @@ namespace fsi::scene {
 double structure_sensor_value(const mbd::Model& model, const SensorSpec& sensor,
                               const mbd::State& state) {
   const int component = static_cast<int>(sensor.component);
+  if (model.dimension() == 3) {
+    const mbd::SpatialPointSpec centre{sensor.body, Eigen::Vector3d::Zero()};
+    switch (sensor.type) {
+      case SensorType::Position:
+        return model.spatial_point_position(state, centre)(sensor.axis);
+      case SensorType::Velocity:
+        return model.spatial_point_velocity(state, centre)(sensor.axis);
+      case SensorType::FluidForce:
+        return model.spatial_point_load_resultant(state, sensor.body)(sensor.axis);
+      case SensorType::JointForce:
+        return model.spatial_joint_reaction(state, sensor.first_row, sensor.rows,
+                                            sensor.body)(sensor.axis);
+      default:
+        break;  // energies below; the builder refuses the rest in 3D
+    }
+  }
   switch (sensor.type) {
     case SensorType::Position:
       return model.coordinate(state, sensor.body, sensor.component);

@@ -386,6 +386,12 @@ class Model {
   int add_spatial_point_force(const SpatialPointForceSpec& spec);
   int add_spatial_torque(const SpatialTorqueSpec& spec);
 
+  // Any body: its name, kind ("rigid_body_2d", "ancf_beam", "rigid_body_3d", "point_mass",
+  // "ancf_cable") and total mass [kg] (2D: per unit depth).
+  const std::string& body_name(BodyId body) const;
+  std::string body_kind(BodyId body) const;
+  double body_mass(BodyId body) const;
+
   // 2 for planar models, 3 for spatial ones (2 while the model is empty).
   int dimension() const;
   // Throw fsi::Error if the body is not of that kind.

@@ -36,15 +36,18 @@ struct OutputSettings {
 };
 
 // The structure's surface as the fluid sees it. 2D: mesh vertex k is model marker k; dynamic
-// vertices (on bodies) come first, static ones (ground) after (thesis §5.2). 3D: the planar model
-// has no markers for them; every vertex is static (Ground STL meshes), held in static_positions.
+// vertices (on bodies) come first, static ones (ground) after (thesis §5.2). 3D: the dynamic
+// vertices are the spatial model's markers (meshes of RigidBody3D, tubes of AncfCable3D), the
+// static ones (Ground STL meshes) are held in static_positions, not in the model.
 struct BoundaryMesh {
   int dimension = 2;
   std::size_t vertex_count = 0;
   std::size_t dynamic_vertex_count = 0;
   std::vector<std::uint32_t> segments;   // 2D: two vertex indices each
   std::vector<std::uint32_t> triangles;  // 3D: three vertex indices each
-  std::vector<double> static_positions;  // 3D: x, y, z per vertex (world coordinates)
+  // 3D: x, y, z per static (ground) vertex, world coordinates; these vertices follow the
+  // dynamic ones (markers of the model).
+  std::vector<double> static_positions;
   // The elements the fluid sees: segments in 2D, triangles in 3D.
   const std::vector<std::uint32_t>& elements() const {
     return dimension == 3 ? triangles : segments;
@@ -55,6 +58,12 @@ struct BoundaryMesh {
   double refinement_resolution = 0.0;
   int refinement_option = 1;
 };
+
+// Positions and velocities of every boundary vertex at `state`, `dimension` values each: the
+// dynamic vertices (the model's markers) first, then, in 3D, the static ground vertices (at
+// rest). Resizes the vectors to dimension * vertex_count.
+void boundary_state(const BoundaryMesh& boundary, const mbd::Model& model, const mbd::State& state,
+                    std::vector<double>& positions, std::vector<double>& velocities);
 
 struct FluidParticles {
   int dimension = 2;
@@ -109,8 +118,8 @@ double structure_sensor_value(const mbd::Model& model, const SensorSpec& sensor,
 
 struct Scene {
   std::string file;
-  Block parameters;   // the evaluated parameter tree
-  int dimension = 2;  // root parameter `dimension`; 3: static Ground STL meshes only, no bodies
+  Block parameters;                 // the evaluated parameter tree
+  int dimension = 2;                // root parameter `dimension`; 3: spatial bodies and STL meshes
   std::array<double, 3> gravity{};  // Gravity.acceleration (2D: z = 0; the model holds x, y)
   mbd::Model model;
   SolverSettings solver;
