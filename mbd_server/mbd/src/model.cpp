@@ -53,6 +53,9 @@ struct Model::Data {
   std::vector<double> point_loads;  // x, y per marker
   mutable Eigen::MatrixXd mass;     // assembled on first use after a structural change
   mutable bool mass_valid = false;
+  mutable Eigen::SparseMatrix<double> sparse_mass;  // the same, sparse
+  mutable Eigen::VectorXd mass_diagonal;
+  mutable bool sparse_mass_valid = false;
 
   void check_body(BodyId body, const std::string& user) const {
     if (body < 0 || body >= static_cast<BodyId>(bodies.size())) {
@@ -107,6 +110,7 @@ struct Model::Data {
     coordinates += body->coordinate_count();
     bodies.push_back(std::move(body));
     mass_valid = false;
+    sparse_mass_valid = false;
     return static_cast<BodyId>(bodies.size()) - 1;
   }
   // A body point as the elements see it; throws naming `user` for unknown bodies or
@@ -514,14 +518,34 @@ const Eigen::MatrixXd& Model::mass_matrix() const {
   if (!data_->mass_valid) {
     const int n = coordinate_count();
     data_->mass = Eigen::MatrixXd::Zero(n, n);
+    DenseMatrixSink sink(data_->mass);
     for (std::size_t b = 0; b < data_->bodies.size(); ++b) {
-      const int nb = data_->bodies[b]->coordinate_count();
-      const int o = data_->offsets[b];
-      data_->bodies[b]->mass_matrix(data_->mass.block(o, o, nb, nb));
+      OffsetSink block(sink, data_->offsets[b], data_->offsets[b]);
+      data_->bodies[b]->mass_matrix(block);
     }
     data_->mass_valid = true;
   }
   return data_->mass;
+}
+
+const Eigen::SparseMatrix<double>& Model::sparse_mass_matrix() const {
+  if (!data_->sparse_mass_valid) {
+    const int n = coordinate_count();
+    TripletSink sink;
+    for (std::size_t b = 0; b < data_->bodies.size(); ++b) {
+      OffsetSink block(sink, data_->offsets[b], data_->offsets[b]);
+      data_->bodies[b]->mass_matrix(block);
+    }
+    sink.to_matrix(n, n, data_->sparse_mass);
+    data_->mass_diagonal = data_->sparse_mass.diagonal();
+    data_->sparse_mass_valid = true;
+  }
+  return data_->sparse_mass;
+}
+
+const Eigen::VectorXd& Model::mass_diagonal() const {
+  (void)sparse_mass_matrix();
+  return data_->mass_diagonal;
 }
 
 void Model::applied_force(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
@@ -555,30 +579,53 @@ void Model::applied_force_derivatives(double time, const Eigen::VectorXd& q,
   const int n = coordinate_count();
   by_position.setZero(n, n);
   by_velocity.setZero(n, n);
+  DenseMatrixSink position_sink(by_position), velocity_sink(by_velocity);
+  add_applied_force_derivatives(time, q, v, position_sink, velocity_sink);
+}
+
+void Model::applied_force_derivatives(double time, const Eigen::VectorXd& q,
+                                      const Eigen::VectorXd& v,
+                                      Eigen::SparseMatrix<double>& by_position,
+                                      Eigen::SparseMatrix<double>& by_velocity) const {
+  const int n = coordinate_count();
+  TripletSink position_sink, velocity_sink;
+  add_applied_force_derivatives(time, q, v, position_sink, velocity_sink);
+  position_sink.to_matrix(n, n, by_position);
+  velocity_sink.to_matrix(n, n, by_velocity);
+}
+
+void Model::add_applied_force_derivatives(double time, const Eigen::VectorXd& q,
+                                          const Eigen::VectorXd& v, MatrixSink& by_position,
+                                          MatrixSink& by_velocity) const {
+  const int n = coordinate_count();
   for (std::size_t b = 0; b < data_->bodies.size(); ++b) {
     const auto& body = *data_->bodies[b];
     const int o = data_->offsets[b];
     const int nb = body.coordinate_count();
-    body.add_internal_force_derivatives(q.segment(o, nb), v.segment(o, nb),
-                                        by_position.block(o, o, nb, nb),
-                                        by_velocity.block(o, o, nb, nb));
+    OffsetSink position_block(by_position, o, o), velocity_block(by_velocity, o, o);
+    body.add_internal_force_derivatives(q.segment(o, nb), v.segment(o, nb), position_block,
+                                        velocity_block);
   }
   for (std::size_t k = 0; k < data_->markers.size(); ++k) {
     const Marker& marker = data_->markers[k];
     const Eigen::Vector2d load(data_->point_loads[2 * k], data_->point_loads[2 * k + 1]);
     if (marker.body == kGround || (load.x() == 0.0 && load.y() == 0.0)) continue;
     const auto& body = *data_->bodies[marker.body];
-    const int nb = body.coordinate_count();
     const int o = data_->offsets[marker.body];
-    body.add_point_load_derivative(data_->segment(q, marker.body), marker.local, load,
-                                   by_position.block(o, o, nb, nb));
+    OffsetSink block(by_position, o, o);
+    body.add_point_load_derivative(data_->segment(q, marker.body), marker.local, load, block);
   }
   // Central differences for elements without analytic derivatives; the step balances
-  // truncation (~step^2) against cancellation (~eps/step).
+  // truncation (~step^2) against cancellation (~eps/step). O(n) force evaluations per element.
   const double step_factor = std::cbrt(std::numeric_limits<double>::epsilon());
   Eigen::VectorXd plus(n), minus(n), shifted_q, shifted_v;
+  auto add_column = [](MatrixSink& sink, int column, const Eigen::VectorXd& values) {
+    for (Eigen::Index i = 0; i < values.size(); ++i) {
+      if (values(i) != 0.0) sink.add(static_cast<int>(i), column, values(i));
+    }
+  };
   for (const auto& element : data_->force_elements) {
-    if (element->add_jacobians(time, q, v, by_position, by_velocity)) continue;
+    if (element->add_jacobian_entries(time, q, v, by_position, by_velocity)) continue;
     shifted_q = q;
     shifted_v = v;
     for (int j = 0; j < n; ++j) {
@@ -590,7 +637,7 @@ void Model::applied_force_derivatives(double time, const Eigen::VectorXd& q,
       shifted_q(j) = q(j) - dq;
       element->add_force(time, shifted_q, v, minus);
       shifted_q(j) = q(j);
-      by_position.col(j) += (plus - minus) / (2.0 * dq);
+      add_column(by_position, j, (plus - minus) / (2.0 * dq));
 
       const double dv = step_factor * std::max(1.0, std::abs(v(j)));
       plus.setZero();
@@ -600,7 +647,7 @@ void Model::applied_force_derivatives(double time, const Eigen::VectorXd& q,
       shifted_v(j) = v(j) - dv;
       element->add_force(time, q, shifted_v, minus);
       shifted_v(j) = v(j);
-      by_velocity.col(j) += (plus - minus) / (2.0 * dv);
+      add_column(by_velocity, j, (plus - minus) / (2.0 * dv));
     }
   }
 }
@@ -614,13 +661,14 @@ void Model::constraint_residual(double time, const Eigen::VectorXd& q, const Eig
 
 void Model::constraint_rate(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
                             Eigen::VectorXd& rate) const {
-  Eigen::MatrixXd jacobian;
+  Eigen::SparseMatrix<double> jacobian;
   constraint_jacobian(time, q, jacobian);
+  const Eigen::VectorXd jacobian_v = jacobian * v;
   rate.resize(constraint_count());
   for (int k = 0; k < constraint_count(); ++k) {
     const auto& constraint = *data_->constraints[k];
     rate(k) = constraint.level() == ConstraintLevel::Position
-                  ? jacobian.row(k).dot(v) + constraint.explicit_time_derivative(time, q)
+                  ? jacobian_v(k) + constraint.explicit_time_derivative(time, q)
                   : constraint.residual(time, q, v);
   }
 }
@@ -636,16 +684,44 @@ void Model::constraint_acceleration_remainder(double time, const Eigen::VectorXd
 void Model::constraint_jacobian(double time, const Eigen::VectorXd& q,
                                 Eigen::MatrixXd& jacobian) const {
   jacobian.setZero(constraint_count(), coordinate_count());
+  DenseMatrixSink sink(jacobian);
+  add_constraint_jacobian(time, q, sink);
+}
+
+void Model::constraint_jacobian(double time, const Eigen::VectorXd& q,
+                                Eigen::SparseMatrix<double>& jacobian) const {
+  TripletSink sink;
+  add_constraint_jacobian(time, q, sink);
+  sink.to_matrix(constraint_count(), coordinate_count(), jacobian);
+}
+
+void Model::add_constraint_jacobian(double time, const Eigen::VectorXd& q,
+                                    MatrixSink& jacobian) const {
   for (int k = 0; k < constraint_count(); ++k)
-    data_->constraints[k]->jacobian_row(time, q, jacobian.row(k));
+    data_->constraints[k]->add_jacobian_entries(time, q, k, jacobian);
 }
 
 void Model::constraint_force_derivative(double time, const Eigen::VectorXd& q,
                                         const Eigen::VectorXd& lambda,
                                         Eigen::MatrixXd& derivative) const {
   derivative.setZero(coordinate_count(), coordinate_count());
+  DenseMatrixSink sink(derivative);
+  add_constraint_force_derivative(time, q, lambda, sink);
+}
+
+void Model::constraint_force_derivative(double time, const Eigen::VectorXd& q,
+                                        const Eigen::VectorXd& lambda,
+                                        Eigen::SparseMatrix<double>& derivative) const {
+  TripletSink sink;
+  add_constraint_force_derivative(time, q, lambda, sink);
+  sink.to_matrix(coordinate_count(), coordinate_count(), derivative);
+}
+
+void Model::add_constraint_force_derivative(double time, const Eigen::VectorXd& q,
+                                            const Eigen::VectorXd& lambda,
+                                            MatrixSink& derivative) const {
   for (int k = 0; k < constraint_count(); ++k)
-    data_->constraints[k]->add_force_derivative(time, q, lambda(k), derivative);
+    data_->constraints[k]->add_force_derivative_entries(time, q, lambda(k), derivative);
 }
 
 // --- point loads ---
@@ -720,7 +796,7 @@ double Model::velocity(const State& state, BodyId body, Coordinate c) const {
 }
 
 Eigen::VectorXd Model::generalised_constraint_force(const State& state) const {
-  Eigen::MatrixXd jacobian;
+  Eigen::SparseMatrix<double> jacobian;
   constraint_jacobian(state.time, state.q, jacobian);
   return -jacobian.transpose() * state.lambda;
 }
@@ -744,7 +820,7 @@ Eigen::Vector3d Model::point_load_resultant(const State& state, BodyId body) con
 }
 
 double Model::kinetic_energy(const State& state) const {
-  return 0.5 * state.v.dot(mass_matrix() * state.v);
+  return 0.5 * state.v.dot(sparse_mass_matrix() * state.v);
 }
 
 double Model::potential_energy(const State& state) const {
@@ -774,15 +850,16 @@ double Model::position_constraint_drift(const State& state) const {
 }
 
 double Model::velocity_constraint_drift(const State& state) const {
-  Eigen::MatrixXd jacobian;
+  Eigen::SparseMatrix<double> jacobian;
   constraint_jacobian(state.time, state.q, jacobian);
+  const Eigen::VectorXd jacobian_v = jacobian * state.v;
   double drift = 0.0;
   for (int k = 0; k < constraint_count(); ++k) {
     const auto& constraint = *data_->constraints[k];
-    const double residual = constraint.level() == ConstraintLevel::Position
-                                ? jacobian.row(k).dot(state.v) +
-                                      constraint.explicit_time_derivative(state.time, state.q)
-                                : constraint.residual(state.time, state.q, state.v);
+    const double residual =
+        constraint.level() == ConstraintLevel::Position
+            ? jacobian_v(k) + constraint.explicit_time_derivative(state.time, state.q)
+            : constraint.residual(state.time, state.q, state.v);
     drift = std::max(drift, std::abs(residual));
   }
   return drift;
