@@ -1,5 +1,9 @@
 #include "fsi/mbd/model.hpp"
 
+#include <Eigen/OrderingMethods>
+#include <Eigen/SparseLU>
+#include <Eigen/SparseQR>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -20,6 +24,11 @@ struct Marker {
   BodyId body;
   Eigen::Vector2d local;  // body frame, or world frame for kGround
 };
+
+// Up to this n + m the initial state is checked and lambda_0 solved with dense matrices (as the
+// dense Newton matrix, cheaper for small systems); above it with sparse ones, whose cost grows
+// about linearly with the size for chains and beams.
+constexpr int kDenseInitialStateSize = 300;
 
 // Nine significant digits: enough to see a residual, short enough to read.
 std::string number(double value) {
@@ -445,6 +454,31 @@ State Model::initial_state() const {
   // Multipliers consistent with the accelerations: M a + G^T lambda = F, G a = -remainder.
   Eigen::VectorXd force;
   applied_force(state.time, state.q, state.v, force);
+  if (n + m > kDenseInitialStateSize) {
+    // [M G^T; G 0] from triplets, SparseLU.
+    TripletSink system;
+    for (std::size_t b = 0; b < data_->bodies.size(); ++b) {
+      OffsetSink block(system, data_->offsets[b], data_->offsets[b]);
+      data_->bodies[b]->mass_matrix(block);
+    }
+    Eigen::SparseMatrix<double> jacobian;
+    constraint_jacobian(state.time, state.q, jacobian);
+    for (int c = 0; c < jacobian.outerSize(); ++c) {
+      for (Eigen::SparseMatrix<double>::InnerIterator it(jacobian, c); it; ++it) {
+        system.add(n + static_cast<int>(it.row()), c, it.value());
+        system.add(c, n + static_cast<int>(it.row()), it.value());
+      }
+    }
+    Eigen::SparseMatrix<double> matrix;
+    system.to_matrix(n + m, n + m, matrix);
+    Eigen::VectorXd right(n + m);
+    right.head(n) = force;
+    for (int k = 0; k < m; ++k)
+      right(n + k) = -data_->constraints[k]->acceleration_remainder(state.time, state.q, state.v);
+    Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu(matrix);
+    state.lambda = Eigen::VectorXd(lu.solve(right)).tail(m);
+    return state;
+  }
   Eigen::MatrixXd jacobian;
   constraint_jacobian(state.time, state.q, jacobian);
   Eigen::MatrixXd system = Eigen::MatrixXd::Zero(n + m, n + m);
@@ -469,8 +503,17 @@ void Model::check_consistency(const State& state) const {
   }
   const double position_tolerance = 1e-12 * (1.0 + state.q.lpNorm<Eigen::Infinity>());
   const double velocity_tolerance = 1e-12 * (1.0 + state.v.lpNorm<Eigen::Infinity>());
+  const bool dense = n + m <= kDenseInitialStateSize;
   Eigen::MatrixXd jacobian;
-  constraint_jacobian(state.time, state.q, jacobian);
+  Eigen::SparseMatrix<double> sparse_jacobian;
+  Eigen::VectorXd jacobian_v;
+  if (dense) {
+    constraint_jacobian(state.time, state.q, jacobian);
+    jacobian_v = jacobian * state.v;
+  } else {
+    constraint_jacobian(state.time, state.q, sparse_jacobian);
+    jacobian_v = sparse_jacobian * state.v;
+  }
   for (int k = 0; k < m; ++k) {
     const auto& constraint = *data_->constraints[k];
     const double residual = constraint.residual(state.time, state.q, state.v);
@@ -479,8 +522,7 @@ void Model::check_consistency(const State& state) const {
         problems += "\n  " + constraint.description() +
                     ": position residual C = " + number(residual) + " at t = " + number(state.time);
       }
-      const double rate =
-          jacobian.row(k).dot(state.v) + constraint.explicit_time_derivative(state.time, state.q);
+      const double rate = jacobian_v(k) + constraint.explicit_time_derivative(state.time, state.q);
       if (!(std::abs(rate) <= velocity_tolerance)) {
         problems += "\n  " + constraint.description() +
                     ": velocity residual dC/dt = " + number(rate) +
@@ -492,9 +534,23 @@ void Model::check_consistency(const State& state) const {
     }
   }
   // Incremental rank: a row that does not raise the rank of the rows before it is redundant
-  // and makes the Newton matrix singular.
+  // and makes the Newton matrix singular. Large systems: a sparse QR of G^T in the natural
+  // column order moves exactly such rows (columns of G^T) behind the rank.
+  if (!dense && m > 0) {
+    const Eigen::SparseMatrix<double> transposed = sparse_jacobian.transpose();
+    Eigen::SparseQR<Eigen::SparseMatrix<double>, Eigen::NaturalOrdering<int>> qr(transposed);
+    const auto rank = static_cast<int>(qr.rank());
+    std::vector<int> redundant;
+    for (int k = rank; k < m; ++k)
+      redundant.push_back(qr.colsPermutation().indices()(k));
+    std::sort(redundant.begin(), redundant.end());
+    for (const int k : redundant) {
+      problems += "\n  " + data_->constraints[k]->description() +
+                  ": redundant (linearly dependent on the constraints before it)";
+    }
+  }
   int rank = 0;
-  for (int k = 0; k < m; ++k) {
+  for (int k = 0; dense && k < m; ++k) {
     const int with_row =
         static_cast<int>(Eigen::FullPivLU<Eigen::MatrixXd>(jacobian.topRows(k + 1)).rank());
     if (with_row == rank) {
