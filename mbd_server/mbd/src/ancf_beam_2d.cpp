@@ -396,6 +396,19 @@ void AncfBeam2D::position_jacobian(const ConstVector& q, const Eigen::Vector2d& 
       expand(s.value) + local.y() * quarter_turn() * tangent_map(slope) * first;
 }
 
+void AncfBeam2D::add_point_load(const ConstVector& q, const Eigen::Vector2d& local,
+                                const Eigen::Vector2d& force,
+                                Eigen::Ref<Eigen::VectorXd> generalised_force) const {
+  double x = 0.0;
+  const int e = element_of(local.x(), x);
+  const Shape s = shape(x, element_length_);
+  const Matrix28 first = expand(s.first);
+  const Eigen::Vector2d slope = first * q.segment<8>(4 * e);
+  const Matrix28 jacobian =
+      expand(s.value) + local.y() * quarter_turn() * tangent_map(slope) * first;
+  generalised_force.segment<8>(4 * e) += jacobian.transpose() * force;
+}
+
 void AncfBeam2D::velocity_jacobian(const ConstVector& q, const ConstVector& v,
                                    const Eigen::Vector2d& local,
                                    Eigen::Ref<Eigen::MatrixXd> jacobian) const {

@@ -65,6 +65,9 @@ class AncfBeam2D final : public Body {
   void add_point_load_derivative(const ConstVector& q, const Eigen::Vector2d& local,
                                  const Eigen::Vector2d& force,
                                  MatrixSink& derivative) const override;
+  void add_point_load(const ConstVector& q, const Eigen::Vector2d& local,
+                      const Eigen::Vector2d& force,
+                      Eigen::Ref<Eigen::VectorXd> generalised_force) const override;
   // The centre of mass of the deformed beam.
   Eigen::Vector2d reference_point(const ConstVector& q) const override;
 

@@ -61,6 +61,16 @@ class Body {
   virtual void velocity_jacobian(const ConstVector& q, const ConstVector& v,
                                  const Eigen::Vector2d& local,
                                  Eigen::Ref<Eigen::MatrixXd> jacobian) const = 0;
+  // Adds (dr/dq)^T f of a world-frame force f at a material point (size n_b). The default goes
+  // through position_jacobian (O(n_b)); a beam adds only its element's 8 entries, so that many
+  // loaded markers on a long beam cost O(markers), not O(markers x n_b).
+  virtual void add_point_load(const ConstVector& q, const Eigen::Vector2d& local,
+                              const Eigen::Vector2d& force,
+                              Eigen::Ref<Eigen::VectorXd> generalised_force) const {
+    Eigen::MatrixXd jacobian(2, coordinate_count());
+    position_jacobian(q, local, jacobian);
+    generalised_force += jacobian.transpose() * force;
+  }
   // d/dq [(dr/dq)^T f] for a constant world-frame force f (n_b x n_b, body coordinates), added.
   virtual void add_point_load_derivative(const ConstVector& q, const Eigen::Vector2d& local,
                                          const Eigen::Vector2d& force,

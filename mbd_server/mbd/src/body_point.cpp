@@ -56,9 +56,8 @@ void BodyPoint::add_load_derivative(const Eigen::VectorXd& q, const Eigen::Vecto
 void BodyPoint::add_load(const Eigen::VectorXd& q, const Eigen::Vector2d& force,
                          Eigen::VectorXd& generalised_force) const {
   if (on_ground()) return;
-  Eigen::MatrixXd own(2, body_->coordinate_count());
-  body_->position_jacobian(block(q), local_, own);
-  generalised_force.segment(offset_, own.cols()) += own.transpose() * force;
+  body_->add_point_load(block(q), local_, force,
+                        generalised_force.segment(offset_, body_->coordinate_count()));
 }
 
 }  // namespace fsi::mbd::detail

@@ -614,16 +614,13 @@ void Model::applied_force(double time, const Eigen::VectorXd& q, const Eigen::Ve
     body.add_gravity_force(data_->gravity, force.segment(o, nb));
     body.add_internal_force(q.segment(o, nb), v.segment(o, nb), force.segment(o, nb));
   }
-  Eigen::MatrixXd point_jacobian;
   for (std::size_t k = 0; k < data_->markers.size(); ++k) {
     const Marker& marker = data_->markers[k];
     const Eigen::Vector2d load(data_->point_loads[2 * k], data_->point_loads[2 * k + 1]);
     if (marker.body == kGround || (load.x() == 0.0 && load.y() == 0.0)) continue;
     const auto& body = *data_->bodies[marker.body];
-    const int nb = body.coordinate_count();
-    point_jacobian.resize(2, nb);
-    body.position_jacobian(data_->segment(q, marker.body), marker.local, point_jacobian);
-    force.segment(data_->offsets[marker.body], nb) += point_jacobian.transpose() * load;
+    body.add_point_load(data_->segment(q, marker.body), marker.local, load,
+                        force.segment(data_->offsets[marker.body], body.coordinate_count()));
   }
   for (const auto& element : data_->force_elements)
     element->add_force(time, q, v, force);
