@@ -1,5 +1,6 @@
 // Step time of Radau IIA (3 stages) against model size: a rigid pendulum chain of N bars
-// (reference_problems.hpp) and an ANCF cantilever of N elements under gravity, N = 10 ... 1000,
+// (reference_problems.hpp) and an ANCF cantilever of N elements under gravity (also with two
+// loaded face markers per element), N = 10 ... 1000,
 // with the dense LU and with the automatic choice (Eigen SparseLU from
 // NewtonOptions::sparse_threshold unknowns). Prints a markdown table per model with the time per
 // step (best of 3 runs of `steps` steps), the Newton work, and the growth exponent
@@ -35,6 +36,17 @@ Model cantilever(int elements) {
   beam.mass_per_length = 7800.0 * 0.01;
   const BodyId id = model.add_ancf_beam(beam);
   model.add_beam_clamp(id, 0);
+  return model;
+}
+
+// The cantilever with two face markers per element (eta = +-5 cm alternating) under a load, as
+// in a coupled run (the fluid's vertex forces).
+Model loaded_cantilever(int elements) {
+  Model model = cantilever(elements);
+  const int markers = 2 * elements;
+  for (int k = 0; k < markers; ++k)
+    model.add_marker(0, {(k + 0.5) * 2.0 / markers, k % 2 == 0 ? 0.05 : -0.05});
+  model.set_point_loads(std::vector<double>(2 * markers, -1.0));
   return model;
 }
 
@@ -116,6 +128,8 @@ int main(int argc, char** argv) {
   table("Rigid chain of N bars (3 coordinates, 2 joint rows each)", reference::rigid_chain, 1e-3,
         max_size);
   table("ANCF cantilever of N elements (4 coordinates per node, clamp 3 rows)", cantilever, 1e-4,
+        max_size);
+  table("ANCF cantilever of N elements with 2N loaded face markers", loaded_cantilever, 1e-4,
         max_size);
   return 0;
 }
