@@ -18,10 +18,11 @@ class ForceElement {
   virtual void add_force(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
                          Eigen::VectorXd& force) const = 0;
 
-  // Adds dQ/dq to `force_by_position` and dQ/dv to `force_by_velocity` (both n x n) and returns
-  // true. The default returns false and adds nothing: the model then differentiates add_force by
-  // central differences. Analytic derivatives only make Newton cheaper, never more accurate: the
-  // converged solution depends on add_force alone.
+  // Dense form (the model calls add_jacobian_entries below, which forwards to this one unless
+  // overridden): adds dQ/dq to `force_by_position` and dQ/dv to `force_by_velocity` (both n x n)
+  // and returns true. The default returns false and adds nothing: the model then differentiates
+  // add_force by central differences. Analytic derivatives only make Newton cheaper, never more
+  // accurate: the converged solution depends on add_force alone.
   virtual bool add_jacobians(double /*time*/, const Eigen::VectorXd& /*q*/,
                              const Eigen::VectorXd& /*v*/, Eigen::MatrixXd& /*force_by_position*/,
                              Eigen::MatrixXd& /*force_by_velocity*/) const {

@@ -310,7 +310,8 @@ class Model {
   void applied_force(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
                      Eigen::VectorXd& force) const;
   // dF/dq and dF/dv: analytic for gravity, point loads and internal forces, analytic or central
-  // differences for force elements (ForceElement::add_jacobians).
+  // differences for force elements (ForceElement::add_jacobian_entries, whose default forwards
+  // the dense add_jacobians).
   void applied_force_derivatives(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
                                  Eigen::MatrixXd& by_position, Eigen::MatrixXd& by_velocity) const;
   void applied_force_derivatives(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
