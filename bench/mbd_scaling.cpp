@@ -1,9 +1,11 @@
 // Step time of Radau IIA (3 stages) against model size: a rigid pendulum chain of N bars
-// (reference_problems.hpp) and an ANCF cantilever of N elements under gravity, N = 10 ... 400,
+// (reference_problems.hpp) and an ANCF cantilever of N elements under gravity (also with two
+// loaded face markers per element), N = 10 ... 1000,
 // with the dense LU and with the automatic choice (Eigen SparseLU from
 // NewtonOptions::sparse_threshold unknowns). Prints a markdown table per model with the time per
 // step (best of 3 runs of `steps` steps), the Newton work, and the growth exponent
-// log(t2/t1)/log(N2/N1) between neighbouring sizes: about 1 is linear. Not pass/fail
+// log(t2/t1)/log(N2/N1) between neighbouring sizes: about 1 is linear. The dense LU column
+// stops at N = 100 (O(size^3): 0.5 s per step there). Not pass/fail
 // (docs/performance.md). Usage: bench_mbd_scaling [max_size]
 #include <chrono>
 #include <cmath>
@@ -34,6 +36,17 @@ Model cantilever(int elements) {
   beam.mass_per_length = 7800.0 * 0.01;
   const BodyId id = model.add_ancf_beam(beam);
   model.add_beam_clamp(id, 0);
+  return model;
+}
+
+// The cantilever with two face markers per element (eta = +-5 cm alternating) under a load, as
+// in a coupled run (the fluid's vertex forces).
+Model loaded_cantilever(int elements) {
+  Model model = cantilever(elements);
+  const int markers = 2 * elements;
+  for (int k = 0; k < markers; ++k)
+    model.add_marker(0, {(k + 0.5) * 2.0 / markers, k % 2 == 0 ? 0.05 : -0.05});
+  model.set_point_loads(std::vector<double>(2 * markers, -1.0));
   return model;
 }
 
@@ -82,7 +95,7 @@ void table(const char* title, const std::function<Model(int)>& make, double step
       "|---|---|---|---|---|---|---|---|\n");
   double previous_time = 0.0;
   int previous_size = 0;
-  for (int size : {10, 20, 50, 100, 200, 400}) {
+  for (int size : {10, 20, 50, 100, 200, 400, 1000}) {
     if (size > max_size) break;
     const Row automatic = measure(make, size, LinearSolver::Automatic, 10, step_size);
     const bool dense_affordable = size <= 100;
@@ -111,10 +124,12 @@ void table(const char* title, const std::function<Model(int)>& make, double step
 }  // namespace
 
 int main(int argc, char** argv) {
-  const int max_size = argc > 1 ? std::atoi(argv[1]) : 400;
+  const int max_size = argc > 1 ? std::atoi(argv[1]) : 1000;
   table("Rigid chain of N bars (3 coordinates, 2 joint rows each)", reference::rigid_chain, 1e-3,
         max_size);
   table("ANCF cantilever of N elements (4 coordinates per node, clamp 3 rows)", cantilever, 1e-4,
+        max_size);
+  table("ANCF cantilever of N elements with 2N loaded face markers", loaded_cantilever, 1e-4,
         max_size);
   return 0;
 }

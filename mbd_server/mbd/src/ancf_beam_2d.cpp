@@ -159,7 +159,7 @@ void AncfBeam2D::initial_state(Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::
   v.setZero();
 }
 
-void AncfBeam2D::mass_matrix(Eigen::Ref<Eigen::MatrixXd> block) const {
+void AncfBeam2D::mass_matrix(MatrixSink& block) const {
   const GaussRule rule = gauss_rule(kMassPoints);
   const double l = element_length_;
   Matrix8 element = Matrix8::Zero();
@@ -167,9 +167,8 @@ void AncfBeam2D::mass_matrix(Eigen::Ref<Eigen::MatrixXd> block) const {
     const Matrix28 n = expand(shape(0.5 * l * (rule.points[i] + 1.0), l).value);
     element += 0.5 * l * rule.weights[i] * spec_.mass_per_length * n.transpose() * n;
   }
-  block.setZero();
   for (int e = 0; e < spec_.element_count; ++e)
-    block.block<8, 8>(4 * e, 4 * e) += element;
+    block.add_block(4 * e, 4 * e, element);
 }
 
 void AncfBeam2D::add_gravity_force(const Eigen::Vector2d& acceleration,
@@ -249,8 +248,8 @@ void AncfBeam2D::add_internal_force(const ConstVector& q, const ConstVector& v,
 }
 
 void AncfBeam2D::add_internal_force_derivatives(const ConstVector& q, const ConstVector& v,
-                                                Eigen::Ref<Eigen::MatrixXd> by_position,
-                                                Eigen::Ref<Eigen::MatrixXd> by_velocity) const {
+                                                MatrixSink& by_position,
+                                                MatrixSink& by_velocity) const {
   // For a strain measure e (eps or kappa) with stiffness k and damping c, the force
   // -(k e + c de/dt) grad e, de/dt = grad e . v, has
   //   d/dq = -(k grad e grad e^T + (k e + c de/dt) hess e + c grad e (hess e v)^T),
@@ -281,8 +280,8 @@ void AncfBeam2D::add_internal_force_derivatives(const ConstVector& q, const Cons
       add(0.5 * l * bending.weights[i], spec_.bending_stiffness, spec_.bending_damping, d.curvature,
           d.curvature_gradient, d.curvature_hessian, ve, position, velocity);
     }
-    by_position.block<8, 8>(4 * e, 4 * e) -= position;
-    by_velocity.block<8, 8>(4 * e, 4 * e) -= velocity;
+    by_position.add_block(4 * e, 4 * e, position, -1.0);
+    by_velocity.add_block(4 * e, 4 * e, velocity, -1.0);
   }
 }
 
@@ -337,6 +336,19 @@ void AncfBeam2D::position_jacobian(const ConstVector& q, const Eigen::Vector2d& 
       expand(s.value) + local.y() * quarter_turn() * tangent_map(slope) * first;
 }
 
+void AncfBeam2D::add_point_load(const ConstVector& q, const Eigen::Vector2d& local,
+                                const Eigen::Vector2d& force,
+                                Eigen::Ref<Eigen::VectorXd> generalised_force) const {
+  double x = 0.0;
+  const int e = element_of(local.x(), x);
+  const Shape s = shape(x, element_length_);
+  const Matrix28 first = expand(s.first);
+  const Eigen::Vector2d slope = first * q.segment<8>(4 * e);
+  const Matrix28 jacobian =
+      expand(s.value) + local.y() * quarter_turn() * tangent_map(slope) * first;
+  generalised_force.segment<8>(4 * e) += jacobian.transpose() * force;
+}
+
 void AncfBeam2D::velocity_jacobian(const ConstVector& q, const ConstVector& v,
                                    const Eigen::Vector2d& local,
                                    Eigen::Ref<Eigen::MatrixXd> jacobian) const {
@@ -354,7 +366,7 @@ void AncfBeam2D::velocity_jacobian(const ConstVector& q, const ConstVector& v,
 
 void AncfBeam2D::add_point_load_derivative(const ConstVector& q, const Eigen::Vector2d& local,
                                            const Eigen::Vector2d& force,
-                                           Eigen::Ref<Eigen::MatrixXd> derivative) const {
+                                           MatrixSink& derivative) const {
   // (dp/dq)^T f = S^T f + eta S'^T T(r') R^T f (T is symmetric); only T depends on q.
   if (local.y() == 0.0) return;
   double x = 0.0;
@@ -362,9 +374,9 @@ void AncfBeam2D::add_point_load_derivative(const ConstVector& q, const Eigen::Ve
   const Shape s = shape(x, element_length_);
   const Matrix28 first = expand(s.first);
   const Eigen::Vector2d slope = first * q.segment<8>(4 * e);
-  derivative.block<8, 8>(4 * e, 4 * e) +=
-      local.y() * first.transpose() *
-      tangent_derivative(slope, quarter_turn().transpose() * force) * first;
+  const Matrix8 element = local.y() * first.transpose() *
+                          tangent_derivative(slope, quarter_turn().transpose() * force) * first;
+  derivative.add_block(4 * e, 4 * e, element);
 }
 
 }  // namespace fsi::mbd::detail

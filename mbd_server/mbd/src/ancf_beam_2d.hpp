@@ -39,7 +39,10 @@ class AncfBeam2D final : public Body {
   const std::string& name() const override { return spec_.name; }
   int coordinate_count() const override { return 4 * node_count(); }
   void initial_state(Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::VectorXd> v) const override;
-  void mass_matrix(Eigen::Ref<Eigen::MatrixXd> block) const override;
+  using Body::add_internal_force_derivatives;
+  using Body::add_point_load_derivative;
+  using Body::mass_matrix;
+  void mass_matrix(MatrixSink& block) const override;
   void add_gravity_force(const Eigen::Vector2d& acceleration,
                          Eigen::Ref<Eigen::VectorXd> force) const override;
   double gravity_potential(const ConstVector& q,
@@ -47,8 +50,8 @@ class AncfBeam2D final : public Body {
   void add_internal_force(const ConstVector& q, const ConstVector& v,
                           Eigen::Ref<Eigen::VectorXd> force) const override;
   void add_internal_force_derivatives(const ConstVector& q, const ConstVector& v,
-                                      Eigen::Ref<Eigen::MatrixXd> by_position,
-                                      Eigen::Ref<Eigen::MatrixXd> by_velocity) const override;
+                                      MatrixSink& by_position,
+                                      MatrixSink& by_velocity) const override;
   double internal_energy(const ConstVector& q) const override { return strain_energy(q); }
   void check_local_coordinates(const Eigen::Vector2d& local,
                                const std::string& user) const override;
@@ -61,7 +64,10 @@ class AncfBeam2D final : public Body {
                          Eigen::Ref<Eigen::MatrixXd> jacobian) const override;
   void add_point_load_derivative(const ConstVector& q, const Eigen::Vector2d& local,
                                  const Eigen::Vector2d& force,
-                                 Eigen::Ref<Eigen::MatrixXd> derivative) const override;
+                                 MatrixSink& derivative) const override;
+  void add_point_load(const ConstVector& q, const Eigen::Vector2d& local,
+                      const Eigen::Vector2d& force,
+                      Eigen::Ref<Eigen::VectorXd> generalised_force) const override;
   // The centre of mass of the deformed beam.
   Eigen::Vector2d reference_point(const ConstVector& q) const override;
 

@@ -139,7 +139,7 @@ void AncfCable3D::initial_state(Eigen::Ref<Eigen::VectorXd> q,
   v.setZero();
 }
 
-void AncfCable3D::mass_matrix(Eigen::Ref<Eigen::MatrixXd> block) const {
+void AncfCable3D::mass_matrix(MatrixSink& block) const {
   const GaussRule rule = gauss_rule(kMassPoints);
   const double l = element_length_;
   Matrix12 element = Matrix12::Zero();
@@ -147,9 +147,8 @@ void AncfCable3D::mass_matrix(Eigen::Ref<Eigen::MatrixXd> block) const {
     const Matrix312 n = expand<3>(hermite_shape(0.5 * l * (rule.points[i] + 1.0), l).value);
     element += 0.5 * l * rule.weights[i] * spec_.mass_per_length * n.transpose() * n;
   }
-  block.setZero();
   for (int e = 0; e < spec_.element_count; ++e)
-    block.block<12, 12>(6 * e, 6 * e) += element;
+    block.add_block(6 * e, 6 * e, element);
 }
 
 void AncfCable3D::add_spatial_gravity_force(const Eigen::Vector3d& acceleration,
@@ -229,8 +228,8 @@ void AncfCable3D::add_internal_force(const ConstVector& q, const ConstVector& v,
 }
 
 void AncfCable3D::add_internal_force_derivatives(const ConstVector& q, const ConstVector& v,
-                                                 Eigen::Ref<Eigen::MatrixXd> by_position,
-                                                 Eigen::Ref<Eigen::MatrixXd> by_velocity) const {
+                                                 MatrixSink& by_position,
+                                                 MatrixSink& by_velocity) const {
   // Per measure e with stiffness k and damping c (the planar beam's formula):
   //   d/dq = -(k grad e grad e^T + (k e + c de/dt) hess e + c grad e (hess e v)^T),
   //   d/dv = -c grad e grad e^T.
@@ -258,8 +257,8 @@ void AncfCable3D::add_internal_force_derivatives(const ConstVector& q, const Con
       for (int k = 1; k < 4; ++k)
         add(0.5 * l * bending.weights[i], spec_.bending_stiffness, spec_.bending_damping, m, k);
     }
-    by_position.block<12, 12>(6 * e, 6 * e) -= position;
-    by_velocity.block<12, 12>(6 * e, 6 * e) -= velocity;
+    by_position.add_block(6 * e, 6 * e, position, -1.0);
+    by_velocity.add_block(6 * e, 6 * e, velocity, -1.0);
   }
 }
 
@@ -305,6 +304,15 @@ Eigen::Vector3d AncfCable3D::tangent(const ConstVector& q, double s) const {
   double x = 0.0;
   const int e = element_of(s, x);
   return (expand<3>(hermite_shape(x, element_length_).first) * q.segment<12>(6 * e)).normalized();
+}
+
+void AncfCable3D::add_spatial_point_load(const ConstVector&, const Eigen::Vector3d& local,
+                                         const Eigen::Vector3d& force,
+                                         Eigen::Ref<Eigen::VectorXd> generalised_force) const {
+  double x = 0.0;
+  const int e = element_of(local.x(), x);
+  generalised_force.segment<12>(6 * e) +=
+      expand<3>(hermite_shape(x, element_length_).value).transpose() * force;
 }
 
 void AncfCable3D::spatial_position_jacobian(const ConstVector&, const Eigen::Vector3d& local,

@@ -34,7 +34,9 @@ class AncfCable3D final : public SpatialBody {
   const std::string& name() const override { return spec_.name; }
   int coordinate_count() const override { return 6 * node_count(); }
   void initial_state(Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::VectorXd> v) const override;
-  void mass_matrix(Eigen::Ref<Eigen::MatrixXd> block) const override;
+  using Body::add_internal_force_derivatives;
+  using Body::mass_matrix;
+  void mass_matrix(MatrixSink& block) const override;
   void add_spatial_gravity_force(const Eigen::Vector3d& acceleration,
                                  Eigen::Ref<Eigen::VectorXd> force) const override;
   double spatial_gravity_potential(const ConstVector& q,
@@ -42,8 +44,12 @@ class AncfCable3D final : public SpatialBody {
   void add_internal_force(const ConstVector& q, const ConstVector& v,
                           Eigen::Ref<Eigen::VectorXd> force) const override;
   void add_internal_force_derivatives(const ConstVector& q, const ConstVector& v,
-                                      Eigen::Ref<Eigen::MatrixXd> by_position,
-                                      Eigen::Ref<Eigen::MatrixXd> by_velocity) const override;
+                                      MatrixSink& by_position,
+                                      MatrixSink& by_velocity) const override;
+  // Only the element's 12 entries.
+  void add_spatial_point_load(const ConstVector& q, const Eigen::Vector3d& local,
+                              const Eigen::Vector3d& force,
+                              Eigen::Ref<Eigen::VectorXd> generalised_force) const override;
   double internal_energy(const ConstVector& q) const override { return strain_energy(q); }
   void check_spatial_local(const Eigen::Vector3d& local, const std::string& user) const override;
   Eigen::Vector3d spatial_position(const ConstVector& q,

@@ -26,9 +26,8 @@ PrismaticConstraint::PrismaticConstraint(std::string description, BodyPoint orig
       axis_length_(axis_length) {}
 
 PrismaticConstraint::Geometry PrismaticConstraint::geometry(const Eigen::VectorXd& q) const {
-  const auto n = q.size();
-  Geometry g{tip_.position(q) - origin_.position(q), slider_.position(q) - origin_.position(q),
-             Eigen::MatrixXd::Zero(2, n), Eigen::MatrixXd::Zero(2, n)};
+  Geometry g{
+      tip_.position(q) - origin_.position(q), slider_.position(q) - origin_.position(q), {}, {}};
   tip_.add_jacobian(q, 1.0, g.axis_jacobian);
   origin_.add_jacobian(q, -1.0, g.axis_jacobian);
   slider_.add_jacobian(q, 1.0, g.separation_jacobian);
@@ -43,12 +42,12 @@ double PrismaticConstraint::residual(double, const Eigen::VectorXd& q,
   return cross(e, d) / axis_length_;
 }
 
-void PrismaticConstraint::jacobian_row(double, const Eigen::VectorXd& q, RowRef row) const {
+void PrismaticConstraint::add_jacobian_entries(double, const Eigen::VectorXd& q, int row,
+                                               MatrixSink& jacobian) const {
   // d(e x d) = (S d) . de - (S e) . dd, since e x d = -(d x e).
   const Geometry g = geometry(q);
-  row += (cross_partner(g.separation).transpose() * g.axis_jacobian -
-          cross_partner(g.axis).transpose() * g.separation_jacobian) /
-         axis_length_;
+  g.axis_jacobian.add_row(jacobian, row, cross_partner(g.separation) / axis_length_);
+  g.separation_jacobian.add_row(jacobian, row, -cross_partner(g.axis) / axis_length_);
 }
 
 double PrismaticConstraint::acceleration_remainder(double, const Eigen::VectorXd& q,
@@ -65,8 +64,9 @@ double PrismaticConstraint::acceleration_remainder(double, const Eigen::VectorXd
          axis_length_;
 }
 
-void PrismaticConstraint::add_force_derivative(double, const Eigen::VectorXd& q, double multiplier,
-                                               Eigen::MatrixXd& derivative) const {
+void PrismaticConstraint::add_force_derivative_entries(double, const Eigen::VectorXd& q,
+                                                       double multiplier,
+                                                       MatrixSink& derivative) const {
   // mu G^T = (mu / |axis|) (E^T S d - D^T S e), E = de/dq, D = dd/dq. Its q-derivative: the
   // products E^T S D - D^T S E, plus E^T and D^T differentiated at fixed vectors, which are
   // the point-load derivatives of the loads mu S d / |axis| (tip +, origin -) and
@@ -75,8 +75,8 @@ void PrismaticConstraint::add_force_derivative(double, const Eigen::VectorXd& q,
   const double scale = multiplier / axis_length_;
   Eigen::Matrix2d quarter_turn;
   quarter_turn << 0.0, 1.0, -1.0, 0.0;  // S
-  derivative += scale * (g.axis_jacobian.transpose() * quarter_turn * g.separation_jacobian -
-                         g.separation_jacobian.transpose() * quarter_turn * g.axis_jacobian);
+  g.axis_jacobian.add_transpose_product(derivative, quarter_turn, g.separation_jacobian, scale);
+  g.separation_jacobian.add_transpose_product(derivative, quarter_turn, g.axis_jacobian, -scale);
   const Eigen::Vector2d on_tip = scale * cross_partner(g.separation);
   const Eigen::Vector2d on_slider = -scale * cross_partner(g.axis);
   tip_.add_load_derivative(q, on_tip, derivative);
@@ -95,9 +95,10 @@ double RelativeAngleConstraint::residual(double, const Eigen::VectorXd& q,
   return a - b - offset_;
 }
 
-void RelativeAngleConstraint::jacobian_row(double, const Eigen::VectorXd&, RowRef row) const {
-  if (angle_a_ >= 0) row(angle_a_) += 1.0;
-  if (angle_b_ >= 0) row(angle_b_) -= 1.0;
+void RelativeAngleConstraint::add_jacobian_entries(double, const Eigen::VectorXd&, int row,
+                                                   MatrixSink& jacobian) const {
+  if (angle_a_ >= 0) jacobian.add(row, angle_a_, 1.0);
+  if (angle_b_ >= 0) jacobian.add(row, angle_b_, -1.0);
 }
 
 }  // namespace fsi::mbd::detail

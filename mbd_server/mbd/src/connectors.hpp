@@ -17,10 +17,11 @@
 
 #include "body_point.hpp"
 #include "fsi/mbd/constraint_element.hpp"
+#include "sink_elements.hpp"
 
 namespace fsi::mbd::detail {
 
-class PrismaticConstraint final : public ConstraintElement {
+class PrismaticConstraint final : public SparseConstraint {
  public:
   // |tip - origin| in body a's frame is the axis length the row is divided by.
   PrismaticConstraint(std::string description, BodyPoint origin, BodyPoint tip, BodyPoint slider,
@@ -29,19 +30,20 @@ class PrismaticConstraint final : public ConstraintElement {
   std::string description() const override { return description_; }
   ConstraintLevel level() const override { return ConstraintLevel::Position; }
   double residual(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v) const override;
-  void jacobian_row(double time, const Eigen::VectorXd& q, RowRef row) const override;
+  void add_jacobian_entries(double time, const Eigen::VectorXd& q, int row,
+                            MatrixSink& jacobian) const override;
   double explicit_time_derivative(double, const Eigen::VectorXd&) const override { return 0.0; }
   double acceleration_remainder(double time, const Eigen::VectorXd& q,
                                 const Eigen::VectorXd& v) const override;
-  void add_force_derivative(double time, const Eigen::VectorXd& q, double multiplier,
-                            Eigen::MatrixXd& derivative) const override;
+  void add_force_derivative_entries(double time, const Eigen::VectorXd& q, double multiplier,
+                                    MatrixSink& derivative) const override;
 
  private:
   struct Geometry {
-    Eigen::Vector2d axis;                 // e
-    Eigen::Vector2d separation;           // d
-    Eigen::MatrixXd axis_jacobian;        // de/dq (2 x n)
-    Eigen::MatrixXd separation_jacobian;  // dd/dq (2 x n)
+    Eigen::Vector2d axis;               // e
+    Eigen::Vector2d separation;         // d
+    SparseColumns axis_jacobian;        // de/dq (2 x n)
+    SparseColumns separation_jacobian;  // dd/dq (2 x n)
   };
   Geometry geometry(const Eigen::VectorXd& q) const;
 
@@ -53,21 +55,20 @@ class PrismaticConstraint final : public ConstraintElement {
 };
 
 // phi_a - phi_b - offset = 0; an angle index < 0 stands for the ground.
-class RelativeAngleConstraint final : public ConstraintElement {
+class RelativeAngleConstraint final : public SparseConstraint {
  public:
   RelativeAngleConstraint(std::string description, int angle_a, int angle_b, double offset);
 
   std::string description() const override { return description_; }
   ConstraintLevel level() const override { return ConstraintLevel::Position; }
   double residual(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v) const override;
-  void jacobian_row(double time, const Eigen::VectorXd& q, RowRef row) const override;
+  void add_jacobian_entries(double time, const Eigen::VectorXd& q, int row,
+                            MatrixSink& jacobian) const override;
   double explicit_time_derivative(double, const Eigen::VectorXd&) const override { return 0.0; }
   double acceleration_remainder(double, const Eigen::VectorXd&,
                                 const Eigen::VectorXd&) const override {
     return 0.0;  // linear in q
   }
-  void add_force_derivative(double, const Eigen::VectorXd&, double,
-                            Eigen::MatrixXd&) const override {}
 
  private:
   std::string description_;

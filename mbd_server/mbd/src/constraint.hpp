@@ -9,6 +9,7 @@
 #include "body_point.hpp"
 #include "fsi/mbd/constraint_element.hpp"
 #include "fsi/mbd/model.hpp"
+#include "sink_elements.hpp"
 
 namespace fsi::mbd::detail {
 
@@ -16,21 +17,20 @@ namespace fsi::mbd::detail {
 using Constraint = ConstraintElement;
 
 // q_i - value = 0.
-class CoordinateConstraint final : public Constraint {
+class CoordinateConstraint final : public SparseConstraint {
  public:
   CoordinateConstraint(std::string description, int coordinate_index, double value);
 
   std::string description() const override { return description_; }
   ConstraintLevel level() const override { return ConstraintLevel::Position; }
   double residual(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v) const override;
-  void jacobian_row(double time, const Eigen::VectorXd& q, RowRef row) const override;
+  void add_jacobian_entries(double time, const Eigen::VectorXd& q, int row,
+                            MatrixSink& jacobian) const override;
   double explicit_time_derivative(double, const Eigen::VectorXd&) const override { return 0.0; }
   double acceleration_remainder(double, const Eigen::VectorXd&,
                                 const Eigen::VectorXd&) const override {
     return 0.0;
   }
-  void add_force_derivative(double, const Eigen::VectorXd&, double,
-                            Eigen::MatrixXd&) const override {}
 
  private:
   std::string description_;
@@ -40,7 +40,7 @@ class CoordinateConstraint final : public Constraint {
 
 // sum_k w_k q_(i_k) - value = 0: a fixed linear combination of coordinates (a clamped beam
 // slope's direction).
-class LinearCoordinateConstraint final : public Constraint {
+class LinearCoordinateConstraint final : public SparseConstraint {
  public:
   LinearCoordinateConstraint(std::string description, Eigen::VectorXi indices,
                              Eigen::VectorXd weights, double value);
@@ -48,14 +48,13 @@ class LinearCoordinateConstraint final : public Constraint {
   std::string description() const override { return description_; }
   ConstraintLevel level() const override { return ConstraintLevel::Position; }
   double residual(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v) const override;
-  void jacobian_row(double time, const Eigen::VectorXd& q, RowRef row) const override;
+  void add_jacobian_entries(double time, const Eigen::VectorXd& q, int row,
+                            MatrixSink& jacobian) const override;
   double explicit_time_derivative(double, const Eigen::VectorXd&) const override { return 0.0; }
   double acceleration_remainder(double, const Eigen::VectorXd&,
                                 const Eigen::VectorXd&) const override {
     return 0.0;
   }
-  void add_force_derivative(double, const Eigen::VectorXd&, double,
-                            Eigen::MatrixXd&) const override {}
 
  private:
   std::string description_;
@@ -65,21 +64,20 @@ class LinearCoordinateConstraint final : public Constraint {
 };
 
 // dq_i/dt - velocity = 0.
-class VelocityConstraint final : public Constraint {
+class VelocityConstraint final : public SparseConstraint {
  public:
   VelocityConstraint(std::string description, int coordinate_index, double velocity);
 
   std::string description() const override { return description_; }
   ConstraintLevel level() const override { return ConstraintLevel::Velocity; }
   double residual(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v) const override;
-  void jacobian_row(double time, const Eigen::VectorXd& q, RowRef row) const override;
+  void add_jacobian_entries(double time, const Eigen::VectorXd& q, int row,
+                            MatrixSink& jacobian) const override;
   double explicit_time_derivative(double, const Eigen::VectorXd&) const override { return 0.0; }
   double acceleration_remainder(double, const Eigen::VectorXd&,
                                 const Eigen::VectorXd&) const override {
     return 0.0;  // the prescribed velocity is constant
   }
-  void add_force_derivative(double, const Eigen::VectorXd&, double,
-                            Eigen::MatrixXd&) const override {}
 
  private:
   std::string description_;
@@ -89,19 +87,20 @@ class VelocityConstraint final : public Constraint {
 
 // One component of r_a - r_b = 0: two of them (x, y) make a revolute joint between two body
 // points, or fix a body point to the ground.
-class PointConstraint final : public Constraint {
+class PointConstraint final : public SparseConstraint {
  public:
   PointConstraint(std::string description, BodyPoint a, BodyPoint b, int axis);
 
   std::string description() const override { return description_; }
   ConstraintLevel level() const override { return ConstraintLevel::Position; }
   double residual(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v) const override;
-  void jacobian_row(double time, const Eigen::VectorXd& q, RowRef row) const override;
+  void add_jacobian_entries(double time, const Eigen::VectorXd& q, int row,
+                            MatrixSink& jacobian) const override;
   double explicit_time_derivative(double, const Eigen::VectorXd&) const override { return 0.0; }
   double acceleration_remainder(double time, const Eigen::VectorXd& q,
                                 const Eigen::VectorXd& v) const override;
-  void add_force_derivative(double time, const Eigen::VectorXd& q, double multiplier,
-                            Eigen::MatrixXd& derivative) const override;
+  void add_force_derivative_entries(double time, const Eigen::VectorXd& q, double multiplier,
+                                    MatrixSink& derivative) const override;
 
  private:
   std::string description_;
@@ -114,23 +113,24 @@ class PointConstraint final : public Constraint {
 // The quadratic form is smooth for every d; dividing by 2 length makes G = d^T (dd/dq) / length
 // the unit direction e = d / |d| at consistent states, so lambda is the rod force [N]: -G^T lambda
 // pulls point a by +lambda e and point b by -lambda e, lambda > 0 is tension.
-class DistanceConstraint final : public Constraint {
+class DistanceConstraint final : public SparseConstraint {
  public:
   DistanceConstraint(std::string description, BodyPoint a, BodyPoint b, double length);
 
   std::string description() const override { return description_; }
   ConstraintLevel level() const override { return ConstraintLevel::Position; }
   double residual(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v) const override;
-  void jacobian_row(double time, const Eigen::VectorXd& q, RowRef row) const override;
+  void add_jacobian_entries(double time, const Eigen::VectorXd& q, int row,
+                            MatrixSink& jacobian) const override;
   double explicit_time_derivative(double, const Eigen::VectorXd&) const override { return 0.0; }
   double acceleration_remainder(double time, const Eigen::VectorXd& q,
                                 const Eigen::VectorXd& v) const override;
-  void add_force_derivative(double time, const Eigen::VectorXd& q, double multiplier,
-                            Eigen::MatrixXd& derivative) const override;
+  void add_force_derivative_entries(double time, const Eigen::VectorXd& q, double multiplier,
+                                    MatrixSink& derivative) const override;
 
  private:
   // dd/dq = dr_b/dq - dr_a/dq (2 x n).
-  Eigen::MatrixXd separation_jacobian(const Eigen::VectorXd& q) const;
+  SparseColumns separation_jacobian(const Eigen::VectorXd& q) const;
 
   std::string description_;
   BodyPoint a_;

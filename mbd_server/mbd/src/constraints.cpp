@@ -13,8 +13,9 @@ double CoordinateConstraint::residual(double, const Eigen::VectorXd& q,
   return q(index_) - value_;
 }
 
-void CoordinateConstraint::jacobian_row(double, const Eigen::VectorXd&, RowRef row) const {
-  row(index_) = 1.0;
+void CoordinateConstraint::add_jacobian_entries(double, const Eigen::VectorXd&, int row,
+                                                MatrixSink& jacobian) const {
+  jacobian.add(row, index_, 1.0);
 }
 
 LinearCoordinateConstraint::LinearCoordinateConstraint(std::string description,
@@ -33,9 +34,10 @@ double LinearCoordinateConstraint::residual(double, const Eigen::VectorXd& q,
   return sum;
 }
 
-void LinearCoordinateConstraint::jacobian_row(double, const Eigen::VectorXd&, RowRef row) const {
+void LinearCoordinateConstraint::add_jacobian_entries(double, const Eigen::VectorXd&, int row,
+                                                      MatrixSink& jacobian) const {
   for (Eigen::Index k = 0; k < indices_.size(); ++k)
-    row(indices_(k)) += weights_(k);
+    jacobian.add(row, indices_(k), weights_(k));
 }
 
 VelocityConstraint::VelocityConstraint(std::string description, int coordinate_index,
@@ -47,8 +49,9 @@ double VelocityConstraint::residual(double, const Eigen::VectorXd&,
   return v(index_) - velocity_;
 }
 
-void VelocityConstraint::jacobian_row(double, const Eigen::VectorXd&, RowRef row) const {
-  row(index_) = 1.0;
+void VelocityConstraint::add_jacobian_entries(double, const Eigen::VectorXd&, int row,
+                                              MatrixSink& jacobian) const {
+  jacobian.add(row, index_, 1.0);
 }
 
 PointConstraint::PointConstraint(std::string description, BodyPoint a, BodyPoint b, int axis)
@@ -58,11 +61,12 @@ double PointConstraint::residual(double, const Eigen::VectorXd& q, const Eigen::
   return (a_.position(q) - b_.position(q))(axis_);
 }
 
-void PointConstraint::jacobian_row(double, const Eigen::VectorXd& q, RowRef row) const {
-  Eigen::MatrixXd jacobian = Eigen::MatrixXd::Zero(2, q.size());
-  a_.add_jacobian(q, 1.0, jacobian);
-  b_.add_jacobian(q, -1.0, jacobian);
-  row += jacobian.row(axis_);
+void PointConstraint::add_jacobian_entries(double, const Eigen::VectorXd& q, int row,
+                                           MatrixSink& jacobian) const {
+  SparseColumns columns;
+  a_.add_jacobian(q, 1.0, columns);
+  b_.add_jacobian(q, -1.0, columns);
+  columns.add_row(jacobian, row, Eigen::Vector2d::Unit(axis_));
 }
 
 double PointConstraint::acceleration_remainder(double, const Eigen::VectorXd& q,
@@ -70,8 +74,9 @@ double PointConstraint::acceleration_remainder(double, const Eigen::VectorXd& q,
   return (a_.acceleration_remainder(q, v) - b_.acceleration_remainder(q, v))(axis_);
 }
 
-void PointConstraint::add_force_derivative(double, const Eigen::VectorXd& q, double multiplier,
-                                           Eigen::MatrixXd& derivative) const {
+void PointConstraint::add_force_derivative_entries(double, const Eigen::VectorXd& q,
+                                                   double multiplier,
+                                                   MatrixSink& derivative) const {
   // G^T mu = (dr_a/dq - dr_b/dq)^T (mu e_axis): the derivative of a point load mu e_axis.
   const Eigen::Vector2d load = multiplier * Eigen::Vector2d::Unit(axis_);
   a_.add_load_derivative(q, load, derivative);
@@ -82,8 +87,8 @@ DistanceConstraint::DistanceConstraint(std::string description, BodyPoint a, Bod
                                        double length)
     : description_(std::move(description)), a_(a), b_(b), length_(length) {}
 
-Eigen::MatrixXd DistanceConstraint::separation_jacobian(const Eigen::VectorXd& q) const {
-  Eigen::MatrixXd jacobian = Eigen::MatrixXd::Zero(2, q.size());
+SparseColumns DistanceConstraint::separation_jacobian(const Eigen::VectorXd& q) const {
+  SparseColumns jacobian;
   b_.add_jacobian(q, 1.0, jacobian);
   a_.add_jacobian(q, -1.0, jacobian);
   return jacobian;
@@ -95,9 +100,10 @@ double DistanceConstraint::residual(double, const Eigen::VectorXd& q,
   return (d.squaredNorm() - length_ * length_) / (2.0 * length_);
 }
 
-void DistanceConstraint::jacobian_row(double, const Eigen::VectorXd& q, RowRef row) const {
+void DistanceConstraint::add_jacobian_entries(double, const Eigen::VectorXd& q, int row,
+                                              MatrixSink& jacobian) const {
   const Eigen::Vector2d d = b_.position(q) - a_.position(q);
-  row += d.transpose() * separation_jacobian(q) / length_;
+  separation_jacobian(q).add_row(jacobian, row, d / length_);
 }
 
 double DistanceConstraint::acceleration_remainder(double, const Eigen::VectorXd& q,
@@ -110,13 +116,15 @@ double DistanceConstraint::acceleration_remainder(double, const Eigen::VectorXd&
   return (rate.squaredNorm() + d.dot(remainder)) / length_;
 }
 
-void DistanceConstraint::add_force_derivative(double, const Eigen::VectorXd& q, double multiplier,
-                                              Eigen::MatrixXd& derivative) const {
+void DistanceConstraint::add_force_derivative_entries(double, const Eigen::VectorXd& q,
+                                                      double multiplier,
+                                                      MatrixSink& derivative) const {
   // G^T mu = (mu / length) (dd/dq)^T d: the product rule gives (mu / length) D^T D plus the
   // derivative of the point loads +-(mu / length) d at fixed d.
-  const Eigen::MatrixXd jacobian = separation_jacobian(q);
+  const SparseColumns jacobian = separation_jacobian(q);
   const Eigen::Vector2d load = multiplier / length_ * (b_.position(q) - a_.position(q));
-  derivative += multiplier / length_ * jacobian.transpose() * jacobian;
+  jacobian.add_transpose_product(derivative, Eigen::Matrix2d::Identity(), jacobian,
+                                 multiplier / length_);
   b_.add_load_derivative(q, load, derivative);
   a_.add_load_derivative(q, -load, derivative);
 }

@@ -33,16 +33,17 @@ void RotationalSpringDamper::add_force(double time, const Eigen::VectorXd& q,
   if (angle_b_ >= 0) force(angle_b_) -= torque;
 }
 
-bool RotationalSpringDamper::add_jacobians(double, const Eigen::VectorXd&, const Eigen::VectorXd&,
-                                           Eigen::MatrixXd& force_by_position,
-                                           Eigen::MatrixXd& force_by_velocity) const {
+bool RotationalSpringDamper::add_jacobian_entries(double, const Eigen::VectorXd&,
+                                                  const Eigen::VectorXd&,
+                                                  MatrixSink& force_by_position,
+                                                  MatrixSink& force_by_velocity) const {
   // The torque depends on phi_a - phi_b only: the pattern [-1 1; 1 -1] times k and c.
   const std::array<std::pair<int, double>, 2> ends = {{{angle_a_, 1.0}, {angle_b_, -1.0}}};
   for (const auto& [row, row_sign] : ends) {
     for (const auto& [column, column_sign] : ends) {
       if (row < 0 || column < 0) continue;
-      force_by_position(row, column) -= row_sign * column_sign * stiffness_;
-      force_by_velocity(row, column) -= row_sign * column_sign * damping_;
+      force_by_position.add(row, column, -row_sign * column_sign * stiffness_);
+      force_by_velocity.add(row, column, -row_sign * column_sign * damping_);
     }
   }
   return true;
@@ -151,42 +152,45 @@ void PointToPointForce::add_force(double time, const Eigen::VectorXd& q, const E
   // +T e on a, -T e on b: Q = -(dd/dq)^T T e.
   const Eigen::Vector2d d = b_.position(q) - a_.position(q);
   const Eigen::Vector2d pull = measured_force(time, q, v) / d.norm() * d;
-  Eigen::MatrixXd separation = Eigen::MatrixXd::Zero(2, q.size());
-  b_.add_jacobian(q, 1.0, separation);
-  a_.add_jacobian(q, -1.0, separation);
-  force -= separation.transpose() * pull;
+  a_.add_load(q, pull, force);
+  b_.add_load(q, -pull, force);
 }
 
-bool PointToPointForce::add_jacobians(double, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
-                                      Eigen::MatrixXd& force_by_position,
-                                      Eigen::MatrixXd& force_by_velocity) const {
-  const auto n = q.size();
+bool PointToPointForce::add_jacobian_entries(double, const Eigen::VectorXd& q,
+                                             const Eigen::VectorXd& v,
+                                             MatrixSink& force_by_position,
+                                             MatrixSink& force_by_velocity) const {
   const Eigen::Vector2d d = b_.position(q) - a_.position(q);
   const double length = d.norm();
   const Eigen::Vector2d e = d / length;
   const Eigen::Vector2d u = b_.velocity(q, v) - a_.velocity(q, v);
   const Tension tension = law_->at(length - rest_length_, e.dot(u));
-  // P = (I - e e^T) / l is de/dd; D = dd/dq; W = d(dd/dt)/dq at fixed v.
+  // P = (I - e e^T) / l is de/dd; D = dd/dq; W = d(dd/dt)/dq at fixed v (non-zero columns).
   const Eigen::Matrix2d projector = (Eigen::Matrix2d::Identity() - e * e.transpose()) / length;
-  Eigen::MatrixXd separation = Eigen::MatrixXd::Zero(2, n);
+  SparseColumns separation, separation_rate;
   b_.add_jacobian(q, 1.0, separation);
   a_.add_jacobian(q, -1.0, separation);
-  Eigen::MatrixXd separation_rate = Eigen::MatrixXd::Zero(2, n);
   b_.add_velocity_jacobian(q, v, 1.0, separation_rate);
   a_.add_velocity_jacobian(q, v, -1.0, separation_rate);
 
-  // l_q = e^T D; rate_q = u^T P D + e^T W; rate_v = e^T D.
-  const Eigen::RowVectorXd length_by_q = e.transpose() * separation;
-  const Eigen::RowVectorXd rate_by_q =
-      u.transpose() * projector * separation + e.transpose() * separation_rate;
-  const Eigen::RowVectorXd tension_by_q =
-      tension.by_elongation * length_by_q + tension.by_rate * rate_by_q;
-  const Eigen::RowVectorXd tension_by_v = tension.by_rate * length_by_q;
-  // The pull T e: d/dq = e T_q + T P D, d/dv = e T_v; Q = -D^T (T e) plus D^T differentiated
-  // at the fixed pull (point loads +pull on a, -pull on b).
-  const Eigen::MatrixXd pull_by_q = e * tension_by_q + tension.value * projector * separation;
-  force_by_position -= separation.transpose() * pull_by_q;
-  force_by_velocity -= separation.transpose() * (e * tension_by_v);
+  // l_q = e^T D; rate_q = u^T P D + e^T W; rate_v = e^T D; T_q = T_l l_q + T_r rate_q,
+  // T_v = T_r rate_v. The pull T e: d/dq = e T_q + T P D, d/dv = e T_v; Q = -D^T (T e) plus
+  // D^T differentiated at the fixed pull (point loads +pull on a, -pull on b).
+  const Eigen::Vector2d projected_velocity = projector * u;
+  SparseColumns pull_by_q, pull_by_v;
+  for (std::size_t k = 0; k < separation.index.size(); ++k) {
+    const Eigen::Vector2d& column = separation.column[k];
+    const double tension_by_q =
+        tension.by_elongation * e.dot(column) + tension.by_rate * projected_velocity.dot(column);
+    pull_by_q.add(separation.index[k], e * tension_by_q + tension.value * projector * column);
+    pull_by_v.add(separation.index[k], e * (tension.by_rate * e.dot(column)));
+  }
+  for (std::size_t k = 0; k < separation_rate.index.size(); ++k) {
+    pull_by_q.add(separation_rate.index[k],
+                  e * (tension.by_rate * e.dot(separation_rate.column[k])));
+  }
+  separation.add_transpose_product(force_by_position, Eigen::Matrix2d::Identity(), pull_by_q, -1.0);
+  separation.add_transpose_product(force_by_velocity, Eigen::Matrix2d::Identity(), pull_by_v, -1.0);
   const Eigen::Vector2d pull = tension.value * e;
   a_.add_load_derivative(q, pull, force_by_position);
   b_.add_load_derivative(q, -pull, force_by_position);
@@ -205,13 +209,11 @@ PointForce::PointForce(std::string description, BodyPoint point,
 
 void PointForce::add_force(double time, const Eigen::VectorXd& q, const Eigen::VectorXd&,
                            Eigen::VectorXd& force) const {
-  Eigen::MatrixXd jacobian = Eigen::MatrixXd::Zero(2, q.size());
-  point_.add_jacobian(q, 1.0, jacobian);
-  force += jacobian.transpose() * force_(time);
+  point_.add_load(q, force_(time), force);
 }
 
-bool PointForce::add_jacobians(double time, const Eigen::VectorXd& q, const Eigen::VectorXd&,
-                               Eigen::MatrixXd& force_by_position, Eigen::MatrixXd&) const {
+bool PointForce::add_jacobian_entries(double time, const Eigen::VectorXd& q, const Eigen::VectorXd&,
+                                      MatrixSink& force_by_position, MatrixSink&) const {
   point_.add_load_derivative(q, force_(time), force_by_position);
   return true;
 }

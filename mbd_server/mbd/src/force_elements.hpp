@@ -17,19 +17,20 @@
 #include "body_point.hpp"
 #include "fsi/mbd/force_element.hpp"
 #include "measured_force.hpp"
+#include "sink_elements.hpp"
 
 namespace fsi::mbd::detail {
 
-class RotationalSpringDamper final : public ForceElement, public MeasuredForce {
+class RotationalSpringDamper final : public SparseForceElement, public MeasuredForce {
  public:
   RotationalSpringDamper(std::string description, int angle_a, int angle_b, double stiffness,
                          double damping, double rest_angle);
 
   void add_force(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
                  Eigen::VectorXd& force) const override;
-  bool add_jacobians(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
-                     Eigen::MatrixXd& force_by_position,
-                     Eigen::MatrixXd& force_by_velocity) const override;
+  bool add_jacobian_entries(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                            MatrixSink& force_by_position,
+                            MatrixSink& force_by_velocity) const override;
   std::string description() const override { return description_; }
   double potential_energy(const Eigen::VectorXd& q) const override;
   // The torque on body a [N m].
@@ -91,16 +92,16 @@ class UserTension final : public TensionLaw {
   std::function<double(double, double)> tension_;
 };
 
-class PointToPointForce final : public ForceElement, public MeasuredForce {
+class PointToPointForce final : public SparseForceElement, public MeasuredForce {
  public:
   PointToPointForce(std::string description, BodyPoint a, BodyPoint b, double rest_length,
                     std::shared_ptr<const TensionLaw> law);
 
   void add_force(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
                  Eigen::VectorXd& force) const override;
-  bool add_jacobians(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
-                     Eigen::MatrixXd& force_by_position,
-                     Eigen::MatrixXd& force_by_velocity) const override;
+  bool add_jacobian_entries(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                            MatrixSink& force_by_position,
+                            MatrixSink& force_by_velocity) const override;
   std::string description() const override { return description_; }
   double potential_energy(const Eigen::VectorXd& q) const override;
   // The tension [N].
@@ -115,16 +116,16 @@ class PointToPointForce final : public ForceElement, public MeasuredForce {
   std::shared_ptr<const TensionLaw> law_;
 };
 
-class PointForce final : public ForceElement {
+class PointForce final : public SparseForceElement {
  public:
   PointForce(std::string description, BodyPoint point,
              std::function<Eigen::Vector2d(double)> force);
 
   void add_force(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
                  Eigen::VectorXd& force) const override;
-  bool add_jacobians(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
-                     Eigen::MatrixXd& force_by_position,
-                     Eigen::MatrixXd& force_by_velocity) const override;
+  bool add_jacobian_entries(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                            MatrixSink& force_by_position,
+                            MatrixSink& force_by_velocity) const override;
   std::string description() const override { return description_; }
 
  private:
@@ -133,14 +134,14 @@ class PointForce final : public ForceElement {
   std::function<Eigen::Vector2d(double)> force_;
 };
 
-class Torque final : public ForceElement {
+class Torque final : public SparseForceElement {
  public:
   Torque(std::string description, int angle, std::function<double(double)> torque);
 
   void add_force(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
                  Eigen::VectorXd& force) const override;
-  bool add_jacobians(double, const Eigen::VectorXd&, const Eigen::VectorXd&, Eigen::MatrixXd&,
-                     Eigen::MatrixXd&) const override {
+  bool add_jacobian_entries(double, const Eigen::VectorXd&, const Eigen::VectorXd&, MatrixSink&,
+                            MatrixSink&) const override {
     return true;  // independent of q and v
   }
   std::string description() const override { return description_; }

@@ -1,5 +1,9 @@
 #include "fsi/mbd/model.hpp"
 
+#include <Eigen/OrderingMethods>
+#include <Eigen/SparseLU>
+#include <Eigen/SparseQR>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -15,6 +19,11 @@ namespace fsi::mbd {
 namespace {
 
 using detail::Marker;
+
+// Up to this n + m the initial state is checked and lambda_0 solved with dense matrices (as the
+// dense Newton matrix, cheaper for small systems); above it with sparse ones, whose cost grows
+// about linearly with the size for chains and beams.
+constexpr int kDenseInitialStateSize = 300;
 
 // Nine significant digits: enough to see a residual, short enough to read.
 std::string number(double value) {
@@ -339,6 +348,31 @@ State Model::initial_state() const {
   // Multipliers consistent with the accelerations: M a + G^T lambda = F, G a = -remainder.
   Eigen::VectorXd force;
   applied_force(state.time, state.q, state.v, force);
+  if (n + m > kDenseInitialStateSize) {
+    // [M G^T; G 0] from triplets, SparseLU.
+    TripletSink system;
+    for (std::size_t b = 0; b < data_->bodies.size(); ++b) {
+      OffsetSink block(system, data_->offsets[b], data_->offsets[b]);
+      data_->bodies[b]->mass_matrix(block);
+    }
+    Eigen::SparseMatrix<double> jacobian;
+    constraint_jacobian(state.time, state.q, jacobian);
+    for (int c = 0; c < jacobian.outerSize(); ++c) {
+      for (Eigen::SparseMatrix<double>::InnerIterator it(jacobian, c); it; ++it) {
+        system.add(n + static_cast<int>(it.row()), c, it.value());
+        system.add(c, n + static_cast<int>(it.row()), it.value());
+      }
+    }
+    Eigen::SparseMatrix<double> matrix;
+    system.to_matrix(n + m, n + m, matrix);
+    Eigen::VectorXd right(n + m);
+    right.head(n) = force;
+    for (int k = 0; k < m; ++k)
+      right(n + k) = -data_->constraints[k]->acceleration_remainder(state.time, state.q, state.v);
+    Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu(matrix);
+    state.lambda = Eigen::VectorXd(lu.solve(right)).tail(m);
+    return state;
+  }
   Eigen::MatrixXd jacobian;
   constraint_jacobian(state.time, state.q, jacobian);
   Eigen::MatrixXd system = Eigen::MatrixXd::Zero(n + m, n + m);
@@ -363,8 +397,17 @@ void Model::check_consistency(const State& state) const {
   }
   const double position_tolerance = 1e-12 * (1.0 + state.q.lpNorm<Eigen::Infinity>());
   const double velocity_tolerance = 1e-12 * (1.0 + state.v.lpNorm<Eigen::Infinity>());
+  const bool dense = n + m <= kDenseInitialStateSize;
   Eigen::MatrixXd jacobian;
-  constraint_jacobian(state.time, state.q, jacobian);
+  Eigen::SparseMatrix<double> sparse_jacobian;
+  Eigen::VectorXd jacobian_v;
+  if (dense) {
+    constraint_jacobian(state.time, state.q, jacobian);
+    jacobian_v = jacobian * state.v;
+  } else {
+    constraint_jacobian(state.time, state.q, sparse_jacobian);
+    jacobian_v = sparse_jacobian * state.v;
+  }
   for (int k = 0; k < m; ++k) {
     const auto& constraint = *data_->constraints[k];
     const double residual = constraint.residual(state.time, state.q, state.v);
@@ -373,8 +416,7 @@ void Model::check_consistency(const State& state) const {
         problems += "\n  " + constraint.description() +
                     ": position residual C = " + number(residual) + " at t = " + number(state.time);
       }
-      const double rate =
-          jacobian.row(k).dot(state.v) + constraint.explicit_time_derivative(state.time, state.q);
+      const double rate = jacobian_v(k) + constraint.explicit_time_derivative(state.time, state.q);
       if (!(std::abs(rate) <= velocity_tolerance)) {
         problems += "\n  " + constraint.description() +
                     ": velocity residual dC/dt = " + number(rate) +
@@ -386,9 +428,23 @@ void Model::check_consistency(const State& state) const {
     }
   }
   // Incremental rank: a row that does not raise the rank of the rows before it is redundant
-  // and makes the Newton matrix singular.
+  // and makes the Newton matrix singular. Large systems: a sparse QR of G^T in the natural
+  // column order moves exactly such rows (columns of G^T) behind the rank.
+  if (!dense && m > 0) {
+    const Eigen::SparseMatrix<double> transposed = sparse_jacobian.transpose();
+    Eigen::SparseQR<Eigen::SparseMatrix<double>, Eigen::NaturalOrdering<int>> qr(transposed);
+    const auto rank = static_cast<int>(qr.rank());
+    std::vector<int> redundant;
+    for (int k = rank; k < m; ++k)
+      redundant.push_back(qr.colsPermutation().indices()(k));
+    std::sort(redundant.begin(), redundant.end());
+    for (const int k : redundant) {
+      problems += "\n  " + data_->constraints[k]->description() +
+                  ": redundant (linearly dependent on the constraints before it)";
+    }
+  }
   int rank = 0;
-  for (int k = 0; k < m; ++k) {
+  for (int k = 0; dense && k < m; ++k) {
     const int with_row =
         static_cast<int>(Eigen::FullPivLU<Eigen::MatrixXd>(jacobian.topRows(k + 1)).rank());
     if (with_row == rank) {
@@ -412,14 +468,34 @@ const Eigen::MatrixXd& Model::mass_matrix() const {
   if (!data_->mass_valid) {
     const int n = coordinate_count();
     data_->mass = Eigen::MatrixXd::Zero(n, n);
+    DenseMatrixSink sink(data_->mass);
     for (std::size_t b = 0; b < data_->bodies.size(); ++b) {
-      const int nb = data_->bodies[b]->coordinate_count();
-      const int o = data_->offsets[b];
-      data_->bodies[b]->mass_matrix(data_->mass.block(o, o, nb, nb));
+      OffsetSink block(sink, data_->offsets[b], data_->offsets[b]);
+      data_->bodies[b]->mass_matrix(block);
     }
     data_->mass_valid = true;
   }
   return data_->mass;
+}
+
+const Eigen::SparseMatrix<double>& Model::sparse_mass_matrix() const {
+  if (!data_->sparse_mass_valid) {
+    const int n = coordinate_count();
+    TripletSink sink;
+    for (std::size_t b = 0; b < data_->bodies.size(); ++b) {
+      OffsetSink block(sink, data_->offsets[b], data_->offsets[b]);
+      data_->bodies[b]->mass_matrix(block);
+    }
+    sink.to_matrix(n, n, data_->sparse_mass);
+    data_->mass_diagonal = data_->sparse_mass.diagonal();
+    data_->sparse_mass_valid = true;
+  }
+  return data_->sparse_mass;
+}
+
+const Eigen::VectorXd& Model::mass_diagonal() const {
+  (void)sparse_mass_matrix();
+  return data_->mass_diagonal;
 }
 
 void Model::applied_force(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
@@ -436,7 +512,6 @@ void Model::applied_force(double time, const Eigen::VectorXd& q, const Eigen::Ve
     }
     body.add_internal_force(q.segment(o, nb), v.segment(o, nb), force.segment(o, nb));
   }
-  Eigen::MatrixXd point_jacobian;
   if (data_->dimension == 3) {
     for (std::size_t k = 0; k < data_->markers.size(); ++k) {
       const Marker& marker = data_->markers[k];
@@ -444,11 +519,9 @@ void Model::applied_force(double time, const Eigen::VectorXd& q, const Eigen::Ve
                                  data_->point_loads[3 * k + 2]);
       if (marker.body == kGround || load.isZero(0.0)) continue;
       const auto& body = *data_->as_spatial(marker.body);
-      const int nb = body.coordinate_count();
-      point_jacobian.resize(3, nb);
-      body.spatial_position_jacobian(data_->segment(q, marker.body), marker.spatial_local,
-                                     point_jacobian);
-      force.segment(data_->offsets[marker.body], nb) += point_jacobian.transpose() * load;
+      body.add_spatial_point_load(
+          data_->segment(q, marker.body), marker.spatial_local, load,
+          force.segment(data_->offsets[marker.body], body.coordinate_count()));
     }
   }
   for (std::size_t k = 0; data_->dimension != 3 && k < data_->markers.size(); ++k) {
@@ -456,10 +529,8 @@ void Model::applied_force(double time, const Eigen::VectorXd& q, const Eigen::Ve
     const Eigen::Vector2d load(data_->point_loads[2 * k], data_->point_loads[2 * k + 1]);
     if (marker.body == kGround || (load.x() == 0.0 && load.y() == 0.0)) continue;
     const auto& body = *data_->bodies[marker.body];
-    const int nb = body.coordinate_count();
-    point_jacobian.resize(2, nb);
-    body.position_jacobian(data_->segment(q, marker.body), marker.local, point_jacobian);
-    force.segment(data_->offsets[marker.body], nb) += point_jacobian.transpose() * load;
+    body.add_point_load(data_->segment(q, marker.body), marker.local, load,
+                        force.segment(data_->offsets[marker.body], body.coordinate_count()));
   }
   for (const auto& element : data_->force_elements)
     element->add_force(time, q, v, force);
@@ -471,13 +542,32 @@ void Model::applied_force_derivatives(double time, const Eigen::VectorXd& q,
   const int n = coordinate_count();
   by_position.setZero(n, n);
   by_velocity.setZero(n, n);
+  DenseMatrixSink position_sink(by_position), velocity_sink(by_velocity);
+  add_applied_force_derivatives(time, q, v, position_sink, velocity_sink);
+}
+
+void Model::applied_force_derivatives(double time, const Eigen::VectorXd& q,
+                                      const Eigen::VectorXd& v,
+                                      Eigen::SparseMatrix<double>& by_position,
+                                      Eigen::SparseMatrix<double>& by_velocity) const {
+  const int n = coordinate_count();
+  TripletSink position_sink, velocity_sink;
+  add_applied_force_derivatives(time, q, v, position_sink, velocity_sink);
+  position_sink.to_matrix(n, n, by_position);
+  velocity_sink.to_matrix(n, n, by_velocity);
+}
+
+void Model::add_applied_force_derivatives(double time, const Eigen::VectorXd& q,
+                                          const Eigen::VectorXd& v, MatrixSink& by_position,
+                                          MatrixSink& by_velocity) const {
+  const int n = coordinate_count();
   for (std::size_t b = 0; b < data_->bodies.size(); ++b) {
     const auto& body = *data_->bodies[b];
     const int o = data_->offsets[b];
     const int nb = body.coordinate_count();
-    body.add_internal_force_derivatives(q.segment(o, nb), v.segment(o, nb),
-                                        by_position.block(o, o, nb, nb),
-                                        by_velocity.block(o, o, nb, nb));
+    OffsetSink position_block(by_position, o, o), velocity_block(by_velocity, o, o);
+    body.add_internal_force_derivatives(q.segment(o, nb), v.segment(o, nb), position_block,
+                                        velocity_block);
   }
   for (std::size_t k = 0; data_->dimension == 3 && k < data_->markers.size(); ++k) {
     const Marker& marker = data_->markers[k];
@@ -485,27 +575,31 @@ void Model::applied_force_derivatives(double time, const Eigen::VectorXd& q,
                                data_->point_loads[3 * k + 2]);
     if (marker.body == kGround || load.isZero(0.0)) continue;
     const auto& body = *data_->as_spatial(marker.body);
-    const int nb = body.coordinate_count();
     const int o = data_->offsets[marker.body];
+    OffsetSink block(by_position, o, o);
     body.add_spatial_point_load_derivative(data_->segment(q, marker.body), marker.spatial_local,
-                                           load, by_position.block(o, o, nb, nb));
+                                           load, block);
   }
   for (std::size_t k = 0; data_->dimension != 3 && k < data_->markers.size(); ++k) {
     const Marker& marker = data_->markers[k];
     const Eigen::Vector2d load(data_->point_loads[2 * k], data_->point_loads[2 * k + 1]);
     if (marker.body == kGround || (load.x() == 0.0 && load.y() == 0.0)) continue;
     const auto& body = *data_->bodies[marker.body];
-    const int nb = body.coordinate_count();
     const int o = data_->offsets[marker.body];
-    body.add_point_load_derivative(data_->segment(q, marker.body), marker.local, load,
-                                   by_position.block(o, o, nb, nb));
+    OffsetSink block(by_position, o, o);
+    body.add_point_load_derivative(data_->segment(q, marker.body), marker.local, load, block);
   }
   // Central differences for elements without analytic derivatives; the step balances
-  // truncation (~step^2) against cancellation (~eps/step).
+  // truncation (~step^2) against cancellation (~eps/step). O(n) force evaluations per element.
   const double step_factor = std::cbrt(std::numeric_limits<double>::epsilon());
   Eigen::VectorXd plus(n), minus(n), shifted_q, shifted_v;
+  auto add_column = [](MatrixSink& sink, int column, const Eigen::VectorXd& values) {
+    for (Eigen::Index i = 0; i < values.size(); ++i) {
+      if (values(i) != 0.0) sink.add(static_cast<int>(i), column, values(i));
+    }
+  };
   for (const auto& element : data_->force_elements) {
-    if (element->add_jacobians(time, q, v, by_position, by_velocity)) continue;
+    if (element->add_jacobian_entries(time, q, v, by_position, by_velocity)) continue;
     shifted_q = q;
     shifted_v = v;
     for (int j = 0; j < n; ++j) {
@@ -517,7 +611,7 @@ void Model::applied_force_derivatives(double time, const Eigen::VectorXd& q,
       shifted_q(j) = q(j) - dq;
       element->add_force(time, shifted_q, v, minus);
       shifted_q(j) = q(j);
-      by_position.col(j) += (plus - minus) / (2.0 * dq);
+      add_column(by_position, j, (plus - minus) / (2.0 * dq));
 
       const double dv = step_factor * std::max(1.0, std::abs(v(j)));
       plus.setZero();
@@ -527,7 +621,7 @@ void Model::applied_force_derivatives(double time, const Eigen::VectorXd& q,
       shifted_v(j) = v(j) - dv;
       element->add_force(time, q, shifted_v, minus);
       shifted_v(j) = v(j);
-      by_velocity.col(j) += (plus - minus) / (2.0 * dv);
+      add_column(by_velocity, j, (plus - minus) / (2.0 * dv));
     }
   }
 }
@@ -541,13 +635,14 @@ void Model::constraint_residual(double time, const Eigen::VectorXd& q, const Eig
 
 void Model::constraint_rate(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
                             Eigen::VectorXd& rate) const {
-  Eigen::MatrixXd jacobian;
+  Eigen::SparseMatrix<double> jacobian;
   constraint_jacobian(time, q, jacobian);
+  const Eigen::VectorXd jacobian_v = jacobian * v;
   rate.resize(constraint_count());
   for (int k = 0; k < constraint_count(); ++k) {
     const auto& constraint = *data_->constraints[k];
     rate(k) = constraint.level() == ConstraintLevel::Position
-                  ? jacobian.row(k).dot(v) + constraint.explicit_time_derivative(time, q)
+                  ? jacobian_v(k) + constraint.explicit_time_derivative(time, q)
                   : constraint.residual(time, q, v);
   }
 }
@@ -563,16 +658,44 @@ void Model::constraint_acceleration_remainder(double time, const Eigen::VectorXd
 void Model::constraint_jacobian(double time, const Eigen::VectorXd& q,
                                 Eigen::MatrixXd& jacobian) const {
   jacobian.setZero(constraint_count(), coordinate_count());
+  DenseMatrixSink sink(jacobian);
+  add_constraint_jacobian(time, q, sink);
+}
+
+void Model::constraint_jacobian(double time, const Eigen::VectorXd& q,
+                                Eigen::SparseMatrix<double>& jacobian) const {
+  TripletSink sink;
+  add_constraint_jacobian(time, q, sink);
+  sink.to_matrix(constraint_count(), coordinate_count(), jacobian);
+}
+
+void Model::add_constraint_jacobian(double time, const Eigen::VectorXd& q,
+                                    MatrixSink& jacobian) const {
   for (int k = 0; k < constraint_count(); ++k)
-    data_->constraints[k]->jacobian_row(time, q, jacobian.row(k));
+    data_->constraints[k]->add_jacobian_entries(time, q, k, jacobian);
 }
 
 void Model::constraint_force_derivative(double time, const Eigen::VectorXd& q,
                                         const Eigen::VectorXd& lambda,
                                         Eigen::MatrixXd& derivative) const {
   derivative.setZero(coordinate_count(), coordinate_count());
+  DenseMatrixSink sink(derivative);
+  add_constraint_force_derivative(time, q, lambda, sink);
+}
+
+void Model::constraint_force_derivative(double time, const Eigen::VectorXd& q,
+                                        const Eigen::VectorXd& lambda,
+                                        Eigen::SparseMatrix<double>& derivative) const {
+  TripletSink sink;
+  add_constraint_force_derivative(time, q, lambda, sink);
+  sink.to_matrix(coordinate_count(), coordinate_count(), derivative);
+}
+
+void Model::add_constraint_force_derivative(double time, const Eigen::VectorXd& q,
+                                            const Eigen::VectorXd& lambda,
+                                            MatrixSink& derivative) const {
   for (int k = 0; k < constraint_count(); ++k)
-    data_->constraints[k]->add_force_derivative(time, q, lambda(k), derivative);
+    data_->constraints[k]->add_force_derivative_entries(time, q, lambda(k), derivative);
 }
 
 // --- point loads ---
@@ -667,7 +790,7 @@ double Model::velocity(const State& state, BodyId body, Coordinate c) const {
 }
 
 Eigen::VectorXd Model::generalised_constraint_force(const State& state) const {
-  Eigen::MatrixXd jacobian;
+  Eigen::SparseMatrix<double> jacobian;
   constraint_jacobian(state.time, state.q, jacobian);
   return -jacobian.transpose() * state.lambda;
 }
@@ -695,7 +818,7 @@ Eigen::Vector3d Model::point_load_resultant(const State& state, BodyId body) con
 }
 
 double Model::kinetic_energy(const State& state) const {
-  return 0.5 * state.v.dot(mass_matrix() * state.v);
+  return 0.5 * state.v.dot(sparse_mass_matrix() * state.v);
 }
 
 double Model::potential_energy(const State& state) const {
@@ -731,15 +854,16 @@ double Model::position_constraint_drift(const State& state) const {
 }
 
 double Model::velocity_constraint_drift(const State& state) const {
-  Eigen::MatrixXd jacobian;
+  Eigen::SparseMatrix<double> jacobian;
   constraint_jacobian(state.time, state.q, jacobian);
+  const Eigen::VectorXd jacobian_v = jacobian * state.v;
   double drift = 0.0;
   for (int k = 0; k < constraint_count(); ++k) {
     const auto& constraint = *data_->constraints[k];
-    const double residual = constraint.level() == ConstraintLevel::Position
-                                ? jacobian.row(k).dot(state.v) +
-                                      constraint.explicit_time_derivative(state.time, state.q)
-                                : constraint.residual(state.time, state.q, state.v);
+    const double residual =
+        constraint.level() == ConstraintLevel::Position
+            ? jacobian_v(k) + constraint.explicit_time_derivative(state.time, state.q)
+            : constraint.residual(state.time, state.q, state.v);
     drift = std::max(drift, std::abs(residual));
   }
   return drift;

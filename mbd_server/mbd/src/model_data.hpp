@@ -4,6 +4,7 @@
 // Shared by model.cpp (planar bodies, assembly) and model_spatial.cpp (spatial bodies).
 
 #include <Eigen/Dense>
+#include <Eigen/SparseCore>
 
 #include <memory>
 #include <string>
@@ -48,6 +49,9 @@ struct Model::Data {
   std::vector<double> point_loads;  // x, y per marker
   mutable Eigen::MatrixXd mass;     // assembled on first use after a structural change
   mutable bool mass_valid = false;
+  mutable Eigen::SparseMatrix<double> sparse_mass;  // the same, sparse
+  mutable Eigen::VectorXd mass_diagonal;
+  mutable bool sparse_mass_valid = false;
 
   void check_body(BodyId body, const std::string& user) const {
     if (body < 0 || body >= static_cast<BodyId>(bodies.size())) {
@@ -146,6 +150,7 @@ struct Model::Data {
     coordinates += body->coordinate_count();
     bodies.push_back(std::move(body));
     mass_valid = false;
+    sparse_mass_valid = false;
     return static_cast<BodyId>(bodies.size()) - 1;
   }
   // A body point as the elements see it; throws naming `user` for unknown bodies or

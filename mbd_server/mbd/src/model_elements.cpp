@@ -236,10 +236,13 @@ Eigen::Vector3d Model::joint_reaction(const State& state, int first_row, int row
                                       BodyId body) const {
   FSI_ASSERT(first_row >= 0 && rows >= 0 && first_row + rows <= constraint_count(),
              "joint rows out of range");
-  Eigen::MatrixXd jacobian;
+  // Sparse G (a sensor per output step must not cost O(m n)); the multipliers of the other rows
+  // are left out.
+  Eigen::SparseMatrix<double> jacobian;
   constraint_jacobian(state.time, state.q, jacobian);
-  const Eigen::VectorXd force =
-      -jacobian.middleRows(first_row, rows).transpose() * state.lambda.segment(first_row, rows);
+  Eigen::VectorXd multipliers = Eigen::VectorXd::Zero(constraint_count());
+  multipliers.segment(first_row, rows) = state.lambda.segment(first_row, rows);
+  const Eigen::VectorXd force = -(jacobian.transpose() * multipliers);
   if (body == kGround) return Eigen::Vector3d::Zero();
   return {force(coordinate_index(body, Coordinate::X)),
           force(coordinate_index(body, Coordinate::Y)),

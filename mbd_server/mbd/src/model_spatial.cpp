@@ -252,10 +252,12 @@ Eigen::Matrix<double, 6, 1> Model::spatial_joint_reaction(const State& state, in
     throw Error("'" + spatial.name() + "' is neither a spatial rigid body nor a point mass",
                 "a joint reaction", "measure a RigidBody3D or a PointMass");
   }
-  Eigen::MatrixXd jacobian;
+  // Sparse G: a sensor per output step must not cost O(m n).
+  Eigen::SparseMatrix<double> jacobian;
   constraint_jacobian(state.time, state.q, jacobian);
-  const Eigen::VectorXd generalised =
-      -jacobian.middleRows(first_row, rows).transpose() * state.lambda.segment(first_row, rows);
+  Eigen::VectorXd multipliers = Eigen::VectorXd::Zero(constraint_count());
+  multipliers.segment(first_row, rows) = state.lambda.segment(first_row, rows);
+  const Eigen::VectorXd generalised = -(jacobian.transpose() * multipliers);
   const auto own = data_->segment(generalised, body);
   const auto q = data_->segment(state.q, body);
   Eigen::Matrix<double, 6, 1> reaction = Eigen::Matrix<double, 6, 1>::Zero();

@@ -2,10 +2,12 @@
 //   initialise -> predict -> Newton increments -> accept/reject -> finalise.
 // The stage equations and their scaling live in radau_stage_equations.{hpp,cpp}.
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include "fsi/common/error.hpp"
 #include "fsi/mbd/integrator.hpp"
@@ -69,6 +71,11 @@ struct RadauIIA::Workspace {
   Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> sparse_lu;
   bool sparse = false;    // the kept factorisation is sparse_lu
   bool singular = false;  // SparseLU found the matrix singular
+  // The pattern sparse_lu analysed (COLAMD ordering, elimination tree): fixed while the model and
+  // h are, so refreshes only factorize; a changed pattern (a point load switched on, a
+  // different model) is analysed again.
+  bool pattern_analysed = false;
+  std::vector<int> analysed_outer, analysed_inner;
   // What the kept factorisation belongs to.
   bool factorised = false;
   const Model* factorised_model = nullptr;
@@ -99,6 +106,12 @@ struct RadauIIA::Workspace {
                       std::to_string(model.constraint_count()) + ")",
                   "Radau IIA step", "start from Model::initial_state() of this model");
     }
+    // Automatic: SparseLU from sparse_threshold unknowns on; the stage equations then use the
+    // sparse M and G as well.
+    const int size = model.constraint_count() + 2 * model.coordinate_count();
+    equations.set_sparse(options.linear_solver == LinearSolver::Sparse ||
+                         (options.linear_solver == LinearSolver::Automatic &&
+                          equations.stages() * size >= options.sparse_threshold));
     equations.begin_step(model, state, h);
     current_model = &model;
     current_step_size = h;
@@ -112,16 +125,18 @@ struct RadauIIA::Workspace {
   void predict() { equations.predict(unknowns); }
 
   void refactorise(StepStatistics& stats) {
-    equations.jacobian(unknowns, jacobian);
     ++stats.jacobian_evaluations;
-    sparse = options.linear_solver == LinearSolver::Sparse ||
-             (options.linear_solver == LinearSolver::Automatic &&
-              equations.size() >= options.sparse_threshold);
+    sparse = equations.sparse();
     if (sparse) {
-      sparse_jacobian = jacobian.sparseView();
-      sparse_lu.compute(sparse_jacobian);
+      equations.jacobian(unknowns, sparse_jacobian);
+      if (!same_pattern()) {
+        sparse_lu.analyzePattern(sparse_jacobian);
+        keep_pattern();
+      }
+      sparse_lu.factorize(sparse_jacobian);
       singular = sparse_lu.info() != Eigen::Success;
     } else {
+      equations.jacobian(unknowns, jacobian);
       lu.compute(jacobian);
     }
     ++stats.factorisations;
@@ -130,6 +145,25 @@ struct RadauIIA::Workspace {
     factorised_size = equations.size();
     factorised_step_size = current_step_size;
     steps_with_factorisation = 0;
+  }
+
+  bool same_pattern() const {
+    const Eigen::Index columns = sparse_jacobian.outerSize();
+    const Eigen::Index entries = sparse_jacobian.nonZeros();
+    return pattern_analysed && static_cast<Eigen::Index>(analysed_outer.size()) == columns + 1 &&
+           static_cast<Eigen::Index>(analysed_inner.size()) == entries &&
+           std::equal(analysed_outer.begin(), analysed_outer.end(),
+                      sparse_jacobian.outerIndexPtr()) &&
+           std::equal(analysed_inner.begin(), analysed_inner.end(),
+                      sparse_jacobian.innerIndexPtr());
+  }
+  void keep_pattern() {
+    const Eigen::Index columns = sparse_jacobian.outerSize();
+    analysed_outer.assign(sparse_jacobian.outerIndexPtr(),
+                          sparse_jacobian.outerIndexPtr() + columns + 1);
+    analysed_inner.assign(sparse_jacobian.innerIndexPtr(),
+                          sparse_jacobian.innerIndexPtr() + sparse_jacobian.nonZeros());
+    pattern_analysed = true;
   }
 
   // --- Newton increments of one attempt, from the prediction ---

@@ -32,7 +32,13 @@ void RadauStageEquations::begin_step(const Model& model, const State& start, dou
   for (int k = 0; k < m_; ++k)
     position_level_[k] = model.constraint_level(k) == ConstraintLevel::Position;
   stage_force_.assign(stages_, Eigen::VectorXd::Zero(n_));
-  stage_constraint_jacobian_.assign(stages_, Eigen::MatrixXd::Zero(m_, n_));
+  if (sparse_) {
+    stage_constraint_jacobian_.clear();
+    stage_sparse_constraint_jacobian_.assign(stages_, Eigen::SparseMatrix<double>(m_, n_));
+  } else {
+    stage_constraint_jacobian_.assign(stages_, Eigen::MatrixXd::Zero(m_, n_));
+    stage_sparse_constraint_jacobian_.clear();
+  }
 }
 
 void RadauStageEquations::predict(Eigen::VectorXd& unknowns) const {
@@ -60,12 +66,15 @@ void RadauStageEquations::residual(const Eigen::VectorXd& unknowns, Eigen::Vecto
   FSI_ASSERT(model_ != nullptr && unknowns.size() == size(), "stage equations not bound");
   const Model& model = *model_;
   const double h = step_size_;
-  const Eigen::MatrixXd& mass = model.mass_matrix();
   for (int j = 0; j < stages_; ++j) {
     q_ = position(unknowns, j);
     v_ = velocity(unknowns, j);
     model.applied_force(stage_time(j), q_, v_, stage_force_[j]);
-    model.constraint_jacobian(stage_time(j), q_, stage_constraint_jacobian_[j]);
+    if (sparse_) {
+      model.constraint_jacobian(stage_time(j), q_, stage_sparse_constraint_jacobian_[j]);
+    } else {
+      model.constraint_jacobian(stage_time(j), q_, stage_constraint_jacobian_[j]);
+    }
   }
   residual.resize(size());
   position_residual_ = 0.0;
@@ -73,11 +82,21 @@ void RadauStageEquations::residual(const Eigen::VectorXd& unknowns, Eigen::Vecto
     auto kinematic = residual.segment(z_offset(i), n_);
     auto dynamic = residual.segment(v_offset(i), n_);
     kinematic = unknowns.segment(z_offset(i), n_);
-    dynamic = mass * (unknowns.segment(v_offset(i), n_) - start_.v);
+    if (sparse_) {
+      dynamic = model.sparse_mass_matrix() * (unknowns.segment(v_offset(i), n_) - start_.v);
+    } else {
+      dynamic = model.mass_matrix() * (unknowns.segment(v_offset(i), n_) - start_.v);
+    }
     for (int j = 0; j < stages_; ++j) {
       kinematic -= a_(i, j) * unknowns.segment(v_offset(j), n_);
-      dynamic -= a_(i, j) * (h * stage_force_[j] - stage_constraint_jacobian_[j].transpose() *
-                                                       unknowns.segment(l_offset(j), m_));
+      if (sparse_) {
+        dynamic -=
+            a_(i, j) * (h * stage_force_[j] - stage_sparse_constraint_jacobian_[j].transpose() *
+                                                  unknowns.segment(l_offset(j), m_));
+      } else {
+        dynamic -= a_(i, j) * (h * stage_force_[j] - stage_constraint_jacobian_[j].transpose() *
+                                                         unknowns.segment(l_offset(j), m_));
+      }
     }
     if (i == 0 && first_stage_is_start_) {
       residual.segment(l_offset(0), m_) = unknowns.segment(l_offset(0), m_) - h * start_.lambda;
@@ -109,15 +128,9 @@ void RadauStageEquations::jacobian(const Eigen::VectorXd& unknowns, Eigen::Matri
     model.applied_force_derivatives(t, q_, v_, by_position_, by_velocity_);
     // F_r is evaluated from coordinates of size |q|: its rounding is ~eps sum_k |dF_r/dq_k| |q_k|
     // (plus the same for v). Newton passes it to V_r damped by the inertia and the stiffness.
-    const Eigen::VectorXd rounding =
-        by_position_.cwiseAbs() * q_.cwiseAbs() + by_velocity_.cwiseAbs() * v_.cwiseAbs();
-    for (int r = 0; r < n_; ++r) {
-      const double resistance = mass(r, r) + h * std::abs(by_velocity_(r, r)) +
-                                h * h * std::abs(by_position_(r, r)) +
-                                std::numeric_limits<double>::min();
-      force_rounding_ = std::max(force_rounding_, rounding(r));
-      force_velocity_rounding_ = std::max(force_velocity_rounding_, h * rounding(r) / resistance);
-    }
+    add_force_rounding(
+        by_position_.cwiseAbs() * q_.cwiseAbs() + by_velocity_.cwiseAbs() * v_.cwiseAbs(),
+        by_position_.diagonal(), by_velocity_.diagonal());
     model.constraint_jacobian(t, q_, stage_constraint_jacobian_[j]);
     lambda_ = unknowns.segment(l_offset(j), m_);
     // d/dZ_j (G(Q_j)^T L_j) = h * [d(G^T mu)/dq at mu = L_j].
@@ -144,17 +157,98 @@ void RadauStageEquations::jacobian(const Eigen::VectorXd& unknowns, Eigen::Matri
   }
 }
 
+void RadauStageEquations::add_force_rounding(const Eigen::VectorXd& rounding,
+                                             const Eigen::VectorXd& by_position_diagonal,
+                                             const Eigen::VectorXd& by_velocity_diagonal) {
+  const double h = step_size_;
+  const Eigen::VectorXd& mass = model_->mass_diagonal();
+  for (int r = 0; r < n_; ++r) {
+    const double resistance = mass(r) + h * std::abs(by_velocity_diagonal(r)) +
+                              h * h * std::abs(by_position_diagonal(r)) +
+                              std::numeric_limits<double>::min();
+    force_rounding_ = std::max(force_rounding_, rounding(r));
+    force_velocity_rounding_ = std::max(force_velocity_rounding_, h * rounding(r) / resistance);
+  }
+}
+
+void RadauStageEquations::jacobian(const Eigen::VectorXd& unknowns,
+                                   Eigen::SparseMatrix<double>& jacobian) {
+  FSI_ASSERT(model_ != nullptr && unknowns.size() == size(), "stage equations not bound");
+  const Model& model = *model_;
+  const double h = step_size_;
+  const Eigen::SparseMatrix<double>& mass = model.sparse_mass_matrix();
+  using Iterator = Eigen::SparseMatrix<double>::InnerIterator;
+  // The same blocks as the dense jacobian(), entry by entry.
+  triplets_.clear();
+  force_rounding_ = 0.0;
+  force_velocity_rounding_ = 0.0;
+  Eigen::VectorXd rounding(n_);
+  for (int j = 0; j < stages_; ++j) {
+    q_ = position(unknowns, j);
+    v_ = velocity(unknowns, j);
+    const double t = stage_time(j);
+    model.applied_force_derivatives(t, q_, v_, sparse_by_position_, sparse_by_velocity_);
+    rounding = sparse_by_position_.cwiseAbs() * q_.cwiseAbs() +
+               sparse_by_velocity_.cwiseAbs() * v_.cwiseAbs();
+    add_force_rounding(rounding, sparse_by_position_.diagonal(), sparse_by_velocity_.diagonal());
+    Eigen::SparseMatrix<double>& g = stage_sparse_constraint_jacobian_[j];
+    model.constraint_jacobian(t, q_, g);
+    lambda_ = unknowns.segment(l_offset(j), m_);
+    model.constraint_force_derivative(t, q_, lambda_, sparse_constraint_force_derivative_);
+    for (int i = 0; i < stages_; ++i) {
+      const double a = a_(i, j);
+      if (a == 0.0) continue;
+      for (int r = 0; r < n_; ++r)
+        triplets_.emplace_back(z_offset(i) + r, v_offset(j) + r, -a);
+      for (int c = 0; c < n_; ++c) {
+        for (Iterator it(sparse_by_position_, c); it; ++it)
+          triplets_.emplace_back(v_offset(i) + it.row(), z_offset(j) + c, -a * h * h * it.value());
+        for (Iterator it(sparse_constraint_force_derivative_, c); it; ++it)
+          triplets_.emplace_back(v_offset(i) + it.row(), z_offset(j) + c, a * h * it.value());
+        for (Iterator it(sparse_by_velocity_, c); it; ++it)
+          triplets_.emplace_back(v_offset(i) + it.row(), v_offset(j) + c, -a * h * it.value());
+        for (Iterator it(g, c); it; ++it)
+          triplets_.emplace_back(v_offset(i) + c, l_offset(j) + it.row(), a * it.value());
+      }
+    }
+    for (int r = 0; r < n_; ++r)
+      triplets_.emplace_back(z_offset(j) + r, z_offset(j) + r, 1.0);
+    for (int c = 0; c < n_; ++c) {
+      for (Iterator it(mass, c); it; ++it)
+        triplets_.emplace_back(v_offset(j) + it.row(), v_offset(j) + c, it.value());
+    }
+    if (j == 0 && first_stage_is_start_) {
+      for (int k = 0; k < m_; ++k)
+        triplets_.emplace_back(l_offset(0) + k, l_offset(0) + k, 1.0);
+      continue;
+    }
+    for (int c = 0; c < n_; ++c) {
+      for (Iterator it(g, c); it; ++it) {
+        const int k = static_cast<int>(it.row());
+        triplets_.emplace_back(l_offset(j) + k,
+                               (position_level_[k] ? z_offset(j) : v_offset(j)) + c, it.value());
+      }
+    }
+  }
+  jacobian.resize(size(), size());
+  jacobian.setFromTriplets(triplets_.begin(), triplets_.end());
+  // Exact zeros (a joint at angle 0, a body at rest) are dropped, as sparseView() of the dense
+  // matrix does: the COLAMD ordering and so the rounding of the solve stay those of the dense
+  // matrix's non-zeros. A pattern that changes with them is analysed again (radau_iia.cpp).
+  jacobian.prune(0.0);
+}
+
 double RadauStageEquations::increment_norm(const Eigen::VectorXd& unknowns,
                                            const Eigen::VectorXd& increment,
                                            const NewtonOptions& options) const {
   const double h = step_size_;
   const double round_off = 100.0 * std::numeric_limits<double>::epsilon();
-  const Eigen::MatrixXd& mass = model_->mass_matrix();
+  const Eigen::VectorXd& mass = model_->mass_diagonal();
   double force = 0.0;
   for (const auto& f : stage_force_)
     force = std::max(force, max_abs(f));
-  const double smallest_mass = n_ > 0 ? mass.diagonal().minCoeff() : 1.0;
-  const double mass_size = n_ > 0 ? mass.diagonal().maxCoeff() : 0.0;
+  const double smallest_mass = n_ > 0 ? mass.minCoeff() : 1.0;
+  const double mass_size = n_ > 0 ? mass.maxCoeff() : 0.0;
 
   double position_scale = max_abs(start_.q);
   double velocity_scale = std::max(max_abs(start_.v), h * force / smallest_mass);

@@ -26,6 +26,7 @@
 // start, and the constraints are enforced at the stages 2..s (docs/theory.md).
 
 #include <Eigen/Dense>
+#include <Eigen/SparseCore>
 
 #include <vector>
 
@@ -41,6 +42,12 @@ class RadauStageEquations {
   // Binds the model and the start of the step (t_n, q_n, v_n, lambda_n) and the step size.
   void begin_step(const Model& model, const State& start, double step_size);
 
+  // Sparse matrices (large systems): residual() multiplies the sparse M and G, and the sparse
+  // jacobian() is assembled from triplets in O(non-zeros). Dense (the default): dense M and G,
+  // the dense jacobian(). Both give the same equations and matrices up to the rounding of sums.
+  void set_sparse(bool sparse) { sparse_ = sparse; }
+  bool sparse() const { return sparse_; }
+
   int stages() const { return stages_; }
   int size() const { return stages_ * block_; }
 
@@ -48,8 +55,11 @@ class RadauStageEquations {
   // V_i = v_n, L_i = h lambda_n. A held coordinate (v = 0) starts exactly on its constraint.
   void predict(Eigen::VectorXd& unknowns) const;
   void residual(const Eigen::VectorXd& unknowns, Eigen::VectorXd& residual);
-  // The exact derivative of residual() with respect to the unknowns.
+  // The exact derivative of residual() with respect to the unknowns, dense or sparse (the same
+  // entries; the sparse one holds the structural non-zeros of the model's elements, explicit
+  // zeros dropped).
   void jacobian(const Eigen::VectorXd& unknowns, Eigen::MatrixXd& jacobian);
+  void jacobian(const Eigen::VectorXd& unknowns, Eigen::SparseMatrix<double>& jacobian);
 
   // Weighted max norm of a Newton increment; <= 1 means converged. Each block (positions
   // h dZ, velocities dV, multipliers dL / h) is measured against
@@ -76,6 +86,11 @@ class RadauStageEquations {
   int v_offset(int stage) const { return stage * block_ + n_; }
   int l_offset(int stage) const { return stage * block_ + 2 * n_; }
   double stage_time(int stage) const { return start_.time + c_(stage) * step_size_; }
+  // force_rounding_ and force_velocity_rounding_ from the per-coordinate rounding of F and the
+  // diagonals of dF/dq, dF/dv of one stage (see increment_norm).
+  void add_force_rounding(const Eigen::VectorXd& rounding,
+                          const Eigen::VectorXd& by_position_diagonal,
+                          const Eigen::VectorXd& by_velocity_diagonal);
 
   Eigen::MatrixXd a_;
   Eigen::VectorXd c_;
@@ -97,6 +112,11 @@ class RadauStageEquations {
   std::vector<Eigen::MatrixXd> stage_constraint_jacobian_;
   Eigen::VectorXd q_, v_, lambda_, constraint_;
   Eigen::MatrixXd by_position_, by_velocity_, constraint_force_derivative_;
+  bool sparse_ = false;
+  std::vector<Eigen::SparseMatrix<double>> stage_sparse_constraint_jacobian_;
+  Eigen::SparseMatrix<double> sparse_by_position_, sparse_by_velocity_,
+      sparse_constraint_force_derivative_;
+  std::vector<Eigen::Triplet<double>> triplets_;
 };
 
 }  // namespace fsi::mbd::detail

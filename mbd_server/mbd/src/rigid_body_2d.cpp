@@ -67,9 +67,10 @@ void RigidBody2D::initial_state(Eigen::Ref<Eigen::VectorXd> q,
   v << spec_.velocity.x(), spec_.velocity.y(), spec_.angular_velocity;
 }
 
-void RigidBody2D::mass_matrix(Eigen::Ref<Eigen::MatrixXd> block) const {
-  block.setZero();
-  block.diagonal() << spec_.mass, spec_.mass, spec_.inertia;
+void RigidBody2D::mass_matrix(MatrixSink& block) const {
+  block.add(0, 0, spec_.mass);
+  block.add(1, 1, spec_.mass);
+  block.add(2, 2, spec_.inertia);
 }
 
 void RigidBody2D::add_gravity_force(const Eigen::Vector2d& acceleration,
@@ -107,9 +108,9 @@ void RigidBody2D::velocity_jacobian(const ConstVector& q, const ConstVector& v,
 
 void RigidBody2D::add_point_load_derivative(const ConstVector& q, const Eigen::Vector2d& local,
                                             const Eigen::Vector2d& force,
-                                            Eigen::Ref<Eigen::MatrixXd> derivative) const {
+                                            MatrixSink& derivative) const {
   // Only the torque (R' p) . f depends on q, through phi: d/dphi = (R'' p) . f = -(R p) . f.
-  derivative(2, 2) -= rotate(q(2), local).dot(force);
+  derivative.add(2, 2, -rotate(q(2), local).dot(force));
 }
 
 Eigen::Vector2d RigidBody2D::reference_point(const ConstVector& q) const {

@@ -79,12 +79,14 @@ void RigidBody3D::initial_state(Eigen::Ref<Eigen::VectorXd> q,
   }
 }
 
-void RigidBody3D::mass_matrix(Eigen::Ref<Eigen::MatrixXd> block) const {
-  block.setZero();
-  block.topLeftCorner<3, 3>().diagonal().setConstant(spec_.mass);
+void RigidBody3D::mass_matrix(MatrixSink& block) const {
+  for (int i = 0; i < 3; ++i)
+    block.add(i, i, spec_.mass);
   for (int k = 0; k < 3; ++k) {
-    for (int l = 0; l < 3; ++l)
-      block.block<3, 3>(3 + 3 * k, 3 + 3 * l).diagonal().setConstant(second_moment_(k, l));
+    for (int l = 0; l < 3; ++l) {
+      for (int i = 0; i < 3; ++i)
+        block.add(3 + 3 * k + i, 3 + 3 * l + i, second_moment_(k, l));
+    }
   }
 }
 
@@ -139,9 +141,9 @@ void PointMass3D::initial_state(Eigen::Ref<Eigen::VectorXd> q,
   v = spec_.velocity;
 }
 
-void PointMass3D::mass_matrix(Eigen::Ref<Eigen::MatrixXd> block) const {
-  block.setZero();
-  block.diagonal().setConstant(spec_.mass);
+void PointMass3D::mass_matrix(MatrixSink& block) const {
+  for (int i = 0; i < 3; ++i)
+    block.add(i, i, spec_.mass);
 }
 
 void PointMass3D::add_spatial_gravity_force(const Eigen::Vector3d& acceleration,
@@ -179,13 +181,18 @@ double OrthonormalityConstraint::residual(double, const Eigen::VectorXd& q,
   return i_ == j_ ? 0.5 * (product - 1.0) : product;
 }
 
-void OrthonormalityConstraint::jacobian_row(double, const Eigen::VectorXd& q, RowRef row) const {
-  if (i_ == j_) {
-    row.segment<3>(first_index()) += q.segment<3>(first_index()).transpose();
-    return;
+void OrthonormalityConstraint::add_jacobian_entries(double, const Eigen::VectorXd& q, int row,
+                                                    MatrixSink& jacobian) const {
+  const int a = first_index();
+  const int b = second_index();
+  for (int k = 0; k < 3; ++k) {
+    if (i_ == j_) {
+      jacobian.add(row, a + k, q(a + k));
+    } else {
+      jacobian.add(row, a + k, q(b + k));
+      jacobian.add(row, b + k, q(a + k));
+    }
   }
-  row.segment<3>(first_index()) += q.segment<3>(second_index()).transpose();
-  row.segment<3>(second_index()) += q.segment<3>(first_index()).transpose();
 }
 
 double OrthonormalityConstraint::acceleration_remainder(double, const Eigen::VectorXd&,
@@ -194,17 +201,19 @@ double OrthonormalityConstraint::acceleration_remainder(double, const Eigen::Vec
   return i_ == j_ ? product : 2.0 * product;
 }
 
-void OrthonormalityConstraint::add_force_derivative(double, const Eigen::VectorXd&,
-                                                    double multiplier,
-                                                    Eigen::MatrixXd& derivative) const {
+void OrthonormalityConstraint::add_force_derivative_entries(double, const Eigen::VectorXd&,
+                                                            double multiplier,
+                                                            MatrixSink& derivative) const {
   const int a = first_index();
   const int b = second_index();
-  if (i_ == j_) {
-    derivative.block<3, 3>(a, a).diagonal().array() += multiplier;
-    return;
+  for (int k = 0; k < 3; ++k) {
+    if (i_ == j_) {
+      derivative.add(a + k, a + k, multiplier);
+    } else {
+      derivative.add(a + k, b + k, multiplier);
+      derivative.add(b + k, a + k, multiplier);
+    }
   }
-  derivative.block<3, 3>(a, b).diagonal().array() += multiplier;
-  derivative.block<3, 3>(b, a).diagonal().array() += multiplier;
 }
 
 }  // namespace fsi::mbd::detail

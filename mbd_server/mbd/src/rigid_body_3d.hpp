@@ -14,6 +14,7 @@
 
 #include "fsi/mbd/constraint_element.hpp"
 #include "fsi/mbd/model.hpp"
+#include "sink_elements.hpp"
 #include "spatial_body.hpp"
 
 namespace fsi::mbd::detail {
@@ -29,7 +30,8 @@ class RigidBody3D final : public SpatialBody {
   const std::string& name() const override { return spec_.name; }
   int coordinate_count() const override { return 12; }
   void initial_state(Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::VectorXd> v) const override;
-  void mass_matrix(Eigen::Ref<Eigen::MatrixXd> block) const override;
+  using Body::mass_matrix;
+  void mass_matrix(MatrixSink& block) const override;
   void add_spatial_gravity_force(const Eigen::Vector3d& acceleration,
                                  Eigen::Ref<Eigen::VectorXd> force) const override;
   double spatial_gravity_potential(const ConstVector& q,
@@ -58,7 +60,8 @@ class PointMass3D final : public SpatialBody {
   const std::string& name() const override { return spec_.name; }
   int coordinate_count() const override { return 3; }
   void initial_state(Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::VectorXd> v) const override;
-  void mass_matrix(Eigen::Ref<Eigen::MatrixXd> block) const override;
+  using Body::mass_matrix;
+  void mass_matrix(MatrixSink& block) const override;
   void add_spatial_gravity_force(const Eigen::Vector3d& acceleration,
                                  Eigen::Ref<Eigen::VectorXd> force) const override;
   double spatial_gravity_potential(const ConstVector& q,
@@ -85,19 +88,20 @@ class PointMass3D final : public SpatialBody {
 // One of the six rows e_i . e_j = delta_ij of a RigidBody3D whose coordinates start at `offset`
 // (e_k at offset + 3 + 3 (k - 1)). Written 1/2 (e_i . e_i - 1) for i = j so that G has unit
 // entries at consistent states.
-class OrthonormalityConstraint final : public ConstraintElement {
+class OrthonormalityConstraint final : public SparseConstraint {
  public:
   OrthonormalityConstraint(std::string description, int offset, int i, int j);
 
   std::string description() const override { return description_; }
   ConstraintLevel level() const override { return ConstraintLevel::Position; }
   double residual(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v) const override;
-  void jacobian_row(double time, const Eigen::VectorXd& q, RowRef row) const override;
+  void add_jacobian_entries(double time, const Eigen::VectorXd& q, int row,
+                            MatrixSink& jacobian) const override;
   double explicit_time_derivative(double, const Eigen::VectorXd&) const override { return 0.0; }
   double acceleration_remainder(double time, const Eigen::VectorXd& q,
                                 const Eigen::VectorXd& v) const override;
-  void add_force_derivative(double time, const Eigen::VectorXd& q, double multiplier,
-                            Eigen::MatrixXd& derivative) const override;
+  void add_force_derivative_entries(double time, const Eigen::VectorXd& q, double multiplier,
+                                    MatrixSink& derivative) const override;
 
  private:
   int first_index() const { return offset_ + 3 * (i_ + 1); }

@@ -20,11 +20,16 @@ Eigen::Vector3d SpatialPoint::velocity(const Eigen::VectorXd& q, const Eigen::Ve
 }
 
 void SpatialPoint::add_jacobian(const Eigen::VectorXd& q, double sign,
-                                Eigen::MatrixXd& jacobian) const {
+                                SpatialColumns& jacobian) const {
   if (on_ground()) return;
   Eigen::MatrixXd own(3, body_->coordinate_count());
   body_->spatial_position_jacobian(block(q), local_, own);
-  jacobian.middleCols(offset_, own.cols()) += sign * own;
+  // The non-zero columns; one that is zero here may be non-zero at another q (the sparse Newton
+  // driver re-analyses a changed pattern).
+  for (Eigen::Index j = 0; j < own.cols(); ++j) {
+    if (!own.col(j).isZero(0.0))
+      jacobian.add(offset_ + static_cast<int>(j), sign * Eigen::Vector3d(own.col(j)));
+  }
 }
 
 Eigen::Vector3d SpatialPoint::acceleration_remainder(const Eigen::VectorXd& q,
@@ -36,11 +41,17 @@ Eigen::Vector3d SpatialPoint::acceleration_remainder(const Eigen::VectorXd& q,
 }
 
 void SpatialPoint::add_load_derivative(const Eigen::VectorXd& q, const Eigen::Vector3d& force,
-                                       Eigen::MatrixXd& derivative) const {
+                                       MatrixSink& derivative) const {
   if (on_ground()) return;
-  const int nb = body_->coordinate_count();
-  body_->add_spatial_point_load_derivative(block(q), local_, force,
-                                           derivative.block(offset_, offset_, nb, nb));
+  OffsetSink own(derivative, offset_, offset_);
+  body_->add_spatial_point_load_derivative(block(q), local_, force, own);
+}
+
+void SpatialPoint::add_load(const Eigen::VectorXd& q, const Eigen::Vector3d& force,
+                            Eigen::VectorXd& generalised_force) const {
+  if (on_ground()) return;
+  body_->add_spatial_point_load(block(q), local_, force,
+                                generalised_force.segment(offset_, body_->coordinate_count()));
 }
 
 }  // namespace fsi::mbd::detail

@@ -16,6 +16,7 @@
 #include <string>
 
 #include "body.hpp"
+#include "body_point.hpp"
 
 namespace fsi::mbd::detail {
 
@@ -40,12 +41,19 @@ class SpatialBody : public Body {
                                          Eigen::Ref<Eigen::MatrixXd> jacobian) const {
     jacobian.setZero();
   }
-  // d/dq [(dr/dq)^T f] (n_b x n_b), added; nothing for points linear in q.
+  // Adds (dr/dq)^T f (size n_b); the default goes through spatial_position_jacobian (O(n_b)).
+  virtual void add_spatial_point_load(const ConstVector& q, const Eigen::Vector3d& local,
+                                      const Eigen::Vector3d& force,
+                                      Eigen::Ref<Eigen::VectorXd> generalised_force) const {
+    Eigen::MatrixXd jacobian(3, coordinate_count());
+    spatial_position_jacobian(q, local, jacobian);
+    generalised_force += jacobian.transpose() * force;
+  }
+  // d/dq [(dr/dq)^T f] (n_b x n_b, body coordinates), added; nothing for points linear in q.
   virtual void add_spatial_point_load_derivative(const ConstVector& /*q*/,
                                                  const Eigen::Vector3d& /*local*/,
                                                  const Eigen::Vector3d& /*force*/,
-                                                 Eigen::Ref<Eigen::MatrixXd> /*derivative*/) const {
-  }
+                                                 MatrixSink& /*derivative*/) const {}
   // The point torques of resultants are taken about (the centre of mass).
   virtual Eigen::Vector3d spatial_reference_point(const ConstVector& q) const = 0;
 
@@ -74,8 +82,13 @@ class SpatialBody : public Body {
                          Eigen::Ref<Eigen::MatrixXd>) const final {
     planar_call();
   }
+  using Body::add_point_load_derivative;
   void add_point_load_derivative(const ConstVector&, const Eigen::Vector2d&, const Eigen::Vector2d&,
-                                 Eigen::Ref<Eigen::MatrixXd>) const final {
+                                 MatrixSink&) const final {
+    planar_call();
+  }
+  void add_point_load(const ConstVector&, const Eigen::Vector2d&, const Eigen::Vector2d&,
+                      Eigen::Ref<Eigen::VectorXd>) const final {
     planar_call();
   }
   Eigen::Vector2d reference_point(const ConstVector&) const final {
@@ -100,13 +113,16 @@ class SpatialPoint {
   const Eigen::Vector3d& local() const { return local_; }
   Eigen::Vector3d position(const Eigen::VectorXd& q) const;
   Eigen::Vector3d velocity(const Eigen::VectorXd& q, const Eigen::VectorXd& v) const;
-  // Adds sign * dr/dq into the 3 x n matrix `jacobian`.
-  void add_jacobian(const Eigen::VectorXd& q, double sign, Eigen::MatrixXd& jacobian) const;
+  // Adds sign * dr/dq (3 x n, its non-zero columns) to `jacobian`.
+  void add_jacobian(const Eigen::VectorXd& q, double sign, SpatialColumns& jacobian) const;
   // The acceleration-free part of d^2r/dt^2.
   Eigen::Vector3d acceleration_remainder(const Eigen::VectorXd& q, const Eigen::VectorXd& v) const;
   // Adds d/dq [(dr/dq)^T f] at constant f (n x n) into `derivative`.
   void add_load_derivative(const Eigen::VectorXd& q, const Eigen::Vector3d& force,
-                           Eigen::MatrixXd& derivative) const;
+                           MatrixSink& derivative) const;
+  // Adds the generalised force (dr/dq)^T f of a world-frame force f (size n).
+  void add_load(const Eigen::VectorXd& q, const Eigen::Vector3d& force,
+                Eigen::VectorXd& generalised_force) const;
 
  private:
   auto block(const Eigen::VectorXd& x) const {

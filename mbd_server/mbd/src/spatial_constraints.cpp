@@ -13,11 +13,12 @@ double SpatialPointConstraint::residual(double, const Eigen::VectorXd& q,
   return (a_.position(q) - b_.position(q))(axis_);
 }
 
-void SpatialPointConstraint::jacobian_row(double, const Eigen::VectorXd& q, RowRef row) const {
-  Eigen::MatrixXd jacobian = Eigen::MatrixXd::Zero(3, q.size());
-  a_.add_jacobian(q, 1.0, jacobian);
-  b_.add_jacobian(q, -1.0, jacobian);
-  row += jacobian.row(axis_);
+void SpatialPointConstraint::add_jacobian_entries(double, const Eigen::VectorXd& q, int row,
+                                                  MatrixSink& jacobian) const {
+  SpatialColumns columns;
+  a_.add_jacobian(q, 1.0, columns);
+  b_.add_jacobian(q, -1.0, columns);
+  columns.add_row(jacobian, row, Eigen::Vector3d::Unit(axis_));
 }
 
 double SpatialPointConstraint::acceleration_remainder(double, const Eigen::VectorXd& q,
@@ -25,9 +26,9 @@ double SpatialPointConstraint::acceleration_remainder(double, const Eigen::Vecto
   return (a_.acceleration_remainder(q, v) - b_.acceleration_remainder(q, v))(axis_);
 }
 
-void SpatialPointConstraint::add_force_derivative(double, const Eigen::VectorXd& q,
-                                                  double multiplier,
-                                                  Eigen::MatrixXd& derivative) const {
+void SpatialPointConstraint::add_force_derivative_entries(double, const Eigen::VectorXd& q,
+                                                          double multiplier,
+                                                          MatrixSink& derivative) const {
   const Eigen::Vector3d load = multiplier * Eigen::Vector3d::Unit(axis_);
   a_.add_load_derivative(q, load, derivative);
   b_.add_load_derivative(q, -load, derivative);
@@ -37,8 +38,8 @@ SpatialDistanceConstraint::SpatialDistanceConstraint(std::string description, Sp
                                                      SpatialPoint b, double length)
     : description_(std::move(description)), a_(a), b_(b), length_(length) {}
 
-Eigen::MatrixXd SpatialDistanceConstraint::separation_jacobian(const Eigen::VectorXd& q) const {
-  Eigen::MatrixXd jacobian = Eigen::MatrixXd::Zero(3, q.size());
+SpatialColumns SpatialDistanceConstraint::separation_jacobian(const Eigen::VectorXd& q) const {
+  SpatialColumns jacobian;
   b_.add_jacobian(q, 1.0, jacobian);
   a_.add_jacobian(q, -1.0, jacobian);
   return jacobian;
@@ -50,9 +51,10 @@ double SpatialDistanceConstraint::residual(double, const Eigen::VectorXd& q,
   return (d.squaredNorm() - length_ * length_) / (2.0 * length_);
 }
 
-void SpatialDistanceConstraint::jacobian_row(double, const Eigen::VectorXd& q, RowRef row) const {
+void SpatialDistanceConstraint::add_jacobian_entries(double, const Eigen::VectorXd& q, int row,
+                                                     MatrixSink& jacobian) const {
   const Eigen::Vector3d d = b_.position(q) - a_.position(q);
-  row += d.transpose() * separation_jacobian(q) / length_;
+  separation_jacobian(q).add_row(jacobian, row, d / length_);
 }
 
 double SpatialDistanceConstraint::acceleration_remainder(double, const Eigen::VectorXd& q,
@@ -64,18 +66,19 @@ double SpatialDistanceConstraint::acceleration_remainder(double, const Eigen::Ve
   return (rate.squaredNorm() + d.dot(remainder)) / length_;
 }
 
-void SpatialDistanceConstraint::add_force_derivative(double, const Eigen::VectorXd& q,
-                                                     double multiplier,
-                                                     Eigen::MatrixXd& derivative) const {
-  const Eigen::MatrixXd jacobian = separation_jacobian(q);
+void SpatialDistanceConstraint::add_force_derivative_entries(double, const Eigen::VectorXd& q,
+                                                             double multiplier,
+                                                             MatrixSink& derivative) const {
+  const SpatialColumns jacobian = separation_jacobian(q);
   const Eigen::Vector3d load = multiplier / length_ * (b_.position(q) - a_.position(q));
-  derivative += multiplier / length_ * jacobian.transpose() * jacobian;
+  jacobian.add_transpose_product(derivative, Eigen::Matrix3d::Identity(), jacobian,
+                                 multiplier / length_);
   b_.add_load_derivative(q, load, derivative);
   a_.add_load_derivative(q, -load, derivative);
 }
 
-Eigen::MatrixXd SpatialDirection::jacobian(const Eigen::VectorXd& q) const {
-  Eigen::MatrixXd j = Eigen::MatrixXd::Zero(3, q.size());
+SpatialColumns SpatialDirection::jacobian(const Eigen::VectorXd& q) const {
+  SpatialColumns j;
   tip.add_jacobian(q, 1.0, j);
   base.add_jacobian(q, -1.0, j);
   return j;
@@ -90,8 +93,10 @@ double PerpendicularityConstraint::residual(double, const Eigen::VectorXd& q,
   return a_.value(q).dot(b_.value(q));
 }
 
-void PerpendicularityConstraint::jacobian_row(double, const Eigen::VectorXd& q, RowRef row) const {
-  row += b_.value(q).transpose() * a_.jacobian(q) + a_.value(q).transpose() * b_.jacobian(q);
+void PerpendicularityConstraint::add_jacobian_entries(double, const Eigen::VectorXd& q, int row,
+                                                      MatrixSink& jacobian) const {
+  a_.jacobian(q).add_row(jacobian, row, b_.value(q));
+  b_.jacobian(q).add_row(jacobian, row, a_.value(q));
 }
 
 double PerpendicularityConstraint::acceleration_remainder(double, const Eigen::VectorXd& q,
@@ -102,14 +107,15 @@ double PerpendicularityConstraint::acceleration_remainder(double, const Eigen::V
          a_.value(q).dot(b_.acceleration_remainder(q, v));
 }
 
-void PerpendicularityConstraint::add_force_derivative(double, const Eigen::VectorXd& q,
-                                                      double multiplier,
-                                                      Eigen::MatrixXd& derivative) const {
+void PerpendicularityConstraint::add_force_derivative_entries(double, const Eigen::VectorXd& q,
+                                                              double multiplier,
+                                                              MatrixSink& derivative) const {
   // G^T mu = mu (A^T d_b + B^T d_a), A = dd_a/dq, B = dd_b/dq: the product rule gives
   // mu (A^T B + B^T A) plus the load derivatives of mu d_b on a and mu d_a on b.
-  const Eigen::MatrixXd ja = a_.jacobian(q);
-  const Eigen::MatrixXd jb = b_.jacobian(q);
-  derivative += multiplier * (ja.transpose() * jb + jb.transpose() * ja);
+  const SpatialColumns ja = a_.jacobian(q);
+  const SpatialColumns jb = b_.jacobian(q);
+  ja.add_transpose_product(derivative, Eigen::Matrix3d::Identity(), jb, multiplier);
+  jb.add_transpose_product(derivative, Eigen::Matrix3d::Identity(), ja, multiplier);
   a_.add_load_derivative(q, multiplier * b_.value(q), derivative);
   b_.add_load_derivative(q, multiplier * a_.value(q), derivative);
 }
@@ -120,13 +126,12 @@ SpatialPointForce::SpatialPointForce(std::string description, SpatialPoint point
 
 void SpatialPointForce::add_force(double time, const Eigen::VectorXd& q, const Eigen::VectorXd&,
                                   Eigen::VectorXd& force) const {
-  Eigen::MatrixXd jacobian = Eigen::MatrixXd::Zero(3, q.size());
-  point_.add_jacobian(q, 1.0, jacobian);
-  force += jacobian.transpose() * force_(time);
+  point_.add_load(q, force_(time), force);
 }
 
-bool SpatialPointForce::add_jacobians(double time, const Eigen::VectorXd& q, const Eigen::VectorXd&,
-                                      Eigen::MatrixXd& force_by_position, Eigen::MatrixXd&) const {
+bool SpatialPointForce::add_jacobian_entries(double time, const Eigen::VectorXd& q,
+                                             const Eigen::VectorXd&, MatrixSink& force_by_position,
+                                             MatrixSink&) const {
   point_.add_load_derivative(q, force_(time), force_by_position);
   return true;
 }
@@ -154,12 +159,13 @@ void SpatialTorque::add_force(double time, const Eigen::VectorXd& q, const Eigen
   }
 }
 
-bool SpatialTorque::add_jacobians(double time, const Eigen::VectorXd&, const Eigen::VectorXd&,
-                                  Eigen::MatrixXd& force_by_position, Eigen::MatrixXd&) const {
+bool SpatialTorque::add_jacobian_entries(double time, const Eigen::VectorXd&,
+                                         const Eigen::VectorXd&, MatrixSink& force_by_position,
+                                         MatrixSink&) const {
   const Eigen::Matrix3d block = 0.5 * cross_matrix(torque_(time));
   for (int k = 0; k < 3; ++k) {
     const int e = axes_offset_ + 3 * k;
-    force_by_position.block<3, 3>(e, e) += block;
+    force_by_position.add_block(e, e, block);
   }
   return true;
 }

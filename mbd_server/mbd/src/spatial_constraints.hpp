@@ -14,23 +14,25 @@
 
 #include "fsi/mbd/constraint_element.hpp"
 #include "fsi/mbd/force_element.hpp"
+#include "sink_elements.hpp"
 #include "spatial_body.hpp"
 
 namespace fsi::mbd::detail {
 
-class SpatialPointConstraint final : public ConstraintElement {
+class SpatialPointConstraint final : public SparseConstraint {
  public:
   SpatialPointConstraint(std::string description, SpatialPoint a, SpatialPoint b, int axis);
 
   std::string description() const override { return description_; }
   ConstraintLevel level() const override { return ConstraintLevel::Position; }
   double residual(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v) const override;
-  void jacobian_row(double time, const Eigen::VectorXd& q, RowRef row) const override;
+  void add_jacobian_entries(double time, const Eigen::VectorXd& q, int row,
+                            MatrixSink& jacobian) const override;
   double explicit_time_derivative(double, const Eigen::VectorXd&) const override { return 0.0; }
   double acceleration_remainder(double time, const Eigen::VectorXd& q,
                                 const Eigen::VectorXd& v) const override;
-  void add_force_derivative(double time, const Eigen::VectorXd& q, double multiplier,
-                            Eigen::MatrixXd& derivative) const override;
+  void add_force_derivative_entries(double time, const Eigen::VectorXd& q, double multiplier,
+                                    MatrixSink& derivative) const override;
 
  private:
   std::string description_;
@@ -39,22 +41,23 @@ class SpatialPointConstraint final : public ConstraintElement {
   int axis_;
 };
 
-class SpatialDistanceConstraint final : public ConstraintElement {
+class SpatialDistanceConstraint final : public SparseConstraint {
  public:
   SpatialDistanceConstraint(std::string description, SpatialPoint a, SpatialPoint b, double length);
 
   std::string description() const override { return description_; }
   ConstraintLevel level() const override { return ConstraintLevel::Position; }
   double residual(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v) const override;
-  void jacobian_row(double time, const Eigen::VectorXd& q, RowRef row) const override;
+  void add_jacobian_entries(double time, const Eigen::VectorXd& q, int row,
+                            MatrixSink& jacobian) const override;
   double explicit_time_derivative(double, const Eigen::VectorXd&) const override { return 0.0; }
   double acceleration_remainder(double time, const Eigen::VectorXd& q,
                                 const Eigen::VectorXd& v) const override;
-  void add_force_derivative(double time, const Eigen::VectorXd& q, double multiplier,
-                            Eigen::MatrixXd& derivative) const override;
+  void add_force_derivative_entries(double time, const Eigen::VectorXd& q, double multiplier,
+                                    MatrixSink& derivative) const override;
 
  private:
-  Eigen::MatrixXd separation_jacobian(const Eigen::VectorXd& q) const;  // d(r_b - r_a)/dq
+  SpatialColumns separation_jacobian(const Eigen::VectorXd& q) const;  // d(r_b - r_a)/dq
 
   std::string description_;
   SpatialPoint a_;
@@ -72,30 +75,31 @@ struct SpatialDirection {
   Eigen::Vector3d rate(const Eigen::VectorXd& q, const Eigen::VectorXd& v) const {
     return tip.velocity(q, v) - base.velocity(q, v);
   }
-  Eigen::MatrixXd jacobian(const Eigen::VectorXd& q) const;
+  SpatialColumns jacobian(const Eigen::VectorXd& q) const;
   Eigen::Vector3d acceleration_remainder(const Eigen::VectorXd& q, const Eigen::VectorXd& v) const {
     return tip.acceleration_remainder(q, v) - base.acceleration_remainder(q, v);
   }
   void add_load_derivative(const Eigen::VectorXd& q, const Eigen::Vector3d& force,
-                           Eigen::MatrixXd& derivative) const {
+                           MatrixSink& derivative) const {
     tip.add_load_derivative(q, force, derivative);
     base.add_load_derivative(q, -force, derivative);
   }
 };
 
-class PerpendicularityConstraint final : public ConstraintElement {
+class PerpendicularityConstraint final : public SparseConstraint {
  public:
   PerpendicularityConstraint(std::string description, SpatialDirection a, SpatialDirection b);
 
   std::string description() const override { return description_; }
   ConstraintLevel level() const override { return ConstraintLevel::Position; }
   double residual(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v) const override;
-  void jacobian_row(double time, const Eigen::VectorXd& q, RowRef row) const override;
+  void add_jacobian_entries(double time, const Eigen::VectorXd& q, int row,
+                            MatrixSink& jacobian) const override;
   double explicit_time_derivative(double, const Eigen::VectorXd&) const override { return 0.0; }
   double acceleration_remainder(double time, const Eigen::VectorXd& q,
                                 const Eigen::VectorXd& v) const override;
-  void add_force_derivative(double time, const Eigen::VectorXd& q, double multiplier,
-                            Eigen::MatrixXd& derivative) const override;
+  void add_force_derivative_entries(double time, const Eigen::VectorXd& q, double multiplier,
+                                    MatrixSink& derivative) const override;
 
  private:
   std::string description_;
@@ -104,15 +108,15 @@ class PerpendicularityConstraint final : public ConstraintElement {
 };
 
 // Time-dependent loads of spatial bodies (evaluated at the stage times).
-class SpatialPointForce final : public ForceElement {
+class SpatialPointForce final : public SparseForceElement {
  public:
   SpatialPointForce(std::string description, SpatialPoint point,
                     std::function<Eigen::Vector3d(double)> force);
   void add_force(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
                  Eigen::VectorXd& force) const override;
-  bool add_jacobians(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
-                     Eigen::MatrixXd& force_by_position,
-                     Eigen::MatrixXd& force_by_velocity) const override;
+  bool add_jacobian_entries(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                            MatrixSink& force_by_position,
+                            MatrixSink& force_by_velocity) const override;
   std::string description() const override { return description_; }
 
  private:
@@ -122,15 +126,15 @@ class SpatialPointForce final : public ForceElement {
 };
 
 // On a RigidBody3D whose axes e_1..e_3 start at q(axes_offset): Q_(e_k) = 1/2 tau x e_k.
-class SpatialTorque final : public ForceElement {
+class SpatialTorque final : public SparseForceElement {
  public:
   SpatialTorque(std::string description, int axes_offset,
                 std::function<Eigen::Vector3d(double)> torque);
   void add_force(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
                  Eigen::VectorXd& force) const override;
-  bool add_jacobians(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
-                     Eigen::MatrixXd& force_by_position,
-                     Eigen::MatrixXd& force_by_velocity) const override;
+  bool add_jacobian_entries(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                            MatrixSink& force_by_position,
+                            MatrixSink& force_by_velocity) const override;
   std::string description() const override { return description_; }
 
  private:

@@ -22,18 +22,13 @@ void SpringDamper::add_force(double, const Eigen::VectorXd& q, const Eigen::Vect
                              Eigen::VectorXd& force) const {
   const Eigen::Vector2d d = b_.position(q) - a_.position(q);
   const Eigen::Vector2d on_a = tension(q, v) * d / d.norm();
-  Eigen::MatrixXd jacobian = Eigen::MatrixXd::Zero(2, q.size());
-  a_.add_jacobian(q, 1.0, jacobian);
-  force += jacobian.transpose() * on_a;
-  jacobian.setZero();
-  b_.add_jacobian(q, 1.0, jacobian);
-  force -= jacobian.transpose() * on_a;
+  a_.add_load(q, on_a, force);
+  b_.add_load(q, -on_a, force);
 }
 
-bool SpringDamper::add_jacobians(double, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
-                                 Eigen::MatrixXd& force_by_position,
-                                 Eigen::MatrixXd& force_by_velocity) const {
-  const int n = static_cast<int>(q.size());
+bool SpringDamper::add_jacobian_entries(double, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                                        MatrixSink& force_by_position,
+                                        MatrixSink& force_by_velocity) const {
   const Eigen::Vector2d d = b_.position(q) - a_.position(q);
   const double length = d.norm();
   const Eigen::Vector2d e = d / length;
@@ -42,29 +37,36 @@ bool SpringDamper::add_jacobians(double, const Eigen::VectorXd& q, const Eigen::
   const double tension_now =
       stiffness_ * (length - rest_length_) + damping_ * e.dot(relative_velocity);
 
-  // D = dd/dq, W = d(dd/dt)/dq at fixed v; de/dq = transverse D.
-  Eigen::MatrixXd jacobian_a = Eigen::MatrixXd::Zero(2, n), jacobian_b = jacobian_a;
-  a_.add_jacobian(q, 1.0, jacobian_a);
-  b_.add_jacobian(q, 1.0, jacobian_b);
-  const Eigen::MatrixXd separation = jacobian_b - jacobian_a;
-  Eigen::MatrixXd rate_by_position = Eigen::MatrixXd::Zero(2, n);
+  // D = dd/dq, W = d(dd/dt)/dq at fixed v; de/dq = transverse D. All 2 x n by their non-zero
+  // columns.
+  SparseColumns separation, rate_by_position;
+  b_.add_jacobian(q, 1.0, separation);
+  a_.add_jacobian(q, -1.0, separation);
   b_.add_velocity_jacobian(q, v, 1.0, rate_by_position);
   a_.add_velocity_jacobian(q, v, -1.0, rate_by_position);
 
   // dT/dq = k e^T D + c (u^T de/dq + e^T W), dT/dv = c e^T D.
-  const Eigen::RowVectorXd tension_by_position =
-      stiffness_ * e.transpose() * separation +
-      damping_ * (relative_velocity.transpose() * transverse * separation +
-                  e.transpose() * rate_by_position);
-  const Eigen::RowVectorXd tension_by_velocity = damping_ * e.transpose() * separation;
   // The force on a, f = T e: df/dq = e dT/dq + T transverse D, df/dv = e dT/dv.
-  const Eigen::MatrixXd force_on_a_by_position =
-      e * tension_by_position + tension_now * transverse * separation;
-  const Eigen::MatrixXd force_on_a_by_velocity = e * tension_by_velocity;
+  const Eigen::Vector2d transverse_velocity = transverse * relative_velocity;
+  SparseColumns force_on_a_by_position, force_on_a_by_velocity;
+  for (std::size_t k = 0; k < separation.index.size(); ++k) {
+    const Eigen::Vector2d& column = separation.column[k];
+    const double tension_by_position =
+        stiffness_ * e.dot(column) + damping_ * transverse_velocity.dot(column);
+    force_on_a_by_position.add(separation.index[k],
+                               e * tension_by_position + tension_now * transverse * column);
+    force_on_a_by_velocity.add(separation.index[k], e * (damping_ * e.dot(column)));
+  }
+  for (std::size_t k = 0; k < rate_by_position.index.size(); ++k) {
+    force_on_a_by_position.add(rate_by_position.index[k],
+                               e * (damping_ * e.dot(rate_by_position.column[k])));
+  }
 
-  // Q = J_a^T f - J_b^T f; the product rule adds the derivative of J^T at fixed f.
-  force_by_position += (jacobian_a - jacobian_b).transpose() * force_on_a_by_position;
-  force_by_velocity += (jacobian_a - jacobian_b).transpose() * force_on_a_by_velocity;
+  // Q = J_a^T f - J_b^T f = -D^T f; the product rule adds the derivative of J^T at fixed f.
+  separation.add_transpose_product(force_by_position, Eigen::Matrix2d::Identity(),
+                                   force_on_a_by_position, -1.0);
+  separation.add_transpose_product(force_by_velocity, Eigen::Matrix2d::Identity(),
+                                   force_on_a_by_velocity, -1.0);
   const Eigen::Vector2d on_a = tension_now * e;
   a_.add_load_derivative(q, on_a, force_by_position);
   b_.add_load_derivative(q, -on_a, force_by_position);

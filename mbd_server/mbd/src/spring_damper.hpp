@@ -10,10 +10,11 @@
 #include "body_point.hpp"
 #include "fsi/mbd/force_element.hpp"
 #include "measured_force.hpp"
+#include "sink_elements.hpp"
 
 namespace fsi::mbd::detail {
 
-class SpringDamper final : public ForceElement, public MeasuredForce {
+class SpringDamper final : public SparseForceElement, public MeasuredForce {
  public:
   SpringDamper(BodyPoint a, BodyPoint b, double stiffness, double damping, double rest_length);
 
@@ -22,9 +23,9 @@ class SpringDamper final : public ForceElement, public MeasuredForce {
 
   void add_force(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
                  Eigen::VectorXd& force) const override;
-  bool add_jacobians(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
-                     Eigen::MatrixXd& force_by_position,
-                     Eigen::MatrixXd& force_by_velocity) const override;
+  bool add_jacobian_entries(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                            MatrixSink& force_by_position,
+                            MatrixSink& force_by_velocity) const override;
   std::string description() const override { return "spring-damper"; }
   // k (l - rest_length)^2 / 2.
   double potential_energy(const Eigen::VectorXd& q) const override;

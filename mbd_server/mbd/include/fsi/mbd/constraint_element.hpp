@@ -9,6 +9,8 @@
 
 #include <string>
 
+#include "fsi/mbd/matrix_sink.hpp"
+
 namespace fsi::mbd {
 
 enum class ConstraintLevel { Position, Velocity };
@@ -39,6 +41,34 @@ class ConstraintElement {
   // the Newton matrix, and a wrong one slows or stops the convergence.
   virtual void add_force_derivative(double time, const Eigen::VectorXd& q, double multiplier,
                                     Eigen::MatrixXd& derivative) const = 0;
+
+  // The two matrices as entries at global positions, what the model assembles (dense for small
+  // systems, sparse for large ones); the model's own rows write only their non-zeros. The
+  // defaults are dense fallbacks for rows that only implement the functions above: jacobian_row
+  // into a scratch row of length n (O(n) per row), add_force_derivative into an n x n scratch
+  // matrix (O(n^2) per row); override them for rows of large models.
+  // G's row `row`: adds dC/dq (or d(G v - g)/dv) at (row, column).
+  virtual void add_jacobian_entries(double time, const Eigen::VectorXd& q, int row,
+                                    MatrixSink& jacobian) const {
+    Eigen::MatrixXd dense = Eigen::MatrixXd::Zero(1, q.size());
+    jacobian_row(time, q, dense.row(0));
+    for (Eigen::Index j = 0; j < dense.cols(); ++j) {
+      if (dense(0, j) != 0.0) jacobian.add(row, static_cast<int>(j), dense(0, j));
+    }
+  }
+  // Adds multiplier * d(G^T)/dq at (row, column) (n x n).
+  virtual void add_force_derivative_entries(double time, const Eigen::VectorXd& q,
+                                            double multiplier, MatrixSink& derivative) const {
+    const auto n = q.size();
+    Eigen::MatrixXd dense = Eigen::MatrixXd::Zero(n, n);
+    add_force_derivative(time, q, multiplier, dense);
+    for (Eigen::Index j = 0; j < n; ++j) {
+      for (Eigen::Index i = 0; i < n; ++i) {
+        if (dense(i, j) != 0.0)
+          derivative.add(static_cast<int>(i), static_cast<int>(j), dense(i, j));
+      }
+    }
+  }
 };
 
 }  // namespace fsi::mbd

@@ -23,6 +23,7 @@
 // integrator.
 
 #include <Eigen/Dense>
+#include <Eigen/SparseCore>
 
 #include <functional>
 #include <memory>
@@ -34,6 +35,7 @@
 
 #include "fsi/mbd/constraint_element.hpp"
 #include "fsi/mbd/force_element.hpp"
+#include "fsi/mbd/matrix_sink.hpp"
 
 namespace fsi::mbd {
 
@@ -461,16 +463,29 @@ class Model {
   void check_consistency(const State& state) const;
 
   // --- assembly of the DAE (used by the integrators) ---
-  // Constant for all current element types.
+  // Every matrix is assembled element by element into a MatrixSink (fsi/mbd/matrix_sink.hpp);
+  // the dense forms (small systems, static analysis, IDA) and the sparse forms (the Newton
+  // matrix of large systems, O(size) work) are wrappers around that.
+  // Constant for all current element types. The dense one is built on first use only.
   const Eigen::MatrixXd& mass_matrix() const;
+  const Eigen::SparseMatrix<double>& sparse_mass_matrix() const;
+  const Eigen::VectorXd& mass_diagonal() const;
   // F(t, q, v): gravity, point loads (held constant), the bodies' internal (elastic) forces and
   // force elements.
   void applied_force(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
                      Eigen::VectorXd& force) const;
   // dF/dq and dF/dv: analytic for gravity, point loads and internal forces, analytic or central
-  // differences for force elements (ForceElement::add_jacobians).
+  // differences for force elements (ForceElement::add_jacobian_entries, whose default forwards
+  // the dense add_jacobians).
   void applied_force_derivatives(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
                                  Eigen::MatrixXd& by_position, Eigen::MatrixXd& by_velocity) const;
+  void applied_force_derivatives(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                                 Eigen::SparseMatrix<double>& by_position,
+                                 Eigen::SparseMatrix<double>& by_velocity) const;
+  // Adds the entries (sinks sized n x n).
+  void add_applied_force_derivatives(double time, const Eigen::VectorXd& q,
+                                     const Eigen::VectorXd& v, MatrixSink& by_position,
+                                     MatrixSink& by_velocity) const;
   // C(q, t) for position-level rows, G v - g(t) for velocity-level rows (size m).
   void constraint_residual(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
                            Eigen::VectorXd& residual) const;
@@ -487,10 +502,18 @@ class Model {
                                          Eigen::VectorXd& remainder) const;
   // G (m x n): dC/dq for position-level rows, d(G v - g)/dv for velocity-level rows.
   void constraint_jacobian(double time, const Eigen::VectorXd& q, Eigen::MatrixXd& jacobian) const;
+  void constraint_jacobian(double time, const Eigen::VectorXd& q,
+                           Eigen::SparseMatrix<double>& jacobian) const;
+  void add_constraint_jacobian(double time, const Eigen::VectorXd& q, MatrixSink& jacobian) const;
   // d/dq (G(q)^T lambda) (n x n); zero while all constraints are linear in q.
   void constraint_force_derivative(double time, const Eigen::VectorXd& q,
                                    const Eigen::VectorXd& lambda,
                                    Eigen::MatrixXd& derivative) const;
+  void constraint_force_derivative(double time, const Eigen::VectorXd& q,
+                                   const Eigen::VectorXd& lambda,
+                                   Eigen::SparseMatrix<double>& derivative) const;
+  void add_constraint_force_derivative(double time, const Eigen::VectorXd& q,
+                                       const Eigen::VectorXd& lambda, MatrixSink& derivative) const;
 
   // --- point loads: world-frame forces on markers, held constant over a step ---
   // Two values (x, y) per marker, in marker order. Loads on ground markers are ignored.
