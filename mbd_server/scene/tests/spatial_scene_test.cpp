@@ -1,0 +1,150 @@
+// Scene blocks of the spatial (3D) multibody model: a scene with every block builds the expected
+// model, meshes (a body's STL in its frame, a cable's tube) and sensors; the dynamic vertices come
+// first and move with the bodies; mistakes are problems at their file:line.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <string>
+
+#include "fsi/common/error.hpp"
+#include "fsi/mbd/integrator.hpp"
+#include "fsi/scene/scene.hpp"
+#include "test_files.hpp"
+
+namespace fsi::scene {
+namespace {
+
+namespace fs = std::filesystem;
+
+class SpatialScene : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    folder_ = fs::temp_directory_path() /
+              ("fsi_spatial_scene_" +
+               std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::create_directories(folder_);
+    std::ofstream(folder_ / "s.in") << "# script\n";
+    std::ofstream(folder_ / "box.stl") << testing::unit_box_stl();
+  }
+  void TearDown() override { fs::remove_all(folder_); }
+
+  fs::path write(const std::string& body, int dimension = 3) {
+    const fs::path path = folder_ / "m.scene";
+    std::ofstream(path) << "scene_language = 1\ndimension = " << dimension
+                        << "\nSolverOptions { end_time = 1; Timeint { step_size = 1e-3 } }\n"
+                        << body
+                        << "LIGGGHTS { script1 = \"s.in\"; script2 = \"s.in\" }\n"
+                           "Coupling { refinement_resolution = 0.002 }\n";
+    return path;
+  }
+
+  fs::path folder_;
+};
+
+const char* const kEveryBlock = R"scene(Gravity { acceleration = [0, 0, -9.81] }
+RigidBody3D { name = "lid"; mass = 2; inertia = [0.2, 0.3, 0.4]; position = [1, 0, 0]
+              axis = [0, 0, 1]; angle = pi/2
+              Mesh { stl = "box.stl"; scale = 0.1; offset = [-0.05, -0.05, -0.05] } }
+RigidBody3D { name = "knob"; mass = 0.1; inertia = [0.01, 0.01, 0.01]; position = [1, 0, 0.2] }
+PointMass { name = "bob"; mass = 0.5; position = [2, 0, -1] }
+AncfCable3D { name = "rope"; start = [2, 0, 0]; end = [2, 0, -1]; elements = 2
+              axial_stiffness = 1e5; bending_stiffness = 1; mass_per_length = 0.2
+              radius = 0.01; tube_sides = 6; tube_rings_per_element = 2 }
+CableClamp { cable = "rope"; node = 0 }
+SphericalJoint { name = "tie"; body_a = "bob"; body_b = "rope"; point_b = [1, 0, 0] }
+RevoluteJoint3D { name = "hinge"; body_a = "lid"; point_b = [1, 0, 0]; axis = [0, 0, 1] }
+FixedJoint3D { name = "weld"; body = "knob"; to = "lid" }
+DistanceConstraint3D { name = "rod"; body_a = "knob"; point_a = [0.3, 0, 0]; point_b = [1.3, 1, 0.2] }
+Ground { Mesh { stl = "box.stl"; offset = [0, 0, -3] } }
+Sensor { name = "lid_z"; type = "position"; body = "lid"; component = "z" }
+Sensor { name = "bob_vx"; type = "velocity"; body = "bob"; component = "x" }
+Sensor { name = "rope_fz"; type = "fluid_force"; body = "rope"; component = "z" }
+Sensor { name = "hinge_z"; type = "joint_force"; joint = "hinge"; component = "z" }
+Sensor { name = "energy"; type = "potential_energy" }
+)scene";
+
+TEST_F(SpatialScene, EveryBlockBuildsTheModelMeshesAndSensors) {
+  const Scene scene = build_scene(write(kEveryBlock).string());
+  const mbd::Model& model = scene.model;
+  ASSERT_EQ(model.body_count(), 4);
+  EXPECT_EQ(model.body_kind(0), "rigid_body_3d");
+  EXPECT_EQ(model.body_kind(2), "point_mass");
+  EXPECT_EQ(model.body_kind(3), "ancf_cable");
+  EXPECT_EQ(model.coordinate_count(), 12 + 12 + 3 + 18);
+  // 6 + 6 orthonormality, cable clamp 5, spherical 3, revolute 5, fixed 6, rod 1.
+  EXPECT_EQ(model.constraint_count(), 12 + 5 + 3 + 5 + 6 + 1);
+  // Dynamic vertices: the lid's 8 box corners, then the tube: 5 rings of 6 and 2 end centres.
+  const std::size_t tube = 5 * 6 + 2;
+  EXPECT_EQ(scene.boundary.dynamic_vertex_count, 8 + tube);
+  EXPECT_EQ(static_cast<std::size_t>(model.marker_count()), 8 + tube);
+  EXPECT_EQ(scene.boundary.vertex_count, 8 + tube + 8);
+  EXPECT_EQ(scene.boundary.element_count(), 12 + (2 * 4 * 6 + 2 * 6) + 12);
+  // The ground's triangles index the static vertices after the dynamic ones.
+  for (std::size_t k = 3 * (12 + 60); k < scene.boundary.triangles.size(); ++k)
+    EXPECT_GE(scene.boundary.triangles[k], 8 + tube);
+
+  const mbd::State state = model.initial_state();
+  std::vector<double> positions, velocities;
+  boundary_state(scene.boundary, model, state, positions, velocities);
+  ASSERT_EQ(positions.size(), 3 * scene.boundary.vertex_count);
+  // Vertex 1 is the STL's second distinct point, corner (0, 1, 0): 0.1 (0, 1, 0) - 0.05 =
+  // (-0.05, 0.05, -0.05) in the lid's frame, turned by 90 degrees about z, at (1, 0, 0).
+  EXPECT_NEAR(positions[3 * 1 + 0], 1.0 - 0.05, 1e-12);
+  EXPECT_NEAR(positions[3 * 1 + 1], -0.05, 1e-12);
+  EXPECT_NEAR(positions[3 * 1 + 2], -0.05, 1e-12);
+  // Tube vertices lie at the radius around the vertical rope; the ground box is where it was put.
+  const double dx = positions[3 * 8 + 0] - 2.0, dy = positions[3 * 8 + 1];
+  EXPECT_NEAR(std::hypot(dx, dy), 0.01, 1e-12);
+  EXPECT_NEAR(positions[3 * (8 + tube + 7) + 2], -2.0, 1e-12);
+
+  ASSERT_EQ(scene.sensors.size(), 5u);
+  EXPECT_EQ(scene.sensors[0].unit, "m");
+  EXPECT_NEAR(structure_sensor_value(model, scene.sensors[0], state), 0.0, 1e-15);
+  EXPECT_EQ(scene.sensors[3].rows, 5);
+  // The hinge holds the lid and (through the weld) the knob: its z force carries their weight.
+  EXPECT_GT(structure_sensor_value(model, scene.sensors[3], state), 0.0);
+
+  // The coupled step's integrator runs the model.
+  mbd::RadauIIA integrator(scene.solver.integrator_options());
+  mbd::State moving = state;
+  for (int i = 0; i < 5; ++i)
+    integrator.step(model, moving, 1e-3);
+  EXPECT_LT(model.position_constraint_drift(moving), 1e-10);
+}
+
+TEST_F(SpatialScene, MistakesAreProblemsAtTheirPlace) {
+  const std::string text = testing::build_error(write(R"scene(
+RigidBody3D { name = "flat"; mass = 1; inertia = [1, 1, 2] }
+AncfCable3D { name = "rope"; start = [0, 0, 0]; end = [1, 0, 0]; elements = 1
+              axial_stiffness = 1; bending_stiffness = 1; mass_per_length = 1; radius = 0.1 }
+RevoluteJoint3D { body_a = "rope" }
+SphericalJoint { body_a = "nobody" }
+Sensor { name = "p"; type = "position"; body = "rope"; component = "x" }
+Sensor { name = "q"; type = "position"; body = "rope"; component = "angle" }
+Sensor { name = "c"; type = "constraint_force"; body = "rope"; component = "x" }
+RigidBody2D { name = "planar"; mass = 1; inertia = 1 }
+Ground { Mesh { stl = "box.stl" } }
+)scene"));
+  for (const char* expected :
+       {"m.scene:5:", "less than the sum of the other two", "m.scene:8:", "not a rigid body",
+        "m.scene:9:", "no body named 'nobody'", "m.scene:10:", "is an AncfCable3D",
+        "m.scene:11:", "has components x, y or z", "m.scene:12:", "has no 3D form yet",
+        "m.scene:13:1: RigidBody2D is a planar (2D) element"}) {
+    EXPECT_NE(text.find(expected), std::string::npos) << expected << "\n" << text;
+  }
+  // And the spatial blocks in a planar scene.
+  const std::string planar = testing::build_error(write(R"scene(
+PointMass { name = "m"; mass = 1 }
+Ground { Mesh { points = [[0, 0], [1, 0]] } }
+)scene",
+                                                        2));
+  EXPECT_NE(planar.find("m.scene:5:1: PointMass is a spatial (3D) element: it needs dimension = 3"),
+            std::string::npos)
+      << planar;
+}
+
+}  // namespace
+}  // namespace fsi::scene
