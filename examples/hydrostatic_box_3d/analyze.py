@@ -5,7 +5,11 @@ Prints and writes DIR/analysis.json with the time average of the fluid force on 
 along z over the settled interval (from --settle-start to the end), against the fluid weight
 N m g (N particles of mass m = rho0 d^3, g = |Gravity.acceleration|), and the particle counts.
 The force on the structure points down (-z): the ratio is -F_z / (N m g).
-Exit status 1 if --weight-tolerance is given and |ratio - 1| exceeds it, or if particles were lost.
+With the held container (hydrostatic_box_3d_held.scene: columns mount_force_z, fluid_force_z) it
+also checks the joint: at every row the joint's force from the Lagrange multipliers equals the
+container's weight plus the fluid force on it, relative to the fluid weight (--lambda-tolerance).
+Exit status 1 if --weight-tolerance is given and |ratio - 1| exceeds it, if particles were lost,
+or if the joint check exceeds --lambda-tolerance.
 """
 import argparse
 import csv
@@ -34,6 +38,8 @@ def main():
     parser.add_argument("--settle-start", type=float,
                         help="start of the averaging interval [s] (default: half the end time)")
     parser.add_argument("--weight-tolerance", type=float, help="fail if |F/W - 1| exceeds this")
+    parser.add_argument("--lambda-tolerance", type=float, default=1e-9,
+                        help="held container: fail if |joint - m g + F| / W exceeds this")
     args = parser.parse_args()
 
     with open(os.path.join(args.run_dir, "run.json")) as handle:
@@ -67,6 +73,18 @@ def main():
           % (start, len(settled), -force))
     print("ratio -F_z / (N m g) = %.4f" % ratio)
     failed = False
+    if "mount_force_z" in sensors:
+        container = run["model"]["bodies"][0]["mass"]
+        worst = max(abs(j - container * g + f) for j, f in
+                    zip(sensors["mount_force_z"], sensors["fluid_force_z"])) / weight
+        result["joint_balance_relative"] = worst
+        with open(os.path.join(args.run_dir, "analysis.json"), "w") as handle:
+            json.dump(result, handle, indent=2)
+        print("joint: |mount force - m_container g + fluid force| / (N m g) <= %.2e over %d rows"
+              % (worst, len(sensors["mount_force_z"])))
+        if worst > args.lambda_tolerance:
+            print("FAIL: the joint check %.2e exceeds %.2e" % (worst, args.lambda_tolerance))
+            failed = True
     if lost > 0:
         print("FAIL: %d particle(s) lost" % lost)
         failed = True
