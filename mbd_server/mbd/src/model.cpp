@@ -316,6 +316,10 @@ detail::BodyPoint Model::body_point(const BodyPointSpec& spec, const std::string
   return data_->point(spec, user);
 }
 
+void Model::check_point(const BodyPointSpec& point, const std::string& user) const {
+  (void)data_->point(point, user);
+}
+
 Eigen::Vector2d Model::point_position(const State& state, const BodyPointSpec& point) const {
   return body_point(point, "a position readout").position(state.q);
 }

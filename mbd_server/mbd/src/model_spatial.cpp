@@ -433,6 +433,10 @@ Eigen::MatrixXd Model::spatial_marker_jacobian(const Eigen::VectorXd& q, int mar
   return jacobian;
 }
 
+void Model::check_spatial_point(const SpatialPointSpec& point, const std::string& user) const {
+  (void)data_->spatial_point(point, user);
+}
+
 Eigen::Vector3d Model::spatial_point_position(const State& state,
                                               const SpatialPointSpec& point) const {
   return data_->spatial_point(point, "a position readout").position(state.q);

@@ -262,12 +262,17 @@ BlockSpec make_schema() {
        optional(text("body",
                      "name of a RigidBody2D (position, velocity, fluid and constraint "
                      "forces), or of an AncfBeam2D (fluid_force)")),
+       optional(per_dimension(
+           vector("point", 2, "m",
+                  "position, velocity: a point of the body instead of its centre of mass (body "
+                  "coordinates; [s, eta] on an AncfBeam2D; 3D: [x, y, z], [s, 0, 0] on a cable)"))),
        optional(text("joint", "joint_force: the name of a joint block")),
        optional(text("element", "spring_force: the name of a spring block")),
        optional(choice(text("component",
-                            "x, y, angle (torque for forces); z: total_fluid_force in 3D; not "
-                            "for spring_force and energies"),
-                       {"x", "y", "z", "angle", "torque"}))}));
+                            "x, y, angle (torque for forces); 3D: x, y, z, and torque_x, "
+                            "torque_y, torque_z (about the centre of mass) for fluid_force and "
+                            "joint_force; not for spring_force and energies"),
+                       {"x", "y", "z", "angle", "torque", "torque_x", "torque_y", "torque_z"}))}));
 
   BlockSpec fluid = block(
       "FluidRegion",
@@ -998,27 +1003,48 @@ Scene build_scene(const std::string& path, const std::vector<Override>& override
     check_key("joint", sensor.type == SensorType::JointForce, "\"...\" (a joint's name)");
     check_key("element", false, "");
     check_key("component", !energy, "\"x\"");
+    const bool kinematic =
+        sensor.type == SensorType::Position || sensor.type == SensorType::Velocity;
+    if (!kinematic && s.has("point")) check_key("point", false, "");
     if (!complete) return;
+    const bool torque = component.rfind("torque_", 0) == 0;
     if (!energy) {
-      if (component != "x" && component != "y" && component != "z") {
-        problems.push_back(
-            {s.location("component"), "a 3D " + type + " sensor has components x, y or z",
-             "write x, y or z (torques and angles of 3D bodies are not sensors yet)"});
+      const bool takes_torque =
+          sensor.type == SensorType::FluidForce || sensor.type == SensorType::JointForce;
+      if ((component != "x" && component != "y" && component != "z" && !torque) ||
+          (torque && !takes_torque)) {
+        problems.push_back({s.location("component"),
+                            "a 3D " + type + " sensor has components x, y or z" +
+                                (takes_torque ? " (or torque_x, torque_y, torque_z)" : ""),
+                            "write x, y or z (angles of 3D bodies are not sensors yet)"});
         return;
       }
-      sensor.axis = component == "z" ? 2 : component == "y" ? 1 : 0;
+      const char last = component.back();
+      sensor.axis = (last == 'z' ? 2 : last == 'y' ? 1 : 0) + (torque ? 3 : 0);
     }
     sensor.unit = sensor.type == SensorType::Position   ? "m"
                   : sensor.type == SensorType::Velocity ? "m/s"
                   : energy                              ? "J"
+                  : torque                              ? "N m"
                                                         : "N";
     if (on_body) sensor.body = find_body(s, "body");
-    if ((sensor.type == SensorType::Position || sensor.type == SensorType::Velocity) &&
-        model.is_cable(sensor.body)) {
+    if (kinematic && s.has("point")) {
+      const auto point = dimension_vector(s, "point", 3, problems);
+      if (!point) return;
+      sensor.point = std::array<double, 3>{(*point)[0], (*point)[1], (*point)[2]};
+      try {
+        model.check_spatial_point({sensor.body, {(*point)[0], (*point)[1], (*point)[2]}},
+                                  "sensor '" + sensor.name + "'");
+      } catch (const Error& error) {
+        problems.push_back({s.location("point"), error.fault(), error.remedy()});
+        return;
+      }
+    }
+    if (kinematic && !sensor.point && model.is_cable(sensor.body)) {
       problems.push_back({s.location("body"),
                           "a " + type + " sensor reads a centre of mass, and '" + s.string("body") +
                               "' is an AncfCable3D",
-                          "use type = \"fluid_force\" on a cable"});
+                          "give a centre-line point = [s, 0, 0], or use type = \"fluid_force\""});
       return;
     }
     if (sensor.type == SensorType::JointForce) {
@@ -1108,6 +1134,15 @@ Scene build_scene(const std::string& path, const std::vector<Override>& override
       if (sensor.type != SensorType::JointForce) forbid("joint", "remove it");
       if (sensor.type != SensorType::SpringForce) forbid("element", "remove it");
       if (!has_component) forbid("component", "remove it");
+      const bool kinematic =
+          sensor.type == SensorType::Position || sensor.type == SensorType::Velocity;
+      if (!kinematic) forbid("point", "remove it (point is for position and velocity sensors)");
+      if (component.rfind("torque_", 0) == 0) {
+        problems.push_back({s.location("component"),
+                            "torque_x, torque_y and torque_z are components of 3D sensors",
+                            "write torque"});
+        complete = false;
+      }
       if (has_component) need("component", "\"x\"");
       if (on_body) need("body", "\"...\"");
       if (sensor.type == SensorType::JointForce) need("joint", "\"...\" (a joint's name)");
@@ -1137,11 +1172,30 @@ Scene build_scene(const std::string& path, const std::vector<Override>& override
                                                           : (rotational ? "N m/m" : "N/m");
       if (spatial && force) sensor.unit = "N";  // a 3D force, not per unit depth
       if (on_body) sensor.body = find_body(s, "body");
-      if (on_body && model.is_beam(sensor.body) && sensor.type != SensorType::FluidForce) {
+      if (kinematic && s.has("point")) {
+        if (rotational) {
+          problems.push_back({s.location("component"), "a point has components x and y, no angle",
+                              "write x or y, or remove point for the body's angle"});
+          return;
+        }
+        const auto point = dimension_vector(s, "point", 2, problems);
+        if (!point) return;
+        sensor.point = std::array<double, 3>{(*point)[0], (*point)[1], 0.0};
+        try {
+          model.check_point({sensor.body, {(*point)[0], (*point)[1]}},
+                            "sensor '" + sensor.name + "'");
+        } catch (const Error& error) {
+          problems.push_back({s.location("point"), error.fault(), error.remedy()});
+          return;
+        }
+        sensor.axis = sensor.component == mbd::Coordinate::Y ? 1 : 0;
+      }
+      if (on_body && model.is_beam(sensor.body) && sensor.type != SensorType::FluidForce &&
+          !sensor.point) {
         problems.push_back({s.location("type"),
                             "a " + type + " sensor reads rigid-body coordinates, and '" +
                                 s.string("body") + "' is an AncfBeam2D",
-                            "use type = \"fluid_force\" on a beam"});
+                            "give a beam point = [s, eta], or use type = \"fluid_force\""});
         return;
       }
       if (sensor.type == SensorType::JointForce) {

@@ -10,7 +10,10 @@ double structure_sensor_value(const mbd::Model& model, const SensorSpec& sensor,
                               const mbd::State& state) {
   const int component = static_cast<int>(sensor.component);
   if (model.dimension() == 3) {
-    const mbd::SpatialPointSpec centre{sensor.body, Eigen::Vector3d::Zero()};
+    const mbd::SpatialPointSpec centre{
+        sensor.body,
+        sensor.point ? Eigen::Vector3d((*sensor.point)[0], (*sensor.point)[1], (*sensor.point)[2])
+                     : Eigen::Vector3d::Zero()};
     switch (sensor.type) {
       case SensorType::Position:
         return model.spatial_point_position(state, centre)(sensor.axis);
@@ -24,6 +27,12 @@ double structure_sensor_value(const mbd::Model& model, const SensorSpec& sensor,
       default:
         break;  // energies below; the builder refuses the rest in 3D
     }
+  }
+  if (sensor.point &&
+      (sensor.type == SensorType::Position || sensor.type == SensorType::Velocity)) {
+    const mbd::BodyPointSpec point{sensor.body, {(*sensor.point)[0], (*sensor.point)[1]}};
+    return (sensor.type == SensorType::Position ? model.point_position(state, point)
+                                                : model.point_velocity(state, point))(sensor.axis);
   }
   switch (sensor.type) {
     case SensorType::Position:

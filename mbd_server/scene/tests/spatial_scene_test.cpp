@@ -115,6 +115,45 @@ TEST_F(SpatialScene, EveryBlockBuildsTheModelMeshesAndSensors) {
   EXPECT_LT(model.position_constraint_drift(moving), 1e-10);
 }
 
+TEST_F(SpatialScene, SensorsOfPointsAndTorques) {
+  Scene scene = build_scene(write(std::string(kEveryBlock) + R"scene(
+Sensor { name = "rope_end_z"; type = "position"; body = "rope"; point = [1, 0, 0]; component = "z" }
+Sensor { name = "lid_corner_y"; type = "position"; body = "lid"; point = [0.05, 0, 0]; component = "y" }
+Sensor { name = "lid_torque_z"; type = "fluid_force"; body = "lid"; component = "torque_z" }
+Sensor { name = "weld_torque_x"; type = "joint_force"; joint = "weld"; component = "torque_x" }
+)scene")
+                                .string());
+  mbd::Model& model = scene.model;
+  const mbd::State state = model.initial_state();
+  ASSERT_EQ(scene.sensors.size(), 9u);
+  EXPECT_NEAR(structure_sensor_value(model, scene.sensors[5], state), -1.0, 1e-15);
+  // The lid is turned by 90 degrees about z: its body x axis points along world y.
+  EXPECT_NEAR(structure_sensor_value(model, scene.sensors[6], state), 0.05, 1e-15);
+  EXPECT_EQ(scene.sensors[7].axis, 5);
+  EXPECT_EQ(scene.sensors[7].unit, "N m");
+  // A vertex load on the lid's corner 1 at (0.95, -0.05, -0.05): torque about the centre.
+  std::vector<double> loads(3 * static_cast<std::size_t>(model.marker_count()), 0.0);
+  loads[3 * 1 + 0] = 2.0;
+  model.set_point_loads(loads);
+  EXPECT_NEAR(structure_sensor_value(model, scene.sensors[7], state), 0.05 * 2.0, 1e-15);
+  EXPECT_EQ(scene.sensors[8].axis, 3);
+  // The same in a planar scene: a point of a beam and of a rigid body.
+  const Scene planar = build_scene(write(R"scene(
+RigidBody2D { name = "plate"; mass = 1; inertia = 1; angle = pi/2; Mesh { points = [[0, 0], [1, 0]] } }
+AncfBeam2D { name = "beam"; start = [0, 0]; end = [2, 0]; elements = 2; thickness = 0.01
+             axial_stiffness = 1e6; bending_stiffness = 1; mass_per_length = 1 }
+Sensor { name = "corner_y"; type = "position"; body = "plate"; point = [0.5, 0]; component = "y" }
+Sensor { name = "face_y"; type = "position"; body = "beam"; point = [1.5, 0.005]; component = "y" }
+Sensor { name = "face_vx"; type = "velocity"; body = "beam"; point = [1.5, 0.005]; component = "x" }
+)scene",
+                                         2)
+                                       .string());
+  const mbd::State planar_state = planar.model.initial_state();
+  EXPECT_NEAR(structure_sensor_value(planar.model, planar.sensors[0], planar_state), 0.5, 1e-15);
+  EXPECT_NEAR(structure_sensor_value(planar.model, planar.sensors[1], planar_state), 0.005, 1e-15);
+  EXPECT_NEAR(structure_sensor_value(planar.model, planar.sensors[2], planar_state), 0.0, 1e-15);
+}
+
 TEST_F(SpatialScene, MistakesAreProblemsAtTheirPlace) {
   const std::string text = testing::build_error(write(R"scene(
 RigidBody3D { name = "flat"; mass = 1; inertia = [1, 1, 2] }
@@ -126,13 +165,16 @@ Sensor { name = "p"; type = "position"; body = "rope"; component = "x" }
 Sensor { name = "q"; type = "position"; body = "rope"; component = "angle" }
 Sensor { name = "c"; type = "constraint_force"; body = "rope"; component = "x" }
 RigidBody2D { name = "planar"; mass = 1; inertia = 1 }
+Sensor { name = "off"; type = "position"; body = "rope"; point = [0.5, 0.1, 0]; component = "x" }
+Sensor { name = "vt"; type = "velocity"; body = "flat"; component = "torque_x" }
 Ground { Mesh { stl = "box.stl" } }
 )scene"));
   for (const char* expected :
        {"m.scene:5:", "less than the sum of the other two", "m.scene:8:", "not a rigid body",
         "m.scene:9:", "no body named 'nobody'", "m.scene:10:", "is an AncfCable3D",
         "m.scene:11:", "has components x, y or z", "m.scene:12:", "has no 3D form yet",
-        "m.scene:13:1: RigidBody2D is a planar (2D) element"}) {
+        "m.scene:13:1: RigidBody2D is a planar (2D) element", "m.scene:14:", "off the centre line",
+        "m.scene:15:", "a 3D velocity sensor has components x, y or z"}) {
     EXPECT_NE(text.find(expected), std::string::npos) << expected << "\n" << text;
   }
   // And the spatial blocks in a planar scene.

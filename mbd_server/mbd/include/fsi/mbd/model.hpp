@@ -558,6 +558,10 @@ class Model {
   // fsi::Error for an unknown body or a point outside a beam. Readouts such as the VTK centre
   // lines of beams.
   Eigen::Vector2d point_position(const State& state, const BodyPointSpec& point) const;
+  // Throws fsi::Error naming `user` if the point is not a point of its body (unknown body,
+  // planar/spatial mismatch, outside a beam or cable, off a cable's centre line).
+  void check_point(const BodyPointSpec& point, const std::string& user) const;
+  void check_spatial_point(const SpatialPointSpec& point, const std::string& user) const;
   Eigen::Vector2d point_velocity(const State& state, const BodyPointSpec& point) const;
   // Largest |C| over position-level rows.
   double position_constraint_drift(const State& state) const;

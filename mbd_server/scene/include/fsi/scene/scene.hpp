@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -104,7 +105,10 @@ struct SensorSpec {
   SensorType type = SensorType::Position;
   mbd::BodyId body = 0;                            // unused for TotalFluidForce and energies
   mbd::Coordinate component = mbd::Coordinate::X;  // Angle means the torque for force sensors
-  int axis = 0;  // TotalFluidForce: 0 x, 1 y, 2 z (3D scenes only)
+  // TotalFluidForce and 3D sensors: 0 x, 1 y, 2 z, 3-5 torque x, y, z; a 2D point: 0 x, 1 y.
+  int axis = 0;
+  // Position, velocity: a body point instead of the centre of mass (2D: z = 0).
+  std::optional<std::array<double, 3>> point;
   std::string unit;
   int first_row = 0;  // JointForce: the joint's constraint rows
   int rows = 0;
