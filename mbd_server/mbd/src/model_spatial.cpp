@@ -13,6 +13,7 @@
 #include "model_data.hpp"
 #include "rigid_body_3d.hpp"
 #include "spatial_constraints.hpp"
+#include "spring_damper.hpp"
 
 namespace fsi::mbd {
 namespace {
@@ -298,6 +299,28 @@ int Model::add_spatial_point_force(const SpatialPointForceSpec& spec) {
   if (!spec.force) throw Error("no force function", user, "give force(t)");
   add_force_element(std::make_unique<detail::SpatialPointForce>(
       user, data_->spatial_point(spec.point, user), spec.force));
+  return index;
+}
+
+int Model::add_spatial_spring_damper(const SpatialSpringDamperSpec& spec) {
+  const int index = force_element_count();
+  const std::string user = joint_name("spring-damper", spec.name, index);
+  const detail::SpatialPoint a = data_->spatial_point(spec.a, user);
+  const detail::SpatialPoint b = data_->spatial_point(spec.b, user);
+  data_->check_pair({spec.a.body, {}}, {spec.b.body, {}}, user);
+  const double rest = spec.rest_length.value_or(
+      (data_->initial_spatial_position(spec.b) - data_->initial_spatial_position(spec.a)).norm());
+  std::string problems;
+  if (!(spec.stiffness >= 0.0) || !std::isfinite(spec.stiffness)) problems += " stiffness < 0;";
+  if (!(spec.damping >= 0.0) || !std::isfinite(spec.damping)) problems += " damping < 0;";
+  if (!(rest >= 0.0) || !std::isfinite(rest)) problems += " rest length < 0;";
+  if (!problems.empty()) {
+    problems.pop_back();
+    throw Error("invalid parameters:" + problems, user,
+                "give finite, non-negative stiffness, damping and rest length");
+  }
+  add_force_element(
+      std::make_unique<detail::SpatialSpringDamper>(a, b, spec.stiffness, spec.damping, rest));
   return index;
 }
 

@@ -32,6 +32,17 @@ void SpatialPoint::add_jacobian(const Eigen::VectorXd& q, double sign,
   }
 }
 
+void SpatialPoint::add_velocity_jacobian(const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                                         double sign, SpatialColumns& jacobian) const {
+  if (on_ground()) return;
+  Eigen::MatrixXd own(3, body_->coordinate_count());
+  body_->spatial_velocity_jacobian(block(q), block(v), local_, own);
+  for (Eigen::Index j = 0; j < own.cols(); ++j) {
+    if (!own.col(j).isZero(0.0))
+      jacobian.add(offset_ + static_cast<int>(j), sign * Eigen::Vector3d(own.col(j)));
+  }
+}
+
 Eigen::Vector3d SpatialPoint::acceleration_remainder(const Eigen::VectorXd& q,
                                                      const Eigen::VectorXd& v) const {
   if (on_ground()) return Eigen::Vector3d::Zero();

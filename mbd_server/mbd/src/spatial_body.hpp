@@ -115,6 +115,9 @@ class SpatialPoint {
   Eigen::Vector3d velocity(const Eigen::VectorXd& q, const Eigen::VectorXd& v) const;
   // Adds sign * dr/dq (3 x n, its non-zero columns) to `jacobian`.
   void add_jacobian(const Eigen::VectorXd& q, double sign, SpatialColumns& jacobian) const;
+  // Adds sign * d/dq [(dr/dq) v] (3 x n, its non-zero columns) to `jacobian`.
+  void add_velocity_jacobian(const Eigen::VectorXd& q, const Eigen::VectorXd& v, double sign,
+                             SpatialColumns& jacobian) const;
   // The acceleration-free part of d^2r/dt^2.
   Eigen::Vector3d acceleration_remainder(const Eigen::VectorXd& q, const Eigen::VectorXd& v) const;
   // Adds d/dq [(dr/dq)^T f] at constant f (n x n) into `derivative`.

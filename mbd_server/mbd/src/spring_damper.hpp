@@ -1,7 +1,7 @@
 #pragma once
-// Linear spring-damper between two body points (either may be a ground point), acting along the
-// line between them, with exact derivatives for the Newton matrix (internal; built by
-// Model::add_spring_damper).
+// Linear spring-damper between two body points (either may be a ground point), planar or
+// spatial, acting along the line between them, with exact derivatives for the Newton matrix
+// (internal; built by Model::add_spring_damper).
 //
 //     d = r_b - r_a, l = |d|, e = d / l, l' = e . (dr_b/dt - dr_a/dt)
 //     tension T = stiffness (l - rest_length) + damping l'
@@ -14,9 +14,13 @@
 
 namespace fsi::mbd::detail {
 
-class SpringDamper final : public SparseForceElement, public MeasuredForce {
+// Point: BodyPoint (D = 2, planar) or SpatialPoint (D = 3); explicitly instantiated for both.
+template <typename Point, int D>
+class BasicSpringDamper final : public SparseForceElement, public MeasuredForce {
  public:
-  SpringDamper(BodyPoint a, BodyPoint b, double stiffness, double damping, double rest_length);
+  using Vector = Eigen::Matrix<double, D, 1>;
+  using Matrix = Eigen::Matrix<double, D, D>;
+  BasicSpringDamper(Point a, Point b, double stiffness, double damping, double rest_length);
 
   // Tension T at (q, v) [N].
   double tension(const Eigen::VectorXd& q, const Eigen::VectorXd& v) const;
@@ -34,11 +38,15 @@ class SpringDamper final : public SparseForceElement, public MeasuredForce {
   }
 
  private:
-  BodyPoint a_;
-  BodyPoint b_;
+  Point a_;
+  Point b_;
   double stiffness_;
   double damping_;
   double rest_length_;
 };
+
+using SpringDamper = BasicSpringDamper<BodyPoint, 2>;
+class SpatialPoint;
+using SpatialSpringDamper = BasicSpringDamper<SpatialPoint, 3>;
 
 }  // namespace fsi::mbd::detail

@@ -18,6 +18,7 @@
 #include "fsi/mbd/static_analysis.hpp"
 #include "rigid_body_3d.hpp"
 #include "spatial_constraints.hpp"
+#include "spring_damper.hpp"
 
 namespace fsi::mbd {
 namespace {
@@ -441,6 +442,36 @@ TEST(MbdSpatialJoints, FixedJointHoldsABodyAndReportsTheForceAndTorqueItExerts) 
   EXPECT_LT((pair.orientation(moving, carried) - turn * second.orientation).norm(), 1e-9);
   const Eigen::Vector3d offset = moving.q.segment<3>(12) - moving.q.head<3>();
   EXPECT_LT((offset - turn * Eigen::Vector3d(0.5, 0.0, 0.0)).norm(), 1e-9);
+}
+
+TEST(MbdSpatialLoads, SpringDamperHasExactDerivativesAndOscillatesAtItsFrequency) {
+  const SpatialPair pair;
+  const detail::SpatialPoint on_first(&pair.first, 0, {0.2, -0.15, 0.3});
+  const detail::SpatialPoint on_second(&pair.second, 12, {-0.1, 0.35, -0.2});
+  const detail::SpatialPoint on_ground(nullptr, 0, {-0.4, 0.25, 0.1});
+  testing::expect_exact_force_derivatives(
+      detail::SpatialSpringDamper(on_first, on_second, 350.0, 12.0, 0.4), 0.0, pair.q, pair.v,
+      "spatial spring, body-body");
+  testing::expect_exact_force_derivatives(
+      detail::SpatialSpringDamper(on_ground, on_second, 350.0, 12.0, 0.4), 0.0, pair.q, pair.v,
+      "spatial spring, ground-body");
+  // A point mass on an oblique spring: x(t) = amplitude cos(sqrt(k/m) t) along the spring.
+  Model model;
+  const Eigen::Vector3d along = Eigen::Vector3d(1.0, -2.0, 2.0) / 3.0;
+  const BodyId mass = model.add_point_mass({"m", 0.5, 1.1 * along, Eigen::Vector3d::Zero()});
+  const int spring = model.add_spatial_spring_damper({"coil",
+                                                      {kGround, Eigen::Vector3d::Zero()},
+                                                      {mass, Eigen::Vector3d::Zero()},
+                                                      200.0,
+                                                      0.0,
+                                                      1.0});
+  RadauIIA integrator({.stages = 3, .newton = kTight});
+  State state = model.initial_state();
+  for (int i = 0; i < 500; ++i)
+    integrator.step(model, state, 1e-3);
+  const double expected = 1.0 + 0.1 * std::cos(std::sqrt(200.0 / 0.5) * state.time);
+  EXPECT_NEAR(state.q.head<3>().dot(along), expected, 1e-9);
+  EXPECT_NEAR(model.force_element_force(state, spring), 200.0 * (expected - 1.0), 1e-6);
 }
 
 // --- the cable ---

@@ -978,11 +978,12 @@ Scene build_scene(const std::string& path, const std::vector<Override>& override
   // its body_a, total_fluid_force), or an energy.
   auto build_spatial_sensor = [&](const View& s, const std::string& type,
                                   const std::string& component, SensorSpec& sensor) {
-    if (sensor.type == SensorType::ConstraintForce || sensor.type == SensorType::SpringForce) {
+    if (sensor.type == SensorType::ConstraintForce) {
       problems.push_back({s.location("type"), "a " + type + " sensor has no 3D form yet",
                           "use joint_force (the force a named joint exerts) or fluid_force"});
       return;
     }
+    const bool spring = sensor.type == SensorType::SpringForce;
     const bool energy =
         sensor.type == SensorType::KineticEnergy || sensor.type == SensorType::PotentialEnergy;
     const bool on_body = sensor.type == SensorType::Position ||
@@ -1001,14 +1002,14 @@ Scene build_scene(const std::string& path, const std::vector<Override>& override
     };
     check_key("body", on_body, "\"...\"");
     check_key("joint", sensor.type == SensorType::JointForce, "\"...\" (a joint's name)");
-    check_key("element", false, "");
-    check_key("component", !energy, "\"x\"");
+    check_key("element", spring, "\"...\" (a SpringDamper3D's name)");
+    check_key("component", !energy && !spring, "\"x\"");
     const bool kinematic =
         sensor.type == SensorType::Position || sensor.type == SensorType::Velocity;
     if (!kinematic && s.has("point")) check_key("point", false, "");
     if (!complete) return;
     const bool torque = component.rfind("torque_", 0) == 0;
-    if (!energy) {
+    if (!energy && !spring) {
       const bool takes_torque =
           sensor.type == SensorType::FluidForce || sensor.type == SensorType::JointForce;
       if ((component != "x" && component != "y" && component != "z" && !torque) ||
@@ -1046,6 +1047,16 @@ Scene build_scene(const std::string& path, const std::vector<Override>& override
                               "' is an AncfCable3D",
                           "give a centre-line point = [s, 0, 0], or use type = \"fluid_force\""});
       return;
+    }
+    if (spring) {
+      const auto found = named.force_elements.find(s.string("element"));
+      if (found == named.force_elements.end() || found->second < 0) {
+        problems.push_back(
+            {s.location("element"), "no spring named '" + s.string("element") + "'",
+             "give the SpringDamper3D block name = \"" + s.string("element") + "\""});
+        return;
+      }
+      sensor.force_element = found->second;
     }
     if (sensor.type == SensorType::JointForce) {
       const auto found = named.joints.find(s.string("joint"));

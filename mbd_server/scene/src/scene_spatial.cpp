@@ -124,6 +124,16 @@ std::vector<BlockSpec> spatial_block_specs() {
                   text("to", "name of the holding RigidBody3D; absent: the ground").optional()})
           .as_list(),
       block_spec(
+          "SpringDamper3D",
+          "Linear spring-damper between the two points: tension k (l - l0) + c dl/dt "
+          "(spring_force sensors read it by name).",
+          two_spatial_points({number("stiffness", "N/m", "k").at_least(0.0),
+                              number("damping", "N s/m", "c").at_least(0.0).with_default(0.0),
+                              number("rest_length", "m", "l0 (default: the initial distance)")
+                                  .at_least(0.0)
+                                  .optional()}))
+          .as_list(),
+      block_spec(
           "DistanceConstraint3D",
           "A massless rod between the two points (1 row; lambda is the rod force, tension "
           "positive).",
@@ -306,6 +316,20 @@ void build_spatial_connectors(const View& root, ElementBuilder& builder) {
       int row = 0;
       builder.placed(j, [&] { row = model.add_fixed_joint_3d(spec); });
       register_joint(builder, j, {row, 6, spec.body, "fixed joint"});
+    });
+  }
+  for (const View& f : root.blocks("SpringDamper3D")) {
+    builder.guard(f.location(), [&] {
+      mbd::SpatialSpringDamperSpec spec;
+      spec.name = name_of(f);
+      spec.a = point(f, "a");
+      spec.b = point(f, "b");
+      spec.stiffness = f.number("stiffness");
+      spec.damping = f.number("damping");
+      if (f.has("rest_length")) spec.rest_length = f.number("rest_length");
+      int index = 0;
+      builder.placed(f, [&] { index = model.add_spatial_spring_damper(spec); });
+      register_force_element(builder, f, index, false);
     });
   }
   for (const View& c : root.blocks("DistanceConstraint3D")) {

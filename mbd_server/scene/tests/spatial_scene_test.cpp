@@ -121,11 +121,14 @@ Sensor { name = "rope_end_z"; type = "position"; body = "rope"; point = [1, 0, 0
 Sensor { name = "lid_corner_y"; type = "position"; body = "lid"; point = [0.05, 0, 0]; component = "y" }
 Sensor { name = "lid_torque_z"; type = "fluid_force"; body = "lid"; component = "torque_z" }
 Sensor { name = "weld_torque_x"; type = "joint_force"; joint = "weld"; component = "torque_x" }
+SpringDamper3D { name = "coil"; body_a = "bob"; point_b = [2, 0, -1.5]; stiffness = 100; rest_length = 0.4 }
+Sensor { name = "coil_tension"; type = "spring_force"; element = "coil" }
 )scene")
                                 .string());
   mbd::Model& model = scene.model;
   const mbd::State state = model.initial_state();
-  ASSERT_EQ(scene.sensors.size(), 9u);
+  ASSERT_EQ(scene.sensors.size(), 10u);
+  EXPECT_NEAR(structure_sensor_value(model, scene.sensors[9], state), 100.0 * (0.5 - 0.4), 1e-12);
   EXPECT_NEAR(structure_sensor_value(model, scene.sensors[5], state), -1.0, 1e-15);
   // The lid is turned by 90 degrees about z: its body x axis points along world y.
   EXPECT_NEAR(structure_sensor_value(model, scene.sensors[6], state), 0.05, 1e-15);

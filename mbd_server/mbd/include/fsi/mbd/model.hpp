@@ -269,6 +269,17 @@ struct FixedJoint3DSpec {
   BodyId to = kGround;
 };
 
+// Linear spring-damper between two points of spatial bodies (or a fixed point): tension
+// k (l - l0) + c dl/dt along the line, as SpringDamperSpec.
+struct SpatialSpringDamperSpec {
+  std::string name;  // in messages; default "spring-damper <k>"
+  SpatialPointSpec a;
+  SpatialPointSpec b;
+  double stiffness = 0.0;                            // [N/m]
+  double damping = 0.0;                              // [N s/m]
+  std::optional<double> rest_length = std::nullopt;  // [m]; default: the initial distance
+};
+
 // A world-frame force that is a function of time at a point of a spatial body (evaluated at the
 // stage times, like PointForceSpec).
 struct SpatialPointForceSpec {
@@ -386,6 +397,8 @@ class Model {
   // Return the index among the force elements; throw for the ground, a missing function or a
   // body that is not of the needed kind.
   int add_spatial_point_force(const SpatialPointForceSpec& spec);
+  // Throws for negative or non-finite values; the points must never coincide.
+  int add_spatial_spring_damper(const SpatialSpringDamperSpec& spec);
   int add_spatial_torque(const SpatialTorqueSpec& spec);
 
   // Any body: its name, kind ("rigid_body_2d", "ancf_beam", "rigid_body_3d", "point_mass",
