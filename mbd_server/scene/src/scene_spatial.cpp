@@ -157,8 +157,12 @@ void build_spatial_bodies(const View& root, SpatialBodyBuilder& builder) {
     const Parameter* name_given = element.raw().find("name");
     if (name_given && name_given->failed) builder.unnamed_body_skipped = true;
   };
-  auto add_body = [&](const View& element, const std::string& name, auto&& add) {
-    builder.skipped_bodies.push_back(name);
+  // The name goes on the skipped list as soon as it is read, and off it once the body exists:
+  // a body that fails on any value skips the elements that name it.
+  auto begin_named = [&](const View& element) {
+    builder.skipped_bodies.push_back(element.string("name"));
+  };
+  auto add_body = [&](const View& element, auto&& add) {
     std::optional<mbd::BodyId> id;
     try {
       id = add();
@@ -174,6 +178,7 @@ void build_spatial_bodies(const View& root, SpatialBodyBuilder& builder) {
     std::optional<mbd::BodyId> id;
     builder.guard(body.location(), [&] {
       mbd::RigidBody3DSpec spec;
+      begin_named(body);
       spec.name = body.string("name");
       spec.mass = body.number("mass");
       spec.inertia = vector3(body, "inertia").asDiagonal();
@@ -187,7 +192,7 @@ void build_spatial_bodies(const View& root, SpatialBodyBuilder& builder) {
       spec.orientation = Eigen::AngleAxisd(body.number("angle"), axis.normalized()).matrix();
       spec.velocity = vector3(body, "velocity");
       spec.angular_velocity = vector3(body, "angular_velocity");
-      id = add_body(body, spec.name, [&] { return model.add_rigid_body_3d(spec); });
+      id = add_body(body, [&] { return model.add_rigid_body_3d(spec); });
     });
     if (!id) continue;
     for (const View& mesh : body.blocks("Mesh")) {
@@ -212,17 +217,19 @@ void build_spatial_bodies(const View& root, SpatialBodyBuilder& builder) {
     begin_body(mass);
     builder.guard(mass.location(), [&] {
       mbd::PointMassSpec spec;
+      begin_named(mass);
       spec.name = mass.string("name");
       spec.mass = mass.number("mass");
       spec.position = vector3(mass, "position");
       spec.velocity = vector3(mass, "velocity");
-      add_body(mass, spec.name, [&] { return model.add_point_mass(spec); });
+      add_body(mass, [&] { return model.add_point_mass(spec); });
     });
   }
   for (const View& cable : root.blocks("AncfCable3D")) {
     begin_body(cable);
     builder.guard(cable.location(), [&] {
       mbd::AncfCableSpec spec;
+      begin_named(cable);
       spec.name = cable.string("name");
       spec.start = vector3(cable, "start");
       spec.end = vector3(cable, "end");
@@ -233,7 +240,7 @@ void build_spatial_bodies(const View& root, SpatialBodyBuilder& builder) {
       spec.axial_damping = cable.number("axial_damping");
       spec.bending_damping = cable.number("bending_damping");
       const std::optional<mbd::BodyId> id =
-          add_body(cable, spec.name, [&] { return model.add_ancf_cable(spec); });
+          add_body(cable, [&] { return model.add_ancf_cable(spec); });
       const double radius = cable.number("radius");
       if (!id || radius == 0.0) return;
       // Rings of `sides` vertices at s_i = L i / rings, quads split into two triangles, and a

@@ -170,6 +170,8 @@ Sensor { name = "c"; type = "constraint_force"; body = "rope"; component = "x" }
 RigidBody2D { name = "planar"; mass = 1; inertia = 1 }
 Sensor { name = "off"; type = "position"; body = "rope"; point = [0.5, 0.1, 0]; component = "x" }
 Sensor { name = "vt"; type = "velocity"; body = "flat"; component = "torque_x" }
+RigidBody3D { name = "broken"; mass = 1; inertia = [1, 1, 1]; position = [1, 2] }
+Sensor { name = "b"; type = "position"; body = "broken"; component = "x" }
 Ground { Mesh { stl = "box.stl" } }
 )scene"));
   for (const char* expected :
