@@ -92,25 +92,9 @@ AncfCable3D::AncfCable3D(const AncfCableSpec& spec) : spec_(spec) {
   if (spec.name.empty()) {
     throw Error("an ANCF cable has no name", "ANCF cable", "give every body a unique name");
   }
-  std::string problems;
-  if (spec.element_count < 1) {
-    problems += " element count " + std::to_string(spec.element_count) + " < 1;";
-  }
-  if (!(std::isfinite(spec.axial_stiffness) && spec.axial_stiffness > 0.0)) {
-    problems += " axial stiffness EA = " + number(spec.axial_stiffness) + " is not positive;";
-  }
-  if (!(std::isfinite(spec.bending_stiffness) && spec.bending_stiffness > 0.0)) {
-    problems += " bending stiffness EI = " + number(spec.bending_stiffness) + " is not positive;";
-  }
-  if (!(std::isfinite(spec.axial_damping) && spec.axial_damping >= 0.0)) {
-    problems += " axial damping = " + number(spec.axial_damping) + " is negative;";
-  }
-  if (!(std::isfinite(spec.bending_damping) && spec.bending_damping >= 0.0)) {
-    problems += " bending damping = " + number(spec.bending_damping) + " is negative;";
-  }
-  if (!(std::isfinite(spec.mass_per_length) && spec.mass_per_length > 0.0)) {
-    problems += " mass per length rho A = " + number(spec.mass_per_length) + " is not positive;";
-  }
+  std::string problems =
+      elastic_line_problems(spec.element_count, spec.axial_stiffness, spec.bending_stiffness,
+                            spec.mass_per_length, spec.axial_damping, spec.bending_damping);
   if (!spec.start.allFinite() || !spec.end.allFinite()) problems += " start or end is not finite;";
   length_ = (spec.end - spec.start).norm();
   if (!(length_ > 0.0)) problems += " start and end coincide;";
@@ -153,13 +137,8 @@ void AncfCable3D::mass_matrix(MatrixSink& block) const {
 
 void AncfCable3D::add_spatial_gravity_force(const Eigen::Vector3d& acceleration,
                                             Eigen::Ref<Eigen::VectorXd> force) const {
-  // rho A integral of S^T g over an element: (l/2, l^2/12, l/2, -l^2/12) times g.
-  const double l = element_length_;
-  const Eigen::Vector4d integral(0.5 * l, l * l / 12.0, 0.5 * l, -l * l / 12.0);
-  for (int e = 0; e < spec_.element_count; ++e) {
-    for (int k = 0; k < 4; ++k)
-      force.segment<3>(6 * e + 3 * k) += spec_.mass_per_length * integral(k) * acceleration;
-  }
+  add_uniform_field_force<3>(spec_.element_count, element_length_, spec_.mass_per_length,
+                             acceleration, force);
 }
 
 double AncfCable3D::spatial_gravity_potential(const ConstVector& q,
@@ -168,14 +147,7 @@ double AncfCable3D::spatial_gravity_potential(const ConstVector& q,
 }
 
 Eigen::Vector3d AncfCable3D::spatial_reference_point(const ConstVector& q) const {
-  const double l = element_length_;
-  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  for (int e = 0; e < spec_.element_count; ++e) {
-    const auto qe = q.segment<12>(6 * e);
-    sum += 0.5 * l * (qe.segment<3>(0) + qe.segment<3>(6)) +
-           l * l / 12.0 * (qe.segment<3>(3) - qe.segment<3>(9));
-  }
-  return sum / length_;
+  return line_centre<3>(q, spec_.element_count, element_length_);
 }
 
 double AncfCable3D::strain_energy(const ConstVector& q) const {

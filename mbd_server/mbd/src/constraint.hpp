@@ -85,11 +85,15 @@ class VelocityConstraint final : public SparseConstraint {
   double velocity_;
 };
 
+class SpatialPoint;
+
 // One component of r_a - r_b = 0: two of them (x, y) make a revolute joint between two body
-// points, or fix a body point to the ground.
-class PointConstraint final : public SparseConstraint {
+// points, or fix a body point to the ground; three (x, y, z) a spherical joint between spatial
+// points. Point: BodyPoint (D = 2) or SpatialPoint (D = 3), instantiated for both.
+template <typename Point, int D>
+class BasicPointConstraint final : public SparseConstraint {
  public:
-  PointConstraint(std::string description, BodyPoint a, BodyPoint b, int axis);
+  BasicPointConstraint(std::string description, Point a, Point b, int axis);
 
   std::string description() const override { return description_; }
   ConstraintLevel level() const override { return ConstraintLevel::Position; }
@@ -104,18 +108,23 @@ class PointConstraint final : public SparseConstraint {
 
  private:
   std::string description_;
-  BodyPoint a_;
-  BodyPoint b_;
+  Point a_;
+  Point b_;
   int axis_;
 };
 
-// A massless rod between two body points: C = (|d|^2 - length^2) / (2 length), d = r_b - r_a.
+using PointConstraint = BasicPointConstraint<BodyPoint, 2>;
+using SpatialPointConstraint = BasicPointConstraint<SpatialPoint, 3>;
+
+// A massless rod between two body points (planar or spatial, as above):
+// C = (|d|^2 - length^2) / (2 length), d = r_b - r_a.
 // The quadratic form is smooth for every d; dividing by 2 length makes G = d^T (dd/dq) / length
 // the unit direction e = d / |d| at consistent states, so lambda is the rod force [N]: -G^T lambda
 // pulls point a by +lambda e and point b by -lambda e, lambda > 0 is tension.
-class DistanceConstraint final : public SparseConstraint {
+template <typename Point, int D>
+class BasicDistanceConstraint final : public SparseConstraint {
  public:
-  DistanceConstraint(std::string description, BodyPoint a, BodyPoint b, double length);
+  BasicDistanceConstraint(std::string description, Point a, Point b, double length);
 
   std::string description() const override { return description_; }
   ConstraintLevel level() const override { return ConstraintLevel::Position; }
@@ -129,13 +138,16 @@ class DistanceConstraint final : public SparseConstraint {
                                     MatrixSink& derivative) const override;
 
  private:
-  // dd/dq = dr_b/dq - dr_a/dq (2 x n).
-  SparseColumns separation_jacobian(const Eigen::VectorXd& q) const;
+  // dd/dq = dr_b/dq - dr_a/dq (D x n).
+  PointColumns<D> separation_jacobian(const Eigen::VectorXd& q) const;
 
   std::string description_;
-  BodyPoint a_;
-  BodyPoint b_;
+  Point a_;
+  Point b_;
   double length_;
 };
+
+using DistanceConstraint = BasicDistanceConstraint<BodyPoint, 2>;
+using SpatialDistanceConstraint = BasicDistanceConstraint<SpatialPoint, 3>;
 
 }  // namespace fsi::mbd::detail

@@ -2,7 +2,12 @@
 
 #include "constraint.hpp"
 
+#include "spatial_body.hpp"
+
 namespace fsi::mbd::detail {
+
+template <int D>
+using Vector = Eigen::Matrix<double, D, 1>;
 
 CoordinateConstraint::CoordinateConstraint(std::string description, int coordinate_index,
                                            double value)
@@ -54,79 +59,98 @@ void VelocityConstraint::add_jacobian_entries(double, const Eigen::VectorXd&, in
   jacobian.add(row, index_, 1.0);
 }
 
-PointConstraint::PointConstraint(std::string description, BodyPoint a, BodyPoint b, int axis)
+template <typename Point, int D>
+BasicPointConstraint<Point, D>::BasicPointConstraint(std::string description, Point a, Point b,
+                                                     int axis)
     : description_(std::move(description)), a_(a), b_(b), axis_(axis) {}
 
-double PointConstraint::residual(double, const Eigen::VectorXd& q, const Eigen::VectorXd&) const {
+template <typename Point, int D>
+double BasicPointConstraint<Point, D>::residual(double, const Eigen::VectorXd& q,
+                                                const Eigen::VectorXd&) const {
   return (a_.position(q) - b_.position(q))(axis_);
 }
 
-void PointConstraint::add_jacobian_entries(double, const Eigen::VectorXd& q, int row,
-                                           MatrixSink& jacobian) const {
-  SparseColumns columns;
+template <typename Point, int D>
+void BasicPointConstraint<Point, D>::add_jacobian_entries(double, const Eigen::VectorXd& q, int row,
+                                                          MatrixSink& jacobian) const {
+  PointColumns<D> columns;
   a_.add_jacobian(q, 1.0, columns);
   b_.add_jacobian(q, -1.0, columns);
-  columns.add_row(jacobian, row, Eigen::Vector2d::Unit(axis_));
+  columns.add_row(jacobian, row, Vector<D>::Unit(axis_));
 }
 
-double PointConstraint::acceleration_remainder(double, const Eigen::VectorXd& q,
-                                               const Eigen::VectorXd& v) const {
+template <typename Point, int D>
+double BasicPointConstraint<Point, D>::acceleration_remainder(double, const Eigen::VectorXd& q,
+                                                              const Eigen::VectorXd& v) const {
   return (a_.acceleration_remainder(q, v) - b_.acceleration_remainder(q, v))(axis_);
 }
 
-void PointConstraint::add_force_derivative_entries(double, const Eigen::VectorXd& q,
-                                                   double multiplier,
-                                                   MatrixSink& derivative) const {
+template <typename Point, int D>
+void BasicPointConstraint<Point, D>::add_force_derivative_entries(double, const Eigen::VectorXd& q,
+                                                                  double multiplier,
+                                                                  MatrixSink& derivative) const {
   // G^T mu = (dr_a/dq - dr_b/dq)^T (mu e_axis): the derivative of a point load mu e_axis.
-  const Eigen::Vector2d load = multiplier * Eigen::Vector2d::Unit(axis_);
+  const Vector<D> load = multiplier * Vector<D>::Unit(axis_);
   a_.add_load_derivative(q, load, derivative);
   b_.add_load_derivative(q, -load, derivative);
 }
 
-DistanceConstraint::DistanceConstraint(std::string description, BodyPoint a, BodyPoint b,
-                                       double length)
+template <typename Point, int D>
+BasicDistanceConstraint<Point, D>::BasicDistanceConstraint(std::string description, Point a,
+                                                           Point b, double length)
     : description_(std::move(description)), a_(a), b_(b), length_(length) {}
 
-SparseColumns DistanceConstraint::separation_jacobian(const Eigen::VectorXd& q) const {
-  SparseColumns jacobian;
+template <typename Point, int D>
+PointColumns<D> BasicDistanceConstraint<Point, D>::separation_jacobian(
+    const Eigen::VectorXd& q) const {
+  PointColumns<D> jacobian;
   b_.add_jacobian(q, 1.0, jacobian);
   a_.add_jacobian(q, -1.0, jacobian);
   return jacobian;
 }
 
-double DistanceConstraint::residual(double, const Eigen::VectorXd& q,
-                                    const Eigen::VectorXd&) const {
-  const Eigen::Vector2d d = b_.position(q) - a_.position(q);
+template <typename Point, int D>
+double BasicDistanceConstraint<Point, D>::residual(double, const Eigen::VectorXd& q,
+                                                   const Eigen::VectorXd&) const {
+  const Vector<D> d = b_.position(q) - a_.position(q);
   return (d.squaredNorm() - length_ * length_) / (2.0 * length_);
 }
 
-void DistanceConstraint::add_jacobian_entries(double, const Eigen::VectorXd& q, int row,
-                                              MatrixSink& jacobian) const {
-  const Eigen::Vector2d d = b_.position(q) - a_.position(q);
+template <typename Point, int D>
+void BasicDistanceConstraint<Point, D>::add_jacobian_entries(double, const Eigen::VectorXd& q,
+                                                             int row, MatrixSink& jacobian) const {
+  const Vector<D> d = b_.position(q) - a_.position(q);
   separation_jacobian(q).add_row(jacobian, row, d / length_);
 }
 
-double DistanceConstraint::acceleration_remainder(double, const Eigen::VectorXd& q,
-                                                  const Eigen::VectorXd& v) const {
+template <typename Point, int D>
+double BasicDistanceConstraint<Point, D>::acceleration_remainder(double, const Eigen::VectorXd& q,
+                                                                 const Eigen::VectorXd& v) const {
   // d^2C/dt^2 = (|d'|^2 + d . d'') / length, d'' = (dd/dq) a + (remainder_b - remainder_a).
-  const Eigen::Vector2d d = b_.position(q) - a_.position(q);
-  const Eigen::Vector2d rate = b_.velocity(q, v) - a_.velocity(q, v);
-  const Eigen::Vector2d remainder =
-      b_.acceleration_remainder(q, v) - a_.acceleration_remainder(q, v);
+  const Vector<D> d = b_.position(q) - a_.position(q);
+  const Vector<D> rate = b_.velocity(q, v) - a_.velocity(q, v);
+  const Vector<D> remainder = b_.acceleration_remainder(q, v) - a_.acceleration_remainder(q, v);
   return (rate.squaredNorm() + d.dot(remainder)) / length_;
 }
 
-void DistanceConstraint::add_force_derivative_entries(double, const Eigen::VectorXd& q,
-                                                      double multiplier,
-                                                      MatrixSink& derivative) const {
+template <typename Point, int D>
+void BasicDistanceConstraint<Point, D>::add_force_derivative_entries(double,
+                                                                     const Eigen::VectorXd& q,
+                                                                     double multiplier,
+                                                                     MatrixSink& derivative) const {
   // G^T mu = (mu / length) (dd/dq)^T d: the product rule gives (mu / length) D^T D plus the
   // derivative of the point loads +-(mu / length) d at fixed d.
-  const SparseColumns jacobian = separation_jacobian(q);
-  const Eigen::Vector2d load = multiplier / length_ * (b_.position(q) - a_.position(q));
-  jacobian.add_transpose_product(derivative, Eigen::Matrix2d::Identity(), jacobian,
+  const PointColumns<D> jacobian = separation_jacobian(q);
+  const Vector<D> load = multiplier / length_ * (b_.position(q) - a_.position(q));
+  jacobian.add_transpose_product(derivative, Eigen::Matrix<double, D, D>::Identity(), jacobian,
                                  multiplier / length_);
   b_.add_load_derivative(q, load, derivative);
   a_.add_load_derivative(q, -load, derivative);
 }
+
+template class BasicPointConstraint<BodyPoint, 2>;
+template class BasicPointConstraint<SpatialPoint, 3>;
+template class BasicDistanceConstraint<BodyPoint, 2>;
+template class BasicDistanceConstraint<SpatialPoint, 3>;
 
 }  // namespace fsi::mbd::detail

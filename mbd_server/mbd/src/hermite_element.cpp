@@ -1,6 +1,7 @@
 #include "hermite_element.hpp"
 
 #include <cmath>
+#include <sstream>
 
 #include "fsi/common/error.hpp"
 
@@ -38,6 +39,35 @@ GaussRule gauss_rule(int size) {
       FSI_ASSERT(false, "no Gauss rule with this number of points");
   }
   return rule;
+}
+
+std::string elastic_line_problems(int elements, double axial_stiffness, double bending_stiffness,
+                                  double mass_per_length, double axial_damping,
+                                  double bending_damping) {
+  auto number = [](double value) {
+    std::ostringstream text;
+    text.precision(17);
+    text << value;
+    return text.str();
+  };
+  std::string problems;
+  if (elements < 1) problems += " element count " + std::to_string(elements) + " < 1;";
+  if (!(std::isfinite(axial_stiffness) && axial_stiffness > 0.0)) {
+    problems += " axial stiffness EA = " + number(axial_stiffness) + " is not positive;";
+  }
+  if (!(std::isfinite(bending_stiffness) && bending_stiffness > 0.0)) {
+    problems += " bending stiffness EI = " + number(bending_stiffness) + " is not positive;";
+  }
+  if (!(std::isfinite(axial_damping) && axial_damping >= 0.0)) {
+    problems += " axial damping = " + number(axial_damping) + " is negative;";
+  }
+  if (!(std::isfinite(bending_damping) && bending_damping >= 0.0)) {
+    problems += " bending damping = " + number(bending_damping) + " is negative;";
+  }
+  if (!(std::isfinite(mass_per_length) && mass_per_length > 0.0)) {
+    problems += " mass per length rho A = " + number(mass_per_length) + " is not positive;";
+  }
+  return problems;
 }
 
 HermiteShape hermite_shape(double x, double l) {

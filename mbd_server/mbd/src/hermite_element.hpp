@@ -8,6 +8,7 @@
 #include <Eigen/Dense>
 
 #include <array>
+#include <string>
 
 namespace fsi::mbd::detail {
 
@@ -39,6 +40,43 @@ Eigen::Matrix<double, D, 4 * D> expand(const Eigen::Vector4d& n) {
       m(i, D * k + i) = n(k);
   }
   return m;
+}
+
+// The problems of an elastic line's parameters, each as " ...;" (empty if none): element count,
+// EA, EI, rho A, non-negative damping.
+std::string elastic_line_problems(int elements, double axial_stiffness, double bending_stiffness,
+                                  double mass_per_length, double axial_damping,
+                                  double bending_damping);
+
+// The integrals of the shape functions over an element of length l: (l/2, l^2/12, l/2, -l^2/12).
+inline Eigen::Vector4d hermite_integrals(double l) {
+  return {0.5 * l, l * l / 12.0, 0.5 * l, -l * l / 12.0};
+}
+
+// rho A integral of S^T g over `elements` elements of length l (nodes of 2 D coordinates): the
+// generalised force of a uniform field g, added.
+template <int D>
+void add_uniform_field_force(int elements, double l, double mass_per_length,
+                             const Eigen::Matrix<double, D, 1>& g,
+                             Eigen::Ref<Eigen::VectorXd> force) {
+  const Eigen::Vector4d integral = hermite_integrals(l);
+  for (int e = 0; e < elements; ++e) {
+    for (int k = 0; k < 4; ++k)
+      force.template segment<D>(2 * D * e + D * k) += mass_per_length * integral(k) * g;
+  }
+}
+
+// The centre of the deformed line (of mass, for a uniform rho A): (1/L) integral r dx.
+template <int D>
+Eigen::Matrix<double, D, 1> line_centre(const Eigen::Ref<const Eigen::VectorXd>& q, int elements,
+                                        double l) {
+  const Eigen::Vector4d integral = hermite_integrals(l);
+  Eigen::Matrix<double, D, 1> sum = Eigen::Matrix<double, D, 1>::Zero();
+  for (int e = 0; e < elements; ++e) {
+    for (int k = 0; k < 4; ++k)
+      sum += integral(k) * q.template segment<D>(2 * D * e + D * k);
+  }
+  return sum / (elements * l);
 }
 
 }  // namespace fsi::mbd::detail

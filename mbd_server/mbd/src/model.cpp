@@ -198,15 +198,7 @@ void Model::add_spring_damper(const SpringDamperSpec& spec) {
   data_->check_pair(spec.a, spec.b, user);
   const double rest = spec.rest_length.value_or(
       (data_->initial_position(spec.b) - data_->initial_position(spec.a)).norm());
-  std::string problems;
-  if (!(spec.stiffness >= 0.0) || !std::isfinite(spec.stiffness)) problems += " stiffness < 0;";
-  if (!(spec.damping >= 0.0) || !std::isfinite(spec.damping)) problems += " damping < 0;";
-  if (!(rest >= 0.0) || !std::isfinite(rest)) problems += " rest length < 0;";
-  if (!problems.empty()) {
-    problems.pop_back();
-    throw Error("invalid parameters:" + problems, user,
-                "give finite, non-negative stiffness, damping and rest length");
-  }
+  detail::check_spring_values(spec.stiffness, spec.damping, rest, user);
   data_->force_elements.push_back(
       std::make_unique<detail::SpringDamper>(first, second, spec.stiffness, spec.damping, rest));
 }

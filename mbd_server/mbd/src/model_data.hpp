@@ -6,6 +6,7 @@
 #include <Eigen/Dense>
 #include <Eigen/SparseCore>
 
+#include <cmath>
 #include <memory>
 #include <string>
 #include <vector>
@@ -31,6 +32,20 @@ struct Marker {
   double tube_radius = 0.0;
   double tube_angle = 0.0;
 };
+
+// Throws fsi::Error naming `user` for a negative or non-finite stiffness, damping or rest length.
+inline void check_spring_values(double stiffness, double damping, double rest,
+                                const std::string& user) {
+  std::string problems;
+  if (!(stiffness >= 0.0) || !std::isfinite(stiffness)) problems += " stiffness < 0;";
+  if (!(damping >= 0.0) || !std::isfinite(damping)) problems += " damping < 0;";
+  if (!(rest >= 0.0) || !std::isfinite(rest)) problems += " rest length < 0;";
+  if (!problems.empty()) {
+    problems.pop_back();
+    throw Error("invalid parameters:" + problems, user,
+                "give finite, non-negative stiffness, damping and rest length");
+  }
+}
 
 }  // namespace detail
 

@@ -310,15 +310,7 @@ int Model::add_spatial_spring_damper(const SpatialSpringDamperSpec& spec) {
   data_->check_pair({spec.a.body, {}}, {spec.b.body, {}}, user);
   const double rest = spec.rest_length.value_or(
       (data_->initial_spatial_position(spec.b) - data_->initial_spatial_position(spec.a)).norm());
-  std::string problems;
-  if (!(spec.stiffness >= 0.0) || !std::isfinite(spec.stiffness)) problems += " stiffness < 0;";
-  if (!(spec.damping >= 0.0) || !std::isfinite(spec.damping)) problems += " damping < 0;";
-  if (!(rest >= 0.0) || !std::isfinite(rest)) problems += " rest length < 0;";
-  if (!problems.empty()) {
-    problems.pop_back();
-    throw Error("invalid parameters:" + problems, user,
-                "give finite, non-negative stiffness, damping and rest length");
-  }
+  detail::check_spring_values(spec.stiffness, spec.damping, rest, user);
   add_force_element(
       std::make_unique<detail::SpatialSpringDamper>(a, b, spec.stiffness, spec.damping, rest));
   return index;

@@ -1,9 +1,8 @@
 #pragma once
-// Constraint rows between points of spatial bodies (internal; built in model_spatial.cpp):
+// Constraint rows between points of spatial bodies (internal; built in model_spatial.cpp), beyond
+// the point and distance rows the planar ones share (constraint.hpp: SpatialPointConstraint,
+// SpatialDistanceConstraint):
 //
-//   point row          (r_a - r_b)_axis = 0: three make a spherical joint, or fix a point
-//   distance row       (|d|^2 - length^2) / (2 length) = 0, d = r_b - r_a: a massless rod,
-//                      lambda the rod force (tension positive), as the planar one
 //   perpendicularity   d_a . d_b = 0 with the body directions d = r(p + u) - r(p), exact for
 //                      rigid bodies; two of them keep a revolute joint's axis
 
@@ -12,58 +11,13 @@
 #include <functional>
 #include <string>
 
+#include "constraint.hpp"
 #include "fsi/mbd/constraint_element.hpp"
 #include "fsi/mbd/force_element.hpp"
 #include "sink_elements.hpp"
 #include "spatial_body.hpp"
 
 namespace fsi::mbd::detail {
-
-class SpatialPointConstraint final : public SparseConstraint {
- public:
-  SpatialPointConstraint(std::string description, SpatialPoint a, SpatialPoint b, int axis);
-
-  std::string description() const override { return description_; }
-  ConstraintLevel level() const override { return ConstraintLevel::Position; }
-  double residual(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v) const override;
-  void add_jacobian_entries(double time, const Eigen::VectorXd& q, int row,
-                            MatrixSink& jacobian) const override;
-  double explicit_time_derivative(double, const Eigen::VectorXd&) const override { return 0.0; }
-  double acceleration_remainder(double time, const Eigen::VectorXd& q,
-                                const Eigen::VectorXd& v) const override;
-  void add_force_derivative_entries(double time, const Eigen::VectorXd& q, double multiplier,
-                                    MatrixSink& derivative) const override;
-
- private:
-  std::string description_;
-  SpatialPoint a_;
-  SpatialPoint b_;
-  int axis_;
-};
-
-class SpatialDistanceConstraint final : public SparseConstraint {
- public:
-  SpatialDistanceConstraint(std::string description, SpatialPoint a, SpatialPoint b, double length);
-
-  std::string description() const override { return description_; }
-  ConstraintLevel level() const override { return ConstraintLevel::Position; }
-  double residual(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v) const override;
-  void add_jacobian_entries(double time, const Eigen::VectorXd& q, int row,
-                            MatrixSink& jacobian) const override;
-  double explicit_time_derivative(double, const Eigen::VectorXd&) const override { return 0.0; }
-  double acceleration_remainder(double time, const Eigen::VectorXd& q,
-                                const Eigen::VectorXd& v) const override;
-  void add_force_derivative_entries(double time, const Eigen::VectorXd& q, double multiplier,
-                                    MatrixSink& derivative) const override;
-
- private:
-  SpatialColumns separation_jacobian(const Eigen::VectorXd& q) const;  // d(r_b - r_a)/dq
-
-  std::string description_;
-  SpatialPoint a_;
-  SpatialPoint b_;
-  double length_;
-};
 
 // A body direction as the difference of two of its material points (tip - base).
 struct SpatialDirection {

@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/SparseCore>
+
 #include <cmath>
 #include <string>
 
@@ -100,6 +102,29 @@ inline void expect_exact_force_derivatives(const ForceElement& element, double t
           << what << ": dQ/dv(" << i << ", " << j << ")";
     }
   }
+}
+
+// The sparse model matrices (dF/dq, dF/dv, G, d(G^T lambda)/dq, M) against the dense ones.
+inline void expect_sparse_model_matrices_equal(const Model& model, const State& state) {
+  Eigen::MatrixXd dense_position, dense_velocity, dense_g, dense_derivative;
+  Eigen::SparseMatrix<double> sparse_position, sparse_velocity, sparse_g, sparse_derivative;
+  model.applied_force_derivatives(0.1, state.q, state.v, dense_position, dense_velocity);
+  model.applied_force_derivatives(0.1, state.q, state.v, sparse_position, sparse_velocity);
+  model.constraint_jacobian(0.1, state.q, dense_g);
+  model.constraint_jacobian(0.1, state.q, sparse_g);
+  const Eigen::VectorXd lambda = Eigen::VectorXd::LinSpaced(model.constraint_count(), -2.0, 3.0);
+  model.constraint_force_derivative(0.1, state.q, lambda, dense_derivative);
+  model.constraint_force_derivative(0.1, state.q, lambda, sparse_derivative);
+  auto difference = [](const Eigen::MatrixXd& dense, const Eigen::SparseMatrix<double>& sparse) {
+    const double size = dense.lpNorm<Eigen::Infinity>();
+    return (dense - Eigen::MatrixXd(sparse)).lpNorm<Eigen::Infinity>() / (size > 0 ? size : 1.0);
+  };
+  EXPECT_LE(difference(dense_position, sparse_position), 1e-14);
+  EXPECT_LE(difference(dense_velocity, sparse_velocity), 1e-14);
+  EXPECT_LE(difference(dense_g, sparse_g), 1e-15);
+  EXPECT_LE(difference(dense_derivative, sparse_derivative), 1e-14);
+  EXPECT_EQ(Eigen::MatrixXd(model.sparse_mass_matrix()), model.mass_matrix());
+  EXPECT_EQ(model.mass_diagonal(), model.mass_matrix().diagonal());
 }
 
 }  // namespace fsi::mbd::testing

@@ -654,23 +654,7 @@ Model every_spatial_element() {
 TEST(MbdSpatialBodies, SparseAssemblyEqualsTheDenseOneAndRunsAgree) {
   const Model model = every_spatial_element();
   const State state = model.initial_state();
-  Eigen::MatrixXd dense_position, dense_velocity, dense_g, dense_derivative;
-  Eigen::SparseMatrix<double> sparse_position, sparse_velocity, sparse_g, sparse_derivative;
-  model.applied_force_derivatives(0.1, state.q, state.v, dense_position, dense_velocity);
-  model.applied_force_derivatives(0.1, state.q, state.v, sparse_position, sparse_velocity);
-  model.constraint_jacobian(0.1, state.q, dense_g);
-  model.constraint_jacobian(0.1, state.q, sparse_g);
-  const Eigen::VectorXd lambda = Eigen::VectorXd::LinSpaced(model.constraint_count(), -2.0, 3.0);
-  model.constraint_force_derivative(0.1, state.q, lambda, dense_derivative);
-  model.constraint_force_derivative(0.1, state.q, lambda, sparse_derivative);
-  auto difference = [](const Eigen::MatrixXd& dense, const Eigen::SparseMatrix<double>& sparse) {
-    return (dense - Eigen::MatrixXd(sparse)).lpNorm<Eigen::Infinity>() /
-           dense.lpNorm<Eigen::Infinity>();
-  };
-  EXPECT_LE(difference(dense_position, sparse_position), 1e-14);
-  EXPECT_LE(difference(dense_g, sparse_g), 1e-15);
-  EXPECT_LE(difference(dense_derivative, sparse_derivative), 1e-14);
-  EXPECT_EQ(Eigen::MatrixXd(model.sparse_mass_matrix()), model.mass_matrix());
+  testing::expect_sparse_model_matrices_equal(model, state);
 
   State dense = state, sparse = state;
   RadauIIA dense_integrator({.stages = 3, .newton = {.linear_solver = LinearSolver::Dense}});
