@@ -4,6 +4,7 @@
 
 #include <Eigen/Dense>
 
+#include <functional>
 #include <string>
 
 #include "body_point.hpp"
@@ -86,6 +87,51 @@ class VelocityConstraint final : public SparseConstraint {
 };
 
 class SpatialPoint;
+
+// q_i - s(t) = 0 with the rate s'(t) given; s'' by central differences of s' (initial lambda).
+class PrescribedCoordinate final : public SparseConstraint {
+ public:
+  PrescribedCoordinate(std::string description, int coordinate_index,
+                       std::function<double(double)> position, std::function<double(double)> rate);
+
+  std::string description() const override { return description_; }
+  ConstraintLevel level() const override { return ConstraintLevel::Position; }
+  double residual(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v) const override;
+  void add_jacobian_entries(double time, const Eigen::VectorXd& q, int row,
+                            MatrixSink& jacobian) const override;
+  double explicit_time_derivative(double time, const Eigen::VectorXd&) const override {
+    return -rate_(time);
+  }
+  double acceleration_remainder(double time, const Eigen::VectorXd& q,
+                                const Eigen::VectorXd& v) const override;
+
+ private:
+  std::string description_;
+  int index_;
+  std::function<double(double)> position_;
+  std::function<double(double)> rate_;
+};
+
+// dq_i/dt - g(t) = 0; dg/dt by central differences (initial lambda only).
+class TimeVelocityConstraint final : public SparseConstraint {
+ public:
+  TimeVelocityConstraint(std::string description, int coordinate_index,
+                         std::function<double(double)> velocity);
+
+  std::string description() const override { return description_; }
+  ConstraintLevel level() const override { return ConstraintLevel::Velocity; }
+  double residual(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v) const override;
+  void add_jacobian_entries(double time, const Eigen::VectorXd& q, int row,
+                            MatrixSink& jacobian) const override;
+  double explicit_time_derivative(double, const Eigen::VectorXd&) const override { return 0.0; }
+  double acceleration_remainder(double time, const Eigen::VectorXd& q,
+                                const Eigen::VectorXd& v) const override;
+
+ private:
+  std::string description_;
+  int index_;
+  std::function<double(double)> velocity_;
+};
 
 // One component of r_a - r_b = 0: two of them (x, y) make a revolute joint between two body
 // points, or fix a body point to the ground; three (x, y, z) a spherical joint between spatial

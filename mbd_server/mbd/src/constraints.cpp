@@ -2,6 +2,8 @@
 
 #include "constraint.hpp"
 
+#include <cmath>
+
 #include "spatial_body.hpp"
 
 namespace fsi::mbd::detail {
@@ -146,6 +148,60 @@ void BasicDistanceConstraint<Point, D>::add_force_derivative_entries(double,
                                  multiplier / length_);
   b_.add_load_derivative(q, load, derivative);
   a_.add_load_derivative(q, -load, derivative);
+}
+
+namespace {
+
+// d f/dt by a central difference with a step balancing truncation and rounding.
+double time_derivative(const std::function<double(double)>& f, double time) {
+  const double step = 1e-5 * (1.0 + std::abs(time));
+  return (f(time + step) - f(time - step)) / (2.0 * step);
+}
+
+}  // namespace
+
+PrescribedCoordinate::PrescribedCoordinate(std::string description, int coordinate_index,
+                                           std::function<double(double)> position,
+                                           std::function<double(double)> rate)
+    : description_(std::move(description)),
+      index_(coordinate_index),
+      position_(std::move(position)),
+      rate_(std::move(rate)) {}
+
+double PrescribedCoordinate::residual(double time, const Eigen::VectorXd& q,
+                                      const Eigen::VectorXd&) const {
+  return q(index_) - position_(time);
+}
+
+void PrescribedCoordinate::add_jacobian_entries(double, const Eigen::VectorXd&, int row,
+                                                MatrixSink& jacobian) const {
+  jacobian.add(row, index_, 1.0);
+}
+
+double PrescribedCoordinate::acceleration_remainder(double time, const Eigen::VectorXd&,
+                                                    const Eigen::VectorXd&) const {
+  return -time_derivative(rate_, time);  // d^2C/dt^2 = a_i - s''(t)
+}
+
+TimeVelocityConstraint::TimeVelocityConstraint(std::string description, int coordinate_index,
+                                               std::function<double(double)> velocity)
+    : description_(std::move(description)),
+      index_(coordinate_index),
+      velocity_(std::move(velocity)) {}
+
+double TimeVelocityConstraint::residual(double time, const Eigen::VectorXd&,
+                                        const Eigen::VectorXd& v) const {
+  return v(index_) - velocity_(time);
+}
+
+void TimeVelocityConstraint::add_jacobian_entries(double, const Eigen::VectorXd&, int row,
+                                                  MatrixSink& jacobian) const {
+  jacobian.add(row, index_, 1.0);
+}
+
+double TimeVelocityConstraint::acceleration_remainder(double time, const Eigen::VectorXd&,
+                                                      const Eigen::VectorXd&) const {
+  return -time_derivative(velocity_, time);
 }
 
 template class BasicPointConstraint<BodyPoint, 2>;

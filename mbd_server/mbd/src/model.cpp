@@ -137,6 +137,50 @@ int Model::add_velocity_constraint(BodyId body, Coordinate coordinate, double ve
   return static_cast<int>(data_->constraints.size()) - 1;
 }
 
+int Model::add_velocity_constraint(BodyId body, Coordinate coordinate,
+                                   std::function<double(double)> velocity) {
+  const auto& rigid = data_->rigid_body(body, "a velocity constraint");
+  const std::string target = rigid.name() + "." + std::string(name(coordinate));
+  if (!velocity) {
+    throw Error("no velocity function", "velocity constraint on " + target, "give velocity(t)");
+  }
+  data_->constraints.push_back(std::make_unique<detail::TimeVelocityConstraint>(
+      "velocity constraint on " + target, coordinate_index(body, coordinate), std::move(velocity)));
+  return static_cast<int>(data_->constraints.size()) - 1;
+}
+
+int Model::add_prescribed_motion(const PrescribedMotionSpec& spec) {
+  const auto& rigid = data_->rigid_body(spec.body, "a prescribed motion");
+  const std::string target = rigid.name() + "." + std::string(name(spec.coordinate));
+  const std::string user = spec.name.empty() ? "prescribed motion on " + target
+                                             : "prescribed motion '" + spec.name + "'";
+  if (!spec.position || !spec.rate) {
+    throw Error("the position or its rate is missing", user, "give both s(t) and ds/dt");
+  }
+  // The rate enters the Newton iteration as the row's exact time derivative: a wrong one is a
+  // mistake in the scene, found here by central differences of s (4th order, relative 1e-6).
+  for (const double t : spec.check_times) {
+    const double h = 1e-3 * (1.0 + std::abs(t));
+    const double s = spec.position(t);
+    const double given = spec.rate(t);
+    const double difference = (8.0 * (spec.position(t + h) - spec.position(t - h)) -
+                               (spec.position(t + 2 * h) - spec.position(t - 2 * h))) /
+                              (12.0 * h);
+    if (!std::isfinite(s) || !std::isfinite(given)) {
+      throw Error("s(t) or ds/dt is not finite at t = " + number(t), user, "check the expressions");
+    }
+    if (!(std::abs(given - difference) <= 1e-6 * (1.0 + std::abs(difference)))) {
+      throw Error("the rate " + number(given) + " at t = " + number(t) +
+                      " is not the derivative of the position (central difference " +
+                      number(difference) + ")",
+                  user, "give rate = ds/dt of the position expression");
+    }
+  }
+  data_->constraints.push_back(std::make_unique<detail::PrescribedCoordinate>(
+      user, coordinate_index(spec.body, spec.coordinate), spec.position, spec.rate));
+  return static_cast<int>(data_->constraints.size()) - 1;
+}
+
 void Model::add_force_element(std::unique_ptr<ForceElement> element) {
   FSI_ASSERT(element != nullptr, "add_force_element got no element");
   data_->force_elements.push_back(std::move(element));

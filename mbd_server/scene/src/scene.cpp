@@ -669,8 +669,8 @@ Scene build_scene(const std::string& path, const std::vector<Override>& override
     for (const char* planar :
          {"RigidBody2D", "AncfBeam2D", "CoordinateConstraint", "VelocityConstraint", "BeamClamp",
           "RevoluteJoint", "DistanceConstraint", "SpringDamper", "PrismaticJoint", "Clamp",
-          "RotationalSpringDamper", "NonlinearSpringDamper", "SpringActor", "PointForce",
-          "Torque"}) {
+          "RotationalSpringDamper", "NonlinearSpringDamper", "SpringActor", "PointForce", "Torque",
+          "PrescribedMotion", "PrescribedVelocity"}) {
       for (const View& element : root.blocks(planar)) {
         problems.push_back(
             {element.location(),
@@ -923,7 +923,8 @@ Scene build_scene(const std::string& path, const std::vector<Override>& override
       [&](const View& element, const std::function<void()>& add) { placed(element, add); },
       [&](const SourceLocation& where, const std::string& message, const std::string& fix) {
         problems.push_back({where, message, fix});
-      }};
+      },
+      scene.solver.end_time};
   auto name_of = [](const View& element) {
     return element.has("name") ? element.string("name") : std::string();
   };

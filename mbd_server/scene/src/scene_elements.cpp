@@ -98,6 +98,23 @@ std::vector<BlockSpec> element_block_specs() {
                   text("force_x", "x component [N/m] in t").with_default("0"),
                   text("force_y", "y component [N/m] in t").with_default("0")})
           .as_list(),
+      block_spec("PrescribedMotion",
+                 "Drives a body coordinate along position(t) (position level, 1 row; a "
+                 "joint_force sensor reads the drive's force or torque): muParser expressions of "
+                 "the time t [s]. rate must be d position / dt; it is checked by differences at 11 "
+                 "times over [0, end_time].",
+                 {element_name_spec(), text("body", "name of a RigidBody2D"),
+                  text("coordinate", "body coordinate").one_of({"x", "y", "angle"}),
+                  text("position", "s(t) [m or rad], e.g. \"0.01*sin(20*t)\""),
+                  text("rate", "ds/dt [m/s or rad/s], e.g. \"0.2*cos(20*t)\"")})
+          .as_list(),
+      block_spec("PrescribedVelocity",
+                 "Prescribes the velocity of a body coordinate as a muParser expression of the "
+                 "time t [s] (velocity level, 1 row; VelocityConstraint for a constant one).",
+                 {element_name_spec(), text("body", "name of a RigidBody2D"),
+                  text("coordinate", "body coordinate").one_of({"x", "y", "angle"}),
+                  text("velocity", "velocity [m/s or rad/s] in t, e.g. \"0.1*t\"")})
+          .as_list(),
       block_spec("Torque", "A torque on a body, a muParser expression of the time t [s].",
                  {element_name_spec(), text("body", "name of a RigidBody2D"),
                   text("torque", "torque [N m/m] in t")})
@@ -211,6 +228,41 @@ void build_elements(const View& root, ElementBuilder& builder) {
       const RuntimeExpression y = expression(p, "force_y", {"t"});
       spec.force = [x, y](double t) { return Eigen::Vector2d(x(t), y(t)); };
       builder.placed(p, [&] { model.add_point_force(spec); });
+    });
+  }
+  auto coordinate_of = [](const std::string& text) {
+    return text == "x"   ? mbd::Coordinate::X
+           : text == "y" ? mbd::Coordinate::Y
+                         : mbd::Coordinate::Angle;
+  };
+  for (const View& p : root.blocks("PrescribedMotion")) {
+    builder.guard(p.location(), [&] {
+      mbd::PrescribedMotionSpec spec;
+      spec.name = name_of(p);
+      spec.body = builder.find_body(p, "body");
+      spec.coordinate = coordinate_of(p.string("coordinate"));
+      const RuntimeExpression position = expression(p, "position", {"t"});
+      const RuntimeExpression rate = expression(p, "rate", {"t"});
+      spec.position = [position](double time) { return position(time); };
+      spec.rate = [rate](double time) { return rate(time); };
+      spec.check_times.clear();
+      for (int k = 0; k <= 10; ++k)
+        spec.check_times.push_back(builder.end_time * k / 10.0);
+      int row = 0;
+      builder.placed(p, [&] { row = model.add_prescribed_motion(spec); });
+      register_joint(builder, p, {row, 1, spec.body, "prescribed motion"});
+    });
+  }
+  for (const View& p : root.blocks("PrescribedVelocity")) {
+    builder.guard(p.location(), [&] {
+      const mbd::BodyId body = builder.find_body(p, "body");
+      const RuntimeExpression velocity = expression(p, "velocity", {"t"});
+      int row = 0;
+      builder.placed(p, [&] {
+        row = model.add_velocity_constraint(body, coordinate_of(p.string("coordinate")),
+                                            [velocity](double time) { return velocity(time); });
+      });
+      register_joint(builder, p, {row, 1, body, "prescribed velocity"});
     });
   }
   for (const View& t : root.blocks("Torque")) {

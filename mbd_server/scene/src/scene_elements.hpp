@@ -42,6 +42,8 @@ struct ElementBuilder {
   std::function<void(const View&, const std::function<void()>&)> placed;
   // Records a problem at a place.
   std::function<void(const SourceLocation&, const std::string&, const std::string&)> problem;
+  // SolverOptions.end_time: prescribed motions are checked over [0, end_time].
+  double end_time = 0.0;
 };
 
 // The new blocks, in the order they appear in docs/parameters.md.

@@ -171,5 +171,36 @@ TEST_F(MechanismScene, ZeroMassIsAProblemAtItsLine) {
   EXPECT_NE(text.find("'RigidBody2D.mass' = 0 kg/m is out of range"), std::string::npos) << text;
 }
 
+TEST_F(MechanismScene, PrescribedMotionsDriveCoordinatesAndAWrongRateIsAProblem) {
+  const Scene scene =
+      build_scene(write(R"scene(RigidBody2D { name = "table"; mass = 2; inertia = 0.1
+              velocity = [0.2, 0]; Mesh { points = [[0, 0], [1, 0]] } }
+RigidBody2D { name = "lift"; mass = 1; inertia = 0.1; position = [0, 1] }
+PrescribedMotion { name = "shaker"; body = "table"; coordinate = "x"
+                   position = "0.01*sin(20*t)"; rate = "0.2*cos(20*t)" }
+CoordinateConstraint { body = "table"; coordinate = "y" }
+CoordinateConstraint { body = "table"; coordinate = "angle" }
+PrescribedVelocity { name = "ramp"; body = "lift"; coordinate = "y"; velocity = "0.1*t" }
+CoordinateConstraint { body = "lift"; coordinate = "x" }
+CoordinateConstraint { body = "lift"; coordinate = "angle" }
+Sensor { name = "drive"; type = "joint_force"; joint = "shaker"; component = "x" }
+)scene"));
+  mbd::RadauIIA integrator(scene.solver.integrator_options());
+  mbd::State state = scene.model.initial_state();
+  for (int i = 0; i < 100; ++i)
+    integrator.step(scene.model, state, 1e-3);
+  EXPECT_NEAR(state.q(0), 0.01 * std::sin(20.0 * 0.1), 1e-12);
+  EXPECT_NEAR(state.q(4), 1.0 + 0.05 * 0.1 * 0.1, 1e-12);
+  // The drive's force on the table is m x'' = -2 * 4 sin(20 t).
+  EXPECT_NEAR(structure_sensor_value(scene.model, scene.sensors[0], state),
+              -8.0 * std::sin(20.0 * 0.1), 1e-3);
+  const std::string text = problems(R"scene(RigidBody2D { name = "table"; mass = 2; inertia = 0.1
+              Mesh { points = [[0, 0], [1, 0]] } }
+PrescribedMotion { body = "table"; coordinate = "angle"; position = "0.3*t^2"; rate = "0.3*t" }
+)scene");
+  EXPECT_NE(text.find("m.scene:5:1:"), std::string::npos) << text;
+  EXPECT_NE(text.find("is not the derivative of the position"), std::string::npos) << text;
+}
+
 }  // namespace
 }  // namespace fsi::scene

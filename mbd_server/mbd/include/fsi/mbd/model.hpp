@@ -177,6 +177,21 @@ struct SpringActorSpec {
   std::optional<double> rest_length = std::nullopt;  // [m]; default: the initial distance
 };
 
+// A coordinate of a planar rigid body driven along a prescribed motion s(t): the position row
+// q_i - s(t) = 0 (lambda: the drive's force or torque), with its rate ds/dt given by the caller
+// (the row's time derivative enters the Newton iteration and the initial check, so it must be
+// exact, not a difference quotient; Model::add_prescribed_coordinate compares it with central
+// differences of s at `check_times` and refuses a mismatch). d^2s/dt^2, needed only for the
+// consistent initial multipliers, is the central difference of the rate.
+struct PrescribedMotionSpec {
+  std::string name;  // in messages; default "prescribed motion on <body>.<coordinate>"
+  BodyId body = kGround;
+  Coordinate coordinate = Coordinate::X;
+  std::function<double(double time)> position;  // s(t) [m or rad]
+  std::function<double(double time)> rate;      // ds/dt [m/s or rad/s]
+  std::vector<double> check_times = {0.0};      // [s]
+};
+
 // A world-frame force that is a function of time, at a body point (evaluated at every stage
 // time of the integrator, not held over the step like the fluid's point loads).
 struct PointForceSpec {
@@ -329,6 +344,12 @@ class Model {
   int add_beam_clamp(BodyId beam, int node, BeamClamp clamp = BeamClamp::Direction);
   // Velocity level: dq_i/dt - velocity = 0 (thesis §6.3: the piston's dy/dt = v0).
   int add_velocity_constraint(BodyId body, Coordinate coordinate, double velocity);
+  // Velocity level with a velocity that is a function of time: dq_i/dt - g(t) = 0.
+  int add_velocity_constraint(BodyId body, Coordinate coordinate,
+                              std::function<double(double time)> velocity);
+  // Position level q_i - s(t) = 0 (PrescribedMotionSpec); throws fsi::Error naming the element
+  // for a missing function, a non-finite value or a rate that is not the derivative of s.
+  int add_prescribed_motion(const PrescribedMotionSpec& spec);
   void add_force_element(std::unique_ptr<ForceElement> element);
   // Joints between two body points (one of them may be on the ground). All throw fsi::Error
   // naming the joint for unknown bodies, two points on the same body or both on the ground, and
