@@ -84,6 +84,79 @@ void PrismaticConstraint::add_force_derivative_entries(double, const Eigen::Vect
   origin_.add_load_derivative(q, -on_tip - on_slider, derivative);
 }
 
+namespace {
+
+Eigen::Vector2d turned(double angle, const Eigen::Vector2d& p) {
+  return Eigen::Rotation2Dd(angle) * p;
+}
+
+// d/dphi of R(phi) p: R(phi) (e_z x p).
+Eigen::Vector2d turned_rate(double angle, const Eigen::Vector2d& p) {
+  return Eigen::Rotation2Dd(angle) * Eigen::Vector2d(-p.y(), p.x());
+}
+
+}  // namespace
+
+SlopeOnBodyConstraint::SlopeOnBodyConstraint(std::string description, int slope_x, int slope_y,
+                                             int angle, const Eigen::Vector2d& vector,
+                                             int component)
+    : description_(std::move(description)),
+      slope_x_(slope_x),
+      slope_y_(slope_y),
+      angle_(angle),
+      vector_(vector),
+      component_(component) {}
+
+double SlopeOnBodyConstraint::residual(double, const Eigen::VectorXd& q,
+                                       const Eigen::VectorXd&) const {
+  const Eigen::Vector2d s(q(slope_x_), q(slope_y_));
+  const Eigen::Vector2d w = turned(q(angle_), vector_);
+  return component_ < 0 ? w.dot(s) : s(component_) - w(component_);
+}
+
+void SlopeOnBodyConstraint::add_jacobian_entries(double, const Eigen::VectorXd& q, int row,
+                                                 MatrixSink& jacobian) const {
+  const Eigen::Vector2d s(q(slope_x_), q(slope_y_));
+  const Eigen::Vector2d w = turned(q(angle_), vector_);
+  const Eigen::Vector2d w_rate = turned_rate(q(angle_), vector_);
+  if (component_ < 0) {
+    jacobian.add(row, slope_x_, w.x());
+    jacobian.add(row, slope_y_, w.y());
+    jacobian.add(row, angle_, w_rate.dot(s));
+  } else {
+    jacobian.add(row, component_ == 0 ? slope_x_ : slope_y_, 1.0);
+    jacobian.add(row, angle_, -w_rate(component_));
+  }
+}
+
+double SlopeOnBodyConstraint::acceleration_remainder(double, const Eigen::VectorXd& q,
+                                                     const Eigen::VectorXd& v) const {
+  // R'' p = -R p.
+  const double omega = v(angle_);
+  const Eigen::Vector2d w = turned(q(angle_), vector_);
+  if (component_ >= 0) return omega * omega * w(component_);
+  const Eigen::Vector2d s(q(slope_x_), q(slope_y_));
+  const Eigen::Vector2d s_rate(v(slope_x_), v(slope_y_));
+  return -omega * omega * w.dot(s) + 2.0 * omega * turned_rate(q(angle_), vector_).dot(s_rate);
+}
+
+void SlopeOnBodyConstraint::add_force_derivative_entries(double, const Eigen::VectorXd& q,
+                                                         double multiplier,
+                                                         MatrixSink& derivative) const {
+  const Eigen::Vector2d w = turned(q(angle_), vector_);
+  if (component_ >= 0) {
+    derivative.add(angle_, angle_, multiplier * w(component_));
+    return;
+  }
+  const Eigen::Vector2d s(q(slope_x_), q(slope_y_));
+  const Eigen::Vector2d w_rate = turned_rate(q(angle_), vector_);
+  derivative.add(angle_, angle_, -multiplier * w.dot(s));
+  derivative.add(angle_, slope_x_, multiplier * w_rate.x());
+  derivative.add(angle_, slope_y_, multiplier * w_rate.y());
+  derivative.add(slope_x_, angle_, multiplier * w_rate.x());
+  derivative.add(slope_y_, angle_, multiplier * w_rate.y());
+}
+
 RelativeAngleConstraint::RelativeAngleConstraint(std::string description, int angle_a, int angle_b,
                                                  double offset)
     : description_(std::move(description)), angle_a_(angle_a), angle_b_(angle_b), offset_(offset) {}

@@ -54,6 +54,36 @@ class PrismaticConstraint final : public SparseConstraint {
   double axis_length_;
 };
 
+// A beam node's slope s = r' held in the frame of a planar rigid body with angle phi (a beam
+// clamped to a body): the direction row C = (R(phi) m) . s (m the initial normal of the slope in
+// the body frame; the stretch stays free), or a component row C = s_k - (R(phi) u)_k (u the
+// initial slope in the body frame; two of them hold the slope entirely).
+class SlopeOnBodyConstraint final : public SparseConstraint {
+ public:
+  // component < 0: the direction row with m = `vector`; 0 or 1: the component row with u.
+  SlopeOnBodyConstraint(std::string description, int slope_x, int slope_y, int angle,
+                        const Eigen::Vector2d& vector, int component);
+
+  std::string description() const override { return description_; }
+  ConstraintLevel level() const override { return ConstraintLevel::Position; }
+  double residual(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v) const override;
+  void add_jacobian_entries(double time, const Eigen::VectorXd& q, int row,
+                            MatrixSink& jacobian) const override;
+  double explicit_time_derivative(double, const Eigen::VectorXd&) const override { return 0.0; }
+  double acceleration_remainder(double time, const Eigen::VectorXd& q,
+                                const Eigen::VectorXd& v) const override;
+  void add_force_derivative_entries(double time, const Eigen::VectorXd& q, double multiplier,
+                                    MatrixSink& derivative) const override;
+
+ private:
+  std::string description_;
+  int slope_x_;
+  int slope_y_;
+  int angle_;
+  Eigen::Vector2d vector_;
+  int component_;
+};
+
 // phi_a - phi_b - offset = 0; an angle index < 0 stands for the ground.
 class RelativeAngleConstraint final : public SparseConstraint {
  public:

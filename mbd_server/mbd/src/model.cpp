@@ -10,6 +10,7 @@
 #include <limits>
 #include <vector>
 
+#include "connectors.hpp"
 #include "fsi/common/error.hpp"
 #include "model_data.hpp"
 #include "rigid_body_3d.hpp"
@@ -122,6 +123,41 @@ int Model::add_beam_clamp(BodyId beam_id, int node, BeamClamp clamp) {
   weights << -initial(BeamNodeCoordinate::SlopeY), initial(BeamNodeCoordinate::SlopeX);
   data_->constraints.push_back(std::make_unique<detail::LinearCoordinateConstraint>(
       "beam clamp on " + target + " (slope direction)", indices, weights, 0.0));
+  return first;
+}
+
+int Model::add_beam_clamp(BodyId beam_id, int node, BeamClamp clamp, BodyId to) {
+  if (to == kGround) return add_beam_clamp(beam_id, node, clamp);
+  const auto& beam = data_->beam_node(beam_id, node, "a beam clamp");
+  const auto& holder = data_->rigid_body(to, "a beam clamp");
+  const Eigen::VectorXd reference = beam.reference_coordinates();
+  const std::string target = "beam clamp on " + beam.name() + " node " + std::to_string(node) +
+                             " to '" + holder.name() + "'";
+  const Eigen::Vector2d node_position = reference.segment<2>(4 * node);
+  const Eigen::Vector2d slope = reference.segment<2>(4 * node + 2);
+  const Eigen::Rotation2Dd to_body = Eigen::Rotation2Dd(holder.spec().angle).inverse();
+  const detail::BodyPoint on_beam =
+      data_->point({beam_id, {node * beam.element_length(), 0.0}}, target);
+  const detail::BodyPoint on_body =
+      data_->point({to, to_body * (node_position - holder.spec().position)}, target);
+  const int first = constraint_count();
+  for (int axis = 0; axis < 2; ++axis) {
+    data_->constraints.push_back(std::make_unique<detail::PointConstraint>(
+        target + (axis == 0 ? " (x)" : " (y)"), on_beam, on_body, axis));
+  }
+  auto index = [&](BeamNodeCoordinate c) { return beam_coordinate_index(beam_id, node, c); };
+  const int sx = index(BeamNodeCoordinate::SlopeX), sy = index(BeamNodeCoordinate::SlopeY);
+  const int angle = coordinate_index(to, Coordinate::Angle);
+  if (clamp == BeamClamp::Full) {
+    for (int k = 0; k < 2; ++k) {
+      data_->constraints.push_back(std::make_unique<detail::SlopeOnBodyConstraint>(
+          target + (k == 0 ? " (slope x)" : " (slope y)"), sx, sy, angle, to_body * slope, k));
+    }
+    return first;
+  }
+  const Eigen::Vector2d normal(-slope.y(), slope.x());
+  data_->constraints.push_back(std::make_unique<detail::SlopeOnBodyConstraint>(
+      target + " (slope direction)", sx, sy, angle, to_body * normal, -1));
   return first;
 }
 

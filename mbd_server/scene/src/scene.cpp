@@ -204,9 +204,11 @@ BlockSpec make_schema() {
        optional(number("value", "m or rad", "held value (default: the initial coordinate)"))}));
   BlockSpec beam_clamp = repeated(block(
       "BeamClamp",
-      "Clamps a node of an AncfBeam2D to the ground at its initial position and slope direction "
-      "(rows x, y, slope direction); slope = \"full\" also holds the slope's length (4 rows).",
+      "Clamps a node of an AncfBeam2D to the ground (or to the RigidBody2D `to`) at its initial "
+      "position and slope direction (rows x, y, slope direction); slope = \"full\" also holds "
+      "the slope's length (4 rows).",
       {text("beam", "name of an AncfBeam2D"),
+       optional(text("to", "name of the holding RigidBody2D; absent: the ground")),
        with_default(at_least(integer("node", "node index: 0 at start, elements at end"), 0),
                     number_value(0)),
        with_default(choice(text("slope",
@@ -934,7 +936,8 @@ Scene build_scene(const std::string& path, const std::vector<Override>& override
       const auto node = static_cast<int>(c.integer("node"));
       const auto slope =
           c.string("slope") == "full" ? mbd::BeamClamp::Full : mbd::BeamClamp::Direction;
-      placed(c, [&] { model.add_beam_clamp(beam, node, slope); });
+      const mbd::BodyId to = c.has("to") ? find_body(c, "to") : mbd::kGround;
+      placed(c, [&] { model.add_beam_clamp(beam, node, slope, to); });
     });
   }
   for (const View& j : spatial ? std::vector<View>{} : root.blocks("RevoluteJoint")) {

@@ -202,5 +202,38 @@ PrescribedMotion { body = "table"; coordinate = "angle"; position = "0.3*t^2"; r
   EXPECT_NE(text.find("is not the derivative of the position"), std::string::npos) << text;
 }
 
+TEST_F(MechanismScene, ABeamClampedToABodyTurnsWithIt) {
+  const char* const blade = R"scene(
+AncfBeam2D { name = "blade"; start = [0, 0]; end = [1, 0]; elements = 4; thickness = 0.01
+             axial_stiffness = 1e7; bending_stiffness = 1e3; mass_per_length = 0.5 }
+BeamClamp { beam = "blade"; to = "hub"; slope = "full" }
+RevoluteJoint { body_a = "hub" }
+)scene";
+  const Scene scene =
+      build_scene(write(std::string(R"scene(RigidBody2D { name = "hub"; mass = 1; inertia = 0.1
+              Mesh { points = [[0, 0], [0.1, 0]] } }
+Torque { body = "hub"; torque = "0.5" })scene") +
+                        blade));
+  const mbd::Model& model = scene.model;
+  EXPECT_EQ(model.constraint_count(), 4 + 2);
+  EXPECT_NE(model.constraint_description(0).find("to 'hub'"), std::string::npos);
+  mbd::RadauIIA integrator(scene.solver.integrator_options());
+  mbd::State state = model.initial_state();
+  for (int i = 0; i < 200; ++i)
+    integrator.step(model, state, 1e-3);
+  const double hub = model.coordinate(state, 0, mbd::Coordinate::Angle);
+  const int sx = model.beam_coordinate_index(1, 0, mbd::BeamNodeCoordinate::SlopeX);
+  const double root = std::atan2(state.q(sx + 1), state.q(sx));
+  EXPECT_GT(hub, 0.01);
+  EXPECT_NEAR(root, hub, 1e-10);
+  // A hub that turns while the blade is at rest: the clamp's rate is named.
+  const std::string text =
+      problems(std::string(R"scene(RigidBody2D { name = "hub"; mass = 1; inertia = 0.1
+              angular_velocity = 2; Mesh { points = [[0, 0], [0.1, 0]] } })scene") +
+               blade);
+  EXPECT_NE(text.find("beam clamp on blade node 0 to 'hub'"), std::string::npos) << text;
+  EXPECT_NE(text.find("velocity residual"), std::string::npos) << text;
+}
+
 }  // namespace
 }  // namespace fsi::scene

@@ -342,6 +342,10 @@ class Model {
   // (BeamClamp): position-level rows x, y, then the slope row(s); returns the index of the first.
   // Throws fsi::Error for a body that is not a beam or a node out of range.
   int add_beam_clamp(BodyId beam, int node, BeamClamp clamp = BeamClamp::Direction);
+  // The same clamp to a planar rigid body `to`: the node stays at its initial place in the body's
+  // frame (two point rows) and its slope direction (or, BeamClamp::Full, the whole slope) turns
+  // with the body (SlopeOnBody rows). Throws for `to` not a RigidBody2D.
+  int add_beam_clamp(BodyId beam, int node, BeamClamp clamp, BodyId to);
   // Velocity level: dq_i/dt - velocity = 0 (thesis §6.3: the piston's dy/dt = v0).
   int add_velocity_constraint(BodyId body, Coordinate coordinate, double velocity);
   // Velocity level with a velocity that is a function of time: dq_i/dt - g(t) = 0.
