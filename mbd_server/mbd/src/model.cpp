@@ -767,6 +767,34 @@ void Model::constraint_force_derivative(double time, const Eigen::VectorXd& q,
   sink.to_matrix(coordinate_count(), coordinate_count(), derivative);
 }
 
+namespace {
+
+// Receives the Hessian H of one row (entries (i, j)) and adds v_i H_ij at (row, j): the row of
+// d(G v)/dq.
+class ContractingSink final : public MatrixSink {
+ public:
+  ContractingSink(MatrixSink& target, int row, const Eigen::VectorXd& v)
+      : target_(target), row_(row), v_(v) {}
+  void add(int i, int j, double value) override { target_.add(row_, j, v_(i) * value); }
+
+ private:
+  MatrixSink& target_;
+  int row_;
+  const Eigen::VectorXd& v_;
+};
+
+}  // namespace
+
+void Model::add_constraint_velocity_derivative(double time, const Eigen::VectorXd& q,
+                                               const Eigen::VectorXd& v,
+                                               MatrixSink& derivative) const {
+  for (int k = 0; k < constraint_count(); ++k) {
+    if (data_->constraints[k]->level() != ConstraintLevel::Position) continue;
+    ContractingSink row(derivative, k, v);
+    data_->constraints[k]->add_force_derivative_entries(time, q, 1.0, row);
+  }
+}
+
 void Model::add_constraint_force_derivative(double time, const Eigen::VectorXd& q,
                                             const Eigen::VectorXd& lambda,
                                             MatrixSink& derivative) const {

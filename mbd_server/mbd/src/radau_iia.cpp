@@ -87,7 +87,11 @@ struct RadauIIA::Workspace {
   double current_step_size = 0.0;
 
   explicit Workspace(const RadauOptions& o)
-      : tableau(butcher_tableau(o.family, o.stages)), options(o.newton), equations(tableau) {}
+      : tableau(butcher_tableau(o.family, o.stages)),
+        options(o.newton),
+        equations(tableau),
+        constraint_form(o.constraint_form) {}
+  ConstraintForm constraint_form;
 
   bool full_newton() const { return options.max_modified_newton_steps == 0; }
 
@@ -109,6 +113,7 @@ struct RadauIIA::Workspace {
     // Automatic: SparseLU from sparse_threshold unknowns on; the stage equations then use the
     // sparse M and G as well.
     const int size = model.constraint_count() + 2 * model.coordinate_count();
+    equations.set_constraint_form(constraint_form);
     equations.set_sparse(options.linear_solver == LinearSolver::Sparse ||
                          (options.linear_solver == LinearSolver::Automatic &&
                           equations.stages() * size >= options.sparse_threshold));

@@ -104,6 +104,12 @@ void RadauStageEquations::residual(const Eigen::VectorXd& unknowns, Eigen::Vecto
     }
     q_ = position(unknowns, i);
     v_ = velocity(unknowns, i);
+    if (index2_) {
+      // G V + dC/dt for position rows, G V - g for velocity rows: all on velocity level.
+      model.constraint_rate(stage_time(i), q_, v_, rate_);
+      residual.segment(l_offset(i), m_) = rate_;
+      continue;
+    }
     model.constraint_residual(stage_time(i), q_, v_, constraint_);
     for (int k = 0; k < m_; ++k) {
       residual(l_offset(i) + k) = position_level_[k] ? constraint_(k) / h : constraint_(k);
@@ -148,6 +154,15 @@ void RadauStageEquations::jacobian(const Eigen::VectorXd& unknowns, Eigen::Matri
     jacobian.block(v_offset(j), v_offset(j), n_, n_) += mass;
     if (j == 0 && first_stage_is_start_) {
       jacobian.block(l_offset(0), l_offset(0), m_, m_).setIdentity();
+      continue;
+    }
+    if (index2_) {
+      // d(G V)/dV = G; d(G(Q) V)/dZ = h d(G v)/dq at v = V_j.
+      jacobian.block(l_offset(j), v_offset(j), m_, n_) = g;
+      velocity_derivative_.setZero(m_, n_);
+      DenseMatrixSink sink(velocity_derivative_);
+      model.add_constraint_velocity_derivative(t, q_, v_, sink);
+      jacobian.block(l_offset(j), z_offset(j), m_, n_) = h * velocity_derivative_;
       continue;
     }
     for (int k = 0; k < m_; ++k) {
@@ -220,6 +235,18 @@ void RadauStageEquations::jacobian(const Eigen::VectorXd& unknowns,
     if (j == 0 && first_stage_is_start_) {
       for (int k = 0; k < m_; ++k)
         triplets_.emplace_back(l_offset(0) + k, l_offset(0) + k, 1.0);
+      continue;
+    }
+    if (index2_) {
+      for (int c = 0; c < n_; ++c) {
+        for (Iterator it(g, c); it; ++it)
+          triplets_.emplace_back(l_offset(j) + it.row(), v_offset(j) + c, it.value());
+      }
+      TripletSink velocity_derivative;
+      model.add_constraint_velocity_derivative(t, q_, v_, velocity_derivative);
+      for (const auto& entry : velocity_derivative.triplets())
+        triplets_.emplace_back(l_offset(j) + entry.row(), z_offset(j) + entry.col(),
+                               h * entry.value());
       continue;
     }
     for (int c = 0; c < n_; ++c) {

@@ -46,6 +46,9 @@ class RadauStageEquations {
   // jacobian() is assembled from triplets in O(non-zeros). Dense (the default): dense M and G,
   // the dense jacobian(). Both give the same equations and matrices up to the rounding of sums.
   void set_sparse(bool sparse) { sparse_ = sparse; }
+  // Index2: position rows G(Q_i) V_i + dC/dt = 0 instead of C(Q_i, t_i) / h = 0 (their
+  // derivatives: G in the V columns, h d(G V)/dq in the Z columns).
+  void set_constraint_form(ConstraintForm form) { index2_ = form == ConstraintForm::Index2; }
   bool sparse() const { return sparse_; }
 
   int stages() const { return stages_; }
@@ -113,6 +116,9 @@ class RadauStageEquations {
   Eigen::VectorXd q_, v_, lambda_, constraint_;
   Eigen::MatrixXd by_position_, by_velocity_, constraint_force_derivative_;
   bool sparse_ = false;
+  bool index2_ = false;
+  Eigen::VectorXd rate_;
+  Eigen::MatrixXd velocity_derivative_;
   std::vector<Eigen::SparseMatrix<double>> stage_sparse_constraint_jacobian_;
   Eigen::SparseMatrix<double> sparse_by_position_, sparse_by_velocity_,
       sparse_constraint_force_derivative_;

@@ -166,5 +166,38 @@ TEST(MbdPendulumAcceptance, ObservedOrdersMatchTheIndex3Theory) {
   }
 }
 
+// The index-2 form (constraints on velocity level at the stages, HOTINT's alternative): Radau
+// IIA keeps order 2s - 1 in q and v on the index-2 system (Hairer & Wanner VII.4), the positions
+// drift off the constraint by the integration error, and the period is as accurate.
+TEST(MbdPendulumAcceptance, IndexTwoFormKeepsTheOrderAndTheDriftIsTheIntegrationError) {
+  const RadauOptions index2{
+      .stages = 3, .newton = kTight, .constraint_form = ConstraintForm::Index2};
+  const PendulumRun run = run_two_periods(index2, 1e-2);
+  const double relative_error = std::abs(run.period - kExactPeriod) / kExactPeriod;
+  std::printf(
+      "pendulum, Radau IIA 3, index-2 form, h = 1e-2 s: period error %.2e, |C| <= %.2e m, "
+      "|G v| <= %.2e m/s\n",
+      relative_error, run.position_constraint_drift, run.velocity_constraint_drift);
+  EXPECT_LT(relative_error, 1e-8);
+  EXPECT_GT(run.position_constraint_drift, 1e-13);  // not enforced: it drifts
+  EXPECT_LT(run.position_constraint_drift, 1e-7);
+  EXPECT_LT(run.velocity_constraint_drift, 1e-9);  // enforced at the step end
+  const State reference = pendulum_at_one_second({.stages = 3, .newton = kTight}, 4096);
+  for (int stages : {1, 2, 3}) {
+    const RadauOptions options{
+        .stages = stages, .newton = kTight, .constraint_form = ConstraintForm::Index2};
+    const int first = stages == 1 ? 64 : stages == 2 ? 32 : 16;
+    std::vector<double> errors;
+    for (int halving = 0; halving < 4; ++halving) {
+      const State end = pendulum_at_one_second(options, first << halving);
+      errors.push_back((end.q - reference.q).head<2>().lpNorm<Eigen::Infinity>());
+    }
+    const double order = std::log2(errors[2] / errors[3]);
+    std::printf("Radau IIA %d, index 2: position errors %.2e %.2e %.2e %.2e, last order %.2f\n",
+                stages, errors[0], errors[1], errors[2], errors[3], order);
+    EXPECT_NEAR(order, 2 * stages - 1, 0.3) << stages << " stages";
+  }
+}
+
 }  // namespace
 }  // namespace fsi::mbd

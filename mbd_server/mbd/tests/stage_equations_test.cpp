@@ -93,8 +93,11 @@ TEST(MbdRadauStageEquations, NewtonMatrixMatchesDifferencesOfTheResidual) {
     const Model& model = *model_in_test;
     const State& start = model_in_test == &rich ? rich_start : jointed_start;
     for (const auto& [family, s] : tableaux) {
-      for (double h : {1e-2, 5e-6}) {
+      for (const auto& [form, h] :
+           {std::pair{ConstraintForm::Index3, 1e-2}, std::pair{ConstraintForm::Index3, 5e-6},
+            std::pair{ConstraintForm::Index2, 1e-2}, std::pair{ConstraintForm::Index2, 5e-6}}) {
         detail::RadauStageEquations equations(butcher_tableau(family, s));
+        equations.set_constraint_form(form);
         equations.begin_step(model, start, h);
         Eigen::VectorXd x;
         equations.predict(x);
@@ -124,7 +127,17 @@ TEST(MbdRadauStageEquations, NewtonMatrixMatchesDifferencesOfTheResidual) {
         }
         EXPECT_LT(worst, 1e-7) << butcher_tableau(family, s).name << " " << s
                                << " stages, h = " << h << ", model with "
-                               << model.constraint_count() << " constraints";
+                               << model.constraint_count() << " constraints, index "
+                               << (form == ConstraintForm::Index2 ? 2 : 3);
+        // The sparse assembly of the same form gives the same matrix.
+        detail::RadauStageEquations sparse(butcher_tableau(family, s));
+        sparse.set_constraint_form(form);
+        sparse.set_sparse(true);
+        sparse.begin_step(model, start, h);
+        Eigen::SparseMatrix<double> sparse_jacobian;
+        sparse.jacobian(x, sparse_jacobian);
+        EXPECT_LE((Eigen::MatrixXd(sparse_jacobian) - jacobian).lpNorm<Eigen::Infinity>(),
+                  1e-12 * (1.0 + jacobian.lpNorm<Eigen::Infinity>()));
       }
     }
   }

@@ -82,7 +82,13 @@ BlockSpec make_schema() {
          p.minimum = 1;
          p.maximum = 3;
          return p;
-       }()}));
+       }(),
+       with_default(choice(text("constraint_form",
+                                "index3: position constraints C = 0 at the stages (no drift); "
+                                "index2: their rates G v + dC/dt = 0 (positions drift by the "
+                                "integration error; HOTINT's alternative)"),
+                           {"index3", "index2"}),
+                    text_value("index3"))}));
   BlockSpec newton = block(
       "Newton", "Newton iterations of the implicit stage equations.",
       {with_default(positive(number("relative_tolerance", "",
@@ -626,6 +632,9 @@ Scene build_scene(const std::string& path, const std::vector<Override>& override
     scene.solver.step_size = solver.block("Timeint").number("step_size");
     scene.solver.stages = static_cast<int>(solver.block("Timeint").integer("stages"));
     const bool lobatto = solver.block("Timeint").string("tableau") == "LobattoIIIA";
+    scene.solver.constraint_form = solver.block("Timeint").string("constraint_form") == "index2"
+                                       ? mbd::ConstraintForm::Index2
+                                       : mbd::ConstraintForm::Index3;
     scene.solver.family = lobatto ? mbd::TableauFamily::LobattoIIIA : mbd::TableauFamily::RadauIIA;
     if (lobatto && scene.solver.stages < 2) {
       problems.push_back(

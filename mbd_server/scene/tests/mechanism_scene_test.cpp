@@ -202,6 +202,17 @@ PrescribedMotion { body = "table"; coordinate = "angle"; position = "0.3*t^2"; r
   EXPECT_NE(text.find("is not the derivative of the position"), std::string::npos) << text;
 }
 
+TEST_F(MechanismScene, TheIndexTwoFormIsChosenInTimeint) {
+  const Scene scene = build_scene(write(R"scene(SolverOptions.Timeint.constraint_form = "index2"
+RigidBody2D { name = "bob"; mass = 1; inertia = 0.1; position = [1, 0]
+              Mesh { points = [[0, 0], [0.1, 0]] } }
+DistanceConstraint { body_a = "bob" }
+)scene"));
+  EXPECT_EQ(scene.solver.constraint_form, mbd::ConstraintForm::Index2);
+  EXPECT_EQ(scene.solver.integrator_options().constraint_form, mbd::ConstraintForm::Index2);
+  EXPECT_EQ(scene.solver.integrator_description(), "Radau IIA, 3 stages, index-2 constraints");
+}
+
 TEST_F(MechanismScene, ABeamClampedToABodyTurnsWithIt) {
   const char* const blade = R"scene(
 AncfBeam2D { name = "blade"; start = [0, 0]; end = [1, 0]; elements = 4; thickness = 0.01

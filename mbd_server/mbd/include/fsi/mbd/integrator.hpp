@@ -58,10 +58,17 @@ struct NewtonOptions {
   int sparse_threshold = 300;
 };
 
+// How position-level constraints enter the stage equations (HOTINT's choice): Index3 enforces
+// C(Q_i, t_i) = 0 at the stages (no drift of the constraints, the default); Index2 enforces their
+// rate G(Q_i) V_i + dC/dt = 0 instead, so the positions drift off C = 0 by the integration error
+// (docs/theory.md). Velocity-level rows are the same in both.
+enum class ConstraintForm { Index3, Index2 };
+
 struct RadauOptions {
   int stages = 3;  // Radau IIA: 1, 2 or 3 (orders 1, 3, 5); Lobatto IIIA: 2 or 3 (orders 2, 4)
   NewtonOptions newton;
   TableauFamily family = TableauFamily::RadauIIA;
+  ConstraintForm constraint_form = ConstraintForm::Index3;
 };
 
 struct StepStatistics {

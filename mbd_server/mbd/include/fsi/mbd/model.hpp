@@ -550,6 +550,10 @@ class Model {
   void constraint_force_derivative(double time, const Eigen::VectorXd& q,
                                    const Eigen::VectorXd& lambda,
                                    Eigen::SparseMatrix<double>& derivative) const;
+  // d/dq (G(q) v) at fixed v (m x n), entries added: row k is v^T times the Hessian of C_k (the
+  // Newton matrix of the index-2 form). Velocity-level rows add nothing (G independent of q).
+  void add_constraint_velocity_derivative(double time, const Eigen::VectorXd& q,
+                                          const Eigen::VectorXd& v, MatrixSink& derivative) const;
   void add_constraint_force_derivative(double time, const Eigen::VectorXd& q,
                                        const Eigen::VectorXd& lambda, MatrixSink& derivative) const;
 

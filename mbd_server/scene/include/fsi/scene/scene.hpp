@@ -22,12 +22,15 @@ struct SolverSettings {
   int stages = 3;
   mbd::TableauFamily family = mbd::TableauFamily::RadauIIA;
   mbd::NewtonOptions newton;
+  mbd::ConstraintForm constraint_form = mbd::ConstraintForm::Index3;
 
   // The integrator these settings ask for, and its name for logs and run.json
-  // ("Radau IIA, 3 stages"); both are valid before any integrator exists.
-  mbd::RadauOptions integrator_options() const { return {stages, newton, family}; }
+  // ("Radau IIA, 3 stages"; ", index-2 constraints" when so); both are valid before any
+  // integrator exists.
+  mbd::RadauOptions integrator_options() const { return {stages, newton, family, constraint_form}; }
   std::string integrator_description() const {
-    return mbd::butcher_tableau(family, stages).name + ", " + std::to_string(stages) + " stages";
+    return mbd::butcher_tableau(family, stages).name + ", " + std::to_string(stages) + " stages" +
+           (constraint_form == mbd::ConstraintForm::Index2 ? ", index-2 constraints" : "");
   }
 };
 
