@@ -6,12 +6,24 @@
 #include <numbers>
 
 #include "fsi/common/error.hpp"
+#include "runtime_expression.hpp"
 
 namespace fsi::scene::detail {
 namespace {
 
+// point_a / point_b of a two-point element, or `point` with an empty side.
 ParameterSpec point_spec(const std::string& side, const std::string& where) {
-  return vector("point_" + side, 3, "m", where).with_default({0.0, 0.0, 0.0});
+  return vector(side.empty() ? std::string("point") : "point_" + side, 3, "m", where)
+      .with_default({0.0, 0.0, 0.0});
+}
+
+// An expression of the scene compiled for the model; a mistake becomes a problem at its key.
+RuntimeExpression time_expression(const View& element, std::string_view key) {
+  try {
+    return RuntimeExpression(element.string(key), {"t"});
+  } catch (const Error& error) {
+    throw Error(error.fault(), element.location(key).text(), error.remedy());
+  }
 }
 
 // body_a/point_a and body_b/point_b of a spatial two-point element (body_b absent: the world).
@@ -132,6 +144,22 @@ std::vector<BlockSpec> spatial_block_specs() {
                               number("rest_length", "m", "l0 (default: the initial distance)")
                                   .at_least(0.0)
                                   .optional()}))
+          .as_list(),
+      block_spec("PointForce3D",
+                 "A world-frame force at a point of a spatial body, muParser expressions of the "
+                 "time t [s] (evaluated at every stage time).",
+                 {element_name_spec(), text("body", "name of a spatial body"),
+                  point_spec("", "point of application (as point_a of the joints)"),
+                  text("force_x", "x component [N] in t").with_default("0"),
+                  text("force_y", "y component [N] in t").with_default("0"),
+                  text("force_z", "z component [N] in t").with_default("0")})
+          .as_list(),
+      block_spec("Torque3D",
+                 "A world-frame torque on a RigidBody3D, muParser expressions of the time t [s].",
+                 {element_name_spec(), text("body", "name of a RigidBody3D"),
+                  text("torque_x", "x component [N m] in t").with_default("0"),
+                  text("torque_y", "y component [N m] in t").with_default("0"),
+                  text("torque_z", "z component [N m] in t").with_default("0")})
           .as_list(),
       block_spec(
           "DistanceConstraint3D",
@@ -337,6 +365,30 @@ void build_spatial_connectors(const View& root, ElementBuilder& builder) {
       int index = 0;
       builder.placed(f, [&] { index = model.add_spatial_spring_damper(spec); });
       register_force_element(builder, f, index, false);
+    });
+  }
+  for (const View& p : root.blocks("PointForce3D")) {
+    builder.guard(p.location(), [&] {
+      mbd::SpatialPointForceSpec spec;
+      spec.name = name_of(p);
+      spec.point = {builder.find_body(p, "body"), vector3(p, "point")};
+      const RuntimeExpression x = time_expression(p, "force_x");
+      const RuntimeExpression y = time_expression(p, "force_y");
+      const RuntimeExpression z = time_expression(p, "force_z");
+      spec.force = [x, y, z](double t) { return Eigen::Vector3d(x(t), y(t), z(t)); };
+      builder.placed(p, [&] { model.add_spatial_point_force(spec); });
+    });
+  }
+  for (const View& p : root.blocks("Torque3D")) {
+    builder.guard(p.location(), [&] {
+      mbd::SpatialTorqueSpec spec;
+      spec.name = name_of(p);
+      spec.body = builder.find_body(p, "body");
+      const RuntimeExpression x = time_expression(p, "torque_x");
+      const RuntimeExpression y = time_expression(p, "torque_y");
+      const RuntimeExpression z = time_expression(p, "torque_z");
+      spec.torque = [x, y, z](double t) { return Eigen::Vector3d(x(t), y(t), z(t)); };
+      builder.placed(p, [&] { model.add_spatial_torque(spec); });
     });
   }
   for (const View& c : root.blocks("DistanceConstraint3D")) {

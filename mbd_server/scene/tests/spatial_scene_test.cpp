@@ -157,6 +157,32 @@ Sensor { name = "face_vx"; type = "velocity"; body = "beam"; point = [1.5, 0.005
   EXPECT_NEAR(structure_sensor_value(planar.model, planar.sensors[2], planar_state), 0.0, 1e-15);
 }
 
+TEST_F(SpatialScene, TimeDependentLoadsSpinARotor) {
+  // A rotor on a hinge about z, driven by a torque 0.4 t about z: J omega' = 0.4 t, so
+  // omega(1 s) = 0.2 / J_z; a point force pushes a free point mass along x: m x'' = 3.
+  const Scene scene = build_scene(write(R"scene(
+RigidBody3D { name = "rotor"; mass = 2; inertia = [0.3, 0.3, 0.5]
+              Mesh { stl = "box.stl"; scale = 0.1 } }
+RevoluteJoint3D { body_a = "rotor"; axis = [0, 0, 1] }
+Torque3D { name = "motor"; body = "rotor"; torque_z = "0.4*t" }
+PointMass { name = "puck"; mass = 0.5; position = [3, 0, 0] }
+PointForce3D { body = "puck"; force_x = "3" }
+)scene")
+                                      .string());
+  mbd::RadauIIA integrator(scene.solver.integrator_options());
+  mbd::State state = scene.model.initial_state();
+  for (int i = 0; i < 1000; ++i)
+    integrator.step(scene.model, state, 1e-3);
+  EXPECT_NEAR(scene.model.angular_velocity(state, 0).z(), 0.2 / 0.5, 1e-9);
+  EXPECT_NEAR(state.q(12), 3.0 + 0.5 * 6.0, 1e-9);  // x = 3 + (3/0.5) t^2 / 2
+  const std::string text = testing::build_error(write(R"scene(
+RigidBody3D { name = "rotor"; mass = 2; inertia = [0.3, 0.3, 0.5]; Mesh { stl = "box.stl" } }
+Torque3D { body = "rotor"; torque_z = "0.4*q" }
+)scene"));
+  EXPECT_NE(text.find("m.scene:6:28: the expression \"0.4*q\" is invalid"), std::string::npos)
+      << text;
+}
+
 TEST_F(SpatialScene, MistakesAreProblemsAtTheirPlace) {
   const std::string text = testing::build_error(write(R"scene(
 RigidBody3D { name = "flat"; mass = 1; inertia = [1, 1, 2] }
