@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <sstream>
 
 #include "fsi/common/error.hpp"
 #include "hermite_element.hpp"
+#include "number_text.hpp"
 
 namespace fsi::mbd::detail {
 namespace {
@@ -47,11 +47,9 @@ Eigen::Matrix2d tangent_map(const Eigen::Vector2d& a) {
   return (Eigen::Matrix2d::Identity() - a * a.transpose() / (length * length)) / length;
 }
 
+// Input values in messages: all 17 digits.
 std::string number(double value) {
-  std::ostringstream text;
-  text.precision(17);
-  text << value;
-  return text.str();
+  return number_text(value, 17);
 }
 
 // Strain energy density and, on request, its gradient and Hessian with respect to the 8

@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <sstream>
 
 #include "fsi/common/error.hpp"
 #include "hermite_element.hpp"
+#include "number_text.hpp"
 
 namespace fsi::mbd::detail {
 namespace {
@@ -19,11 +19,9 @@ constexpr int kAxialPoints = 5;
 constexpr int kBendingPoints = 3;
 constexpr int kMassPoints = 4;
 
+// Input values in messages: all 17 digits.
 std::string number(double value) {
-  std::ostringstream text;
-  text.precision(17);
-  text << value;
-  return text.str();
+  return number_text(value, 17);
 }
 
 // (a x b)_k = a^T C_k b, (C_k)_ij the Levi-Civita symbol eps_kij.

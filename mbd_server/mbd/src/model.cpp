@@ -6,17 +6,19 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <vector>
 
 #include "connectors.hpp"
 #include "fsi/common/error.hpp"
 #include "model_data.hpp"
+#include "number_text.hpp"
 #include "rigid_body_3d.hpp"
 #include "spring_damper.hpp"
 
 namespace fsi::mbd {
+
+using detail::number_text;
 namespace {
 
 using detail::Marker;
@@ -25,13 +27,6 @@ using detail::Marker;
 // dense Newton matrix, cheaper for small systems); above it with sparse ones, whose cost grows
 // about linearly with the size for chains and beams.
 constexpr int kDenseInitialStateSize = 300;
-
-// Nine significant digits: enough to see a residual, short enough to read.
-std::string number(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.9g", value);
-  return text;
-}
 
 }  // namespace
 
@@ -203,12 +198,13 @@ int Model::add_prescribed_motion(const PrescribedMotionSpec& spec) {
                                (spec.position(t + 2 * h) - spec.position(t - 2 * h))) /
                               (12.0 * h);
     if (!std::isfinite(s) || !std::isfinite(given)) {
-      throw Error("s(t) or ds/dt is not finite at t = " + number(t), user, "check the expressions");
+      throw Error("s(t) or ds/dt is not finite at t = " + number_text(t), user,
+                  "check the expressions");
     }
     if (!(std::abs(given - difference) <= 1e-6 * (1.0 + std::abs(difference)))) {
-      throw Error("the rate " + number(given) + " at t = " + number(t) +
+      throw Error("the rate " + number_text(given) + " at t = " + number_text(t) +
                       " is not the derivative of the position (central difference " +
-                      number(difference) + ")",
+                      number_text(difference) + ")",
                   user, "give rate = ds/dt of the position expression");
     }
   }
@@ -254,7 +250,7 @@ int Model::add_distance_constraint(const BodyPointSpec& a, const BodyPointSpec& 
   const double rod =
       length.value_or((data_->initial_position(b) - data_->initial_position(a)).norm());
   if (!(rod > 0.0) || !std::isfinite(rod)) {
-    throw Error("the length must be positive and finite, got " + number(rod), user,
+    throw Error("the length must be positive and finite, got " + number_text(rod), user,
                 "give a positive length, or place the points apart initially");
   }
   data_->constraints.push_back(std::make_unique<detail::DistanceConstraint>(
@@ -490,17 +486,19 @@ void Model::check_consistency(const State& state) const {
     if (constraint.level() == ConstraintLevel::Position) {
       if (!(std::abs(residual) <= position_tolerance)) {
         problems += "\n  " + constraint.description() +
-                    ": position residual C = " + number(residual) + " at t = " + number(state.time);
+                    ": position residual C = " + number_text(residual) +
+                    " at t = " + number_text(state.time);
       }
       const double rate = jacobian_v(k) + constraint.explicit_time_derivative(state.time, state.q);
       if (!(std::abs(rate) <= velocity_tolerance)) {
         problems += "\n  " + constraint.description() +
-                    ": velocity residual dC/dt = " + number(rate) +
+                    ": velocity residual dC/dt = " + number_text(rate) +
                     " (the constrained coordinate has a velocity)";
       }
     } else if (!(std::abs(residual) <= velocity_tolerance)) {
-      problems += "\n  " + constraint.description() + ": velocity residual = " + number(residual) +
-                  " at t = " + number(state.time);
+      problems += "\n  " + constraint.description() +
+                  ": velocity residual = " + number_text(residual) +
+                  " at t = " + number_text(state.time);
     }
   }
   // Incremental rank: a row that does not raise the rank of the rows before it is redundant

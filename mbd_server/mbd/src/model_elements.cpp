@@ -4,7 +4,6 @@
 // types stay out of model.cpp.
 
 #include <cmath>
-#include <cstdio>
 #include <memory>
 #include <string>
 
@@ -15,15 +14,12 @@
 #include "fsi/common/error.hpp"
 #include "fsi/mbd/model.hpp"
 #include "measured_force.hpp"
+#include "number_text.hpp"
 
 namespace fsi::mbd {
-namespace {
 
-std::string number(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.9g", value);
-  return text;
-}
+using detail::number_text;
+namespace {
 
 // "prismatic joint 'slider'" for a named element, "prismatic joint 3" otherwise.
 std::string element_name(const std::string& kind, const std::string& name, int index) {
@@ -141,7 +137,7 @@ double rest_length_of(const std::optional<double>& given, double initial, const 
   }
   const double rest = given.value_or(initial);
   if (!non_negative(rest)) {
-    throw Error("the rest length must be finite and non-negative, got " + number(rest), user,
+    throw Error("the rest length must be finite and non-negative, got " + number_text(rest), user,
                 "give rest_length >= 0 or none (the initial distance)");
   }
   return rest;

@@ -2,7 +2,6 @@
 // bodies and connectors"); the planar ones are in model.cpp and model_elements.cpp.
 
 #include <cmath>
-#include <cstdio>
 #include <memory>
 #include <string>
 
@@ -11,18 +10,15 @@
 #include "fsi/common/error.hpp"
 #include "fsi/mbd/model.hpp"
 #include "model_data.hpp"
+#include "number_text.hpp"
 #include "rigid_body_3d.hpp"
 #include "spatial_constraints.hpp"
 #include "spring_damper.hpp"
 
 namespace fsi::mbd {
-namespace {
 
-std::string number(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.9g", value);
-  return text;
-}
+using detail::number_text;
+namespace {
 
 constexpr const char* kAxisNames[3] = {" (x)", " (y)", " (z)"};
 
@@ -281,7 +277,7 @@ int Model::add_spatial_distance_constraint(const SpatialPointSpec& a, const Spat
   const double rod = length.value_or(
       (data_->initial_spatial_position(b) - data_->initial_spatial_position(a)).norm());
   if (!(rod > 0.0) || !std::isfinite(rod)) {
-    throw Error("the length must be positive and finite, got " + number(rod), user,
+    throw Error("the length must be positive and finite, got " + number_text(rod), user,
                 "give a positive length, or place the points apart initially");
   }
   data_->constraints.push_back(

@@ -1,8 +1,8 @@
 #include <cmath>
-#include <sstream>
 
 #include "body.hpp"
 #include "fsi/common/error.hpp"
+#include "number_text.hpp"
 
 namespace fsi::mbd::detail {
 namespace {
@@ -20,11 +20,9 @@ Eigen::Vector2d rotate_derivative(double angle, const Eigen::Vector2d& p) {
   return {-s * p.x() - c * p.y(), c * p.x() - s * p.y()};
 }
 
+// Input values in messages: all 17 digits.
 std::string number(double value) {
-  std::ostringstream text;
-  text.precision(17);
-  text << value;
-  return text.str();
+  return number_text(value, 17);
 }
 
 }  // namespace

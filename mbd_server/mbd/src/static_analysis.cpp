@@ -4,21 +4,17 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <numbers>
 #include <span>
 #include <string>
 
 #include "fsi/common/error.hpp"
+#include "number_text.hpp"
 
 namespace fsi::mbd {
-namespace {
 
-std::string number(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.9g", value);
-  return text;
-}
+using detail::number_text;
+namespace {
 
 // Holds the model's gravity and point loads and puts them back when the solve ends.
 class LoadScaling {
@@ -117,9 +113,9 @@ StaticResult solve_static(Model& model, const State& start, const StaticOptions&
                   max_abs(dlambda) <= options.tolerance * (1.0 + max_abs(lambda));
     }
     if (!converged) {
-      throw Error("Newton did not converge at load factor " + number(factor) + " (load step " +
+      throw Error("Newton did not converge at load factor " + number_text(factor) + " (load step " +
                       std::to_string(step) + " of " + std::to_string(options.load_steps) +
-                      "); last relative increment " + number(last_step),
+                      "); last relative increment " + number_text(last_step),
                   "static solve",
                   "raise StaticOptions::load_steps or max_iterations, or check that the "
                   "constraints hold the model (no free rigid-body motion)");
