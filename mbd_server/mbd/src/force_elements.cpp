@@ -203,21 +203,6 @@ double PointToPointForce::potential_energy(const Eigen::VectorXd& q) const {
 
 // ---- time-dependent loads ----
 
-PointForce::PointForce(std::string description, BodyPoint point,
-                       std::function<Eigen::Vector2d(double)> force)
-    : description_(std::move(description)), point_(point), force_(std::move(force)) {}
-
-void PointForce::add_force(double time, const Eigen::VectorXd& q, const Eigen::VectorXd&,
-                           Eigen::VectorXd& force) const {
-  point_.add_load(q, force_(time), force);
-}
-
-bool PointForce::add_jacobian_entries(double time, const Eigen::VectorXd& q, const Eigen::VectorXd&,
-                                      MatrixSink& force_by_position, MatrixSink&) const {
-  point_.add_load_derivative(q, force_(time), force_by_position);
-  return true;
-}
-
 Torque::Torque(std::string description, int angle, std::function<double(double)> torque)
     : description_(std::move(description)), angle_(angle), torque_(std::move(torque)) {}
 

@@ -12,6 +12,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "body_point.hpp"
@@ -116,23 +117,35 @@ class PointToPointForce final : public SparseForceElement, public MeasuredForce 
   std::shared_ptr<const TensionLaw> law_;
 };
 
-class PointForce final : public SparseForceElement {
+// A force that is a function of time at a body point: Q = (dr/dq)^T f(t). Point: BodyPoint (D = 2)
+// or SpatialPoint (D = 3).
+template <typename Point, int D>
+class BasicPointForce final : public SparseForceElement {
  public:
-  PointForce(std::string description, BodyPoint point,
-             std::function<Eigen::Vector2d(double)> force);
+  using Vector = Eigen::Matrix<double, D, 1>;
+  BasicPointForce(std::string description, Point point, std::function<Vector(double)> force)
+      : description_(std::move(description)), point_(point), force_(std::move(force)) {}
 
-  void add_force(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
-                 Eigen::VectorXd& force) const override;
-  bool add_jacobian_entries(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
-                            MatrixSink& force_by_position,
-                            MatrixSink& force_by_velocity) const override;
+  void add_force(double time, const Eigen::VectorXd& q, const Eigen::VectorXd&,
+                 Eigen::VectorXd& force) const override {
+    point_.add_load(q, force_(time), force);
+  }
+  bool add_jacobian_entries(double time, const Eigen::VectorXd& q, const Eigen::VectorXd&,
+                            MatrixSink& force_by_position, MatrixSink&) const override {
+    point_.add_load_derivative(q, force_(time), force_by_position);
+    return true;
+  }
   std::string description() const override { return description_; }
 
  private:
   std::string description_;
-  BodyPoint point_;
-  std::function<Eigen::Vector2d(double)> force_;
+  Point point_;
+  std::function<Vector(double)> force_;
 };
+
+using PointForce = BasicPointForce<BodyPoint, 2>;
+class SpatialPoint;
+using SpatialPointForce = BasicPointForce<SpatialPoint, 3>;
 
 class Torque final : public SparseForceElement {
  public:

@@ -7,6 +7,7 @@
 
 #include "ancf_cable_3d.hpp"
 #include "constraint.hpp"
+#include "force_elements.hpp"
 #include "fsi/common/error.hpp"
 #include "fsi/mbd/model.hpp"
 #include "model_data.hpp"

@@ -47,22 +47,6 @@ void PerpendicularityConstraint::add_force_derivative_entries(double, const Eige
   b_.add_load_derivative(q, multiplier * a_.value(q), derivative);
 }
 
-SpatialPointForce::SpatialPointForce(std::string description, SpatialPoint point,
-                                     std::function<Eigen::Vector3d(double)> force)
-    : description_(std::move(description)), point_(point), force_(std::move(force)) {}
-
-void SpatialPointForce::add_force(double time, const Eigen::VectorXd& q, const Eigen::VectorXd&,
-                                  Eigen::VectorXd& force) const {
-  point_.add_load(q, force_(time), force);
-}
-
-bool SpatialPointForce::add_jacobian_entries(double time, const Eigen::VectorXd& q,
-                                             const Eigen::VectorXd&, MatrixSink& force_by_position,
-                                             MatrixSink&) const {
-  point_.add_load_derivative(q, force_(time), force_by_position);
-  return true;
-}
-
 namespace {
 
 Eigen::Matrix3d cross_matrix(const Eigen::Vector3d& w) {

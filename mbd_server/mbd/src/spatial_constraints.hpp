@@ -61,24 +61,8 @@ class PerpendicularityConstraint final : public SparseConstraint {
   SpatialDirection b_;
 };
 
-// Time-dependent loads of spatial bodies (evaluated at the stage times).
-class SpatialPointForce final : public SparseForceElement {
- public:
-  SpatialPointForce(std::string description, SpatialPoint point,
-                    std::function<Eigen::Vector3d(double)> force);
-  void add_force(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
-                 Eigen::VectorXd& force) const override;
-  bool add_jacobian_entries(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
-                            MatrixSink& force_by_position,
-                            MatrixSink& force_by_velocity) const override;
-  std::string description() const override { return description_; }
-
- private:
-  std::string description_;
-  SpatialPoint point_;
-  std::function<Eigen::Vector3d(double)> force_;
-};
-
+// A time-dependent torque on a spatial rigid body (the point force is force_elements.hpp's
+// SpatialPointForce).
 // On a RigidBody3D whose axes e_1..e_3 start at q(axes_offset): Q_(e_k) = 1/2 tau x e_k.
 class SpatialTorque final : public SparseForceElement {
  public:

@@ -12,6 +12,7 @@
 
 #include "ancf_cable_3d.hpp"
 #include "element_checks.hpp"
+#include "force_elements.hpp"
 #include "fsi/common/error.hpp"
 #include "fsi/mbd/integrator.hpp"
 #include "fsi/mbd/model.hpp"
