@@ -17,6 +17,7 @@
 #include "constraint.hpp"
 #include "fsi/common/error.hpp"
 #include "fsi/mbd/model.hpp"
+#include "rigid_body_3d.hpp"
 #include "spatial_body.hpp"
 
 namespace fsi::mbd {
@@ -30,8 +31,28 @@ struct Marker {
   // A vertex of the tube around a cable (Model::add_cable_surface_marker): spatial_local is its
   // centre-line point (s, 0, 0); these place it on the tube.
   double tube_radius = 0.0;
-  double tube_angle = 0.0;
+  Eigen::Vector3d tube_offset = Eigen::Vector3d::Zero();  // unit, normal to the initial tangent
 };
+
+// "prismatic joint 'slider'" for a named element, "prismatic joint 3" otherwise.
+inline std::string element_name(const std::string& kind, const std::string& name, int index) {
+  return name.empty() ? kind + " " + std::to_string(index) : kind + " '" + name + "'";
+}
+
+// A time-dependent point force (torque = false) or torque needs a body and a function.
+inline void check_time_load(bool on_ground, bool has_function, bool torque,
+                            const std::string& user) {
+  if (on_ground) {
+    throw torque ? Error("the torque acts on the ground, where it does nothing", user,
+                         "apply the torque to a body")
+                 : Error("the point is on the ground, where a force does nothing", user,
+                         "apply the force to a body");
+  }
+  if (!has_function) {
+    throw torque ? Error("no torque function", user, "give torque(t)")
+                 : Error("no force function", user, "give force(t)");
+  }
+}
 
 // Throws fsi::Error naming `user` for a negative or non-finite stiffness, damping or rest length.
 inline void check_spring_values(double stiffness, double damping, double rest,
@@ -133,6 +154,17 @@ struct Model::Data {
                   "multibody model", "use the planar form of the element for planar bodies");
     }
     return *spatial;
+  }
+  // nullptr for the ground; throws naming `user` (with `fix`) for a body that is not a
+  // RigidBody3D.
+  const detail::RigidBody3D* rigid_body_3d_or_ground(BodyId body, const std::string& user,
+                                                     const std::string& fix) const {
+    if (body == kGround) return nullptr;
+    const auto* rigid = dynamic_cast<const detail::RigidBody3D*>(&spatial_body(body, user));
+    if (rigid == nullptr) {
+      throw Error("'" + bodies[body]->name() + "' is not a rigid body", user, fix);
+    }
+    return rigid;
   }
   // A spatial body point; throws naming `user` for unknown or planar bodies, non-finite or
   // non-material local coordinates.

@@ -14,17 +14,15 @@
 #include "fsi/common/error.hpp"
 #include "fsi/mbd/model.hpp"
 #include "measured_force.hpp"
+#include "model_data.hpp"
 #include "number_text.hpp"
 
 namespace fsi::mbd {
 
+using detail::element_name;
+
 using detail::number_text;
 namespace {
-
-// "prismatic joint 'slider'" for a named element, "prismatic joint 3" otherwise.
-std::string element_name(const std::string& kind, const std::string& name, int index) {
-  return name.empty() ? kind + " " + std::to_string(index) : kind + " '" + name + "'";
-}
 
 void require_two_ends(BodyId a, BodyId b, const std::string& user) {
   if (a == b) {
@@ -193,11 +191,7 @@ int Model::add_spring_actor(const SpringActorSpec& spec) {
 int Model::add_point_force(const PointForceSpec& spec) {
   const int index = force_element_count();
   const std::string user = element_name("point force", spec.name, index);
-  if (spec.point.body == kGround) {
-    throw Error("the point is on the ground, where a force does nothing", user,
-                "apply the force to a body");
-  }
-  if (!spec.force) throw Error("no force function", user, "give force(t)");
+  detail::check_time_load(spec.point.body == kGround, static_cast<bool>(spec.force), false, user);
   add_force_element(
       std::make_unique<detail::PointForce>(user, body_point(spec.point, user), spec.force));
   return index;
@@ -206,11 +200,7 @@ int Model::add_point_force(const PointForceSpec& spec) {
 int Model::add_torque(const TorqueSpec& spec) {
   const int index = force_element_count();
   const std::string user = element_name("torque", spec.name, index);
-  if (spec.body == kGround) {
-    throw Error("the torque acts on the ground, where it does nothing", user,
-                "apply the torque to a body");
-  }
-  if (!spec.torque) throw Error("no torque function", user, "give torque(t)");
+  detail::check_time_load(spec.body == kGround, static_cast<bool>(spec.torque), true, user);
   add_force_element(
       std::make_unique<detail::Torque>(user, angle_index(*this, spec.body, user), spec.torque));
   return index;

@@ -18,14 +18,12 @@
 
 namespace fsi::mbd {
 
+using detail::element_name;
+
 using detail::number_text;
 namespace {
 
 constexpr const char* kAxisNames[3] = {" (x)", " (y)", " (z)"};
-
-std::string joint_name(const std::string& kind, const std::string& name, int row) {
-  return name.empty() ? kind + " " + std::to_string(row) : kind + " '" + name + "'";
-}
 
 // Two unit vectors normal to `axis` and to each other.
 std::pair<Eigen::Vector3d, Eigen::Vector3d> normals(const Eigen::Vector3d& axis) {
@@ -110,8 +108,7 @@ const Eigen::Vector3d& Model::spatial_gravity() const {
 }
 
 int Model::add_spatial_marker(BodyId body, const Eigen::Vector3d& local_coordinates) {
-  const detail::SpatialPoint point = data_->spatial_point({body, local_coordinates}, "a marker");
-  (void)point;
+  (void)data_->spatial_point({body, local_coordinates}, "a marker");  // checks body and point
   data_->require_dimension(3, "a spatial marker");
   data_->markers.push_back({body, Eigen::Vector2d::Zero(), local_coordinates});
   data_->point_loads.resize(3 * data_->markers.size(), 0.0);
@@ -121,7 +118,7 @@ int Model::add_spatial_marker(BodyId body, const Eigen::Vector3d& local_coordina
 int Model::add_spherical_joint(const SpatialPointSpec& a, const SpatialPointSpec& b,
                                const std::string& name) {
   const int first = constraint_count();
-  const std::string user = joint_name("spherical joint", name, first);
+  const std::string user = element_name("spherical joint", name, first);
   const detail::SpatialPoint pa = data_->spatial_point(a, user);
   const detail::SpatialPoint pb = data_->spatial_point(b, user);
   data_->check_pair({a.body, {}}, {b.body, {}}, user);
@@ -134,20 +131,11 @@ int Model::add_spherical_joint(const SpatialPointSpec& a, const SpatialPointSpec
 
 int Model::add_revolute_joint_3d(const RevoluteJoint3DSpec& spec) {
   const int first = constraint_count();
-  const std::string user = joint_name("revolute joint", spec.name, first);
-  auto rigid_or_ground = [&](BodyId body) -> const detail::RigidBody3D* {
-    if (body == kGround) return nullptr;
-    const auto& spatial = data_->spatial_body(body, user);
-    const auto* rigid = dynamic_cast<const detail::RigidBody3D*>(&spatial);
-    if (rigid == nullptr) {
-      throw Error("'" + spatial.name() + "' is not a rigid body", user,
-                  "connect RigidBody3D bodies (or the ground); hold a cable with a clamp or a "
-                  "spherical joint");
-    }
-    return rigid;
-  };
-  const detail::RigidBody3D* body_a = rigid_or_ground(spec.a.body);
-  const detail::RigidBody3D* body_b = rigid_or_ground(spec.b.body);
+  const std::string user = element_name("revolute joint", spec.name, first);
+  const std::string fix =
+      "connect RigidBody3D bodies (or the ground); hold a cable with a clamp or a spherical joint";
+  const detail::RigidBody3D* body_a = data_->rigid_body_3d_or_ground(spec.a.body, user, fix);
+  const detail::RigidBody3D* body_b = data_->rigid_body_3d_or_ground(spec.b.body, user, fix);
   const double axis_length = spec.axis.norm();
   if (!(axis_length > 0.0) || !spec.axis.allFinite()) {
     throw Error("the axis must be a finite, non-zero vector", user, "give e.g. axis = [0, 0, 1]");
@@ -181,22 +169,14 @@ int Model::add_revolute_joint_3d(const RevoluteJoint3DSpec& spec) {
 
 int Model::add_fixed_joint_3d(const FixedJoint3DSpec& spec) {
   const int first = constraint_count();
-  const std::string user = joint_name("fixed joint", spec.name, first);
+  const std::string user = element_name("fixed joint", spec.name, first);
   if (spec.body == kGround) {
     throw Error("the fixed body is the ground", user, "fix a RigidBody3D to the ground or a body");
   }
   data_->check_pair({spec.body, {}}, {spec.to, {}}, user);
-  auto rigid = [&](BodyId body) -> const detail::RigidBody3D* {
-    if (body == kGround) return nullptr;
-    const auto* r = dynamic_cast<const detail::RigidBody3D*>(&data_->spatial_body(body, user));
-    if (r == nullptr) {
-      throw Error("'" + data_->bodies[body]->name() + "' is not a rigid body", user,
-                  "fix RigidBody3D bodies (or to the ground)");
-    }
-    return r;
-  };
-  const detail::RigidBody3D* fixed = rigid(spec.body);
-  const detail::RigidBody3D* holder = rigid(spec.to);
+  const std::string fix = "fix RigidBody3D bodies (or to the ground)";
+  const detail::RigidBody3D* fixed = data_->rigid_body_3d_or_ground(spec.body, user, fix);
+  const detail::RigidBody3D* holder = data_->rigid_body_3d_or_ground(spec.to, user, fix);
   // The body's centre and axes in the frame of `to` (the world for the ground).
   const Eigen::Matrix3d to_frame =
       holder != nullptr ? Eigen::Matrix3d(holder->spec().orientation) : Eigen::Matrix3d::Identity();
@@ -235,8 +215,11 @@ int Model::add_cable_surface_marker(BodyId cable_id, double s, double angle, dou
                 "give a finite angle and a non-negative radius");
   }
   const int marker = add_spatial_marker(cable_id, {s, 0.0, 0.0});
+  // The vertex's direction from the centre line in the straight initial cable, once.
+  const AncfCableSpec& spec = cable(cable_id);
+  const auto [n1, n2] = normals(spec.end - spec.start);
   data_->markers[marker].tube_radius = radius;
-  data_->markers[marker].tube_angle = angle;
+  data_->markers[marker].tube_offset = std::cos(angle) * n1 + std::sin(angle) * n2;
   return marker;
 }
 
@@ -271,7 +254,7 @@ Eigen::Matrix<double, 6, 1> Model::spatial_joint_reaction(const State& state, in
 
 int Model::add_spatial_distance_constraint(const SpatialPointSpec& a, const SpatialPointSpec& b,
                                            std::optional<double> length, const std::string& name) {
-  const std::string user = joint_name("distance constraint", name, constraint_count());
+  const std::string user = element_name("distance constraint", name, constraint_count());
   const detail::SpatialPoint pa = data_->spatial_point(a, user);
   const detail::SpatialPoint pb = data_->spatial_point(b, user);
   data_->check_pair({a.body, {}}, {b.body, {}}, user);
@@ -288,12 +271,8 @@ int Model::add_spatial_distance_constraint(const SpatialPointSpec& a, const Spat
 
 int Model::add_spatial_point_force(const SpatialPointForceSpec& spec) {
   const int index = force_element_count();
-  const std::string user = joint_name("point force", spec.name, index);
-  if (spec.point.body == kGround) {
-    throw Error("the point is on the ground, where a force does nothing", user,
-                "apply the force to a body");
-  }
-  if (!spec.force) throw Error("no force function", user, "give force(t)");
+  const std::string user = element_name("point force", spec.name, index);
+  detail::check_time_load(spec.point.body == kGround, static_cast<bool>(spec.force), false, user);
   add_force_element(std::make_unique<detail::SpatialPointForce>(
       user, data_->spatial_point(spec.point, user), spec.force));
   return index;
@@ -301,7 +280,7 @@ int Model::add_spatial_point_force(const SpatialPointForceSpec& spec) {
 
 int Model::add_spatial_spring_damper(const SpatialSpringDamperSpec& spec) {
   const int index = force_element_count();
-  const std::string user = joint_name("spring-damper", spec.name, index);
+  const std::string user = element_name("spring-damper", spec.name, index);
   const detail::SpatialPoint a = data_->spatial_point(spec.a, user);
   const detail::SpatialPoint b = data_->spatial_point(spec.b, user);
   data_->check_pair({spec.a.body, {}}, {spec.b.body, {}}, user);
@@ -315,12 +294,8 @@ int Model::add_spatial_spring_damper(const SpatialSpringDamperSpec& spec) {
 
 int Model::add_spatial_torque(const SpatialTorqueSpec& spec) {
   const int index = force_element_count();
-  const std::string user = joint_name("torque", spec.name, index);
-  if (spec.body == kGround) {
-    throw Error("the torque acts on the ground, where it does nothing", user,
-                "apply the torque to a body");
-  }
-  if (!spec.torque) throw Error("no torque function", user, "give torque(t)");
+  const std::string user = element_name("torque", spec.name, index);
+  detail::check_time_load(spec.body == kGround, static_cast<bool>(spec.torque), true, user);
   const auto& body = data_->spatial_body(spec.body, user);
   if (dynamic_cast<const detail::RigidBody3D*>(&body) == nullptr) {
     throw Error("'" + body.name() + "' is not a spatial rigid body", user,
@@ -402,7 +377,7 @@ Eigen::Vector3d Model::spatial_marker_position(const State& state, int marker) c
   data_->check_marker(marker);
   const detail::Marker& m = data_->markers[marker];
   if (m.body == kGround) return m.spatial_local;
-  const auto& body = data_->spatial_body(m.body, "a marker");
+  const auto& body = *data_->as_spatial(m.body);
   const auto q = data_->segment(state.q, m.body);
   const Eigen::Vector3d centre = body.spatial_position(q, m.spatial_local);
   if (m.tube_radius == 0.0) return centre;
@@ -411,8 +386,7 @@ Eigen::Vector3d Model::spatial_marker_position(const State& state, int marker) c
   const auto& cable = dynamic_cast<const detail::AncfCable3D&>(body);
   const Eigen::Vector3d t0 = (cable.spec().end - cable.spec().start).normalized();
   const Eigen::Vector3d t = cable.tangent(q, m.spatial_local.x());
-  const auto [n1, n2] = normals(t0);
-  const Eigen::Vector3d offset = std::cos(m.tube_angle) * n1 + std::sin(m.tube_angle) * n2;
+  const Eigen::Vector3d& offset = m.tube_offset;
   const Eigen::Vector3d w = t0.cross(t);
   const double c = t0.dot(t);
   const Eigen::Vector3d turned = c * offset + w.cross(offset) + w * w.dot(offset) / (1.0 + c);
@@ -423,9 +397,8 @@ Eigen::Vector3d Model::spatial_marker_velocity(const State& state, int marker) c
   data_->check_marker(marker);
   const detail::Marker& m = data_->markers[marker];
   if (m.body == kGround) return Eigen::Vector3d::Zero();
-  return data_->spatial_body(m.body, "a marker")
-      .spatial_velocity(data_->segment(state.q, m.body), data_->segment(state.v, m.body),
-                        m.spatial_local);
+  return data_->as_spatial(m.body)->spatial_velocity(
+      data_->segment(state.q, m.body), data_->segment(state.v, m.body), m.spatial_local);
 }
 
 const Eigen::Vector3d& Model::spatial_marker_local_coordinates(int marker) const {
@@ -438,7 +411,7 @@ Eigen::MatrixXd Model::spatial_marker_jacobian(const Eigen::VectorXd& q, int mar
   Eigen::MatrixXd jacobian = Eigen::MatrixXd::Zero(3, coordinate_count());
   const detail::Marker& m = data_->markers[marker];
   if (m.body == kGround) return jacobian;
-  const auto& body = data_->spatial_body(m.body, "a marker");
+  const auto& body = *data_->as_spatial(m.body);
   body.spatial_position_jacobian(
       data_->segment(q, m.body), m.spatial_local,
       jacobian.middleCols(data_->offsets[m.body], body.coordinate_count()));

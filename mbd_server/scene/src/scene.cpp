@@ -20,6 +20,7 @@ namespace fsi::scene {
 namespace {
 
 namespace fs = std::filesystem;
+using detail::coordinate_of;
 
 ParameterSpec with_default(ParameterSpec p, Value value) {
   p.default_value = std::move(value);
@@ -383,12 +384,6 @@ BlockSpec make_schema() {
                           1;
   root.blocks.insert(after_beam, spatial.begin(), spatial.end());
   return root;
-}
-
-mbd::Coordinate coordinate_of(const std::string& text) {
-  if (text == "x") return mbd::Coordinate::X;
-  if (text == "y") return mbd::Coordinate::Y;
-  return mbd::Coordinate::Angle;  // "angle" or "torque"
 }
 
 std::string format_exact(double value) {
@@ -986,6 +981,21 @@ Scene build_scene(const std::string& path, const std::vector<Override>& override
   } else {
     detail::build_elements(root, elements);
   }
+  // The joint or spring a sensor names; a problem at its key (and nullptr) when there is none.
+  auto named_joint = [&](const View& s) -> const detail::NamedJoint* {
+    const auto found = named.joints.find(s.string("joint"));
+    if (found != named.joints.end()) return &found->second;
+    problems.push_back({s.location("joint"), "no joint named '" + s.string("joint") + "'",
+                        "give the joint block name = \"" + s.string("joint") + "\""});
+    return nullptr;
+  };
+  auto named_spring = [&](const View& s, const std::string& block) -> std::optional<int> {
+    const auto found = named.force_elements.find(s.string("element"));
+    if (found != named.force_elements.end() && found->second >= 0) return found->second;
+    problems.push_back({s.location("element"), "no spring named '" + s.string("element") + "'",
+                        "give the " + block + " name = \"" + s.string("element") + "\""});
+    return std::nullopt;
+  };
   // A sensor of a 3D scene: components x, y, z of the centre of mass (position, velocity of a
   // RigidBody3D or PointMass) or of a force (fluid_force on any spatial body, joint_force on
   // its body_a, total_fluid_force), or an energy.
@@ -1062,23 +1072,14 @@ Scene build_scene(const std::string& path, const std::vector<Override>& override
       return;
     }
     if (spring) {
-      const auto found = named.force_elements.find(s.string("element"));
-      if (found == named.force_elements.end() || found->second < 0) {
-        problems.push_back(
-            {s.location("element"), "no spring named '" + s.string("element") + "'",
-             "give the SpringDamper3D block name = \"" + s.string("element") + "\""});
-        return;
-      }
-      sensor.force_element = found->second;
+      const std::optional<int> element = named_spring(s, "SpringDamper3D block");
+      if (!element) return;
+      sensor.force_element = *element;
     }
     if (sensor.type == SensorType::JointForce) {
-      const auto found = named.joints.find(s.string("joint"));
-      if (found == named.joints.end()) {
-        problems.push_back({s.location("joint"), "no joint named '" + s.string("joint") + "'",
-                            "give the joint block name = \"" + s.string("joint") + "\""});
-        return;
-      }
-      sensor.body = found->second.body;
+      const detail::NamedJoint* joint = named_joint(s);
+      if (joint == nullptr) return;
+      sensor.body = joint->body;
       if (sensor.body == mbd::kGround || model.is_cable(sensor.body)) {
         problems.push_back(
             {s.location("joint"),
@@ -1087,8 +1088,8 @@ Scene build_scene(const std::string& path, const std::vector<Override>& override
              "FixedJoint3D)"});
         return;
       }
-      sensor.first_row = found->second.first_row;
-      sensor.rows = found->second.rows;
+      sensor.first_row = joint->first_row;
+      sensor.rows = joint->rows;
     }
     for (const auto& other : scene.sensors) {
       if (other.name == sensor.name) {
@@ -1223,13 +1224,9 @@ Scene build_scene(const std::string& path, const std::vector<Override>& override
         return;
       }
       if (sensor.type == SensorType::JointForce) {
-        const auto found = named.joints.find(s.string("joint"));
-        if (found == named.joints.end()) {
-          problems.push_back({s.location("joint"), "no joint named '" + s.string("joint") + "'",
-                              "give the joint block name = \"" + s.string("joint") + "\""});
-          return;
-        }
-        sensor.body = found->second.body;
+        const detail::NamedJoint* joint = named_joint(s);
+        if (joint == nullptr) return;
+        sensor.body = joint->body;
         if (sensor.body != mbd::kGround && model.is_beam(sensor.body)) {
           problems.push_back({s.location("joint"),
                               "joint '" + s.string("joint") +
@@ -1239,19 +1236,14 @@ Scene build_scene(const std::string& path, const std::vector<Override>& override
                               "a fluid_force sensor"});
           return;
         }
-        sensor.first_row = found->second.first_row;
-        sensor.rows = found->second.rows;
+        sensor.first_row = joint->first_row;
+        sensor.rows = joint->rows;
       }
       if (sensor.type == SensorType::SpringForce) {
-        const auto found = named.force_elements.find(s.string("element"));
-        if (found == named.force_elements.end() || found->second < 0) {
-          problems.push_back({s.location("element"),
-                              "no spring named '" + s.string("element") + "'",
-                              "give the spring block name = \"" + s.string("element") + "\""});
-          return;
-        }
-        sensor.force_element = found->second;
-        if (named.rotational[found->first]) sensor.unit = "N m/m";
+        const std::optional<int> element = named_spring(s, "spring block");
+        if (!element) return;
+        sensor.force_element = *element;
+        if (named.rotational[s.string("element")]) sensor.unit = "N m/m";
       }
       scene.sensors.push_back(sensor);
     });

@@ -30,7 +30,14 @@ std::optional<double> optional_number(const View& element, std::string_view key)
   return element.number(key);
 }
 
-// An expression of the scene compiled for the model; a mistake becomes a problem at its key.
+}  // namespace
+
+mbd::Coordinate coordinate_of(const std::string& text) {
+  if (text == "x") return mbd::Coordinate::X;
+  if (text == "y") return mbd::Coordinate::Y;
+  return mbd::Coordinate::Angle;  // "angle" or "torque"
+}
+
 RuntimeExpression expression(const View& element, std::string_view key,
                              const std::vector<std::string>& variables) {
   try {
@@ -39,8 +46,6 @@ RuntimeExpression expression(const View& element, std::string_view key,
     throw Error(error.fault(), element.location(key).text(), error.remedy());
   }
 }
-
-}  // namespace
 
 ParameterSpec element_name_spec() {
   return text("name", "unique name for sensors and messages (default: kind and index)").optional();
@@ -230,11 +235,6 @@ void build_elements(const View& root, ElementBuilder& builder) {
       builder.placed(p, [&] { model.add_point_force(spec); });
     });
   }
-  auto coordinate_of = [](const std::string& text) {
-    return text == "x"   ? mbd::Coordinate::X
-           : text == "y" ? mbd::Coordinate::Y
-                         : mbd::Coordinate::Angle;
-  };
   for (const View& p : root.blocks("PrescribedMotion")) {
     builder.guard(p.location(), [&] {
       mbd::PrescribedMotionSpec spec;

@@ -46,6 +46,15 @@ struct ElementBuilder {
   double end_time = 0.0;
 };
 
+class RuntimeExpression;
+
+// The coordinate a scene names: "x", "y", or the angle ("angle", or "torque" for forces).
+mbd::Coordinate coordinate_of(const std::string& text);
+// An expression of the scene compiled for the model in the named variables; a mistake becomes a
+// problem at its key.
+RuntimeExpression expression(const View& element, std::string_view key,
+                             const std::vector<std::string>& variables);
+
 // The new blocks, in the order they appear in docs/parameters.md.
 std::vector<BlockSpec> element_block_specs();
 // The optional `name` of an element block, the same declaration everywhere.

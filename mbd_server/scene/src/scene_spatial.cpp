@@ -17,15 +17,6 @@ ParameterSpec point_spec(const std::string& side, const std::string& where) {
       .with_default({0.0, 0.0, 0.0});
 }
 
-// An expression of the scene compiled for the model; a mistake becomes a problem at its key.
-RuntimeExpression time_expression(const View& element, std::string_view key) {
-  try {
-    return RuntimeExpression(element.string(key), {"t"});
-  } catch (const Error& error) {
-    throw Error(error.fault(), element.location(key).text(), error.remedy());
-  }
-}
-
 // body_a/point_a and body_b/point_b of a spatial two-point element (body_b absent: the world).
 std::vector<ParameterSpec> two_spatial_points(std::vector<ParameterSpec> more) {
   std::vector<ParameterSpec> parameters = {
@@ -372,9 +363,9 @@ void build_spatial_connectors(const View& root, ElementBuilder& builder) {
       mbd::SpatialPointForceSpec spec;
       spec.name = name_of(p);
       spec.point = {builder.find_body(p, "body"), vector3(p, "point")};
-      const RuntimeExpression x = time_expression(p, "force_x");
-      const RuntimeExpression y = time_expression(p, "force_y");
-      const RuntimeExpression z = time_expression(p, "force_z");
+      const RuntimeExpression x = expression(p, "force_x", {"t"});
+      const RuntimeExpression y = expression(p, "force_y", {"t"});
+      const RuntimeExpression z = expression(p, "force_z", {"t"});
       spec.force = [x, y, z](double t) { return Eigen::Vector3d(x(t), y(t), z(t)); };
       builder.placed(p, [&] { model.add_spatial_point_force(spec); });
     });
@@ -384,9 +375,9 @@ void build_spatial_connectors(const View& root, ElementBuilder& builder) {
       mbd::SpatialTorqueSpec spec;
       spec.name = name_of(p);
       spec.body = builder.find_body(p, "body");
-      const RuntimeExpression x = time_expression(p, "torque_x");
-      const RuntimeExpression y = time_expression(p, "torque_y");
-      const RuntimeExpression z = time_expression(p, "torque_z");
+      const RuntimeExpression x = expression(p, "torque_x", {"t"});
+      const RuntimeExpression y = expression(p, "torque_y", {"t"});
+      const RuntimeExpression z = expression(p, "torque_z", {"t"});
       spec.torque = [x, y, z](double t) { return Eigen::Vector3d(x(t), y(t), z(t)); };
       builder.placed(p, [&] { model.add_spatial_torque(spec); });
     });
