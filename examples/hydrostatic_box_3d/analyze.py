@@ -12,23 +12,13 @@ Exit status 1 if --weight-tolerance is given and |ratio - 1| exceeds it, if part
 or if the joint check exceeds --lambda-tolerance.
 """
 import argparse
-import csv
 import json
 import math
 import os
 import sys
 
-
-def read_sensors(path):
-    with open(path) as handle:
-        rows = [line for line in handle if not line.startswith("#")]
-    reader = csv.reader(rows)
-    header = next(reader)
-    columns = {name: [] for name in header}
-    for row in reader:
-        for name, value in zip(header, row):
-            columns[name].append(float(value))
-    return columns
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from fsi_results import read_sensors  # noqa: E402 (examples/fsi_results.py)
 
 
 def main():

@@ -3,23 +3,14 @@
 closed forms in README.md: the block on the 30-degree incline, the torsion wheel, the valve on
 its one-sided spring actor, and the conservation of kinetic + potential energy.
 Prints one line per check; exit status 1 if one fails."""
-import csv
 import math
+import os
 import sys
 
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from fsi_results import read_sensors  # noqa: E402 (examples/fsi_results.py)
+
 G = 9.81
-
-
-def read_sensors(path):
-    with open(path) as handle:
-        rows = [line for line in handle if not line.startswith("#")]
-    reader = csv.reader(rows)
-    header = next(reader)
-    columns = {name: [] for name in header}
-    for row in reader:
-        for name, value in zip(header, row):
-            columns[name].append(float(value))
-    return columns
 
 
 def main():
