@@ -153,32 +153,7 @@ void layout(auto& io, MessageOf<Goodbye> auto& m) {
   io.scalar("seconds_total", m.seconds_total);
 }
 
-// ---- the three walkers ----
-
-class SizeCounter {
- public:
-  template <class T>
-  void scalar(const char*, const T&) {
-    size_ += sizeof(T);
-  }
-  void text(const char*, const std::string& value) {
-    size_ += sizeof(std::uint32_t) + value.size();
-  }
-  template <class T>
-  void array(const char*, const std::vector<T>& values) {
-    size_ += sizeof(std::uint64_t) + values.size() * sizeof(T);
-  }
-  template <class T, class Each>
-  void records(const char*, const std::vector<T>& items, std::size_t, Each&& each) {
-    size_ += sizeof(std::uint64_t);
-    for (const T& item : items)
-      each(*this, item);
-  }
-  std::size_t size() const { return size_; }
-
- private:
-  std::size_t size_ = 0;
-};
+// ---- the walkers: byte counters, Writer, Gatherer, Reader ----
 
 class Writer {
  public:
@@ -246,20 +221,21 @@ bool referenced(std::size_t bytes) {
   return kStorageIsWireFormat && bytes >= kGatherMinimumBytes;
 }
 
-// The bytes that Gatherer copies into GatheredPayload::encoded.
-class GatherCounter {
+// Counts the bytes of a message's encoding: all of them (SizeCounter), or only those a Gatherer
+// copies into GatheredPayload::encoded, leaving out what it references in place (GatherCounter).
+template <bool kLeaveOutReferenced>
+class ByteCounter {
  public:
   template <class T>
   void scalar(const char*, const T&) {
     size_ += sizeof(T);
   }
   void text(const char*, const std::string& value) {
-    size_ += sizeof(std::uint32_t) + (referenced(value.size()) ? 0 : value.size());
+    size_ += sizeof(std::uint32_t) + copied(value.size());
   }
   template <class T>
   void array(const char*, const std::vector<T>& values) {
-    const std::size_t bytes = values.size() * sizeof(T);
-    size_ += sizeof(std::uint64_t) + (referenced(bytes) ? 0 : bytes);
+    size_ += sizeof(std::uint64_t) + copied(values.size() * sizeof(T));
   }
   template <class T, class Each>
   void records(const char*, const std::vector<T>& items, std::size_t, Each&& each) {
@@ -270,8 +246,13 @@ class GatherCounter {
   std::size_t size() const { return size_; }
 
  private:
+  static std::size_t copied(std::size_t bytes) {
+    return kLeaveOutReferenced && referenced(bytes) ? 0 : bytes;
+  }
   std::size_t size_ = 0;
 };
+using SizeCounter = ByteCounter<false>;
+using GatherCounter = ByteCounter<true>;
 
 class Gatherer {
  public:
@@ -664,22 +645,11 @@ Message decode_as_new(PayloadSource& source) {
 
 std::string name(ErrorCode code) {
   switch (code) {
-    case ErrorCode::VersionMismatch:
-      return "VersionMismatch";
-    case ErrorCode::MalformedMessage:
-      return "MalformedMessage";
-    case ErrorCode::UnexpectedMessage:
-      return "UnexpectedMessage";
-    case ErrorCode::SetupFailed:
-      return "SetupFailed";
-    case ErrorCode::LiggghtsError:
-      return "LiggghtsError";
-    case ErrorCode::PeerAborted:
-      return "PeerAborted";
-    case ErrorCode::Internal:
-      return "Internal";
-    case ErrorCode::AuthenticationFailed:
-      return "AuthenticationFailed";
+#define FSI_PROTOCOL_ERROR_CODE_NAME(enumerator, value) \
+  case ErrorCode::enumerator:                           \
+    return #enumerator;
+    FSI_PROTOCOL_ERROR_CODES(FSI_PROTOCOL_ERROR_CODE_NAME)
+#undef FSI_PROTOCOL_ERROR_CODE_NAME
   }
   return "code " + std::to_string(static_cast<std::uint32_t>(code));
 }

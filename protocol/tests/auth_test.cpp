@@ -11,17 +11,16 @@
 #include <string>
 #include <vector>
 
+#include "error_text.hpp"
 #include "fsi/protocol/auth.hpp"
 
 namespace fsi::protocol {
 namespace {
 
+using namespace test;
+
 using namespace std::chrono_literals;
 namespace fs = std::filesystem;
-
-bool contains(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
-}
 
 std::string hex(const AuthBytes& bytes) {
   std::string text;

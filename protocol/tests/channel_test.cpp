@@ -14,32 +14,19 @@
 #include <thread>
 #include <vector>
 
+#include "error_text.hpp"
 #include "fsi/protocol/channel.hpp"
 
 namespace fsi::protocol {
 namespace {
+
+using namespace test;
 
 using namespace std::chrono_literals;
 using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-bool contains(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
-}
-
-// What `action` throws as an Error (a ProtocolError unless told otherwise); if it returns, a text
-// that no expectation matches, so the test fails showing it.
-template <class Error = ProtocolError>
-std::string error_of(auto&& action) {
-  try {
-    action();
-  } catch (const Error& error) {
-    return error.what();
-  }
-  return "(no error: the call returned)";
 }
 
 // A port nobody listens on (the listener that found it is gone again).

@@ -16,11 +16,14 @@
 #include <vector>
 
 #include "decoders.hpp"
+#include "error_text.hpp"
 #include "fsi/protocol/frame.hpp"
 #include "fsi/protocol/messages.hpp"
 
 namespace fsi::protocol {
 namespace {
+
+using namespace test;
 
 struct Listed {
   MessageType type;
@@ -42,28 +45,6 @@ bool is_listed(std::uint16_t id) {
     if (static_cast<std::uint16_t>(entry.type) == id) return true;
   }
   return false;
-}
-
-std::string decode_error(MessageType type, std::span<const std::byte> payload) {
-  try {
-    decode(type, payload);
-  } catch (const ProtocolError& error) {
-    return error.what();
-  }
-  return "(no error)";
-}
-
-std::string frame_error(std::span<const std::byte> frame) {
-  try {
-    decode_frame(frame);
-  } catch (const ProtocolError& error) {
-    return error.what();
-  }
-  return "(no error)";
-}
-
-bool contains(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
 }
 
 TEST(ProtocolMessageList, TheVariantHoldsTheListedTypesInListOrder) {

@@ -27,15 +27,21 @@ inline constexpr std::uint32_t kCapabilityAuthentication = 1u << 0;
 // 1.1: the sender understands Heartbeat frames (the peer may send them while it computes).
 inline constexpr std::uint32_t kCapabilityHeartbeat = 1u << 1;
 
+// The codes of an Error message (docs/protocol.md §7) as X(enumerator, value); AuthenticationFailed
+// came with 1.1.
+#define FSI_PROTOCOL_ERROR_CODES(X) \
+  X(VersionMismatch, 1)             \
+  X(MalformedMessage, 2)            \
+  X(UnexpectedMessage, 3)           \
+  X(SetupFailed, 4)                 \
+  X(LiggghtsError, 5)               \
+  X(PeerAborted, 6)                 \
+  X(Internal, 7)                    \
+  X(AuthenticationFailed, 8)
 enum class ErrorCode : std::uint32_t {
-  VersionMismatch = 1,
-  MalformedMessage = 2,
-  UnexpectedMessage = 3,
-  SetupFailed = 4,
-  LiggghtsError = 5,
-  PeerAborted = 6,
-  Internal = 7,
-  AuthenticationFailed = 8,  // 1.1
+#define FSI_PROTOCOL_ERROR_CODE(enumerator, value) enumerator = value,
+  FSI_PROTOCOL_ERROR_CODES(FSI_PROTOCOL_ERROR_CODE)
+#undef FSI_PROTOCOL_ERROR_CODE
 };
 // "VersionMismatch", ..., or "code 42" for codes this version does not know.
 std::string name(ErrorCode code);
