@@ -63,8 +63,9 @@ TEST(ProtocolMessageList, TheVariantHoldsTheListedTypesInListOrder) {
   EXPECT_EQ(ids.size(), listed().size()) << "two entries share a type id";
 }
 
-// Every listed type is known, named after its enumerator, accepted in a frame and decoded as its
-// own struct; every id of the 65536 outside the list is refused with the existing messages.
+// Every listed type is known, named after its enumerator, accepted in a frame header and has a
+// decoder (which struct it decodes to, the seed test below checks); every id of the 65536 outside
+// the list is refused with the existing messages.
 TEST(ProtocolMessageList, EveryIdIsKnownExactlyWhenListed) {
   for (const Listed& entry : listed()) {
     EXPECT_TRUE(is_known(entry.type)) << entry.enumerator;
