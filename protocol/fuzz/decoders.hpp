@@ -1,12 +1,14 @@
 #pragma once
 // The table both protocol fuzz targets and the seed writer share: every message type with its
-// decoder, in a fixed order. The message target's first input byte picks the entry (modulo the
-// table size), so a seed for entry i starts with the byte i.
+// decoder, in the order of message_list.hpp. The message target's first input byte picks the entry
+// (modulo the table size), so a seed for entry i starts with the byte i.
 
 #include <array>
 #include <cstddef>
 #include <cstdio>
 #include <span>
+#include <type_traits>
+#include <variant>
 #include <vector>
 
 #include "fsi/protocol/messages.hpp"
@@ -27,25 +29,12 @@ struct Decoder {
   DecodeAndReencode run;
 };
 
-inline constexpr std::array<Decoder, 17> kDecoders{{
-    {MessageType::Hello, &decode_and_reencode<Hello>},
-    {MessageType::Welcome, &decode_and_reencode<Welcome>},
-    {MessageType::Error, &decode_and_reencode<ErrorMessage>},
-    {MessageType::AuthChallenge, &decode_and_reencode<AuthChallenge>},
-    {MessageType::AuthResponse, &decode_and_reencode<AuthResponse>},
-    {MessageType::AuthProof, &decode_and_reencode<AuthProof>},
-    {MessageType::Heartbeat, &decode_and_reencode<Heartbeat>},
-    {MessageType::Setup, &decode_and_reencode<Setup>},
-    {MessageType::Mesh, &decode_and_reencode<Mesh>},
-    {MessageType::Particles, &decode_and_reencode<Particles>},
-    {MessageType::Ready, &decode_and_reencode<Ready>},
-    {MessageType::Step, &decode_and_reencode<Step>},
-    {MessageType::Forces, &decode_and_reencode<Forces>},
-    {MessageType::SnapshotRequest, &decode_and_reencode<SnapshotRequest>},
-    {MessageType::Snapshot, &decode_and_reencode<Snapshot>},
-    {MessageType::Shutdown, &decode_and_reencode<Shutdown>},
-    {MessageType::Goodbye, &decode_and_reencode<Goodbye>},
-}};
+// One entry per message type, in the order of message_list.hpp.
+inline constexpr auto kDecoders =
+    []<class... Messages>(std::type_identity<std::variant<Messages...>>) {
+      return std::array<Decoder, sizeof...(Messages)>{
+          {{Messages::kType, &decode_and_reencode<Messages>}...}};
+    }(std::type_identity<Message>{});
 
 // Per decoder: inputs it accepted and inputs it rejected with a ProtocolError. Printed at exit as
 // "fuzz-reach: <type> accepted=N rejected=M"; scripts/run-fuzzers fails a run in which any

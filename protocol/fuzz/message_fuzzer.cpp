@@ -1,7 +1,7 @@
-// libFuzzer target: every message decoder. Input: one byte choosing the decoder (modulo the 17
-// types, see decoders.hpp), then the payload. A decoder must either accept the payload, and then
-// re-encoding the message gives back the same bytes, or throw ProtocolError; anything else (a
-// crash, a sanitizer report, another exception, a mismatch) is a finding.
+// libFuzzer target: every message decoder. Input: one byte choosing the decoder (modulo the number
+// of message types, see decoders.hpp), then the payload. A decoder must either accept the payload,
+// and then re-encoding the message gives back the same bytes, or throw ProtocolError; anything else
+// (a crash, a sanitizer report, another exception, a mismatch) is a finding.
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>

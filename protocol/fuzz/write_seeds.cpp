@@ -9,6 +9,7 @@
 #include <fstream>
 #include <limits>
 #include <string>
+#include <type_traits>
 
 #include "decoders.hpp"
 
@@ -28,63 +29,70 @@ AuthBytes nonce(std::uint8_t start) {
   return bytes;
 }
 
-Message seed(MessageType type) {
-  switch (type) {
-    case MessageType::Hello:
-      return Hello{"0.1.0", "host-a", 2, kNoCapabilities};
-    case MessageType::Welcome:
-      return Welcome{0, kNoCapabilities, "0.1.0", "static_tank"};
-    case MessageType::Error:
-      return ErrorMessage{ErrorCode::SetupFailed, "script 1 failed: unknown command"};
-    case MessageType::AuthChallenge:
-      return AuthChallenge{nonce(1)};
-    case MessageType::AuthResponse:
-      return AuthResponse{nonce(2), nonce(3)};
-    case MessageType::AuthProof:
-      return AuthProof{nonce(4)};
-    case MessageType::Heartbeat:
-      return Heartbeat{};
-    case MessageType::Setup:
-      return Setup{2,
-                   1e-5,
-                   100,
-                   {{"SPHdensity", "1000"}, {"h", "0.0013"}},
-                   "script1.in",
-                   "atom_style sph\nvariable x equal 1\n",
-                   "script2.in",
-                   "run 0\n"};
-    case MessageType::Mesh:
-      return Mesh{2,
-                  2,
-                  1,
-                  0.001,
-                  {0.0, 0.0, 1.0, 0.0, 1.0, 1.0},
-                  {0.0, -0.0, kSubnormal, 0, 0, 0},
-                  {0, 1, 1, 2}};
-    case MessageType::Particles:
-      return Particles{3, 1, 1e-6, 1000.0, {0.1, 0.2, 0.3, 0.4, 0.5, 0.6}, {0, 0, 0, 0, 0, -1}};
-    case MessageType::Ready:
-      return Ready{1200, "LIGGGHTS 3.8.0", 0.5, 12.25};
-    case MessageType::Step:
-      return Step{7, 7e-5, 1e-5, {1.0, -0.0, kInf, -kInf}, {kNaN, kSubnormal, -kSubnormal, 0.0}};
-    case MessageType::Forces: {
-      Forces forces{7, {0.5, -0.5, 1e300, -1e-300}, {}};
-      forces.diagnostics.force_on_fluid = {1.0, 2.0, 0.0};
-      forces.diagnostics.particles_in_range = 12;
-      forces.diagnostics.particle_count = 1200;
-      return forces;
-    }
-    case MessageType::SnapshotRequest:
-      return SnapshotRequest{42};
-    case MessageType::Snapshot:
-      return Snapshot{42,           4.2e-4,       2,          {5, 9}, {0.1, 0.2, 0.3, 0.4},
-                      {0, 0, 0, 0}, {1000, 1001}, {0.0, 12.5}};
-    case MessageType::Shutdown:
-      return Shutdown{"end time reached"};
-    case MessageType::Goodbye:
-      return Goodbye{100, 3.5};
-  }
-  throw ProtocolError("no seed for " + name(type), "write_seeds", "add one");
+// One seed per message type; a type of message_list.hpp without one here does not compile.
+Hello seed(std::type_identity<Hello>) {
+  return {"0.1.0", "host-a", 2, kNoCapabilities};
+}
+Welcome seed(std::type_identity<Welcome>) {
+  return {0, kNoCapabilities, "0.1.0", "static_tank"};
+}
+ErrorMessage seed(std::type_identity<ErrorMessage>) {
+  return {ErrorCode::SetupFailed, "script 1 failed: unknown command"};
+}
+AuthChallenge seed(std::type_identity<AuthChallenge>) {
+  return {nonce(1)};
+}
+AuthResponse seed(std::type_identity<AuthResponse>) {
+  return {nonce(2), nonce(3)};
+}
+AuthProof seed(std::type_identity<AuthProof>) {
+  return {nonce(4)};
+}
+Heartbeat seed(std::type_identity<Heartbeat>) {
+  return {};
+}
+Setup seed(std::type_identity<Setup>) {
+  return {2,
+          1e-5,
+          100,
+          {{"SPHdensity", "1000"}, {"h", "0.0013"}},
+          "script1.in",
+          "atom_style sph\nvariable x equal 1\n",
+          "script2.in",
+          "run 0\n"};
+}
+Mesh seed(std::type_identity<Mesh>) {
+  return {
+      2,           2, 1, 0.001, {0.0, 0.0, 1.0, 0.0, 1.0, 1.0}, {0.0, -0.0, kSubnormal, 0, 0, 0},
+      {0, 1, 1, 2}};
+}
+Particles seed(std::type_identity<Particles>) {
+  return {3, 1, 1e-6, 1000.0, {0.1, 0.2, 0.3, 0.4, 0.5, 0.6}, {0, 0, 0, 0, 0, -1}};
+}
+Ready seed(std::type_identity<Ready>) {
+  return {1200, "LIGGGHTS 3.8.0", 0.5, 12.25};
+}
+Step seed(std::type_identity<Step>) {
+  return {7, 7e-5, 1e-5, {1.0, -0.0, kInf, -kInf}, {kNaN, kSubnormal, -kSubnormal, 0.0}};
+}
+Forces seed(std::type_identity<Forces>) {
+  Forces forces{7, {0.5, -0.5, 1e300, -1e-300}, {}};
+  forces.diagnostics.force_on_fluid = {1.0, 2.0, 0.0};
+  forces.diagnostics.particles_in_range = 12;
+  forces.diagnostics.particle_count = 1200;
+  return forces;
+}
+SnapshotRequest seed(std::type_identity<SnapshotRequest>) {
+  return {42};
+}
+Snapshot seed(std::type_identity<Snapshot>) {
+  return {42, 4.2e-4, 2, {5, 9}, {0.1, 0.2, 0.3, 0.4}, {0, 0, 0, 0}, {1000, 1001}, {0.0, 12.5}};
+}
+Shutdown seed(std::type_identity<Shutdown>) {
+  return {"end time reached"};
+}
+Goodbye seed(std::type_identity<Goodbye>) {
+  return {100, 3.5};
 }
 
 void write(const fs::path& path, const std::vector<std::byte>& bytes) {
@@ -113,14 +121,15 @@ int main(int argc, char** argv) {
   const fs::path out = argv[1];
   fs::create_directories(out / "frame");
   fs::create_directories(out / "messages");
-  for (std::size_t i = 0; i < fuzz::kDecoders.size(); ++i) {
-    const MessageType type = fuzz::kDecoders[i].type;
+  // The message target picks its decoder by the first byte: the index in the list.
+  std::size_t index = 0;
+  for_each_message_type([&]<class T>(std::type_identity<T> type) {
     const std::vector<std::byte> payload = encode(seed(type));
-    write(out / "frame" / (file_name(type) + ".bin"), encode_frame(type, payload));
-    std::vector<std::byte> selected{static_cast<std::byte>(i)};
+    write(out / "frame" / (file_name(T::kType) + ".bin"), encode_frame(T::kType, payload));
+    std::vector<std::byte> selected{static_cast<std::byte>(index++)};
     selected.insert(selected.end(), payload.begin(), payload.end());
-    write(out / "messages" / (file_name(type) + ".bin"), selected);
-  }
+    write(out / "messages" / (file_name(T::kType) + ".bin"), selected);
+  });
   std::printf("write_seeds: %zu frames and %zu payloads in %s\n", fuzz::kDecoders.size(),
               fuzz::kDecoders.size(), out.c_str());
   return 0;

@@ -674,7 +674,7 @@ Message Channel::receive_message(std::optional<Milliseconds> timeout,
   return message;
 }
 
-template <class T>
+template <ProtocolMessage T>
 void Channel::expect_into(T& message, std::optional<Milliseconds> timeout) {
   Impl& impl = *impl_;
   const std::string waiting_for = name(T::kType);
@@ -690,23 +690,10 @@ void Channel::expect_into(T& message, std::optional<Milliseconds> timeout) {
   throw_unexpected(T::kType, other);
 }
 
-template void Channel::expect_into(Hello&, std::optional<Milliseconds>);
-template void Channel::expect_into(Welcome&, std::optional<Milliseconds>);
-template void Channel::expect_into(ErrorMessage&, std::optional<Milliseconds>);
-template void Channel::expect_into(AuthChallenge&, std::optional<Milliseconds>);
-template void Channel::expect_into(AuthResponse&, std::optional<Milliseconds>);
-template void Channel::expect_into(AuthProof&, std::optional<Milliseconds>);
-template void Channel::expect_into(Heartbeat&, std::optional<Milliseconds>);
-template void Channel::expect_into(Setup&, std::optional<Milliseconds>);
-template void Channel::expect_into(Mesh&, std::optional<Milliseconds>);
-template void Channel::expect_into(Particles&, std::optional<Milliseconds>);
-template void Channel::expect_into(Ready&, std::optional<Milliseconds>);
-template void Channel::expect_into(Step&, std::optional<Milliseconds>);
-template void Channel::expect_into(Forces&, std::optional<Milliseconds>);
-template void Channel::expect_into(SnapshotRequest&, std::optional<Milliseconds>);
-template void Channel::expect_into(Snapshot&, std::optional<Milliseconds>);
-template void Channel::expect_into(Shutdown&, std::optional<Milliseconds>);
-template void Channel::expect_into(Goodbye&, std::optional<Milliseconds>);
+#define FSI_PROTOCOL_INSTANTIATE_EXPECT(enumerator, message, id) \
+  template void Channel::expect_into(message&, std::optional<Milliseconds>);
+FSI_PROTOCOL_MESSAGES(FSI_PROTOCOL_INSTANTIATE_EXPECT)
+#undef FSI_PROTOCOL_INSTANTIATE_EXPECT
 
 void Channel::throw_unexpected(MessageType expected, const Message& received) const {
   const std::string where =

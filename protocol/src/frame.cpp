@@ -45,64 +45,21 @@ constexpr const char* kMatchingReleases = "use matching releases of fsi-server a
 
 std::string name(MessageType type) {
   switch (type) {
-    case MessageType::Hello:
-      return "Hello";
-    case MessageType::Welcome:
-      return "Welcome";
-    case MessageType::Error:
-      return "Error";
-    case MessageType::Setup:
-      return "Setup";
-    case MessageType::Mesh:
-      return "Mesh";
-    case MessageType::Particles:
-      return "Particles";
-    case MessageType::AuthChallenge:
-      return "AuthChallenge";
-    case MessageType::AuthResponse:
-      return "AuthResponse";
-    case MessageType::AuthProof:
-      return "AuthProof";
-    case MessageType::Heartbeat:
-      return "Heartbeat";
-    case MessageType::Ready:
-      return "Ready";
-    case MessageType::Step:
-      return "Step";
-    case MessageType::Forces:
-      return "Forces";
-    case MessageType::SnapshotRequest:
-      return "SnapshotRequest";
-    case MessageType::Snapshot:
-      return "Snapshot";
-    case MessageType::Shutdown:
-      return "Shutdown";
-    case MessageType::Goodbye:
-      return "Goodbye";
+#define FSI_PROTOCOL_NAME_CASE(enumerator, message, id) \
+  case MessageType::enumerator:                         \
+    return #enumerator;
+    FSI_PROTOCOL_MESSAGES(FSI_PROTOCOL_NAME_CASE)
+#undef FSI_PROTOCOL_NAME_CASE
   }
   return "unknown type " + hex16(static_cast<std::uint16_t>(type));
 }
 
 bool is_known(MessageType type) {
   switch (type) {
-    case MessageType::Hello:
-    case MessageType::Welcome:
-    case MessageType::Error:
-    case MessageType::AuthChallenge:
-    case MessageType::AuthResponse:
-    case MessageType::AuthProof:
-    case MessageType::Heartbeat:
-    case MessageType::Setup:
-    case MessageType::Mesh:
-    case MessageType::Particles:
-    case MessageType::Ready:
-    case MessageType::Step:
-    case MessageType::Forces:
-    case MessageType::SnapshotRequest:
-    case MessageType::Snapshot:
-    case MessageType::Shutdown:
-    case MessageType::Goodbye:
-      return true;
+#define FSI_PROTOCOL_KNOWN_CASE(enumerator, message, id) case MessageType::enumerator:
+    FSI_PROTOCOL_MESSAGES(FSI_PROTOCOL_KNOWN_CASE)
+#undef FSI_PROTOCOL_KNOWN_CASE
+    return true;
   }
   return false;
 }

@@ -153,32 +153,7 @@ void layout(auto& io, MessageOf<Goodbye> auto& m) {
   io.scalar("seconds_total", m.seconds_total);
 }
 
-// ---- the three walkers ----
-
-class SizeCounter {
- public:
-  template <class T>
-  void scalar(const char*, const T&) {
-    size_ += sizeof(T);
-  }
-  void text(const char*, const std::string& value) {
-    size_ += sizeof(std::uint32_t) + value.size();
-  }
-  template <class T>
-  void array(const char*, const std::vector<T>& values) {
-    size_ += sizeof(std::uint64_t) + values.size() * sizeof(T);
-  }
-  template <class T, class Each>
-  void records(const char*, const std::vector<T>& items, std::size_t, Each&& each) {
-    size_ += sizeof(std::uint64_t);
-    for (const T& item : items)
-      each(*this, item);
-  }
-  std::size_t size() const { return size_; }
-
- private:
-  std::size_t size_ = 0;
-};
+// ---- the walkers: byte counters, Writer, Gatherer, Reader ----
 
 class Writer {
  public:
@@ -246,20 +221,21 @@ bool referenced(std::size_t bytes) {
   return kStorageIsWireFormat && bytes >= kGatherMinimumBytes;
 }
 
-// The bytes that Gatherer copies into GatheredPayload::encoded.
-class GatherCounter {
+// Counts the bytes of a message's encoding: all of them (SizeCounter), or only those a Gatherer
+// copies into GatheredPayload::encoded, leaving out what it references in place (GatherCounter).
+template <bool kLeaveOutReferenced>
+class ByteCounter {
  public:
   template <class T>
   void scalar(const char*, const T&) {
     size_ += sizeof(T);
   }
   void text(const char*, const std::string& value) {
-    size_ += sizeof(std::uint32_t) + (referenced(value.size()) ? 0 : value.size());
+    size_ += sizeof(std::uint32_t) + copied(value.size());
   }
   template <class T>
   void array(const char*, const std::vector<T>& values) {
-    const std::size_t bytes = values.size() * sizeof(T);
-    size_ += sizeof(std::uint64_t) + (referenced(bytes) ? 0 : bytes);
+    size_ += sizeof(std::uint64_t) + copied(values.size() * sizeof(T));
   }
   template <class T, class Each>
   void records(const char*, const std::vector<T>& items, std::size_t, Each&& each) {
@@ -270,8 +246,13 @@ class GatherCounter {
   std::size_t size() const { return size_; }
 
  private:
+  static std::size_t copied(std::size_t bytes) {
+    return kLeaveOutReferenced && referenced(bytes) ? 0 : bytes;
+  }
   std::size_t size_ = 0;
 };
+using SizeCounter = ByteCounter<false>;
+using GatherCounter = ByteCounter<true>;
 
 class Gatherer {
  public:
@@ -548,18 +529,8 @@ bool is_variable_name(const std::string& text) {
   return true;
 }
 
-void check(const Reader&, const Hello&) {}
-void check(const Reader&, const Welcome&) {}
-void check(const Reader&, const ErrorMessage&) {}
-void check(const Reader&, const AuthChallenge&) {}
-void check(const Reader&, const AuthResponse&) {}
-void check(const Reader&, const AuthProof&) {}
-void check(const Reader&, const Heartbeat&) {}
-void check(const Reader&, const Ready&) {}
-void check(const Reader&, const Forces&) {}
-void check(const Reader&, const SnapshotRequest&) {}
-void check(const Reader&, const Shutdown&) {}
-void check(const Reader&, const Goodbye&) {}
+// Messages whose fields need no agreement among themselves; the overloads below check the others.
+void check(const Reader&, const ProtocolMessage auto&) {}
 
 void check(const Reader& in, const Setup& m) {
   check_dimension(in, m.dimension);
@@ -663,26 +634,22 @@ std::vector<std::byte> encode_message(const T& message) {
   return bytes;
 }
 
+template <class T>
+Message decode_as_new(PayloadSource& source) {
+  T message{};
+  decode_into(source, message);
+  return message;
+}
+
 }  // namespace
 
 std::string name(ErrorCode code) {
   switch (code) {
-    case ErrorCode::VersionMismatch:
-      return "VersionMismatch";
-    case ErrorCode::MalformedMessage:
-      return "MalformedMessage";
-    case ErrorCode::UnexpectedMessage:
-      return "UnexpectedMessage";
-    case ErrorCode::SetupFailed:
-      return "SetupFailed";
-    case ErrorCode::LiggghtsError:
-      return "LiggghtsError";
-    case ErrorCode::PeerAborted:
-      return "PeerAborted";
-    case ErrorCode::Internal:
-      return "Internal";
-    case ErrorCode::AuthenticationFailed:
-      return "AuthenticationFailed";
+#define FSI_PROTOCOL_ERROR_CODE_NAME(enumerator, value) \
+  case ErrorCode::enumerator:                           \
+    return #enumerator;
+    FSI_PROTOCOL_ERROR_CODES(FSI_PROTOCOL_ERROR_CODE_NAME)
+#undef FSI_PROTOCOL_ERROR_CODE_NAME
   }
   return "code " + std::to_string(static_cast<std::uint32_t>(code));
 }
@@ -705,108 +672,26 @@ std::optional<ErrorCode> error_code_for(const std::exception& failure, ErrorCode
   return otherwise;
 }
 
-std::vector<std::byte> encode(const Hello& message) {
+template <ProtocolMessage T>
+std::vector<std::byte> encode(const T& message) {
   return encode_message(message);
 }
-std::vector<std::byte> encode(const Welcome& message) {
-  return encode_message(message);
-}
-std::vector<std::byte> encode(const ErrorMessage& message) {
-  return encode_message(message);
-}
-std::vector<std::byte> encode(const AuthChallenge& message) {
-  return encode_message(message);
-}
-std::vector<std::byte> encode(const AuthResponse& message) {
-  return encode_message(message);
-}
-std::vector<std::byte> encode(const AuthProof& message) {
-  return encode_message(message);
-}
-std::vector<std::byte> encode(const Heartbeat& message) {
-  return encode_message(message);
-}
-std::vector<std::byte> encode(const Setup& message) {
-  return encode_message(message);
-}
-std::vector<std::byte> encode(const Mesh& message) {
-  return encode_message(message);
-}
-std::vector<std::byte> encode(const Particles& message) {
-  return encode_message(message);
-}
-std::vector<std::byte> encode(const Ready& message) {
-  return encode_message(message);
-}
-std::vector<std::byte> encode(const Step& message) {
-  return encode_message(message);
-}
-std::vector<std::byte> encode(const Forces& message) {
-  return encode_message(message);
-}
-std::vector<std::byte> encode(const SnapshotRequest& message) {
-  return encode_message(message);
-}
-std::vector<std::byte> encode(const Snapshot& message) {
-  return encode_message(message);
-}
-std::vector<std::byte> encode(const Shutdown& message) {
-  return encode_message(message);
-}
-std::vector<std::byte> encode(const Goodbye& message) {
-  return encode_message(message);
-}
+
 std::vector<std::byte> encode(const Message& message) {
   return std::visit([](const auto& alternative) { return encode_message(alternative); }, message);
 }
 
-template <class T>
+template <ProtocolMessage T>
 std::span<const std::byte> encode_into(const T& message, std::vector<std::byte>& buffer) {
   return encode_message_into(message, buffer);
 }
 
-template std::span<const std::byte> encode_into(const Hello&, std::vector<std::byte>&);
-template std::span<const std::byte> encode_into(const Welcome&, std::vector<std::byte>&);
-template std::span<const std::byte> encode_into(const ErrorMessage&, std::vector<std::byte>&);
-template std::span<const std::byte> encode_into(const AuthChallenge&, std::vector<std::byte>&);
-template std::span<const std::byte> encode_into(const AuthResponse&, std::vector<std::byte>&);
-template std::span<const std::byte> encode_into(const AuthProof&, std::vector<std::byte>&);
-template std::span<const std::byte> encode_into(const Heartbeat&, std::vector<std::byte>&);
-template std::span<const std::byte> encode_into(const Setup&, std::vector<std::byte>&);
-template std::span<const std::byte> encode_into(const Mesh&, std::vector<std::byte>&);
-template std::span<const std::byte> encode_into(const Particles&, std::vector<std::byte>&);
-template std::span<const std::byte> encode_into(const Ready&, std::vector<std::byte>&);
-template std::span<const std::byte> encode_into(const Step&, std::vector<std::byte>&);
-template std::span<const std::byte> encode_into(const Forces&, std::vector<std::byte>&);
-template std::span<const std::byte> encode_into(const SnapshotRequest&, std::vector<std::byte>&);
-template std::span<const std::byte> encode_into(const Snapshot&, std::vector<std::byte>&);
-template std::span<const std::byte> encode_into(const Shutdown&, std::vector<std::byte>&);
-template std::span<const std::byte> encode_into(const Goodbye&, std::vector<std::byte>&);
-
-template <class T>
+template <ProtocolMessage T>
 void encode_gathered(const T& message, GatheredPayload& payload) {
   gather_message(message, payload);
 }
 
-template void encode_gathered(const Hello&, GatheredPayload&);
-template void encode_gathered(const Welcome&, GatheredPayload&);
-template void encode_gathered(const ErrorMessage&, GatheredPayload&);
-template void encode_gathered(const AuthChallenge&, GatheredPayload&);
-template void encode_gathered(const AuthResponse&, GatheredPayload&);
-template void encode_gathered(const AuthProof&, GatheredPayload&);
-template void encode_gathered(const Heartbeat&, GatheredPayload&);
-template void encode_gathered(const Setup&, GatheredPayload&);
-template void encode_gathered(const Mesh&, GatheredPayload&);
-template void encode_gathered(const Particles&, GatheredPayload&);
-template void encode_gathered(const Ready&, GatheredPayload&);
-template void encode_gathered(const Step&, GatheredPayload&);
-template void encode_gathered(const Forces&, GatheredPayload&);
-template void encode_gathered(const SnapshotRequest&, GatheredPayload&);
-template void encode_gathered(const Snapshot&, GatheredPayload&);
-template void encode_gathered(const Shutdown&, GatheredPayload&);
-template void encode_gathered(const Goodbye&, GatheredPayload&);
-
-template <class T>
+template <ProtocolMessage T>
 void decode_into(PayloadSource& source, T& message) {
   Reader in(T::kType, source);
   layout(in, message);
@@ -814,25 +699,7 @@ void decode_into(PayloadSource& source, T& message) {
   check(in, message);
 }
 
-template void decode_into(PayloadSource&, Hello&);
-template void decode_into(PayloadSource&, Welcome&);
-template void decode_into(PayloadSource&, ErrorMessage&);
-template void decode_into(PayloadSource&, AuthChallenge&);
-template void decode_into(PayloadSource&, AuthResponse&);
-template void decode_into(PayloadSource&, AuthProof&);
-template void decode_into(PayloadSource&, Heartbeat&);
-template void decode_into(PayloadSource&, Setup&);
-template void decode_into(PayloadSource&, Mesh&);
-template void decode_into(PayloadSource&, Particles&);
-template void decode_into(PayloadSource&, Ready&);
-template void decode_into(PayloadSource&, Step&);
-template void decode_into(PayloadSource&, Forces&);
-template void decode_into(PayloadSource&, SnapshotRequest&);
-template void decode_into(PayloadSource&, Snapshot&);
-template void decode_into(PayloadSource&, Shutdown&);
-template void decode_into(PayloadSource&, Goodbye&);
-
-template <class T>
+template <ProtocolMessage T>
 T decode_as(std::span<const std::byte> payload) {
   SpanSource source(payload);
   T message{};
@@ -840,74 +707,28 @@ T decode_as(std::span<const std::byte> payload) {
   return message;
 }
 
-template Hello decode_as<Hello>(std::span<const std::byte>);
-template Welcome decode_as<Welcome>(std::span<const std::byte>);
-template ErrorMessage decode_as<ErrorMessage>(std::span<const std::byte>);
-template AuthChallenge decode_as<AuthChallenge>(std::span<const std::byte>);
-template AuthResponse decode_as<AuthResponse>(std::span<const std::byte>);
-template AuthProof decode_as<AuthProof>(std::span<const std::byte>);
-template Heartbeat decode_as<Heartbeat>(std::span<const std::byte>);
-template Setup decode_as<Setup>(std::span<const std::byte>);
-template Mesh decode_as<Mesh>(std::span<const std::byte>);
-template Particles decode_as<Particles>(std::span<const std::byte>);
-template Ready decode_as<Ready>(std::span<const std::byte>);
-template Step decode_as<Step>(std::span<const std::byte>);
-template Forces decode_as<Forces>(std::span<const std::byte>);
-template SnapshotRequest decode_as<SnapshotRequest>(std::span<const std::byte>);
-template Snapshot decode_as<Snapshot>(std::span<const std::byte>);
-template Shutdown decode_as<Shutdown>(std::span<const std::byte>);
-template Goodbye decode_as<Goodbye>(std::span<const std::byte>);
+// The codec of every listed message is compiled here, where its layout() is.
+#define FSI_PROTOCOL_INSTANTIATE_CODEC(enumerator, message, id)                             \
+  template std::vector<std::byte> encode(const message&);                                   \
+  template std::span<const std::byte> encode_into(const message&, std::vector<std::byte>&); \
+  template void encode_gathered(const message&, GatheredPayload&);                          \
+  template void decode_into(PayloadSource&, message&);                                      \
+  template message decode_as<message>(std::span<const std::byte>);
+FSI_PROTOCOL_MESSAGES(FSI_PROTOCOL_INSTANTIATE_CODEC)
+#undef FSI_PROTOCOL_INSTANTIATE_CODEC
 
 Message decode(MessageType type, std::span<const std::byte> payload) {
   SpanSource source(payload);
   return decode(type, source);
 }
 
-namespace {
-template <class T>
-Message decode_new(PayloadSource& source) {
-  T message{};
-  decode_into(source, message);
-  return message;
-}
-}  // namespace
-
 Message decode(MessageType type, PayloadSource& source) {
   switch (type) {
-    case MessageType::Hello:
-      return decode_new<Hello>(source);
-    case MessageType::Welcome:
-      return decode_new<Welcome>(source);
-    case MessageType::Error:
-      return decode_new<ErrorMessage>(source);
-    case MessageType::AuthChallenge:
-      return decode_new<AuthChallenge>(source);
-    case MessageType::AuthResponse:
-      return decode_new<AuthResponse>(source);
-    case MessageType::AuthProof:
-      return decode_new<AuthProof>(source);
-    case MessageType::Heartbeat:
-      return decode_new<Heartbeat>(source);
-    case MessageType::Setup:
-      return decode_new<Setup>(source);
-    case MessageType::Mesh:
-      return decode_new<Mesh>(source);
-    case MessageType::Particles:
-      return decode_new<Particles>(source);
-    case MessageType::Ready:
-      return decode_new<Ready>(source);
-    case MessageType::Step:
-      return decode_new<Step>(source);
-    case MessageType::Forces:
-      return decode_new<Forces>(source);
-    case MessageType::SnapshotRequest:
-      return decode_new<SnapshotRequest>(source);
-    case MessageType::Snapshot:
-      return decode_new<Snapshot>(source);
-    case MessageType::Shutdown:
-      return decode_new<Shutdown>(source);
-    case MessageType::Goodbye:
-      return decode_new<Goodbye>(source);
+#define FSI_PROTOCOL_DECODE_CASE(enumerator, message, id) \
+  case MessageType::enumerator:                           \
+    return decode_as_new<message>(source);
+    FSI_PROTOCOL_MESSAGES(FSI_PROTOCOL_DECODE_CASE)
+#undef FSI_PROTOCOL_DECODE_CASE
   }
   throw ProtocolError("cannot decode a message of " + name(type) + ", which protocol " +
                           version_text(kMajorVersion, kMinorVersion) + " does not define",

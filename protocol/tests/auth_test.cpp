@@ -7,20 +7,20 @@
 #include <filesystem>
 #include <fstream>
 #include <future>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "error_text.hpp"
 #include "fsi/protocol/auth.hpp"
 
 namespace fsi::protocol {
 namespace {
 
+using namespace test;
+
 using namespace std::chrono_literals;
 namespace fs = std::filesystem;
-
-bool contains(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
-}
 
 std::string hex(const AuthBytes& bytes) {
   std::string text;
@@ -135,15 +135,19 @@ struct Outcome {
   std::string client;
 };
 
-// Runs both openings over loopback, each side with its own optional token.
-Outcome handshake(std::optional<Token> server_token, std::optional<Token> client_token) {
+ChannelOptions quick_close() {
   ChannelOptions options;
   options.close_linger = 200ms;
-  Listener listener("127.0.0.1", 0, options);
-  auto client = std::async(std::launch::async, [&, port = listener.port()]() -> std::string {
-    Channel channel = Channel::connect("127.0.0.1", port, 5s, options);
+  return options;
+}
+
+// The client's opening against the listener's port, in the background: "ok <capabilities> <run
+// name>" or the error it ended with.
+std::future<std::string> client_opening(std::uint16_t port, std::optional<Token> token) {
+  return std::async(std::launch::async, [port, token = std::move(token)]() -> std::string {
+    Channel channel = Channel::connect("127.0.0.1", port, 5s, quick_close());
     ClientHandshake handshake;
-    handshake.token = client_token;
+    handshake.token = token;
     handshake.hello = Hello{"test", "host", 1, 0};
     handshake.timeout = 5s;
     try {
@@ -154,6 +158,12 @@ Outcome handshake(std::optional<Token> server_token, std::optional<Token> client
       return error.what();
     }
   });
+}
+
+// Runs both openings over loopback, each side with its own optional token.
+Outcome handshake(std::optional<Token> server_token, std::optional<Token> client_token) {
+  Listener listener("127.0.0.1", 0, quick_close());
+  auto client = client_opening(listener.port(), std::move(client_token));
   Outcome outcome;
   Channel channel = listener.accept(5s);
   ServerHandshake handshake;
@@ -217,22 +227,8 @@ TEST(ProtocolAuthHandshake, ServerWithoutTokenIsRefusedByAClientWithOne) {
 // An impostor that does not know the token skips the check of the client's tag and answers with
 // a proof made from its own guess: the client must refuse it before any Welcome or set-up.
 TEST(ProtocolAuthHandshake, ServerWithWrongTokenIsRefusedByTheClient) {
-  ChannelOptions options;
-  options.close_linger = 200ms;
-  Listener listener("127.0.0.1", 0, options);
-  auto client = std::async(std::launch::async, [&, port = listener.port()]() -> std::string {
-    Channel channel = Channel::connect("127.0.0.1", port, 5s, options);
-    ClientHandshake handshake;
-    handshake.token = token_of("the client's secret token");
-    handshake.hello = Hello{"test", "host", 1, 0};
-    handshake.timeout = 5s;
-    try {
-      open_session(channel, handshake);
-      return "(accepted)";
-    } catch (const fsi::Error& error) {
-      return error.what();
-    }
-  });
+  Listener listener("127.0.0.1", 0, quick_close());
+  auto client = client_opening(listener.port(), token_of("the client's secret token"));
   Channel channel = listener.accept(5s);
   channel.expect<Hello>(5s);
   AuthChallenge challenge{random_nonce()};

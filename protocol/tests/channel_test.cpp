@@ -14,20 +14,19 @@
 #include <thread>
 #include <vector>
 
+#include "error_text.hpp"
 #include "fsi/protocol/channel.hpp"
 
 namespace fsi::protocol {
 namespace {
+
+using namespace test;
 
 using namespace std::chrono_literals;
 using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-bool contains(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
 }
 
 // A port nobody listens on (the listener that found it is gone again).
@@ -226,17 +225,13 @@ TEST(ProtocolChannel, ConnectRetriesUntilTheServerListens) {
 TEST(ProtocolChannel, ConnectGivesUpNamingHostAndPort) {
   const std::uint16_t port = free_port();
   const auto start = Clock::now();
-  try {
-    Channel::connect("127.0.0.1", port, 400ms);
-    FAIL() << "connected to nobody";
-  } catch (const fsi::Error& error) {
-    const std::string text = error.what();
-    EXPECT_TRUE(contains(text, "cannot connect to fsi-server at 127.0.0.1:" + std::to_string(port) +
-                                   " within 0.4 s"))
-        << text;
-    EXPECT_TRUE(contains(text, "Connection refused")) << text;
-    EXPECT_TRUE(contains(text, "firewall")) << text;
-  }
+  const std::string text =
+      error_of<fsi::Error>([&] { Channel::connect("127.0.0.1", port, 400ms); });
+  EXPECT_TRUE(contains(
+      text, "cannot connect to fsi-server at 127.0.0.1:" + std::to_string(port) + " within 0.4 s"))
+      << text;
+  EXPECT_TRUE(contains(text, "Connection refused")) << text;
+  EXPECT_TRUE(contains(text, "firewall")) << text;
   const double waited = seconds_since(start);
   EXPECT_GE(waited, 0.39);
   EXPECT_LT(waited, 1.5);
@@ -252,14 +247,9 @@ TEST(ProtocolChannel, PeerClosingEndsTheWaitAtOnce) {
   });
   Channel server = listener.accept(5s);
   const auto start = Clock::now();
-  try {
-    server.receive(30s, "Forces");
-    FAIL() << "received from a closed connection";
-  } catch (const ProtocolError& error) {
-    const std::string text = error.what();
-    EXPECT_TRUE(contains(text, "connection closed by peer 127.0.0.1:")) << text;
-    EXPECT_TRUE(contains(text, "while waiting for Forces")) << text;
-  }
+  const std::string text = error_of([&] { server.receive(30s, "Forces"); });
+  EXPECT_TRUE(contains(text, "connection closed by peer 127.0.0.1:")) << text;
+  EXPECT_TRUE(contains(text, "while waiting for Forces")) << text;
   EXPECT_LT(seconds_since(start), 1.0);
   server.close();
   client.get();
@@ -276,25 +266,16 @@ TEST(ProtocolChannel, HalfAFrameThenSilenceTimesOut) {
     Channel server = listener.accept(5s);
     peer.write(std::span(frame).first(cut));
     const auto start = Clock::now();
-    try {
-      server.receive(500ms, "Forces");
-      FAIL() << "received from a silent peer";
-    } catch (const ProtocolError& error) {
-      const std::string text = error.what();
-      EXPECT_TRUE(contains(text, "timed out after 0.5 s while waiting for Forces")) << text;
-      EXPECT_TRUE(contains(text, progress)) << text;
-    }
+    const std::string text = error_of([&] { server.receive(500ms, "Forces"); });
+    EXPECT_TRUE(contains(text, "timed out after 0.5 s while waiting for Forces")) << text;
+    EXPECT_TRUE(contains(text, progress)) << text;
     const double waited = seconds_since(start);
     EXPECT_GE(waited, 0.49);
     EXPECT_LT(waited, 1.0);
     // The rest of the frame may still come, so nothing after it can be trusted.
     peer.write(std::span(frame).subspan(cut));
-    try {
-      server.receive(500ms, "Forces");
-      FAIL() << "read on after losing the frame boundaries";
-    } catch (const ProtocolError& error) {
-      EXPECT_TRUE(contains(error.what(), "unusable after an earlier fault")) << error.what();
-    }
+    const std::string after_fault = error_of([&] { server.receive(500ms, "Forces"); });
+    EXPECT_TRUE(contains(after_fault, "unusable after an earlier fault")) << after_fault;
   }
 }
 
@@ -350,13 +331,8 @@ TEST(ProtocolChannel, MalformedMessageIsNamedButTheStreamStaysInStep) {
   payload.pop_back();
   peer.write(encode_frame(MessageType::Step, payload));
   peer.write(encode_frame(MessageType::Goodbye, encode(Goodbye{})));
-  try {
-    server.receive_message(5s);
-    FAIL() << "decoded a truncated Step";
-  } catch (const ProtocolError& error) {
-    EXPECT_TRUE(contains(error.what(), "malformed Step message: field 'velocities'"))
-        << error.what();
-  }
+  const std::string text = error_of([&] { server.receive_message(5s); });
+  EXPECT_TRUE(contains(text, "malformed Step message: field 'velocities'")) << text;
   EXPECT_NO_THROW(server.expect<Goodbye>(5s));
 }
 
@@ -429,12 +405,8 @@ TEST(ProtocolChannel, DamagedLargeFrameIsACrcMismatchEvenIfItsContentIsAlsoWrong
     Channel server = listener.accept(5s);
     auto writer = write_later(peer, *bytes);
     Step received;
-    try {
-      server.expect_into(received, 10s);
-      FAIL() << "a damaged Step was accepted";
-    } catch (const ProtocolError& error) {
-      EXPECT_TRUE(contains(error.what(), "CRC-32C mismatch in Step frame")) << error.what();
-    }
+    const std::string text = error_of([&] { server.expect_into(received, 10s); });
+    EXPECT_TRUE(contains(text, "CRC-32C mismatch in Step frame")) << text;
     writer.get();
     EXPECT_THROW(server.expect<Step>(1s), ProtocolError);  // the stream is not trusted any more
   }
@@ -454,21 +426,12 @@ TEST(ProtocolChannel, MalformedLargeMessageIsReadToItsEndSoTheStreamStaysInStep)
   frames.insert(frames.end(), goodbye.begin(), goodbye.end());
   auto writer = write_later(peer, frames);
   Step received_step;
-  try {
-    server.expect_into(received_step, 10s);
-    FAIL() << "a Step with fewer velocities than positions was accepted";
-  } catch (const ProtocolError& error) {
-    EXPECT_TRUE(
-        contains(error.what(), "malformed Step message: field 'velocities' has 299999 values"))
-        << error.what();
-  }
+  const std::string step_text = error_of([&] { server.expect_into(received_step, 10s); });
+  EXPECT_TRUE(contains(step_text, "malformed Step message: field 'velocities' has 299999 values"))
+      << step_text;
   Forces received_forces;
-  try {
-    server.expect_into(received_forces, 10s);
-    FAIL() << "a Forces with trailing bytes was accepted";
-  } catch (const ProtocolError& error) {
-    EXPECT_TRUE(contains(error.what(), "100000 bytes follow the last field")) << error.what();
-  }
+  const std::string forces_text = error_of([&] { server.expect_into(received_forces, 10s); });
+  EXPECT_TRUE(contains(forces_text, "100000 bytes follow the last field")) << forces_text;
   EXPECT_EQ(server.expect<Goodbye>(5s).steps_done, 9u);
   writer.get();
 }
@@ -485,16 +448,12 @@ TEST(ProtocolChannel, PeerClosingInsideALargeArrayNamesTheBytesReceived) {
       peer.reset();  // closes the connection
     });
     Forces received;
-    try {
-      accepted.expect_into(received, 10s);
-      ADD_FAILURE() << "a truncated Forces was accepted";
-    } catch (const ProtocolError& error) {
-      EXPECT_TRUE(contains(error.what(), "connection closed by peer")) << error.what();
-      EXPECT_TRUE(contains(error.what(), "received 1000000 of the " +
-                                             std::to_string(frame.size() - kHeaderSize) +
-                                             " payload bytes of a Forces frame"))
-          << error.what();
-    }
+    const std::string text = error_of([&] { accepted.expect_into(received, 10s); });
+    EXPECT_TRUE(contains(text, "connection closed by peer")) << text;
+    EXPECT_TRUE(contains(text, "received 1000000 of the " +
+                                   std::to_string(frame.size() - kHeaderSize) +
+                                   " payload bytes of a Forces frame"))
+        << text;
     writer.get();
     return accepted;
   }();
@@ -527,13 +486,8 @@ TEST(ProtocolChannel, UnexpectedMessageNamesBothTypes) {
     channel.send(Goodbye{});
   });
   Channel server = listener.accept(5s);
-  try {
-    server.expect<Forces>(5s);
-    FAIL();
-  } catch (const ProtocolError& error) {
-    EXPECT_TRUE(contains(error.what(), "expected a Forces message but received Goodbye"))
-        << error.what();
-  }
+  const std::string text = error_of([&] { server.expect<Forces>(5s); });
+  EXPECT_TRUE(contains(text, "expected a Forces message but received Goodbye")) << text;
   server.close();
   client.get();
 }
@@ -563,12 +517,8 @@ TEST(ProtocolChannel, VersionMismatchIsReportedOnBothSides) {
       check_peer_version(Role::Server, server.peer_major(), server.peer_minor());
   ASSERT_FALSE(version.compatible);
   server.send(ErrorMessage{ErrorCode::VersionMismatch, version.message});
-  try {
-    server.receive(5s, "nothing more");
-    FAIL();
-  } catch (const ProtocolError& error) {
-    EXPECT_TRUE(contains(error.what(), "protocol 2.4")) << error.what();
-  }
+  const std::string text = error_of([&] { server.receive(5s, "nothing more"); });
+  EXPECT_TRUE(contains(text, "protocol 2.4")) << text;
   server.close();
   const std::string at_client = client.get();
   EXPECT_TRUE(contains(at_client, "fsi-client speaks protocol 2.4, this fsi-server speaks " +
@@ -604,20 +554,11 @@ TEST(ProtocolChannel, SendTimesOutWhenThePeerDoesNotRead) {
   Channel server = listener.accept(5s);
   const std::vector<std::byte> payload(64u << 20);
   const auto start = Clock::now();
-  try {
-    server.send(MessageType::Snapshot, payload);
-    FAIL() << "64 MiB fitted into the socket buffers";
-  } catch (const ProtocolError& error) {
-    EXPECT_TRUE(contains(error.what(), "timed out after 0.2 s sending a Snapshot frame"))
-        << error.what();
-  }
+  const std::string text = error_of([&] { server.send(MessageType::Snapshot, payload); });
+  EXPECT_TRUE(contains(text, "timed out after 0.2 s sending a Snapshot frame")) << text;
   EXPECT_LT(seconds_since(start), 1.5);
-  try {
-    server.send(Shutdown{});
-    FAIL() << "sent after half a frame";
-  } catch (const ProtocolError& error) {
-    EXPECT_TRUE(contains(error.what(), "earlier send timed out")) << error.what();
-  }
+  const std::string after_timeout = error_of([&] { server.send(Shutdown{}); });
+  EXPECT_TRUE(contains(after_timeout, "earlier send timed out")) << after_timeout;
 }
 
 TEST(ProtocolChannel, SendingToAClosedPeerFails) {
@@ -652,23 +593,15 @@ TEST(ProtocolListener, BusyPortIsAClearError) {
 }
 
 TEST(ProtocolListener, AddressMustBeNumeric) {
-  try {
-    Listener listener("localhost-ish", 0);
-    FAIL();
-  } catch (const fsi::Error& error) {
-    EXPECT_TRUE(contains(error.what(), "'localhost-ish' is not a numeric IP address"));
-  }
+  const std::string text = error_of<fsi::Error>([&] { Listener listener("localhost-ish", 0); });
+  EXPECT_TRUE(contains(text, "'localhost-ish' is not a numeric IP address"));
 }
 
 TEST(ProtocolListener, AcceptTimesOut) {
   Listener listener("127.0.0.1", 0);
   const auto start = Clock::now();
-  try {
-    listener.accept(200ms);
-    FAIL();
-  } catch (const ProtocolError& error) {
-    EXPECT_TRUE(contains(error.what(), "no fsi-client connected within 0.2 s")) << error.what();
-  }
+  const std::string text = error_of([&] { listener.accept(200ms); });
+  EXPECT_TRUE(contains(text, "no fsi-client connected within 0.2 s")) << text;
   EXPECT_GE(seconds_since(start), 0.19);
   EXPECT_LT(seconds_since(start), 1.0);
 }

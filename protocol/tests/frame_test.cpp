@@ -4,11 +4,14 @@
 #include <string>
 #include <vector>
 
+#include "error_text.hpp"
 #include "fsi/protocol/frame.hpp"
 #include "fsi/protocol/messages.hpp"
 
 namespace fsi::protocol {
 namespace {
+
+using namespace test;
 
 std::vector<std::byte> bytes_of(std::initializer_list<unsigned> values) {
   std::vector<std::byte> out;
@@ -20,16 +23,6 @@ std::vector<std::byte> bytes_of(std::initializer_list<unsigned> values) {
 std::vector<std::byte> bytes_of(const std::string& text) {
   const auto view = std::as_bytes(std::span(text));
   return {view.begin(), view.end()};
-}
-
-std::string decode_error(std::span<const std::byte> frame,
-                         std::size_t max_payload = kDefaultMaxPayload) {
-  try {
-    decode_frame(frame, max_payload);
-  } catch (const ProtocolError& error) {
-    return error.what();
-  }
-  return "(no error)";
 }
 
 // Written by an independent CRC-32C in Python from the tables of docs/protocol.md. These bytes
@@ -90,7 +83,7 @@ TEST(ProtocolFrame, RoundTrip) {
 TEST(ProtocolFrame, BadMagic) {
   auto frame = encode_frame(MessageType::Forces, bytes_of("0123456789"));
   frame[0] = std::byte{'G'};
-  EXPECT_NE(decode_error(frame).find("bad frame magic"), std::string::npos);
+  EXPECT_NE(frame_error(frame).find("bad frame magic"), std::string::npos);
 }
 
 TEST(ProtocolFrame, CrcMismatchNamesTypeAndBothValues) {
@@ -98,7 +91,7 @@ TEST(ProtocolFrame, CrcMismatchNamesTypeAndBothValues) {
   for (std::size_t position : {std::size_t{4}, std::size_t{13}, std::size_t{17}, good.size() - 1}) {
     auto damaged = good;
     damaged[position] ^= std::byte{0x10};
-    const std::string text = decode_error(damaged);
+    const std::string text = frame_error(damaged);
     // Byte 4 is in the major version, 13 in the length: those faults are caught first.
     if (position == 4) {
       EXPECT_NE(text.find("protocol 17." + std::to_string(kMinorVersion)), std::string::npos)
@@ -117,20 +110,20 @@ TEST(ProtocolFrame, UnknownType) {
   auto frame = encode_frame(MessageType::Forces, bytes_of("x"));
   frame[8] = std::byte{0x77};
   frame[9] = std::byte{0x00};
-  const std::string text = decode_error(frame);
+  const std::string text = frame_error(frame);
   EXPECT_NE(text.find("unknown type 0x0077"), std::string::npos) << text;
 }
 
 TEST(ProtocolFrame, NonzeroFlags) {
   auto frame = encode_frame(MessageType::Forces, bytes_of("x"));
   frame[11] = std::byte{0x80};
-  const std::string text = decode_error(frame);
+  const std::string text = frame_error(frame);
   EXPECT_NE(text.find("Forces frame has flags 0x8000"), std::string::npos) << text;
 }
 
 TEST(ProtocolFrame, OversizeLengthIsRefusedBeforeThePayload) {
   const auto frame = encode_frame(MessageType::Snapshot, std::vector<std::byte>(100));
-  const std::string text = decode_error(std::span(frame).first(kHeaderSize), 99);
+  const std::string text = frame_error(std::span(frame).first(kHeaderSize), 99);
   EXPECT_NE(text.find("announces a payload of 100 bytes, more than the 99"), std::string::npos)
       << text;
   EXPECT_NO_THROW(decode_frame(frame, 100));
@@ -142,7 +135,7 @@ TEST(ProtocolFrame, OversizeLengthIsReportedBeforeTheMissingPayload) {
   auto frame = encode_frame(MessageType::Particles, {});
   for (std::size_t k = 12; k < 16; ++k)
     frame[k] = std::byte{0xFF};
-  const std::string text = decode_error(frame);
+  const std::string text = frame_error(frame);
   EXPECT_NE(text.find("Particles frame announces a payload of 4294967295 bytes, more than the "
                       "1073741824 bytes this side accepts"),
             std::string::npos)
@@ -151,18 +144,18 @@ TEST(ProtocolFrame, OversizeLengthIsReportedBeforeTheMissingPayload) {
 
 TEST(ProtocolFrame, TruncatedAndOverlongFrames) {
   const auto frame = encode_frame(MessageType::Forces, bytes_of("0123456789"));
-  EXPECT_NE(decode_error(std::span(frame).first(10)).find("truncated frame: 10 bytes"),
+  EXPECT_NE(frame_error(std::span(frame).first(10)).find("truncated frame: 10 bytes"),
             std::string::npos);
-  EXPECT_NE(decode_error(std::span(frame).first(frame.size() - 1)).find("truncated Forces frame"),
+  EXPECT_NE(frame_error(std::span(frame).first(frame.size() - 1)).find("truncated Forces frame"),
             std::string::npos);
   auto longer = frame;
   longer.push_back(std::byte{0});
-  EXPECT_NE(decode_error(longer).find("overlong Forces frame"), std::string::npos);
+  EXPECT_NE(frame_error(longer).find("overlong Forces frame"), std::string::npos);
 }
 
 TEST(ProtocolFrame, MajorVersionIsCheckedExceptForHelloAndError) {
   const auto payload = bytes_of("x");
-  const std::string text = decode_error(encode_frame(MessageType::Step, payload, 2, 3));
+  const std::string text = frame_error(encode_frame(MessageType::Step, payload, 2, 3));
   EXPECT_NE(text.find("Step frame of protocol 2.3, but this side speaks " +
                       version_text(kMajorVersion, kMinorVersion)),
             std::string::npos)
@@ -178,7 +171,7 @@ TEST(ProtocolFrame, MajorVersionIsCheckedExceptForHelloAndError) {
 TEST(ProtocolFrame, AnotherMajorVersionIsReportedBeforeItsUnknownTypesAndFlags) {
   auto frame = encode_frame(MessageType::Step, bytes_of("x"), 3, 0);
   frame[8] = std::byte{0x99};
-  EXPECT_NE(decode_error(frame).find("of protocol 3.0"), std::string::npos);
+  EXPECT_NE(frame_error(frame).find("of protocol 3.0"), std::string::npos);
   // Flags of another major belong to that version; its Hello still gets through to be answered.
   auto hello = encode_frame(MessageType::Hello, bytes_of("x"), 3, 0);
   hello[10] = std::byte{1};

@@ -9,11 +9,14 @@
 #include <string>
 #include <vector>
 
+#include "error_text.hpp"
 #include "fsi/protocol/frame.hpp"
 #include "fsi/protocol/messages.hpp"
 
 namespace fsi::protocol {
 namespace {
+
+using namespace test;
 
 using Limits = std::numeric_limits<double>;
 
@@ -89,15 +92,7 @@ std::vector<Message> all_samples() {
           sample_goodbye()};
 }
 
-std::string decode_error(MessageType type, std::span<const std::byte> payload) {
-  try {
-    decode(type, payload);
-  } catch (const ProtocolError& error) {
-    return error.what();
-  }
-  return "(no error)";
-}
-
+using test::decode_error;
 template <class T>
 std::string decode_error(const T& message) {
   return decode_error(T::kType, encode(message));

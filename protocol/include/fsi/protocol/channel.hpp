@@ -59,8 +59,7 @@ class Channel {
   // One frame, header and payload gathered into one write.
   void send(MessageType type, std::span<const std::byte> payload);
   // A message's large arrays go out from where they lie (encode_gathered), without a copy.
-  template <class T>
-  requires requires { T::kType; }
+  template <ProtocolMessage T>
   void send(const T& message) {
     GatheredPayload& payload = gathered_payload();
     encode_gathered(message, payload);
@@ -78,7 +77,7 @@ class Channel {
                           std::string_view waiting_for = "a message");
   // Receives a T. An Error message throws "peer reported: <its text>"; any other message throws
   // naming the expected and the received type.
-  template <class T>
+  template <ProtocolMessage T>
   T expect(std::optional<Milliseconds> timeout) {
     T message{};
     expect_into(message, timeout);
@@ -87,7 +86,7 @@ class Channel {
   // The same, decoding into message with the payload read from the socket straight into its
   // vectors: a message reused from step to step costs no allocation and no copy (decode_into).
   // After a throw, message holds an unspecified mix of old and new values.
-  template <class T>
+  template <ProtocolMessage T>
   void expect_into(T& message, std::optional<Milliseconds> timeout);
 
   // "127.0.0.1:40312"

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "fsi/common/error.hpp"
+#include "fsi/protocol/message_list.hpp"
 #include "fsi/protocol/version.hpp"
 
 namespace fsi::protocol {
@@ -23,24 +24,12 @@ inline constexpr std::array<std::byte, 4> kMagic{std::byte{'F'}, std::byte{'S'},
                                                  std::byte{'P'}};
 inline constexpr std::size_t kDefaultMaxPayload = std::size_t{1} << 30;  // 1 GiB
 
+// The type ids of message_list.hpp (Hello = 0x01, ..., Goodbye = 0x41). A value outside the list
+// can arrive from a peer; is_known tells.
 enum class MessageType : std::uint16_t {
-  Hello = 0x01,
-  Welcome = 0x02,
-  Error = 0x03,
-  AuthChallenge = 0x04,
-  AuthResponse = 0x05,
-  AuthProof = 0x06,
-  Heartbeat = 0x07,
-  Setup = 0x10,
-  Mesh = 0x11,
-  Particles = 0x12,
-  Ready = 0x13,
-  Step = 0x20,
-  Forces = 0x21,
-  SnapshotRequest = 0x30,
-  Snapshot = 0x31,
-  Shutdown = 0x40,
-  Goodbye = 0x41,
+#define FSI_PROTOCOL_ENUMERATOR(enumerator, message, id) enumerator = id,
+  FSI_PROTOCOL_MESSAGES(FSI_PROTOCOL_ENUMERATOR)
+#undef FSI_PROTOCOL_ENUMERATOR
 };
 
 // "Step", "Forces", ... or "unknown type 0x0077".

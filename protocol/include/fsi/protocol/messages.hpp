@@ -11,6 +11,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <type_traits>
 #include <variant>
 #include <vector>
 
@@ -26,15 +27,21 @@ inline constexpr std::uint32_t kCapabilityAuthentication = 1u << 0;
 // 1.1: the sender understands Heartbeat frames (the peer may send them while it computes).
 inline constexpr std::uint32_t kCapabilityHeartbeat = 1u << 1;
 
+// The codes of an Error message (docs/protocol.md §7) as X(enumerator, value); AuthenticationFailed
+// came with 1.1.
+#define FSI_PROTOCOL_ERROR_CODES(X) \
+  X(VersionMismatch, 1)             \
+  X(MalformedMessage, 2)            \
+  X(UnexpectedMessage, 3)           \
+  X(SetupFailed, 4)                 \
+  X(LiggghtsError, 5)               \
+  X(PeerAborted, 6)                 \
+  X(Internal, 7)                    \
+  X(AuthenticationFailed, 8)
 enum class ErrorCode : std::uint32_t {
-  VersionMismatch = 1,
-  MalformedMessage = 2,
-  UnexpectedMessage = 3,
-  SetupFailed = 4,
-  LiggghtsError = 5,
-  PeerAborted = 6,
-  Internal = 7,
-  AuthenticationFailed = 8,  // 1.1
+#define FSI_PROTOCOL_ERROR_CODE(enumerator, value) enumerator = value,
+  FSI_PROTOCOL_ERROR_CODES(FSI_PROTOCOL_ERROR_CODE)
+#undef FSI_PROTOCOL_ERROR_CODE
 };
 // "VersionMismatch", ..., or "code 42" for codes this version does not know.
 std::string name(ErrorCode code);
@@ -230,32 +237,50 @@ struct Goodbye {  // client -> server, the last message of a session
   bool operator==(const Goodbye&) const = default;
 };
 
-using Message = std::variant<Hello, Welcome, ErrorMessage, AuthChallenge, AuthResponse, AuthProof,
-                             Heartbeat, Setup, Mesh, Particles, Ready, Step, Forces,
-                             SnapshotRequest, Snapshot, Shutdown, Goodbye>;
+namespace detail {
+// The list's entries each add ", Message"; the leading void takes the first comma.
+template <class Void, class... Messages>
+using VariantOfListed = std::variant<Messages...>;
+
+template <class T, class Variant>
+inline constexpr bool kIsAlternative = false;
+template <class T, class... Alternatives>
+inline constexpr bool kIsAlternative<T, std::variant<Alternatives...>> =
+    (std::is_same_v<T, Alternatives> || ...);
+}  // namespace detail
+
+// Every message of message_list.hpp, in its order.
+#define FSI_PROTOCOL_LISTED_MESSAGE(enumerator, message, id) , message
+using Message = detail::VariantOfListed<void FSI_PROTOCOL_MESSAGES(FSI_PROTOCOL_LISTED_MESSAGE)>;
+#undef FSI_PROTOCOL_LISTED_MESSAGE
+
+#define FSI_PROTOCOL_CHECK_TYPE(enumerator, message, id)   \
+  static_assert(message::kType == MessageType::enumerator, \
+                #message "::kType differs from its entry in message_list.hpp");
+FSI_PROTOCOL_MESSAGES(FSI_PROTOCOL_CHECK_TYPE)
+#undef FSI_PROTOCOL_CHECK_TYPE
+
+// One of the message structs above (the codec templates below exist for these only).
+template <class T>
+concept ProtocolMessage = detail::kIsAlternative<T, Message>;
+
+inline constexpr std::size_t kMessageTypeCount = std::variant_size_v<Message>;
+
+// Calls visit(std::type_identity<T>{}) for every message type T, in the order of the list.
+template <class Visit>
+constexpr void for_each_message_type(Visit&& visit) {
+  [&]<class... Messages>(std::type_identity<std::variant<Messages...>>) {
+    (visit(std::type_identity<Messages>{}), ...);
+  }(std::type_identity<Message>{});
+}
 
 // Payload bytes (without the frame header).
-std::vector<std::byte> encode(const Hello& message);
-std::vector<std::byte> encode(const Welcome& message);
-std::vector<std::byte> encode(const ErrorMessage& message);
-std::vector<std::byte> encode(const AuthChallenge& message);
-std::vector<std::byte> encode(const AuthResponse& message);
-std::vector<std::byte> encode(const AuthProof& message);
-std::vector<std::byte> encode(const Heartbeat& message);
-std::vector<std::byte> encode(const Setup& message);
-std::vector<std::byte> encode(const Mesh& message);
-std::vector<std::byte> encode(const Particles& message);
-std::vector<std::byte> encode(const Ready& message);
-std::vector<std::byte> encode(const Step& message);
-std::vector<std::byte> encode(const Forces& message);
-std::vector<std::byte> encode(const SnapshotRequest& message);
-std::vector<std::byte> encode(const Snapshot& message);
-std::vector<std::byte> encode(const Shutdown& message);
-std::vector<std::byte> encode(const Goodbye& message);
+template <ProtocolMessage T>
+std::vector<std::byte> encode(const T& message);
 std::vector<std::byte> encode(const Message& message);
 // Encodes into the first bytes of buffer (grown when too small, never shrunk) and returns them:
 // no allocation when the buffer is reused for messages of similar size. Any message type.
-template <class T>
+template <ProtocolMessage T>
 std::span<const std::byte> encode_into(const T& message, std::vector<std::byte>& buffer);
 
 // A payload as byte ranges to be sent one after another (scatter-gather): the small fields
@@ -269,13 +294,13 @@ struct GatheredPayload {
   std::size_t size = 0;  // sum of the pieces' sizes
 };
 inline constexpr std::size_t kGatherMinimumBytes = 4096;
-template <class T>
+template <ProtocolMessage T>
 void encode_gathered(const T& message, GatheredPayload& payload);
 
 // Decodes the payload of a frame of the given type. Throws ProtocolError.
 Message decode(MessageType type, std::span<const std::byte> payload);
 // Decodes a payload known to hold a T (one of the alternatives of Message).
-template <class T>
+template <ProtocolMessage T>
 T decode_as(std::span<const std::byte> payload);
 
 // The payload of one frame as it arrives, for decoding straight into a message's own storage
@@ -305,7 +330,7 @@ class PayloadSource {
 // for the elements that arrive is filled in place, without allocation (and without zeroing, if it
 // already holds as many). Throws ProtocolError as decode_as does; message then holds an
 // unspecified mix of old and new values.
-template <class T>
+template <ProtocolMessage T>
 void decode_into(PayloadSource& source, T& message);
 Message decode(MessageType type, PayloadSource& source);
 
