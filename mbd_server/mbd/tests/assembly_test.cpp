@@ -301,6 +301,38 @@ TEST(MbdAssembly, ADrivingCoordinateAConstraintFixesIsNamed) {
   }
 }
 
+// In space: two rigid bodies in natural coordinates closing a loop through three spherical
+// joints, the second body's centre given 1e-3 m off. The assembly closes the joints and keeps
+// the orthonormality rows of both bodies (they are constraint rows like the joints).
+TEST(MbdAssembly, SpatialLoopOfRigidBodiesCloses) {
+  Model model;
+  RigidBody3DSpec spec;
+  spec.mass = 1.0;
+  spec.inertia = Eigen::Vector3d(0.02, 0.03, 0.04).asDiagonal();
+  spec.name = "first";
+  spec.position = Eigen::Vector3d(0.5, 0.0, 0.0);
+  const BodyId first = model.add_rigid_body_3d(spec);
+  spec.name = "second";
+  spec.position = Eigen::Vector3d(1.0, 0.5, 1e-3);
+  spec.orientation = Eigen::AngleAxisd(0.5 * M_PI, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  const BodyId second = model.add_rigid_body_3d(spec);
+  model.add_spherical_joint({first, {-0.5, 0.0, 0.0}}, {kGround, Eigen::Vector3d::Zero()}, "root");
+  model.add_spherical_joint({first, {0.5, 0.0, 0.0}}, {second, {-0.5, 0.0, 0.0}}, "knee");
+  model.add_spherical_joint({second, {0.5, 0.0, 0.0}}, {kGround, {1.0, 1.0, 0.0}}, "tip");
+  EXPECT_THROW((void)model.initial_state(), Error);
+
+  AssemblyOptions options;
+  options.driving_coordinates = {model.first_coordinate(first) + 2};  // first's z
+  const State given = model.initial_configuration();
+  const AssemblyReport report = assemble(model, given, options);
+  EXPECT_LE(report.position_residual, 1e-12);
+  EXPECT_EQ(report.state.q(options.driving_coordinates[0]), 0.0);
+  EXPECT_GT(report.bodies[1].largest_position_change, 1e-4);
+  EXPECT_LE(report.bodies[1].largest_position_change, 2e-3);
+  model.set_initial_configuration(report.state.q, report.state.v);
+  EXPECT_NO_THROW((void)model.initial_state());
+}
+
 TEST(MbdAssembly, RefusesBadDrivingIndicesAndReportsEveryBody) {
   const FourBar geometry = four_bar(0.7);
   Mechanism mechanism = build(geometry.links, geometry.joints);
