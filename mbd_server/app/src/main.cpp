@@ -109,6 +109,10 @@ void print_summary(const fsi::scene::Scene& scene) {
   std::printf("  time: %g s in steps of %g s (Radau IIA, %d stages); %llu equilibration steps\n",
               scene.solver.end_time, scene.solver.step_size, scene.solver.stages,
               static_cast<unsigned long long>(scene.liggghts.equilibration_steps));
+  if (scene.assembly) {
+    for (const std::string& line : scene.assembly->lines())
+      std::printf("  %s\n", line.c_str());
+  }
 }
 
 std::size_t count(const std::vector<fsi::scene::Diagnostic>& diagnostics,
@@ -309,6 +313,10 @@ int main(int argc, char** argv) {
   const std::shared_ptr<TerminalSink> terminal = configure_logging(
       log_level, (std::filesystem::path(output) / "fsi-server.log").string(), !no_live);
   log_diagnostics(scene, diagnostics);
+  if (scene.assembly) {
+    for (const std::string& line : scene.assembly->lines())
+      spdlog::info("{}", line);
+  }
   fsi::coupling::ServerOptions options;
   options.listen_address = listen;
   options.port = static_cast<std::uint16_t>(port);

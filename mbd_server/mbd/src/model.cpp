@@ -316,6 +316,16 @@ int Model::beam_coordinate_index(BodyId beam, int node, BeamNodeCoordinate coord
   return data_->offsets[beam] + 4 * node + static_cast<int>(coordinate);
 }
 
+int Model::first_coordinate(BodyId body) const {
+  data_->check_body(body, "a coordinate lookup");
+  return data_->offsets[body];
+}
+
+int Model::body_coordinate_count(BodyId body) const {
+  data_->check_body(body, "a coordinate lookup");
+  return data_->bodies[body]->coordinate_count();
+}
+
 BodyId Model::find_body(std::string_view body_name) const {
   std::string known;
   for (std::size_t b = 0; b < data_->bodies.size(); ++b) {
@@ -402,18 +412,46 @@ Eigen::Vector2d Model::initial_point_position(const BodyPointSpec& spec) const {
 
 // --- initial state and its consistency ---
 
-State Model::initial_state() const {
+State Model::initial_configuration() const {
   const int n = coordinate_count();
-  const int m = constraint_count();
   State state;
+  state.lambda = Eigen::VectorXd::Zero(constraint_count());
+  if (data_->initial_configuration) {
+    if (data_->initial_configuration->first.size() != n) {
+      throw Error("the installed initial configuration has " +
+                      std::to_string(data_->initial_configuration->first.size()) +
+                      " coordinates but the model now has " + std::to_string(n),
+                  "multibody model", "install the configuration after the last body is added");
+    }
+    state.q = data_->initial_configuration->first;
+    state.v = data_->initial_configuration->second;
+    return state;
+  }
   state.q.resize(n);
   state.v.resize(n);
-  state.lambda = Eigen::VectorXd::Zero(m);
   for (std::size_t b = 0; b < data_->bodies.size(); ++b) {
     const int nb = data_->bodies[b]->coordinate_count();
     data_->bodies[b]->initial_state(state.q.segment(data_->offsets[b], nb),
                                     state.v.segment(data_->offsets[b], nb));
   }
+  return state;
+}
+
+void Model::set_initial_configuration(const Eigen::VectorXd& q, const Eigen::VectorXd& v) {
+  const int n = coordinate_count();
+  if (q.size() != n || v.size() != n || !q.allFinite() || !v.allFinite()) {
+    throw Error("an initial configuration needs " + std::to_string(n) +
+                    " finite coordinates and velocities (got " + std::to_string(q.size()) +
+                    " and " + std::to_string(v.size()) + ")",
+                "multibody model", "pass q and v of this model");
+  }
+  data_->initial_configuration.emplace(q, v);
+}
+
+State Model::initial_state() const {
+  const int n = coordinate_count();
+  const int m = constraint_count();
+  State state = initial_configuration();
   check_consistency(state);
   if (m == 0) return state;
 

@@ -8,7 +8,9 @@
 
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "ancf_beam_2d.hpp"
@@ -88,6 +90,8 @@ struct Model::Data {
   mutable Eigen::SparseMatrix<double> sparse_mass;  // the same, sparse
   mutable Eigen::VectorXd mass_diagonal;
   mutable bool sparse_mass_valid = false;
+  // Set by Model::set_initial_configuration: replaces the bodies' own initial q and v.
+  std::optional<std::pair<Eigen::VectorXd, Eigen::VectorXd>> initial_configuration;
 
   void check_body(BodyId body, const std::string& user) const {
     if (body < 0 || body >= static_cast<BodyId>(bodies.size())) {

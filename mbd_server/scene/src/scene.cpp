@@ -13,6 +13,7 @@
 
 #include "fsi/common/error.hpp"
 #include "fsi/scene/fluid_region.hpp"
+#include "scene_assembly.hpp"
 #include "scene_elements.hpp"
 #include "scene_spatial.hpp"
 
@@ -354,6 +355,7 @@ BlockSpec make_schema() {
           .between(2, 3),
       number_value(2))};
   root.blocks = {solver,
+                 detail::assembly_block_spec(),
                  output,
                  gravity,
                  body,
@@ -1288,6 +1290,8 @@ Scene build_scene(const std::string& path, const std::vector<Override>& override
     }
   }
 
+  const auto assembly = detail::assembly_request(root, model, problems);
+
   // In the order of the scene file; problems in included files after it.
   std::stable_sort(problems.begin(), problems.end(), [&](const Problem& a, const Problem& b) {
     const auto key = [&](const Problem& p) {
@@ -1298,6 +1302,7 @@ Scene build_scene(const std::string& path, const std::vector<Override>& override
   });
   throw_if_any(problems, path);
   FSI_ASSERT(input_sound && !skipped_any, "a value in error was skipped without a problem");
+  if (assembly) scene.assembly = detail::assemble_initial_configuration(model, *assembly);
   try {
     (void)model.initial_state();
   } catch (const Error& error) {

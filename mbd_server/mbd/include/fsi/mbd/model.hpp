@@ -486,12 +486,24 @@ class Model {
   const ForceElement& force_element(int element) const;
   // "body 'link' coordinate angle" (planar rigid bodies) or "body 'beam' coordinate 4".
   std::string coordinate_description(int index) const;
+  // The coordinates of any body in q: first index and count.
+  int first_coordinate(BodyId body) const;
+  int body_coordinate_count(BodyId body) const;
 
   // --- initial state and its consistency ---
   // q and v from the body specs; lambda consistent with the accelerations at t = 0 (solves
   // [M G^T; G 0] [a; lambda] = [F; -remainder] with the current point loads). Calls
   // check_consistency first.
   State initial_state() const;
+  // q and v as initial_state() starts from (the body specs, or what set_initial_configuration
+  // installed), unchecked, lambda zero: the approximate configuration an assembly starts from.
+  State initial_configuration() const;
+  // Replaces the bodies' initial q and v (e.g. by an assembled configuration,
+  // fsi/mbd/assembly.hpp); initial_state() checks it like the specs' own. Element defaults taken
+  // from the initial positions when the elements were added (rest lengths, rest angles, clamp
+  // poses) keep their values. Throws fsi::Error for a size that is not coordinate_count() or
+  // non-finite values.
+  void set_initial_configuration(const Eigen::VectorXd& q, const Eigen::VectorXd& v);
   // Throws one fsi::Error listing every problem: position constraints C(q, t) != 0, their time
   // derivative G v + C_t != 0 (a held coordinate with a velocity), velocity constraints violated,
   // and constraint rows that are redundant (linearly dependent on earlier rows). Velocities are

@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "fsi/mbd/assembly.hpp"
 #include "fsi/mbd/integrator.hpp"
 #include "fsi/mbd/model.hpp"
 #include "fsi/scene/parameter_file.hpp"
@@ -135,6 +136,9 @@ struct Scene {
   FluidParticles fluid;
   LiggghtsSetup liggghts;
   std::vector<SensorSpec> sensors;
+  // What the Assembly block's initial assembly did (absent without the block); the model's
+  // initial configuration is then the assembled one.
+  std::optional<mbd::AssemblyReport> assembly;
 };
 
 // The declaration of every scene parameter.
