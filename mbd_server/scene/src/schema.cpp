@@ -57,8 +57,11 @@ class Validator {
  public:
   explicit Validator(std::vector<Problem>& problems) : problems_(problems) {}
 
-  // Problems come in textual order within a block, then what the block lacks.
-  void block(const Block& block, const BlockSpec& spec, const std::string& path) {
+  // Problems come in textual order within a block, then what the block lacks. A second copy of a
+  // block that may not repeat is one mistake, reported where it starts: what it lacks is not
+  // reported again (merged into the first copy it may lack nothing), only its own wrong values.
+  void block(const Block& block, const BlockSpec& spec, const std::string& path,
+             bool report_missing = true) {
     std::vector<std::string> known;
     for (const ParameterSpec& parameter : spec.parameters)
       known.push_back(parameter.key);
@@ -84,7 +87,8 @@ class Validator {
       }
       const std::size_t index = seen[child.name]++;
       if (index == 0) first[child.name] = &child;
-      if (!declared->repeated && index == 1) {
+      const bool copy = !declared->repeated && index > 0;
+      if (copy && index == 1) {
         add(child.location,
             "block " + in_quotes(path + child.name) + " is given twice (first at " +
                 first[child.name]->location.text() + ")",
@@ -93,8 +97,9 @@ class Validator {
       const std::string child_path =
           path + child.name + (count[child.name] > 1 ? "[" + std::to_string(index) + "]" : "") +
           ".";
-      this->block(child, *declared, child_path);
+      this->block(child, *declared, child_path, report_missing && !copy);
     }
+    if (!report_missing) return;
 
     for (const ParameterSpec& declared : spec.parameters) {
       if (declared.is_required() && !block.find(declared.key)) {
