@@ -142,6 +142,32 @@ TEST(FluidRegion, BadPolygonsAreExplained) {
       std::string::npos);
 }
 
+TEST(FluidRegion, AHoleCrossingTheOutlineIsNamedAsSuch) {
+  // A hole poking out of the unit square through its right edge (vertex 1 outside).
+  const Polygon poking{{{0, 0}, {1, 0}, {1, 1}, {0, 1}}, {{{0.5, 0.5}, {1.5, 0.5}, {0.5, 0.7}}}};
+  const std::string poking_error = error_of([&] { fill_polygon(poking, lattice(0.1)); });
+  EXPECT_NE(poking_error.find("hole 0: vertex 1 lies outside the polygon (the hole's edge 0-1 "
+                              "crosses the polygon's edge 1-2)"),
+            std::string::npos)
+      << poking_error;
+  EXPECT_NE(poking_error.find("a hole must lie inside the polygon"), std::string::npos)
+      << poking_error;
+  // Its vertices are in order: the message must not send the user to reorder them.
+  EXPECT_EQ(poking_error.find("in order"), std::string::npos) << poking_error;
+  // Every vertex inside an L, one edge across its notch: the even-odd fill would put fluid into
+  // the notch, outside the region.
+  const Polygon across{{{0, 0}, {1, 0}, {1, 0.4}, {0.4, 0.4}, {0.4, 1}, {0, 1}},
+                       {{{0.2, 0.2}, {0.8, 0.2}, {0.8, 0.3}, {0.3, 0.8}, {0.2, 0.8}}}};
+  EXPECT_EQ(polygon_problem(across), "hole 0: the hole's edge 2-3 crosses the polygon's edge 2-3");
+  const std::string across_error = error_of([&] { fill_polygon(across, lattice(0.1)); });
+  EXPECT_NE(across_error.find("a hole must lie inside the polygon"), std::string::npos)
+      << across_error;
+  // A polygon that crosses itself is still told to order its vertices.
+  const Polygon bow_tie{{{0, 0}, {2, 2}, {2, 0}, {0, 1}}, {}};
+  EXPECT_NE(error_of([&] { fill_polygon(bow_tie, lattice(0.1)); }).find("in order"),
+            std::string::npos);
+}
+
 // ---- STL ----
 
 struct Facet {
