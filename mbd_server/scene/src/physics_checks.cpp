@@ -804,6 +804,37 @@ std::vector<Diagnostic> physics_checks(const Scene& scene) {
   return report.take();
 }
 
+std::vector<Diagnostic> end_time_check(const Scene& scene) {
+  const double end_time = scene.solver.end_time;
+  const double step = scene.solver.step_size;
+  const double quotient = end_time / step;
+  // What the session and --mbd-only do with it.
+  const double steps = std::round(quotient);
+  if (std::abs(steps * step - end_time) <= kTolerance * end_time) return {};
+  auto exact = [](double value) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.12g", value);
+    return std::string(text);
+  };
+  auto steps_text = [&](double count) { return exact(count) + " steps"; };
+  const double fewer = std::floor(quotient);
+  const double more = fewer + 1.0;
+  const std::string end_text = exact(end_time);
+  std::string fix = "use step_size = ";
+  if (fewer >= 1.0) fix += end_text + "/" + exact(fewer) + " (" + steps_text(fewer) + ") or ";
+  fix += end_text + "/" + exact(more) + " (" + steps_text(more) + "), or end_time = ";
+  if (fewer >= 1.0) fix += exact(fewer * step) + " s (" + steps_text(fewer) + ") or ";
+  fix += exact(more * step) + " s (" + steps_text(more) + ")";
+  char ratio[32];
+  std::snprintf(ratio, sizeof ratio, "%.2f", quotient);
+  const View solver = View(scene.parameters, scene_schema()).block("SolverOptions");
+  return {{Severity::Warning, "end_time", solver.location("end_time"),
+           "end_time / step_size = " + end_text + " s / " + exact(step) + " s = " + ratio +
+               " is not a whole number: the run takes " + steps_text(steps) +
+               " and ends at t = " + exact(steps * step) + " s",
+           fix}};
+}
+
 std::optional<double> speed_of_sound(const Scene& scene) {
   Inputs in(scene);
   const auto c = in.sph("cAB");

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "fsi/common/error.hpp"
+#include "fsi/scene/physics_checks.hpp"
 #include "fsi/scene/scene.hpp"
 #include "test_files.hpp"
 
@@ -97,6 +98,27 @@ TEST_F(SceneInput, AMissingScriptInAnIncludedFileIsSoughtBesideIt) {
   EXPECT_CONTAINS(text, "fluid.inc:1:12: LIGGGHTS script '" + (folder_ / "parts/s.in").string() +
                             "' cannot be read");
   EXPECT_CONTAINS(text, "relative to the scene file that names it");
+}
+
+TEST_F(SceneInput, AnEndTimeTheStepDoesNotDivideIsReported) {
+  // 0.01 / 3e-4 = 33.33: the run takes 33 steps and ends at 0.0099 s.
+  const Scene scene = build_scene(minimal_scene("end_time = 0.01; Timeint { step_size = 3e-4 }"));
+  const std::vector<Diagnostic> found = end_time_check(scene);
+  ASSERT_EQ(found.size(), 1u);
+  EXPECT_EQ(found[0].severity, Severity::Warning);
+  EXPECT_EQ(found[0].location.text(), (folder_ / "m.scene").string() + ":2:17");
+  EXPECT_CONTAINS(found[0].message,
+                  "end_time / step_size = 0.01 s / 0.0003 s = 33.33 is not a whole number");
+  EXPECT_CONTAINS(found[0].message, "the run takes 33 steps and ends at t = 0.0099 s");
+  EXPECT_EQ(found[0].fix,
+            "use step_size = 0.01/33 (33 steps) or 0.01/34 (34 steps), or end_time = 0.0099 s "
+            "(33 steps) or 0.0102 s (34 steps)");
+  // Steps that divide, also where the quotient is not exact in binary (0.15 / 3e-5).
+  for (const char* solver : {"end_time = 0.01; Timeint { step_size = 1e-4 }",
+                             "end_time = 0.15; Timeint { step_size = 3e-5 }",
+                             "end_time = 0.7; Timeint { step_size = 0.1 }"}) {
+    EXPECT_TRUE(end_time_check(build_scene(minimal_scene(solver))).empty()) << solver;
+  }
 }
 
 }  // namespace

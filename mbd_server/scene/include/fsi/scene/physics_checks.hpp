@@ -52,6 +52,12 @@ inline constexpr std::string_view kPhysicsCheckNames[] = {
 // scene only.
 std::vector<Diagnostic> physics_checks(const Scene& scene);
 
+// Not a rule of thumb but what the run will do: the coupled and the --mbd-only loop take
+// round(end_time / step_size) steps, so a step that does not divide end_time ends the run at
+// another time. One warning at SolverOptions.end_time saying where it ends and which steps and
+// end times fit; empty when the step divides end_time (to 1e-9 relative).
+std::vector<Diagnostic> end_time_check(const Scene& scene);
+
 // The speed of sound c [m/s] the checks use (LIGGGHTS_SPH_parameters.cAB), or nullopt when the
 // scene does not give a positive number; the server's progress line compares particle speeds to it.
 std::optional<double> speed_of_sound(const Scene& scene);
