@@ -585,8 +585,8 @@ Scene build_scene(const std::string& path, const std::vector<Override>& override
   // Every problem is collected: evaluation, schema, then what the builder finds in the values
   // that are sound. Elements that need a value in error are skipped, not reported again.
   std::vector<Problem> problems;
-  scene.parameters = load_parameter_file(path, overrides, problems);
   const BlockSpec& schema = scene_schema();
+  scene.parameters = load_parameter_file(path, overrides, problems, declared_parameters(schema));
   for (Problem& problem : validate(scene.parameters, schema)) {
     mark_failed(scene.parameters, problem.location);
     problems.push_back(std::move(problem));

@@ -421,6 +421,28 @@ std::vector<Problem> validate(const Block& root, const BlockSpec& root_spec) {
   return problems;
 }
 
+OverrideAdmission declared_parameters(const BlockSpec& root) {
+  return [&root](const std::vector<std::string>& blocks, const std::string& key,
+                 std::size_t missing_blocks) -> std::string {
+    const std::string declared_only =
+        "--set adds only parameters the scene schema declares (fsi-server --help-params)";
+    const BlockSpec* spec = &root;
+    std::string path;
+    for (std::size_t i = 0; i < blocks.size(); ++i) {
+      spec = spec->block(blocks[i]);
+      path += (path.empty() ? "" : ".") + blocks[i];
+      if (!spec) return declared_only + ", and it has no block " + in_quotes(path);
+      if (spec->repeated && i + missing_blocks >= blocks.size()) {
+        return in_quotes(blocks[i]) +
+               " blocks form a list: --set cannot add one; add the block to the file";
+      }
+    }
+    if (spec->parameter(key)) return "";
+    return declared_only + ", and " + (path.empty() ? "the top level" : in_quotes(path)) +
+           " has no parameter " + in_quotes(key);
+  };
+}
+
 // ---- typed access ----
 
 View::View(const Block& block, const BlockSpec& spec) : block_(&block), spec_(&spec) {}

@@ -63,6 +63,50 @@ class SceneInput : public ::testing::Test {
   fs::path folder_;
 };
 
+TEST_F(SceneInput, SetAddsAKeyTheSchemaDeclaresAndTheFileLacks) {
+  // constraint_form: absent from an existing block; Newton and Output: blocks the file lacks.
+  const Scene scene =
+      build_scene(minimal_scene(), {{"SolverOptions.Timeint.constraint_form", "\"index2\""},
+                                    {"SolverOptions.Newton.max_iterations", "40"},
+                                    {"Output.sensor_every_steps", "5"},
+                                    {"dimension", "2"}});
+  EXPECT_EQ(scene.solver.constraint_form, mbd::ConstraintForm::Index2);
+  EXPECT_EQ(scene.solver.newton.max_iterations, 40);
+  EXPECT_EQ(scene.output.sensor_every_steps, 5);
+  const Parameter* added = scene.parameters.lookup("SolverOptions.Newton.max_iterations");
+  ASSERT_NE(added, nullptr);
+  EXPECT_EQ(added->location.text(), "--set SolverOptions.Newton.max_iterations=40");
+  // An added key sees every parameter of the file, as an override at the end would.
+  const Scene derived =
+      build_scene(minimal_scene(), {{"Output.sensor_every_steps", "2*SolverOptions.end_time"}});
+  EXPECT_EQ(derived.output.sensor_every_steps, 2);
+}
+
+TEST_F(SceneInput, SetOfAnAddedKeyIsValidatedLikeTheFile) {
+  const std::string text =
+      error_of(minimal_scene(), {{"SolverOptions.Newton.max_iterations", "0"}});
+  EXPECT_CONTAINS(text,
+                  "--set SolverOptions.Newton.max_iterations=0: "
+                  "'SolverOptions.Newton.max_iterations' = 0 is out of range");
+}
+
+TEST_F(SceneInput, SetRefusesWhatTheSchemaDoesNotDeclare) {
+  const std::string scene = minimal_scene();
+  // A typo of a declared key, with the nearest one.
+  EXPECT_CONTAINS(error_of(scene, {{"SolverOptions.Timeint.step_sise", "1e-4"}}),
+                  "--set SolverOptions.Timeint.step_sise=1e-4: the scene file has no parameter "
+                  "'SolverOptions.Timeint.step_sise'");
+  EXPECT_CONTAINS(error_of(scene, {{"SolverOptions.Timeint.step_sise", "1e-4"}}),
+                  "did you mean 'SolverOptions.Timeint.step_size'?");
+  // A block of the user's own holds only what the file gives it.
+  EXPECT_CONTAINS(error_of(scene, {{"Geometry.width", "1"}}),
+                  "the scene file has no parameter 'Geometry.width'");
+  // An element of a list is not made by --set: which body would it be?
+  const std::string body = error_of(scene, {{"RigidBody2D.mass", "1"}});
+  EXPECT_CONTAINS(body, "the scene file has no parameter 'RigidBody2D.mass'");
+  EXPECT_CONTAINS(body, "'RigidBody2D' blocks form a list");
+}
+
 TEST_F(SceneInput, IncludedFilesNameScriptsAndMeshesRelativeToThemselves) {
   write("parts/s.in", "# script\n");
   write("parts/box.stl", testing::unit_box_stl());
