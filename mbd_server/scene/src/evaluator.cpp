@@ -395,27 +395,37 @@ class Evaluator {
 
   // ---- numbers through muParser ----
 
-  // Where the name `name` occurs in the expression being evaluated, as muParser splits names.
-  std::size_t locate(std::string_view name) {
+  // Calls visit(begin, end) for each name as muParser splits names in the scalar being
+  // evaluated, from `from` on, until visit returns true; whether it did.
+  template <class Visit>
+  bool scan_names(std::size_t from, Visit visit) const {
     const std::string& text = *text_;
-    for (int pass = 0; pass < 2; ++pass) {
-      std::size_t i = pass == 0 ? cursor_ : scalar_.begin;
-      while (i < scalar_.end) {
-        if (!is_name_char(text[i])) {
-          ++i;
-          continue;
-        }
-        std::size_t j = i;
-        while (j < scalar_.end && is_name_char(text[j]))
-          ++j;
-        if (std::string_view(text).substr(i, j - i) == name) {
-          cursor_ = j;
-          return i;
-        }
-        i = j;
+    for (std::size_t i = from; i < scalar_.end;) {
+      if (!is_name_char(text[i])) {
+        ++i;
+        continue;
       }
+      std::size_t j = i;
+      while (j < scalar_.end && is_name_char(text[j]))
+        ++j;
+      if (visit(i, j)) return true;
+      i = j;
     }
-    return scalar_.begin;
+    return false;
+  }
+
+  // Where the name `name` occurs in the expression being evaluated: muParser asks for names in
+  // their order, so the search goes on after the last one found, then from the start.
+  std::size_t locate(std::string_view name) {
+    std::size_t found = scalar_.begin;
+    auto match = [&](std::size_t begin, std::size_t end) {
+      if (std::string_view(*text_).substr(begin, end - begin) != name) return false;
+      cursor_ = end;
+      found = begin;
+      return true;
+    };
+    if (!scan_names(cursor_, match)) scan_names(scalar_.begin, match);
+    return found;
   }
 
   static double* on_variable(const char* name, void* self) {
@@ -448,31 +458,24 @@ class Evaluator {
   // would be ignored silently.
   void check_constant_names(RawParameter& parameter) {
     const std::string& text = *text_;
-    for (std::size_t i = scalar_.begin; i < scalar_.end;) {
-      if (!is_name_char(text[i])) {
-        ++i;
-        continue;
-      }
-      std::size_t j = i;
-      while (j < scalar_.end && is_name_char(text[j]))
-        ++j;
-      const std::string token = text.substr(i, j - i);
-      std::size_t next = j;
+    scan_names(scalar_.begin, [&](std::size_t begin, std::size_t end) {
+      const std::string token = text.substr(begin, end - begin);
+      std::size_t next = end;
       while (next < scalar_.end && is_blank(text[next]))
         ++next;
       const bool call = next < scalar_.end && text[next] == '(';
       if ((token == "e" || token == "pi") && !call) {
         const Resolution found = resolve(token, parameter);
         if (found.parameter) {
-          pending_.push_back({i,
+          pending_.push_back({begin,
                               in_quotes(token) +
                                   " is the built-in constant and also a parameter (" +
                                   found.parameter->location.text() + ")",
                               "rename the parameter, e.g. " + token + "_value"});
         }
       }
-      i = j;
-    }
+      return false;
+    });
   }
 
   bool number(RawParameter& parameter, Range range, double& out) {

@@ -59,6 +59,103 @@ void check_count(double count, std::size_t max_points, const std::string& what) 
   }
 }
 
+// The lattice over the bounding box [lower, upper] of a region: its points lower + (i + 1/2) d
+// per axis, x fastest, are the candidates every fill tests.
+template <std::size_t Dim>
+struct Lattice {
+  std::array<double, Dim> lower{};
+  std::array<long, Dim> counts{};
+  double spacing = 0.0;
+
+  Lattice(const std::array<double, Dim>& low, const std::array<double, Dim>& high, double d)
+      : lower(low), spacing(d) {
+    for (std::size_t k = 0; k < Dim; ++k)
+      counts[k] = count_along(low[k], high[k], d);
+  }
+
+  double size() const {
+    double points = 1.0;
+    for (const long count : counts)
+      points *= static_cast<double>(count);
+    return points;
+  }
+  bool empty() const {
+    return std::any_of(counts.begin(), counts.end(), [](long count) { return count < 1; });
+  }
+
+  // The coordinates of every point `keep` accepts, point after point, before any displacement.
+  template <class Keep>
+  std::vector<double> points(Keep keep) const {
+    std::vector<double> kept;
+    const auto total = empty() ? 0L : static_cast<long>(size());
+    for (long flat = 0; flat < total; ++flat) {
+      std::array<double, Dim> point{};
+      long rest = flat;
+      for (std::size_t k = 0; k < Dim; ++k) {
+        point[k] = lower[k] + (static_cast<double>(rest % counts[k]) + 0.5) * spacing;
+        rest /= counts[k];
+      }
+      if (keep(point)) kept.insert(kept.end(), point.begin(), point.end());
+    }
+    return kept;
+  }
+};
+
+// The lattice over the bounding box of `vertices`.
+template <std::size_t Dim>
+Lattice<Dim> lattice_around(const std::vector<std::array<double, Dim>>& vertices, double d) {
+  std::array<double, Dim> lower = vertices.front(), upper = lower;
+  for (const auto& vertex : vertices) {
+    for (std::size_t k = 0; k < Dim; ++k) {
+      lower[k] = std::min(lower[k], vertex[k]);
+      upper[k] = std::max(upper[k], vertex[k]);
+    }
+  }
+  return Lattice<Dim>(lower, upper, d);
+}
+
+// What to say when a region holds no lattice point, and how to fix it.
+struct EmptyRegion {
+  std::string message;
+  std::string fix;
+};
+
+// The points of the lattice around `vertices` that `contains` accepts, displaced; `what` names the
+// region when it would hold too many.
+template <std::size_t Dim, class Contains>
+std::vector<double> fill_inside(const std::vector<std::array<double, Dim>>& vertices,
+                                const LatticeOptions& options, std::size_t max_points,
+                                const std::string& what, Contains contains,
+                                const EmptyRegion& empty) {
+  const Lattice<Dim> lattice = lattice_around(vertices, options.spacing);
+  check_count(lattice.size(), max_points, what);
+  std::vector<double> points = lattice.points(contains);
+  if (points.empty()) throw Error(empty.message, "", empty.fix);
+  displace(points, options);
+  return points;
+}
+
+// Every point of the box's lattice; `axes` names them in the message of an empty box.
+template <std::size_t Dim>
+std::vector<double> fill_box_lattice(const std::array<double, Dim>& lower,
+                                     const std::array<double, Dim>& upper,
+                                     const LatticeOptions& options, std::size_t max_points,
+                                     const std::string& axes) {
+  check_options(options, "the fluid box");
+  const Lattice<Dim> lattice(lower, upper, options.spacing);
+  if (lattice.empty()) {
+    throw Error(
+        "the fluid box holds no lattice point (upper must exceed lower by at least one "
+        "spacing" +
+            axes + ")",
+        "", "check lower, upper and spacing");
+  }
+  check_count(lattice.size(), max_points, "the fluid box");
+  std::vector<double> points = lattice.points([](const auto&) { return true; });
+  displace(points, options);
+  return points;
+}
+
 // Even-odd crossing test of one ring (horizontal ray to +x).
 bool crosses_odd(const std::vector<Point2>& ring, const Point2& p) {
   bool odd = false;
@@ -320,27 +417,7 @@ double distance_to_region(const Polygon& region, const Point2& a, const Point2& 
 
 std::vector<double> fill_box(const Point2& lower, const Point2& upper,
                              const LatticeOptions& options, std::size_t max_points) {
-  check_options(options, "the fluid box");
-  const double d = options.spacing;
-  const long nx = count_along(lower[0], upper[0], d);
-  const long ny = count_along(lower[1], upper[1], d);
-  if (nx < 1 || ny < 1) {
-    throw Error(
-        "the fluid box holds no lattice point (upper must exceed lower by at least one "
-        "spacing)",
-        "", "check lower, upper and spacing");
-  }
-  check_count(static_cast<double>(nx) * static_cast<double>(ny), max_points, "the fluid box");
-  std::vector<double> points;
-  points.reserve(static_cast<std::size_t>(2 * nx * ny));
-  for (long j = 0; j < ny; ++j) {
-    for (long i = 0; i < nx; ++i) {
-      points.push_back(lower[0] + (static_cast<double>(i) + 0.5) * d);
-      points.push_back(lower[1] + (static_cast<double>(j) + 0.5) * d);
-    }
-  }
-  displace(points, options);
-  return points;
+  return fill_box_lattice(lower, upper, options, max_points, "");
 }
 
 std::vector<double> fill_polygon(const Polygon& polygon, const LatticeOptions& options,
@@ -348,31 +425,10 @@ std::vector<double> fill_polygon(const Polygon& polygon, const LatticeOptions& o
   check_options(options, "the fluid polygon");
   if (const PolygonFault fault = polygon_fault(polygon); !fault.message.empty())
     throw Error(fault.message, "", fault.fix);
-  Point2 lower = polygon.outer.front(), upper = lower;
-  for (const Point2& p : polygon.outer) {
-    for (std::size_t k = 0; k < 2; ++k) {
-      lower[k] = std::min(lower[k], p[k]);
-      upper[k] = std::max(upper[k], p[k]);
-    }
-  }
-  const double d = options.spacing;
-  const long nx = count_along(lower[0], upper[0], d);
-  const long ny = count_along(lower[1], upper[1], d);
-  check_count(static_cast<double>(nx) * static_cast<double>(ny), max_points, "the fluid polygon");
-  std::vector<double> points;
-  for (long j = 0; j < ny; ++j) {
-    for (long i = 0; i < nx; ++i) {
-      const Point2 p{lower[0] + (static_cast<double>(i) + 0.5) * d,
-                     lower[1] + (static_cast<double>(j) + 0.5) * d};
-      if (inside(polygon, p)) points.insert(points.end(), {p[0], p[1]});
-    }
-  }
-  if (points.empty()) {
-    throw Error("the fluid polygon holds no lattice point", "",
-                "make the polygon larger or the spacing smaller");
-  }
-  displace(points, options);
-  return points;
+  return fill_inside(polygon.outer, options, max_points, "the fluid polygon",
+                     [&](const Point2& point) { return inside(polygon, point); },
+                     {"the fluid polygon holds no lattice point",
+                      "make the polygon larger or the spacing smaller"});
 }
 
 TriangleMesh parse_stl(const std::string& bytes, const std::string& name) {
@@ -488,32 +544,7 @@ double enclosed_volume(const TriangleMesh& mesh) {
 
 std::vector<double> fill_box_3d(const Point3& lower, const Point3& upper,
                                 const LatticeOptions& options, std::size_t max_points) {
-  check_options(options, "the fluid box");
-  const double d = options.spacing;
-  std::array<long, 3> n{};
-  for (std::size_t k = 0; k < 3; ++k)
-    n[k] = count_along(lower[k], upper[k], d);
-  if (n[0] < 1 || n[1] < 1 || n[2] < 1) {
-    throw Error(
-        "the fluid box holds no lattice point (upper must exceed lower by at least one "
-        "spacing in x, y and z)",
-        "", "check lower, upper and spacing");
-  }
-  check_count(static_cast<double>(n[0]) * static_cast<double>(n[1]) * static_cast<double>(n[2]),
-              max_points, "the fluid box");
-  std::vector<double> points;
-  points.reserve(static_cast<std::size_t>(3 * n[0] * n[1] * n[2]));
-  for (long kz = 0; kz < n[2]; ++kz) {
-    for (long ky = 0; ky < n[1]; ++ky) {
-      for (long kx = 0; kx < n[0]; ++kx) {
-        points.push_back(lower[0] + (static_cast<double>(kx) + 0.5) * d);
-        points.push_back(lower[1] + (static_cast<double>(ky) + 0.5) * d);
-        points.push_back(lower[2] + (static_cast<double>(kz) + 0.5) * d);
-      }
-    }
-  }
-  displace(points, options);
-  return points;
+  return fill_box_lattice(lower, upper, options, max_points, " in x, y and z");
 }
 
 std::vector<double> fill_closed_surface(const TriangleMesh& mesh, const LatticeOptions& options,
@@ -523,35 +554,9 @@ std::vector<double> fill_closed_surface(const TriangleMesh& mesh, const LatticeO
     throw Error("the STL surface does not enclose a volume: " + problem, "",
                 "close and orient the surface (every edge shared by two triangles)");
   }
-  Point3 lower = mesh.vertices.front(), upper = lower;
-  for (const Point3& p : mesh.vertices) {
-    for (std::size_t k = 0; k < 3; ++k) {
-      lower[k] = std::min(lower[k], p[k]);
-      upper[k] = std::max(upper[k], p[k]);
-    }
-  }
-  const double d = options.spacing;
-  std::array<long, 3> n{};
-  for (std::size_t k = 0; k < 3; ++k)
-    n[k] = count_along(lower[k], upper[k], d);
-  check_count(static_cast<double>(n[0]) * static_cast<double>(n[1]) * static_cast<double>(n[2]),
-              max_points, "the fluid surface region");
-  std::vector<double> points;
-  for (long kz = 0; kz < n[2]; ++kz) {
-    for (long ky = 0; ky < n[1]; ++ky) {
-      for (long kx = 0; kx < n[0]; ++kx) {
-        const Point3 p{lower[0] + (static_cast<double>(kx) + 0.5) * d,
-                       lower[1] + (static_cast<double>(ky) + 0.5) * d,
-                       lower[2] + (static_cast<double>(kz) + 0.5) * d};
-        if (inside(mesh, p)) points.insert(points.end(), {p[0], p[1], p[2]});
-      }
-    }
-  }
-  if (points.empty()) {
-    throw Error("the STL region holds no lattice point", "", "make the spacing smaller");
-  }
-  displace(points, options);
-  return points;
+  return fill_inside(mesh.vertices, options, max_points, "the fluid surface region",
+                     [&](const Point3& point) { return inside(mesh, point); },
+                     {"the STL region holds no lattice point", "make the spacing smaller"});
 }
 
 }  // namespace fsi::scene

@@ -2,6 +2,7 @@
 
 #include "fsi/scene/parameter_file.hpp"
 
+#include <array>
 #include <charconv>
 #include <cmath>
 #include <optional>
@@ -171,17 +172,10 @@ Block load_text(const std::string& text, const std::string& file_name,
 }  // namespace
 
 std::string_view name(ValueKind kind) {
-  switch (kind) {
-    case ValueKind::Number:
-      return "number";
-    case ValueKind::String:
-      return "string";
-    case ValueKind::Vector:
-      return "vector";
-    case ValueKind::Matrix:
-      return "matrix";
-  }
-  return "?";
+  // Indexed by the enumerators, which are declared in this order.
+  constexpr std::array<std::string_view, 4> kNames{"number", "string", "vector", "matrix"};
+  const auto index = static_cast<std::size_t>(kind);
+  return index < kNames.size() ? kNames[index] : "?";
 }
 
 Value number_value(double value) {

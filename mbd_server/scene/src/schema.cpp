@@ -3,6 +3,7 @@
 #include "fsi/scene/schema.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 
@@ -268,19 +269,11 @@ const BlockSpec& anything() {
 }  // namespace
 
 std::string_view name(Kind kind) {
-  switch (kind) {
-    case Kind::Number:
-      return "number";
-    case Kind::Integer:
-      return "integer";
-    case Kind::String:
-      return "string";
-    case Kind::Vector:
-      return "vector";
-    case Kind::Matrix:
-      return "matrix";
-  }
-  return "?";
+  // Indexed by the enumerators, which are declared in this order.
+  constexpr std::array<std::string_view, 5> kNames{"number", "integer", "string", "vector",
+                                                   "matrix"};
+  const auto index = static_cast<std::size_t>(kind);
+  return index < kNames.size() ? kNames[index] : "?";
 }
 
 // ---- declarations ----

@@ -8,11 +8,10 @@
 
 #include "fsi/scene/physics_checks.hpp"
 #include "fsi/scene/scene.hpp"
+#include "test_files.hpp"
 
 namespace fsi::scene {
 namespace {
-
-namespace fs = std::filesystem;
 
 #define EXPECT_CONTAINS(haystack, needle) \
   EXPECT_NE(std::string(haystack).find(needle), std::string::npos) << (haystack)
@@ -48,17 +47,13 @@ std::vector<Diagnostic> coarse_diagnostics(const std::vector<Override>& override
   return physics_checks(build_scene(kCoarseTank, overrides));
 }
 
-class SmallScene : public ::testing::Test {
+class SmallScene : public testing::FolderPerTest {
  protected:
   void SetUp() override {
-    folder_ = fs::temp_directory_path() /
-              ("fsi_physics_checks_" +
-               std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::create_directories(folder_);
+    FolderPerTest::SetUp();
     set_up_script("# set-up\nfix gravity all gravity 9.81 vector 0.0 -1.0 0.0\n");
     std::ofstream(folder_ / "after.in") << "# after the equilibration\n";
   }
-  void TearDown() override { fs::remove_all(folder_); }
 
   void set_up_script(const std::string& text) { std::ofstream(folder_ / "setup.in") << text; }
 
@@ -75,8 +70,6 @@ class SmallScene : public ::testing::Test {
         << extra << "\n";
     return build_scene((folder_ / "small.scene").string());
   }
-
-  fs::path folder_;
 };
 
 // A small scene of our own in a temporary folder: a floor from x = 0 to 0.1 at y = 0, gravity
