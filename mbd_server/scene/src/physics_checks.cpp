@@ -816,7 +816,9 @@ std::vector<Diagnostic> end_time_check(const Scene& scene) {
     std::snprintf(text, sizeof text, "%.12g", value);
     return std::string(text);
   };
-  auto steps_text = [&](double count) { return exact(count) + " steps"; };
+  auto steps_text = [&](double count) {
+    return exact(count) + (count == 1.0 ? " step" : " steps");
+  };
   const double fewer = std::floor(quotient);
   const double more = fewer + 1.0;
   const std::string end_text = exact(end_time);

@@ -131,6 +131,14 @@ TEST_F(SceneInput, AnEndTimeTheStepDoesNotDivideIsReported) {
   EXPECT_EQ(found[0].fix,
             "use step_size = 0.01/33 (33 steps) or 0.01/34 (34 steps), or end_time = 0.0099 s "
             "(33 steps) or 0.0102 s (34 steps)");
+  // An end time below half a step: the run takes no step at all.
+  const std::vector<Diagnostic> none =
+      end_time_check(build_scene(minimal_scene("end_time = 0.001; Timeint { step_size = 0.003 }")));
+  ASSERT_EQ(none.size(), 1u);
+  EXPECT_CONTAINS(none[0].message,
+                  "= 0.33 is not a whole number: the run takes 0 steps and ends "
+                  "at t = 0 s");
+  EXPECT_EQ(none[0].fix, "use step_size = 0.001/1 (1 step), or end_time = 0.003 s (1 step)");
   // Steps that divide, also where the quotient is not exact in binary (0.15 / 3e-5).
   for (const char* solver : {"end_time = 0.01; Timeint { step_size = 1e-4 }",
                              "end_time = 0.15; Timeint { step_size = 3e-5 }",

@@ -44,7 +44,7 @@ inline constexpr std::string_view kPhysicsCheckNames[] = {
     "wall_repulsion",      // k within 2-20 rho0 g h_max (thesis §6.2)
     "kernel_neighbours",   // 30-100 particles within the support radius 2h (thesis §3.1.2)
     "wall_viscosity",      // t within a factor 3 of nu rho / h (thesis eq. 6.4)
-    "fluid_overlap",       // fluid box clear of every mesh by r0 / 2
+    "fluid_overlap",       // fluid box or polygon clear of every mesh by r0 / 2
     "gravity",             // the scripts' fix gravity equals the Gravity block
 };
 
