@@ -275,8 +275,12 @@ int main(int argc, char** argv) {
   }
   // Warnings only: a scene may break a rule of thumb on purpose.
   const std::vector<fsi::scene::Diagnostic> diagnostics = fsi::scene::physics_checks(scene);
+  // Not a rule of thumb: what the run will do with the scene's end time.
+  const std::vector<fsi::scene::Diagnostic> run_warnings = fsi::scene::end_time_check(scene);
   if (check_only) {
     print_summary(scene);
+    for (const fsi::scene::Diagnostic& warning : run_warnings)
+      std::printf("  %s\n", warning.text().c_str());
     print_diagnostics(scene, diagnostics);
     return 0;
   }
@@ -312,6 +316,8 @@ int main(int argc, char** argv) {
   std::filesystem::create_directories(output, error);
   const std::shared_ptr<TerminalSink> terminal = configure_logging(
       log_level, (std::filesystem::path(output) / "fsi-server.log").string(), !no_live);
+  for (const fsi::scene::Diagnostic& warning : run_warnings)
+    spdlog::warn("{}", warning.text());
   log_diagnostics(scene, diagnostics);
   if (scene.assembly) {
     for (const std::string& line : scene.assembly->lines())
@@ -332,6 +338,8 @@ int main(int argc, char** argv) {
   }
   for (int i = 0; i < argc; ++i)
     options.command_line += (i ? " " : "") + std::string(argv[i]);
+  for (const fsi::scene::Diagnostic& warning : run_warnings)
+    options.warnings.push_back(warning.text());
   for (const fsi::scene::Diagnostic& diagnostic : diagnostics) {
     if (diagnostic.severity == fsi::scene::Severity::Warning)
       options.warnings.push_back(diagnostic.text());

@@ -120,6 +120,26 @@ std::string path_of(const RawParameter& parameter) {
   return path;
 }
 
+// The "pick one: Name[0].x ... Name[n-1].x" of a path through a block list without an index.
+std::string pick_one(const std::vector<PathPart>& parts, std::size_t at, std::size_t count) {
+  const std::string rest = to_string(parts, parts.size()).substr(to_string(parts, at + 1).size());
+  return "pick one: " + parts[at].name + "[0]" + rest + " ... " + parts[at].name + "[" +
+         std::to_string(count - 1) + "]" + rest;
+}
+
+// The known path nearest to `path`, else one that ends in the same name ("offset_x" when only
+// "Geometry.offset_x" exists), else "".
+std::string suggestion_for(std::string_view path, const std::string& name,
+                           const std::vector<std::string>& known) {
+  std::string suggestion = nearest(path, known);
+  if (!suggestion.empty()) return suggestion;
+  for (const std::string& candidate : known) {
+    const std::size_t dot = candidate.rfind('.');
+    if (candidate.substr(dot == std::string::npos ? 0 : dot + 1) == name) return candidate;
+  }
+  return "";
+}
+
 class Evaluator {
  public:
   explicit Evaluator(RawBlock& root) : root_(root) {
@@ -188,12 +208,10 @@ class Evaluator {
                 "use an index from 0 to " + std::to_string(candidates.size() - 1) + " (0-based)"};
       }
       if (parts[i].index < 0 && candidates.size() > 1) {
-        const std::string rest = to_string(parts, parts.size()).substr(prefix.size());
         return {nullptr,
                 in_quotes(parts[i].name) + " is a list of " + std::to_string(candidates.size()) +
                     " blocks",
-                "pick one: " + parts[i].name + "[0]" + rest + " ... " + parts[i].name + "[" +
-                    std::to_string(candidates.size() - 1) + "]" + rest};
+                pick_one(parts, i, candidates.size())};
       }
       block = candidates[parts[i].index < 0 ? 0 : static_cast<std::size_t>(parts[i].index)];
     }
@@ -298,18 +316,7 @@ class Evaluator {
                         from.location.text() + ")"};
     }
     if (!first_problem.message.empty()) return first_problem;
-    const std::vector<std::string> names = visible_names(from);
-    std::string suggestion = nearest(path, names);
-    if (suggestion.empty()) {
-      // "offset_x" when only "Geometry.offset_x" exists.
-      for (const auto& name : names) {
-        const std::size_t dot = name.rfind('.');
-        if (dot != std::string::npos && name.substr(dot + 1) == parts.back().name) {
-          suggestion = name;
-          break;
-        }
-      }
-    }
+    const std::string suggestion = suggestion_for(path, parts.back().name, visible_names(from));
     return {nullptr, in_quotes(path) + " is not defined",
             suggestion.empty()
                 ? "define it above this line (a name is looked up in its block, then in the "
@@ -388,27 +395,37 @@ class Evaluator {
 
   // ---- numbers through muParser ----
 
-  // Where the name `name` occurs in the expression being evaluated, as muParser splits names.
-  std::size_t locate(std::string_view name) {
+  // Calls visit(begin, end) for each name as muParser splits names in the scalar being
+  // evaluated, from `from` on, until visit returns true; whether it did.
+  template <class Visit>
+  bool scan_names(std::size_t from, Visit visit) const {
     const std::string& text = *text_;
-    for (int pass = 0; pass < 2; ++pass) {
-      std::size_t i = pass == 0 ? cursor_ : scalar_.begin;
-      while (i < scalar_.end) {
-        if (!is_name_char(text[i])) {
-          ++i;
-          continue;
-        }
-        std::size_t j = i;
-        while (j < scalar_.end && is_name_char(text[j]))
-          ++j;
-        if (std::string_view(text).substr(i, j - i) == name) {
-          cursor_ = j;
-          return i;
-        }
-        i = j;
+    for (std::size_t i = from; i < scalar_.end;) {
+      if (!is_name_char(text[i])) {
+        ++i;
+        continue;
       }
+      std::size_t j = i;
+      while (j < scalar_.end && is_name_char(text[j]))
+        ++j;
+      if (visit(i, j)) return true;
+      i = j;
     }
-    return scalar_.begin;
+    return false;
+  }
+
+  // Where the name `name` occurs in the expression being evaluated: muParser asks for names in
+  // their order, so the search goes on after the last one found, then from the start.
+  std::size_t locate(std::string_view name) {
+    std::size_t found = scalar_.begin;
+    auto match = [&](std::size_t begin, std::size_t end) {
+      if (std::string_view(*text_).substr(begin, end - begin) != name) return false;
+      cursor_ = end;
+      found = begin;
+      return true;
+    };
+    if (!scan_names(cursor_, match)) scan_names(scalar_.begin, match);
+    return found;
   }
 
   static double* on_variable(const char* name, void* self) {
@@ -441,31 +458,24 @@ class Evaluator {
   // would be ignored silently.
   void check_constant_names(RawParameter& parameter) {
     const std::string& text = *text_;
-    for (std::size_t i = scalar_.begin; i < scalar_.end;) {
-      if (!is_name_char(text[i])) {
-        ++i;
-        continue;
-      }
-      std::size_t j = i;
-      while (j < scalar_.end && is_name_char(text[j]))
-        ++j;
-      const std::string token = text.substr(i, j - i);
-      std::size_t next = j;
+    scan_names(scalar_.begin, [&](std::size_t begin, std::size_t end) {
+      const std::string token = text.substr(begin, end - begin);
+      std::size_t next = end;
       while (next < scalar_.end && is_blank(text[next]))
         ++next;
       const bool call = next < scalar_.end && text[next] == '(';
       if ((token == "e" || token == "pi") && !call) {
         const Resolution found = resolve(token, parameter);
         if (found.parameter) {
-          pending_.push_back({i,
+          pending_.push_back({begin,
                               in_quotes(token) +
                                   " is the built-in constant and also a parameter (" +
                                   found.parameter->location.text() + ")",
                               "rename the parameter, e.g. " + token + "_value"});
         }
       }
-      i = j;
-    }
+      return false;
+    });
   }
 
   bool number(RawParameter& parameter, Range range, double& out) {
@@ -671,7 +681,81 @@ class Evaluator {
 
 }  // namespace
 
-void apply_overrides(RawBlock& root, const std::vector<Override>& overrides) {
+namespace {
+
+// The blocks of the file along an override's path; stops at the first one the file lacks.
+struct OverridePath {
+  RawBlock* block = nullptr;  // the deepest block found
+  std::size_t found = 0;      // how many of the path's blocks the file has
+};
+
+OverridePath follow(RawBlock& root, const std::vector<PathPart>& parts, const std::string& label) {
+  OverridePath path{&root, 0};
+  for (; path.found + 1 < parts.size(); ++path.found) {
+    const PathPart& part = parts[path.found];
+    const std::vector<RawBlock*> candidates = path.block->children(part.name);
+    if (candidates.empty()) break;
+    if (part.index < 0 && candidates.size() > 1) {
+      throw Error(
+          in_quotes(part.name) + " is a list of " + std::to_string(candidates.size()) + " blocks",
+          label, pick_one(parts, path.found, candidates.size()));
+    }
+    if (part.index >= static_cast<int>(candidates.size())) {
+      throw Error("there are only " + std::to_string(candidates.size()) + " " +
+                      in_quotes(part.name) + " blocks",
+                  label,
+                  "use an index from 0 to " + std::to_string(candidates.size() - 1) + " (0-based)");
+    }
+    path.block = candidates[part.index < 0 ? 0 : static_cast<std::size_t>(part.index)];
+  }
+  return path;
+}
+
+int last_sequence(const RawBlock& block) {
+  int last = 0;
+  for (const auto& parameter : block.parameters)
+    last = std::max(last, parameter->sequence);
+  for (const auto& child : block.blocks)
+    last = std::max(last, last_sequence(*child));
+  return last;
+}
+
+// Why `--set` cannot add the parameter `parts` names ("" if it can): asks `may_add` about the
+// blocks the file lacks on the way.
+std::string refusal(const std::vector<PathPart>& parts, const OverridePath& path,
+                    const OverrideAdmission& may_add) {
+  if (!may_add) return "--set changes parameters the file defines; add it to the file first";
+  for (std::size_t i = path.found; i + 1 < parts.size(); ++i) {
+    if (parts[i].index > 0) {
+      return "the file has no " + in_quotes(to_string(parts, i + 1)) +
+             " block to add it to; add the block to the file";
+    }
+  }
+  std::vector<std::string> blocks;
+  for (std::size_t i = 0; i + 1 < parts.size(); ++i)
+    blocks.push_back(parts[i].name);
+  return may_add(blocks, parts.back().name, parts.size() - 1 - path.found);
+}
+
+// The parameter an admitted override adds, after everything the file holds (it may refer to any
+// of it), in the blocks of its path, created where the file lacks them.
+RawParameter& add_parameter(RawBlock& root, const std::vector<PathPart>& parts, OverridePath path,
+                            const std::string& label) {
+  const SourceLocation where{label, 0, 0};
+  for (std::size_t i = path.found; i + 1 < parts.size(); ++i)
+    path.block = &path.block->add_block(parts[i].name, where);
+  auto parameter = std::make_unique<RawParameter>();
+  parameter->key = parts.back().name;
+  parameter->location = where;
+  parameter->sequence = last_sequence(root) + 1;
+  parameter->block = path.block;
+  return path.block->add_parameter(std::move(parameter));
+}
+
+}  // namespace
+
+void apply_overrides(RawBlock& root, const std::vector<Override>& overrides,
+                     const OverrideAdmission& may_add) {
   for (const Override& item : overrides) {
     const std::string label = "--set " + item.path + "=" + item.expression;
     std::vector<PathPart> parts;
@@ -679,61 +763,35 @@ void apply_overrides(RawBlock& root, const std::vector<Override>& overrides) {
       throw Error(in_quotes(item.path) + " is not a parameter path", label,
                   "write e.g. --set Geometry.width=0.06 or --set Body[1].mass=2");
     }
-    RawBlock* block = &root;
-    bool missing = false;
-    for (std::size_t i = 0; i + 1 < parts.size() && !missing; ++i) {
-      const std::vector<RawBlock*> candidates = block->children(parts[i].name);
-      if (candidates.empty()) {
-        missing = true;
-      } else if (parts[i].index < 0 && candidates.size() > 1) {
-        const std::string rest =
-            to_string(parts, parts.size()).substr(to_string(parts, i + 1).size());
-        throw Error(in_quotes(parts[i].name) + " is a list of " +
-                        std::to_string(candidates.size()) + " blocks",
-                    label,
-                    "pick one: " + parts[i].name + "[0]" + rest + " ... " + parts[i].name + "[" +
-                        std::to_string(candidates.size() - 1) + "]" + rest);
-      } else if (parts[i].index >= static_cast<int>(candidates.size())) {
-        throw Error(
-            "there are only " + std::to_string(candidates.size()) + " " + in_quotes(parts[i].name) +
-                " blocks",
-            label,
-            "use an index from 0 to " + std::to_string(candidates.size() - 1) + " (0-based)");
-      } else {
-        block = candidates[parts[i].index < 0 ? 0 : static_cast<std::size_t>(parts[i].index)];
-      }
-    }
+    const OverridePath path = follow(root, parts, label);
+    const bool in_file = path.found + 1 == parts.size();
     RawParameter* target = nullptr;
-    if (!missing && parts.back().index < 0) {
-      for (auto& parameter : block->parameters) {
+    if (in_file && parts.back().index < 0) {
+      for (auto& parameter : path.block->parameters) {
         if (parameter->key == parts.back().name) target = parameter.get();  // the last one counts
       }
-      if (!target && !block->children(parts.back().name).empty()) {
+      if (!target && !path.block->children(parts.back().name).empty()) {
         throw Error(in_quotes(item.path) + " is a block, not a parameter", label,
                     "set one of its parameters, e.g. --set " + item.path + ".key=...");
       }
     }
     if (!target) {
-      std::vector<std::string> paths;
-      collect_paths(root, "", paths);
-      std::string suggestion = nearest(item.path, paths);
-      if (suggestion.empty()) {
-        for (const auto& path : paths) {
-          const std::size_t dot = path.rfind('.');
-          if (path.substr(dot == std::string::npos ? 0 : dot + 1) == parts.back().name) {
-            suggestion = path;
-            break;
-          }
-        }
+      const std::string why_not = parts.back().index >= 0
+                                      ? "remove the [...] after " + in_quotes(parts.back().name) +
+                                            ": only blocks take an index"
+                                      : refusal(parts, path, may_add);
+      if (!why_not.empty()) {
+        std::vector<std::string> paths;
+        collect_paths(root, "", paths);
+        const std::string suggestion = suggestion_for(item.path, parts.back().name, paths);
+        throw Error("the scene file has no parameter " + in_quotes(item.path), label,
+                    suggestion.empty() ? why_not : "did you mean " + in_quotes(suggestion) + "?");
       }
-      throw Error("the scene file has no parameter " + in_quotes(item.path), label,
-                  suggestion.empty()
-                      ? "--set changes parameters the file defines; add it to the file first"
-                      : "did you mean " + in_quotes(suggestion) + "?");
     }
     if (trimmed(item.expression, 0, item.expression.size()).empty()) {
       throw Error("the override has no value", label, "write --set KEY=EXPR");
     }
+    if (!target) target = &add_parameter(root, parts, path, label);
     target->expression = item.expression;
     target->override_label = label;
     target->expression_location = {label, 0, 0};

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <random>
@@ -58,6 +59,103 @@ void check_count(double count, std::size_t max_points, const std::string& what) 
   }
 }
 
+// The lattice over the bounding box [lower, upper] of a region: its points lower + (i + 1/2) d
+// per axis, x fastest, are the candidates every fill tests.
+template <std::size_t Dim>
+struct Lattice {
+  std::array<double, Dim> lower{};
+  std::array<long, Dim> counts{};
+  double spacing = 0.0;
+
+  Lattice(const std::array<double, Dim>& low, const std::array<double, Dim>& high, double d)
+      : lower(low), spacing(d) {
+    for (std::size_t k = 0; k < Dim; ++k)
+      counts[k] = count_along(low[k], high[k], d);
+  }
+
+  double size() const {
+    double points = 1.0;
+    for (const long count : counts)
+      points *= static_cast<double>(count);
+    return points;
+  }
+  bool empty() const {
+    return std::any_of(counts.begin(), counts.end(), [](long count) { return count < 1; });
+  }
+
+  // The coordinates of every point `keep` accepts, point after point, before any displacement.
+  template <class Keep>
+  std::vector<double> points(Keep keep) const {
+    std::vector<double> kept;
+    const auto total = empty() ? 0L : static_cast<long>(size());
+    for (long flat = 0; flat < total; ++flat) {
+      std::array<double, Dim> point{};
+      long rest = flat;
+      for (std::size_t k = 0; k < Dim; ++k) {
+        point[k] = lower[k] + (static_cast<double>(rest % counts[k]) + 0.5) * spacing;
+        rest /= counts[k];
+      }
+      if (keep(point)) kept.insert(kept.end(), point.begin(), point.end());
+    }
+    return kept;
+  }
+};
+
+// The lattice over the bounding box of `vertices`.
+template <std::size_t Dim>
+Lattice<Dim> lattice_around(const std::vector<std::array<double, Dim>>& vertices, double d) {
+  std::array<double, Dim> lower = vertices.front(), upper = lower;
+  for (const auto& vertex : vertices) {
+    for (std::size_t k = 0; k < Dim; ++k) {
+      lower[k] = std::min(lower[k], vertex[k]);
+      upper[k] = std::max(upper[k], vertex[k]);
+    }
+  }
+  return Lattice<Dim>(lower, upper, d);
+}
+
+// What to say when a region holds no lattice point, and how to fix it.
+struct EmptyRegion {
+  std::string message;
+  std::string fix;
+};
+
+// The points of the lattice around `vertices` that `contains` accepts, displaced; `what` names the
+// region when it would hold too many.
+template <std::size_t Dim, class Contains>
+std::vector<double> fill_inside(const std::vector<std::array<double, Dim>>& vertices,
+                                const LatticeOptions& options, std::size_t max_points,
+                                const std::string& what, Contains contains,
+                                const EmptyRegion& empty) {
+  const Lattice<Dim> lattice = lattice_around(vertices, options.spacing);
+  check_count(lattice.size(), max_points, what);
+  std::vector<double> points = lattice.points(contains);
+  if (points.empty()) throw Error(empty.message, "", empty.fix);
+  displace(points, options);
+  return points;
+}
+
+// Every point of the box's lattice; `axes` names them in the message of an empty box.
+template <std::size_t Dim>
+std::vector<double> fill_box_lattice(const std::array<double, Dim>& lower,
+                                     const std::array<double, Dim>& upper,
+                                     const LatticeOptions& options, std::size_t max_points,
+                                     const std::string& axes) {
+  check_options(options, "the fluid box");
+  const Lattice<Dim> lattice(lower, upper, options.spacing);
+  if (lattice.empty()) {
+    throw Error(
+        "the fluid box holds no lattice point (upper must exceed lower by at least one "
+        "spacing" +
+            axes + ")",
+        "", "check lower, upper and spacing");
+  }
+  check_count(lattice.size(), max_points, "the fluid box");
+  std::vector<double> points = lattice.points([](const auto&) { return true; });
+  displace(points, options);
+  return points;
+}
+
 // Even-odd crossing test of one ring (horizontal ray to +x).
 bool crosses_odd(const std::vector<Point2>& ring, const Point2& p) {
   bool odd = false;
@@ -84,37 +182,105 @@ double cross(const Point2& o, const Point2& a, const Point2& b) {
   return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
 }
 
-// Whether the closed segments pq and rs share a point.
-bool segments_meet(const Point2& p, const Point2& q, const Point2& r, const Point2& s) {
+// Whether the segments pq and rs cross at a point inside both (not merely touch or overlap).
+bool segments_cross(const Point2& p, const Point2& q, const Point2& r, const Point2& s) {
   const double d1 = cross(r, s, p), d2 = cross(r, s, q), d3 = cross(p, q, r), d4 = cross(p, q, s);
-  if (((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0)))
-    return true;
-  auto on = [](const Point2& a, const Point2& b, const Point2& c, double d) {
-    return d == 0.0 && std::min(a[0], b[0]) <= c[0] && c[0] <= std::max(a[0], b[0]) &&
-           std::min(a[1], b[1]) <= c[1] && c[1] <= std::max(a[1], b[1]);
-  };
-  return on(r, s, p, d1) || on(r, s, q, d2) || on(p, q, r, d3) || on(p, q, s, d4);
+  return ((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0));
 }
 
-std::string ring_problem(const std::vector<Point2>& ring, const std::string& name) {
-  if (ring.size() < 3) return name + " has " + std::to_string(ring.size()) + " vertices, needs 3";
-  for (const Point2& p : ring) {
-    if (!std::isfinite(p[0]) || !std::isfinite(p[1])) return name + " has a non-finite vertex";
+// Whether the closed segments pq and rs share a point.
+bool segments_meet(const Point2& p, const Point2& q, const Point2& r, const Point2& s) {
+  if (segments_cross(p, q, r, s)) return true;
+  auto on = [](const Point2& a, const Point2& b, const Point2& c) {
+    return cross(a, b, c) == 0.0 && std::min(a[0], b[0]) <= c[0] && c[0] <= std::max(a[0], b[0]) &&
+           std::min(a[1], b[1]) <= c[1] && c[1] <= std::max(a[1], b[1]);
+  };
+  return on(r, s, p) || on(r, s, q) || on(p, q, r) || on(p, q, s);
+}
+
+double point_segment_distance(const Point2& point, const Point2& a, const Point2& b) {
+  const double ab_x = b[0] - a[0], ab_y = b[1] - a[1];
+  const double length2 = ab_x * ab_x + ab_y * ab_y;
+  const double s =
+      length2 > 0.0
+          ? std::clamp(((point[0] - a[0]) * ab_x + (point[1] - a[1]) * ab_y) / length2, 0.0, 1.0)
+          : 0.0;
+  return std::hypot(a[0] + s * ab_x - point[0], a[1] + s * ab_y - point[1]);
+}
+
+std::string edge_name(std::size_t first, std::size_t count) {
+  return std::to_string(first) + "-" + std::to_string((first + 1) % count);
+}
+
+// What is wrong with a polygon and what to do about it; an empty message when it can be filled.
+struct PolygonFault {
+  std::string message;
+  std::string fix;
+};
+
+constexpr const char* kInOrder = "give the vertices in order around the region";
+
+PolygonFault ring_fault(const std::vector<Point2>& ring, const std::string& name) {
+  if (ring.size() < 3) {
+    return {name + " has " + std::to_string(ring.size()) + " vertices, needs 3",
+            "give at least 3 vertices, in order around the region"};
   }
-  if (signed_area(ring) == 0.0) return name + " encloses no area";
+  for (const Point2& p : ring) {
+    if (!std::isfinite(p[0]) || !std::isfinite(p[1]))
+      return {name + " has a non-finite vertex", "check the expressions of the vertices"};
+  }
+  if (signed_area(ring) == 0.0) return {name + " encloses no area", kInOrder};
   const std::size_t n = ring.size();
   for (std::size_t i = 0; i < n; ++i) {
     for (std::size_t j = i + 1; j < n; ++j) {
       const bool neighbours = j == i + 1 || (i == 0 && j == n - 1);
       if (neighbours) continue;
       if (segments_meet(ring[i], ring[(i + 1) % n], ring[j], ring[(j + 1) % n])) {
-        return name + ": edges " + std::to_string(i) + "-" + std::to_string((i + 1) % n) + " and " +
-               std::to_string(j) + "-" + std::to_string((j + 1) % n) +
-               " cross (the polygon must not intersect itself)";
+        return {name + ": edges " + edge_name(i, n) + " and " + edge_name(j, n) +
+                    " cross (the polygon must not intersect itself)",
+                kInOrder};
       }
     }
   }
-  return "";
+  return {};
+}
+
+// A hole that reaches out of the outline: the even-odd fill would put fluid outside the region.
+PolygonFault hole_fault(const std::vector<Point2>& outer, const std::vector<Point2>& hole,
+                        const std::string& name) {
+  std::string crossing;
+  for (std::size_t i = 0; i < hole.size() && crossing.empty(); ++i) {
+    for (std::size_t j = 0; j < outer.size(); ++j) {
+      if (segments_cross(hole[i], hole[(i + 1) % hole.size()], outer[j],
+                         outer[(j + 1) % outer.size()])) {
+        crossing = "the hole's edge " + edge_name(i, hole.size()) + " crosses the polygon's edge " +
+                   edge_name(j, outer.size());
+        break;
+      }
+    }
+  }
+  std::string message;
+  for (std::size_t v = 0; v < hole.size() && message.empty(); ++v) {
+    if (!crosses_odd(outer, hole[v])) {
+      message = name + ": vertex " + std::to_string(v) + " lies outside the polygon" +
+                (crossing.empty() ? "" : " (" + crossing + ")");
+    }
+  }
+  if (message.empty() && !crossing.empty()) message = name + ": " + crossing;
+  if (message.empty()) return {};
+  return {message,
+          "a hole must lie inside the polygon: move its vertices inwards, or the polygon's "
+          "outwards"};
+}
+
+PolygonFault polygon_fault(const Polygon& polygon) {
+  PolygonFault fault = ring_fault(polygon.outer, "the polygon");
+  for (std::size_t h = 0; h < polygon.holes.size() && fault.message.empty(); ++h) {
+    const std::string name = "hole " + std::to_string(h);
+    fault = ring_fault(polygon.holes[h], name);
+    if (fault.message.empty()) fault = hole_fault(polygon.outer, polygon.holes[h], name);
+  }
+  return fault;
 }
 
 // ---- STL ----
@@ -223,77 +389,46 @@ bool inside(const Polygon& polygon, const Point2& point) {
 }
 
 std::string polygon_problem(const Polygon& polygon) {
-  std::string problem = ring_problem(polygon.outer, "the polygon");
-  if (!problem.empty()) return problem;
-  for (std::size_t h = 0; h < polygon.holes.size(); ++h) {
-    const std::string name = "hole " + std::to_string(h);
-    problem = ring_problem(polygon.holes[h], name);
-    if (!problem.empty()) return problem;
-    for (std::size_t v = 0; v < polygon.holes[h].size(); ++v) {
-      if (!crosses_odd(polygon.outer, polygon.holes[h][v])) {
-        return name + ": vertex " + std::to_string(v) + " lies outside the polygon";
+  return polygon_fault(polygon).message;
+}
+
+double distance_to_region(const Polygon& region, const Point2& a, const Point2& b) {
+  if (inside(region, a) || inside(region, b)) return 0.0;
+  // Outside the region the segment can only come close to its edges.
+  double distance = std::numeric_limits<double>::infinity();
+  auto approach = [&](const std::vector<Point2>& ring) {
+    for (std::size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++) {
+      const Point2& p = ring[j];
+      const Point2& q = ring[i];
+      if (segments_meet(a, b, p, q)) {
+        distance = 0.0;
+        return;
       }
+      distance =
+          std::min({distance, point_segment_distance(a, p, q), point_segment_distance(b, p, q),
+                    point_segment_distance(p, a, b), point_segment_distance(q, a, b)});
     }
-  }
-  return "";
+  };
+  approach(region.outer);
+  for (const auto& hole : region.holes)
+    approach(hole);
+  return distance;
 }
 
 std::vector<double> fill_box(const Point2& lower, const Point2& upper,
                              const LatticeOptions& options, std::size_t max_points) {
-  check_options(options, "the fluid box");
-  const double d = options.spacing;
-  const long nx = count_along(lower[0], upper[0], d);
-  const long ny = count_along(lower[1], upper[1], d);
-  if (nx < 1 || ny < 1) {
-    throw Error(
-        "the fluid box holds no lattice point (upper must exceed lower by at least one "
-        "spacing)",
-        "", "check lower, upper and spacing");
-  }
-  check_count(static_cast<double>(nx) * static_cast<double>(ny), max_points, "the fluid box");
-  std::vector<double> points;
-  points.reserve(static_cast<std::size_t>(2 * nx * ny));
-  for (long j = 0; j < ny; ++j) {
-    for (long i = 0; i < nx; ++i) {
-      points.push_back(lower[0] + (static_cast<double>(i) + 0.5) * d);
-      points.push_back(lower[1] + (static_cast<double>(j) + 0.5) * d);
-    }
-  }
-  displace(points, options);
-  return points;
+  return fill_box_lattice(lower, upper, options, max_points, "");
 }
 
 std::vector<double> fill_polygon(const Polygon& polygon, const LatticeOptions& options,
                                  std::size_t max_points) {
   check_options(options, "the fluid polygon");
-  if (const std::string problem = polygon_problem(polygon); !problem.empty()) {
-    throw Error(problem, "", "give the vertices in order around the region");
-  }
-  Point2 lower = polygon.outer.front(), upper = lower;
-  for (const Point2& p : polygon.outer) {
-    for (std::size_t k = 0; k < 2; ++k) {
-      lower[k] = std::min(lower[k], p[k]);
-      upper[k] = std::max(upper[k], p[k]);
-    }
-  }
-  const double d = options.spacing;
-  const long nx = count_along(lower[0], upper[0], d);
-  const long ny = count_along(lower[1], upper[1], d);
-  check_count(static_cast<double>(nx) * static_cast<double>(ny), max_points, "the fluid polygon");
-  std::vector<double> points;
-  for (long j = 0; j < ny; ++j) {
-    for (long i = 0; i < nx; ++i) {
-      const Point2 p{lower[0] + (static_cast<double>(i) + 0.5) * d,
-                     lower[1] + (static_cast<double>(j) + 0.5) * d};
-      if (inside(polygon, p)) points.insert(points.end(), {p[0], p[1]});
-    }
-  }
-  if (points.empty()) {
-    throw Error("the fluid polygon holds no lattice point", "",
-                "make the polygon larger or the spacing smaller");
-  }
-  displace(points, options);
-  return points;
+  if (const PolygonFault fault = polygon_fault(polygon); !fault.message.empty())
+    throw Error(fault.message, "", fault.fix);
+  return fill_inside(polygon.outer, options, max_points, "the fluid polygon",
+                     [&](const Point2& point) { return inside(polygon, point); },
+                     {"the fluid polygon holds no lattice point",
+                      "make the polygon larger or the spacing smaller"});
 }
 
 TriangleMesh parse_stl(const std::string& bytes, const std::string& name) {
@@ -409,32 +544,7 @@ double enclosed_volume(const TriangleMesh& mesh) {
 
 std::vector<double> fill_box_3d(const Point3& lower, const Point3& upper,
                                 const LatticeOptions& options, std::size_t max_points) {
-  check_options(options, "the fluid box");
-  const double d = options.spacing;
-  std::array<long, 3> n{};
-  for (std::size_t k = 0; k < 3; ++k)
-    n[k] = count_along(lower[k], upper[k], d);
-  if (n[0] < 1 || n[1] < 1 || n[2] < 1) {
-    throw Error(
-        "the fluid box holds no lattice point (upper must exceed lower by at least one "
-        "spacing in x, y and z)",
-        "", "check lower, upper and spacing");
-  }
-  check_count(static_cast<double>(n[0]) * static_cast<double>(n[1]) * static_cast<double>(n[2]),
-              max_points, "the fluid box");
-  std::vector<double> points;
-  points.reserve(static_cast<std::size_t>(3 * n[0] * n[1] * n[2]));
-  for (long kz = 0; kz < n[2]; ++kz) {
-    for (long ky = 0; ky < n[1]; ++ky) {
-      for (long kx = 0; kx < n[0]; ++kx) {
-        points.push_back(lower[0] + (static_cast<double>(kx) + 0.5) * d);
-        points.push_back(lower[1] + (static_cast<double>(ky) + 0.5) * d);
-        points.push_back(lower[2] + (static_cast<double>(kz) + 0.5) * d);
-      }
-    }
-  }
-  displace(points, options);
-  return points;
+  return fill_box_lattice(lower, upper, options, max_points, " in x, y and z");
 }
 
 std::vector<double> fill_closed_surface(const TriangleMesh& mesh, const LatticeOptions& options,
@@ -444,35 +554,9 @@ std::vector<double> fill_closed_surface(const TriangleMesh& mesh, const LatticeO
     throw Error("the STL surface does not enclose a volume: " + problem, "",
                 "close and orient the surface (every edge shared by two triangles)");
   }
-  Point3 lower = mesh.vertices.front(), upper = lower;
-  for (const Point3& p : mesh.vertices) {
-    for (std::size_t k = 0; k < 3; ++k) {
-      lower[k] = std::min(lower[k], p[k]);
-      upper[k] = std::max(upper[k], p[k]);
-    }
-  }
-  const double d = options.spacing;
-  std::array<long, 3> n{};
-  for (std::size_t k = 0; k < 3; ++k)
-    n[k] = count_along(lower[k], upper[k], d);
-  check_count(static_cast<double>(n[0]) * static_cast<double>(n[1]) * static_cast<double>(n[2]),
-              max_points, "the fluid surface region");
-  std::vector<double> points;
-  for (long kz = 0; kz < n[2]; ++kz) {
-    for (long ky = 0; ky < n[1]; ++ky) {
-      for (long kx = 0; kx < n[0]; ++kx) {
-        const Point3 p{lower[0] + (static_cast<double>(kx) + 0.5) * d,
-                       lower[1] + (static_cast<double>(ky) + 0.5) * d,
-                       lower[2] + (static_cast<double>(kz) + 0.5) * d};
-        if (inside(mesh, p)) points.insert(points.end(), {p[0], p[1], p[2]});
-      }
-    }
-  }
-  if (points.empty()) {
-    throw Error("the STL region holds no lattice point", "", "make the spacing smaller");
-  }
-  displace(points, options);
-  return points;
+  return fill_inside(mesh.vertices, options, max_points, "the fluid surface region",
+                     [&](const Point3& point) { return inside(mesh, point); },
+                     {"the STL region holds no lattice point", "make the spacing smaller"});
 }
 
 }  // namespace fsi::scene

@@ -2,6 +2,7 @@
 
 #include "fsi/scene/parameter_file.hpp"
 
+#include <array>
 #include <charconv>
 #include <cmath>
 #include <optional>
@@ -155,20 +156,26 @@ std::string read_file(const std::string& path) {
   return std::move(*text);
 }
 
+// Text -> evaluated tree; evaluation problems are appended to `problems`.
+Block load_text(const std::string& text, const std::string& file_name,
+                const std::vector<Override>& overrides, const IncludeReader& read_include,
+                const OverrideAdmission& may_add, std::vector<Problem>& problems) {
+  detail::RawBlock root;
+  root.location = {file_name};
+  detail::parse_into(root, text, file_name, read_include);
+  detail::apply_overrides(root, overrides, may_add);
+  std::vector<Problem> found = detail::evaluate(root);
+  problems.insert(problems.end(), found.begin(), found.end());
+  return convert(root);
+}
+
 }  // namespace
 
 std::string_view name(ValueKind kind) {
-  switch (kind) {
-    case ValueKind::Number:
-      return "number";
-    case ValueKind::String:
-      return "string";
-    case ValueKind::Vector:
-      return "vector";
-    case ValueKind::Matrix:
-      return "matrix";
-  }
-  return "?";
+  // Indexed by the enumerators, which are declared in this order.
+  constexpr std::array<std::string_view, 4> kNames{"number", "string", "vector", "matrix"};
+  const auto index = static_cast<std::size_t>(kind);
+  return index < kNames.size() ? kNames[index] : "?";
 }
 
 Value number_value(double value) {
@@ -296,12 +303,10 @@ IncludeReader in_memory_files(std::map<std::string, std::string> files) {
 Block parse_parameter_text(const std::string& text, const std::string& file_name,
                            const std::vector<Override>& overrides,
                            const IncludeReader& read_include) {
-  detail::RawBlock root;
-  root.location = {file_name};
-  detail::parse_into(root, text, file_name, read_include);
-  detail::apply_overrides(root, overrides);
-  throw_if_any(detail::evaluate(root), file_name);
-  return convert(root);
+  std::vector<Problem> problems;
+  Block root = load_text(text, file_name, overrides, read_include, {}, problems);
+  throw_if_any(problems, file_name);
+  return root;
 }
 
 Block load_parameter_file(const std::string& path, const std::vector<Override>& overrides) {
@@ -309,19 +314,14 @@ Block load_parameter_file(const std::string& path, const std::vector<Override>& 
 }
 
 Block parse_parameter_text(const std::string& text, const std::string& file_name,
-                           const std::vector<Override>& overrides, std::vector<Problem>& problems) {
-  detail::RawBlock root;
-  root.location = {file_name};
-  detail::parse_into(root, text, file_name, {});
-  detail::apply_overrides(root, overrides);
-  std::vector<Problem> found = detail::evaluate(root);
-  problems.insert(problems.end(), found.begin(), found.end());
-  return convert(root);
+                           const std::vector<Override>& overrides, std::vector<Problem>& problems,
+                           const OverrideAdmission& may_add) {
+  return load_text(text, file_name, overrides, {}, may_add, problems);
 }
 
 Block load_parameter_file(const std::string& path, const std::vector<Override>& overrides,
-                          std::vector<Problem>& problems) {
-  return parse_parameter_text(read_file(path), path, overrides, problems);
+                          std::vector<Problem>& problems, const OverrideAdmission& may_add) {
+  return parse_parameter_text(read_file(path), path, overrides, problems, may_add);
 }
 
 std::string to_text(const Block& root) {

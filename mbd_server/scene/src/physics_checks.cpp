@@ -12,6 +12,8 @@
 #include <optional>
 #include <sstream>
 
+#include "fsi/scene/fluid_region.hpp"
+
 namespace fsi::scene {
 namespace {
 
@@ -580,53 +582,6 @@ void check_wall_viscosity(const Scene& scene, Report& report) {
 
 // --- 7. fluid regions overlapping a mesh ------------------------------------------------------
 
-struct Box {
-  Point lower;
-  Point upper;
-};
-
-double point_segment_distance(const Point& point, const Point& a, const Point& b) {
-  const Point ab = b - a;
-  const double length2 = ab.squaredNorm();
-  const double s = length2 > 0.0 ? std::clamp((point - a).dot(ab) / length2, 0.0, 1.0) : 0.0;
-  return (a + s * ab - point).norm();
-}
-
-double point_box_distance(const Point& point, const Box& box) {
-  const Point outside = (box.lower - point).cwiseMax(point - box.upper).cwiseMax(0.0);
-  return outside.norm();
-}
-
-// Liang-Barsky clipping: does the segment a-b touch the box?
-bool segment_hits_box(const Point& a, const Point& b, const Box& box) {
-  double enter = 0.0;
-  double leave = 1.0;
-  for (int axis = 0; axis < 2; ++axis) {
-    const double delta = b[axis] - a[axis];
-    if (delta == 0.0) {
-      if (a[axis] < box.lower[axis] || a[axis] > box.upper[axis]) return false;
-      continue;
-    }
-    double t_lower = (box.lower[axis] - a[axis]) / delta;
-    double t_upper = (box.upper[axis] - a[axis]) / delta;
-    if (t_lower > t_upper) std::swap(t_lower, t_upper);
-    enter = std::max(enter, t_lower);
-    leave = std::min(leave, t_upper);
-    if (enter > leave) return false;
-  }
-  return true;
-}
-
-// Between two disjoint convex sets the shortest distance joins a vertex of one to the other.
-double box_segment_distance(const Box& box, const Point& a, const Point& b) {
-  if (segment_hits_box(a, b, box)) return 0.0;
-  double distance = std::min(point_box_distance(a, box), point_box_distance(b, box));
-  for (const Point& corner : {box.lower, Point(box.upper.x(), box.lower.y()), box.upper,
-                              Point(box.lower.x(), box.upper.y())})
-    distance = std::min(distance, point_segment_distance(corner, a, b));
-  return distance;
-}
-
 struct WorldMesh {
   std::string owner;  // "body 'piston'", "Ground[1]"
   std::vector<Point> points;
@@ -658,6 +613,49 @@ std::vector<WorldMesh> world_meshes(const Scene& scene) {
   return meshes;
 }
 
+// The region the lattice fills as a polygon (a box is one with four corners), what to call it and
+// where it is given; nullopt for an STL region.
+struct FluidOutline {
+  Polygon region;
+  std::string kind;    // "fluid box"
+  std::string extent;  // " (x, y)-(x, y)" for a box
+  std::string keys;    // what to move
+  SourceLocation where;
+};
+
+std::optional<FluidOutline> fluid_outline(const Scene& scene, const Inputs& in) {
+  const View region = View(scene.parameters, scene_schema()).block("FluidRegion");
+  const std::string shape = region.string("shape");
+  if (shape == "box") {
+    const auto lower = region.vector("lower");
+    const auto upper = region.vector("upper");
+    return FluidOutline{{{{lower.at(0), lower.at(1)},
+                          {upper.at(0), lower.at(1)},
+                          {upper.at(0), upper.at(1)},
+                          {lower.at(0), upper.at(1)}},
+                         {}},
+                        "fluid box",
+                        " " + point_text(Point(lower.at(0), lower.at(1))) + "-" +
+                            point_text(Point(upper.at(0), upper.at(1))),
+                        "FluidRegion.lower/upper",
+                        in.where("FluidRegion.lower")};
+  }
+  if (shape != "polygon") return std::nullopt;
+  FluidOutline outline{{},
+                       "fluid polygon",
+                       "",
+                       "FluidRegion.points (or a Hole's points)",
+                       in.where("FluidRegion.points")};
+  for (const auto& row : region.matrix("points"))
+    outline.region.outer.push_back({row.at(0), row.at(1)});
+  for (const View& hole : region.blocks("Hole")) {
+    outline.region.holes.emplace_back();
+    for (const auto& row : hole.matrix("points"))
+      outline.region.holes.back().push_back({row.at(0), row.at(1)});
+  }
+  return outline;
+}
+
 void check_fluid_overlap(const Scene& scene, Report& report) {
   constexpr std::string_view kCheck = "fluid_overlap";
   Inputs in(scene);
@@ -669,18 +667,11 @@ void check_fluid_overlap(const Scene& scene, Report& report) {
     return report.skip(kCheck, "fluid-overlap",
                        {"a 3D scene (the fluid-to-mesh distance check is 2D only)"});
   }
-  if (!scene.parameters.lookup("FluidRegion.lower")) {
-    return report.skip(kCheck, "fluid-overlap",
-                       {"a polygon FluidRegion (the check handles boxes only)"});
-  }
-  const auto& lower = scene.parameters.lookup("FluidRegion.lower")->value.vector;
-  const auto& upper = scene.parameters.lookup("FluidRegion.upper")->value.vector;
-  const Box box{Point(lower.at(0), lower.at(1)), Point(upper.at(0), upper.at(1))};
+  const std::optional<FluidOutline> fluid = fluid_outline(scene, in);
+  if (!fluid) return;
   const auto r0 = in.wall("r0", "SPH_wall_equilibriumdist");
   if (!r0) report.skip(kCheck, "fluid-to-mesh distance", in.missing());
-  const SourceLocation where = in.where("FluidRegion.lower");
-  const std::string box_text =
-      "the fluid box " + point_text(box.lower) + "-" + point_text(box.upper);
+  auto as_point2 = [](const Point& point) { return Point2{point.x(), point.y()}; };
   for (const WorldMesh& mesh : world_meshes(scene)) {
     const std::size_t count = mesh.points.size();
     if (count < 2) continue;
@@ -688,8 +679,8 @@ void check_fluid_overlap(const Scene& scene, Report& report) {
     double closest = std::numeric_limits<double>::infinity();
     std::size_t closest_segment = 0;
     for (std::size_t i = 0; i < segments; ++i) {
-      const double distance =
-          box_segment_distance(box, mesh.points[i], mesh.points[(i + 1) % count]);
+      const double distance = distance_to_region(fluid->region, as_point2(mesh.points[i]),
+                                                 as_point2(mesh.points[(i + 1) % count]));
       if (distance < closest) {
         closest = distance;
         closest_segment = i;
@@ -697,21 +688,22 @@ void check_fluid_overlap(const Scene& scene, Report& report) {
     }
     const std::string segment = point_text(mesh.points[closest_segment]) + "-" +
                                 point_text(mesh.points[(closest_segment + 1) % count]);
+    const std::string name = "the " + fluid->kind + fluid->extent;
     if (closest == 0.0) {
-      report.warn(kCheck, where,
-                  box_text + " overlaps the mesh of " + mesh.owner + " (segment " + segment +
+      report.warn(kCheck, fluid->where,
+                  name + " overlaps the mesh of " + mesh.owner + " (segment " + segment +
                       "): particles start on or inside the structure",
-                  "move FluidRegion.lower/upper clear of the mesh" +
+                  "move " + fluid->keys + " clear of the mesh" +
                       (r0 ? ", by at least r0/2 = " + number(0.5 * r0->value) + " m" : ""));
     } else if (r0 && below(closest, 0.5 * r0->value)) {
-      report.warn(
-          kCheck, where,
-          box_text + " comes within " + number(closest) + " m of the mesh of " + mesh.owner +
-              " (segment " + segment + "), closer than r0/2 = " + number(0.5 * r0->value) +
-              " m (r0 = SPH_wall_equilibriumdist): its outer "
-              "particles start deep in the wall repulsion (a wall keeps the fluid about h "
-              "= r0/2 away, thesis eq. 6.6 with r0 = r_c = 2h)",
-          "leave at least " + number(0.5 * r0->value) + " m between the fluid box and the mesh");
+      report.warn(kCheck, fluid->where,
+                  name + " comes within " + number(closest) + " m of the mesh of " + mesh.owner +
+                      " (segment " + segment + "), closer than r0/2 = " + number(0.5 * r0->value) +
+                      " m (r0 = SPH_wall_equilibriumdist): its outer "
+                      "particles start deep in the wall repulsion (a wall keeps the fluid about h "
+                      "= r0/2 away, thesis eq. 6.6 with r0 = r_c = 2h)",
+                  "leave at least " + number(0.5 * r0->value) + " m between the " + fluid->kind +
+                      " and the mesh");
     }
   }
 }
@@ -810,6 +802,39 @@ std::vector<Diagnostic> physics_checks(const Scene& scene) {
   check_fluid_overlap(scene, report);
   check_gravity(scene, report);
   return report.take();
+}
+
+std::vector<Diagnostic> end_time_check(const Scene& scene) {
+  const double end_time = scene.solver.end_time;
+  const double step = scene.solver.step_size;
+  const double quotient = end_time / step;
+  // What the session and --mbd-only do with it.
+  const double steps = std::round(quotient);
+  if (std::abs(steps * step - end_time) <= kTolerance * end_time) return {};
+  auto exact = [](double value) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.12g", value);
+    return std::string(text);
+  };
+  auto steps_text = [&](double count) {
+    return exact(count) + (count == 1.0 ? " step" : " steps");
+  };
+  const double fewer = std::floor(quotient);
+  const double more = fewer + 1.0;
+  const std::string end_text = exact(end_time);
+  std::string fix = "use step_size = ";
+  if (fewer >= 1.0) fix += end_text + "/" + exact(fewer) + " (" + steps_text(fewer) + ") or ";
+  fix += end_text + "/" + exact(more) + " (" + steps_text(more) + "), or end_time = ";
+  if (fewer >= 1.0) fix += exact(fewer * step) + " s (" + steps_text(fewer) + ") or ";
+  fix += exact(more * step) + " s (" + steps_text(more) + ")";
+  char ratio[32];
+  std::snprintf(ratio, sizeof ratio, "%.2f", quotient);
+  const View solver = View(scene.parameters, scene_schema()).block("SolverOptions");
+  return {{Severity::Warning, "end_time", solver.location("end_time"),
+           "end_time / step_size = " + end_text + " s / " + exact(step) + " s = " + ratio +
+               " is not a whole number: the run takes " + steps_text(steps) +
+               " and ends at t = " + exact(steps * step) + " s",
+           fix}};
 }
 
 std::optional<double> speed_of_sound(const Scene& scene) {

@@ -78,8 +78,10 @@ void parse_into(RawBlock& root, const std::string& text, const std::string& file
 // a pipe: nothing that could block or never end is opened).
 std::optional<std::string> read_regular_file(const std::string& path);
 
-// Replaces the expressions the overrides name. Throws fsi::Error for an unknown key.
-void apply_overrides(RawBlock& root, const std::vector<Override>& overrides);
+// Replaces the expressions the overrides name, and adds the parameters the file lacks where
+// `may_add` admits them. Throws fsi::Error for a key that is neither.
+void apply_overrides(RawBlock& root, const std::vector<Override>& overrides,
+                     const OverrideAdmission& may_add = {});
 
 // Evaluates every parameter in textual order; returns every problem found.
 std::vector<Problem> evaluate(RawBlock& root);

@@ -395,13 +395,22 @@ std::string format_exact(double value) {
   return std::string(text, end);
 }
 
+// Where a file named at `where` is: relative to the folder of the scene file that names it (an
+// included file's own folder), or to the top-level scene's for a --set; unless absolute.
+fs::path scene_relative(const fs::path& scene_dir, const SourceLocation& where,
+                        const std::string& name) {
+  if (fs::path(name).is_absolute()) return name;
+  const bool in_a_file = where.line > 0;
+  return (in_a_file ? fs::path(where.file).parent_path() : scene_dir) / name;
+}
+
 std::string read_script(const fs::path& scene_dir, const std::string& name,
                         const SourceLocation& where, std::vector<Problem>& problems) {
-  const fs::path path = fs::path(name).is_absolute() ? fs::path(name) : scene_dir / name;
+  const fs::path path = scene_relative(scene_dir, where, name);
   std::ifstream in(path);
   if (!in) {
     problems.push_back({where, "LIGGGHTS script '" + path.string() + "' cannot be read",
-                        "give the path relative to the scene file"});
+                        "give the path relative to the scene file that names it"});
     return {};
   }
   std::stringstream text;
@@ -409,20 +418,15 @@ std::string read_script(const fs::path& scene_dir, const std::string& name,
   return text.str();
 }
 
-// Where an STL file named in the scene is: relative to the scene's folder unless absolute.
-fs::path scene_relative(const fs::path& scene_dir, const std::string& name) {
-  return fs::path(name).is_absolute() ? fs::path(name) : scene_dir / name;
-}
-
 // Reads the STL file named by `key`; a missing or unreadable file becomes a problem at the key.
 std::optional<TriangleMesh> read_scene_stl(const View& block, std::string_view key,
                                            const fs::path& scene_dir,
                                            std::vector<Problem>& problems) {
-  const fs::path file = scene_relative(scene_dir, block.string(key));
+  const fs::path file = scene_relative(scene_dir, block.location(key), block.string(key));
   std::error_code error;
   if (!fs::is_regular_file(file, error)) {
     problems.push_back({block.location(key), "STL file '" + file.string() + "' does not exist",
-                        "give the path relative to the scene file"});
+                        "give the path relative to the scene file that names it"});
     return std::nullopt;
   }
   try {
@@ -583,8 +587,8 @@ Scene build_scene(const std::string& path, const std::vector<Override>& override
   // Every problem is collected: evaluation, schema, then what the builder finds in the values
   // that are sound. Elements that need a value in error are skipped, not reported again.
   std::vector<Problem> problems;
-  scene.parameters = load_parameter_file(path, overrides, problems);
   const BlockSpec& schema = scene_schema();
+  scene.parameters = load_parameter_file(path, overrides, problems, declared_parameters(schema));
   for (Problem& problem : validate(scene.parameters, schema)) {
     mark_failed(scene.parameters, problem.location);
     problems.push_back(std::move(problem));

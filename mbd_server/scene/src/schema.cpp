@@ -3,6 +3,7 @@
 #include "fsi/scene/schema.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 
@@ -57,8 +58,11 @@ class Validator {
  public:
   explicit Validator(std::vector<Problem>& problems) : problems_(problems) {}
 
-  // Problems come in textual order within a block, then what the block lacks.
-  void block(const Block& block, const BlockSpec& spec, const std::string& path) {
+  // Problems come in textual order within a block, then what the block lacks. A second copy of a
+  // block that may not repeat is one mistake, reported where it starts: what it lacks is not
+  // reported again (merged into the first copy it may lack nothing), only its own wrong values.
+  void block(const Block& block, const BlockSpec& spec, const std::string& path,
+             bool report_missing = true) {
     std::vector<std::string> known;
     for (const ParameterSpec& parameter : spec.parameters)
       known.push_back(parameter.key);
@@ -84,7 +88,8 @@ class Validator {
       }
       const std::size_t index = seen[child.name]++;
       if (index == 0) first[child.name] = &child;
-      if (!declared->repeated && index == 1) {
+      const bool copy = !declared->repeated && index > 0;
+      if (copy && index == 1) {
         add(child.location,
             "block " + in_quotes(path + child.name) + " is given twice (first at " +
                 first[child.name]->location.text() + ")",
@@ -93,8 +98,9 @@ class Validator {
       const std::string child_path =
           path + child.name + (count[child.name] > 1 ? "[" + std::to_string(index) + "]" : "") +
           ".";
-      this->block(child, *declared, child_path);
+      this->block(child, *declared, child_path, report_missing && !copy);
     }
+    if (!report_missing) return;
 
     for (const ParameterSpec& declared : spec.parameters) {
       if (declared.is_required() && !block.find(declared.key)) {
@@ -263,19 +269,11 @@ const BlockSpec& anything() {
 }  // namespace
 
 std::string_view name(Kind kind) {
-  switch (kind) {
-    case Kind::Number:
-      return "number";
-    case Kind::Integer:
-      return "integer";
-    case Kind::String:
-      return "string";
-    case Kind::Vector:
-      return "vector";
-    case Kind::Matrix:
-      return "matrix";
-  }
-  return "?";
+  // Indexed by the enumerators, which are declared in this order.
+  constexpr std::array<std::string_view, 5> kNames{"number", "integer", "string", "vector",
+                                                   "matrix"};
+  const auto index = static_cast<std::size_t>(kind);
+  return index < kNames.size() ? kNames[index] : "?";
 }
 
 // ---- declarations ----
@@ -414,6 +412,28 @@ std::vector<Problem> validate(const Block& root, const BlockSpec& root_spec) {
   std::vector<Problem> problems;
   Validator(problems).block(root, root_spec, "");
   return problems;
+}
+
+OverrideAdmission declared_parameters(const BlockSpec& root) {
+  return [&root](const std::vector<std::string>& blocks, const std::string& key,
+                 std::size_t missing_blocks) -> std::string {
+    const std::string declared_only =
+        "--set adds only parameters the scene schema declares (fsi-server --help-params)";
+    const BlockSpec* spec = &root;
+    std::string path;
+    for (std::size_t i = 0; i < blocks.size(); ++i) {
+      spec = spec->block(blocks[i]);
+      path += (path.empty() ? "" : ".") + blocks[i];
+      if (!spec) return declared_only + ", and it has no block " + in_quotes(path);
+      if (spec->repeated && i + missing_blocks >= blocks.size()) {
+        return in_quotes(blocks[i]) +
+               " blocks form a list: --set cannot add one; add the block to the file";
+      }
+    }
+    if (spec->parameter(key)) return "";
+    return declared_only + ", and " + (path.empty() ? "the top level" : in_quotes(path)) +
+           " has no parameter " + in_quotes(key);
+  };
 }
 
 // ---- typed access ----

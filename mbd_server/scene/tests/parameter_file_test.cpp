@@ -5,12 +5,17 @@
 #include <filesystem>
 #include <fstream>
 #include <numbers>
+#include <string>
+#include <utility>
 
 #include "fsi/common/error.hpp"
 #include "fsi/scene/parameter_file.hpp"
+#include "test_files.hpp"
 
 namespace fsi::scene {
 namespace {
+
+using testing::thrown_by;
 
 namespace fs = std::filesystem;
 
@@ -45,12 +50,7 @@ Block parse(const std::string& text, const std::vector<Override>& overrides = {}
 
 // The message of the fsi::Error that parsing throws ("" if it does not throw).
 std::string error_of(const std::string& text, const std::vector<Override>& overrides = {}) {
-  try {
-    parse(text, overrides);
-  } catch (const fsi::Error& error) {
-    return error.what();
-  }
-  return "";
+  return thrown_by([&] { parse(text, overrides); });
 }
 
 #define EXPECT_CONTAINS(haystack, needle) \
@@ -275,27 +275,29 @@ TEST(ParameterFile, AllEvaluationErrorsComeInOneMessageOneLineEach) {
 }
 
 TEST(ParameterFile, SyntaxErrorsStopAtTheFirstWithItsLocation) {
-  EXPECT_CONTAINS(error_of("Block {\n  a = 1\n"), "t.scene:1:1: block 'Block' is not closed");
-  EXPECT_CONTAINS(error_of("a = 1\n}\n"), "t.scene:2:1: '}' without an open block");
-  EXPECT_CONTAINS(error_of("a 1\n"), "t.scene:1:1: 'a' is followed by neither '=' nor '{'");
-  EXPECT_CONTAINS(error_of("a = 1\ns = \"open\n"), "t.scene:2:5: the string is not closed");
-  EXPECT_CONTAINS(error_of("v = [1,\n  2\n"), "t.scene:1:5: '[' is not closed");
-  EXPECT_CONTAINS(error_of("a = (1 + 2]\n"),
-                  "t.scene:1:11: ']' does not match the '(' opened at t.scene:1:5");
-  EXPECT_CONTAINS(error_of("B { a = [1, 2 }\n"), "t.scene:1:9: '[' is not closed before '}'");
-  EXPECT_CONTAINS(error_of("x = 2]\n"), "t.scene:1:6: ']' without a matching '['");
-  EXPECT_CONTAINS(error_of("x = { 1 }\n"), "t.scene:1:5: '{' inside an expression");
-  EXPECT_CONTAINS(error_of("a =   % nothing\n"), "t.scene:1:1: 'a' has no value after '='");
-  EXPECT_CONTAINS(error_of("  3 = 4\n"), "t.scene:1:3: unexpected '3'");
-  EXPECT_CONTAINS(error_of("x.y. = 1\n"), "t.scene:1:1: 'x.y.' is not a valid name");
-  EXPECT_CONTAINS(error_of("a[1] = 2\n"), "t.scene:1:1: only blocks take an index");
-  EXPECT_CONTAINS(error_of("A.B { }\n"), "t.scene:1:1: a block name cannot contain '.'");
-  EXPECT_CONTAINS(error_of("include common.scene\n"),
-                  "t.scene:1:9: include needs a file name in double quotes");
-  EXPECT_CONTAINS(error_of("G = 1\nG { }\n"),
-                  "t.scene:2:1: 'G' is already a parameter of this block (t.scene:1:1)");
-  EXPECT_CONTAINS(error_of("Body { m = 1 }\nBody { m = 2 }\nBody.m = 3\n"),
-                  "t.scene:3:1: 'Body' is a list of 2 blocks, so 'Body.m' is ambiguous");
+  // Each: the text, and the message of its first syntax error.
+  const std::pair<std::string, std::string> cases[] = {
+      {"Block {\n  a = 1\n", "t.scene:1:1: block 'Block' is not closed"},
+      {"a = 1\n}\n", "t.scene:2:1: '}' without an open block"},
+      {"a 1\n", "t.scene:1:1: 'a' is followed by neither '=' nor '{'"},
+      {"a = 1\ns = \"open\n", "t.scene:2:5: the string is not closed"},
+      {"v = [1,\n  2\n", "t.scene:1:5: '[' is not closed"},
+      {"a = (1 + 2]\n", "t.scene:1:11: ']' does not match the '(' opened at t.scene:1:5"},
+      {"B { a = [1, 2 }\n", "t.scene:1:9: '[' is not closed before '}'"},
+      {"x = 2]\n", "t.scene:1:6: ']' without a matching '['"},
+      {"x = { 1 }\n", "t.scene:1:5: '{' inside an expression"},
+      {"a =   % nothing\n", "t.scene:1:1: 'a' has no value after '='"},
+      {"  3 = 4\n", "t.scene:1:3: unexpected '3'"},
+      {"x.y. = 1\n", "t.scene:1:1: 'x.y.' is not a valid name"},
+      {"a[1] = 2\n", "t.scene:1:1: only blocks take an index"},
+      {"A.B { }\n", "t.scene:1:1: a block name cannot contain '.'"},
+      {"include common.scene\n", "t.scene:1:9: include needs a file name in double quotes"},
+      {"G = 1\nG { }\n", "t.scene:2:1: 'G' is already a parameter of this block (t.scene:1:1)"},
+      {"Body { m = 1 }\nBody { m = 2 }\nBody.m = 3\n",
+       "t.scene:3:1: 'Body' is a list of 2 blocks, so 'Body.m' is ambiguous"},
+  };
+  for (const auto& [text, expected] : cases)
+    EXPECT_CONTAINS(error_of(text), expected);
   // A syntax error wins over evaluation errors before it: nothing is evaluated.
   const std::string message = error_of("a = undefined\nb = (\n");
   EXPECT_CONTAINS(message, "t.scene:2:5: '(' is not closed");
@@ -305,30 +307,20 @@ TEST(ParameterFile, SyntaxErrorsStopAtTheFirstWithItsLocation) {
 TEST(ParameterFile, IncludeErrorsNameTheIncludingLine) {
   TempFolder folder;
   const std::string missing = folder.write("missing.scene", "a = 1\n  include \"nothere.scene\"\n");
-  try {
-    load_parameter_file(missing);
-    FAIL() << "a missing include was accepted";
-  } catch (const fsi::Error& error) {
-    EXPECT_CONTAINS(error.what(), "missing.scene:2:3: cannot read the included file");
-    EXPECT_CONTAINS(error.what(), "nothere.scene");
-  }
+  const std::string missing_include = thrown_by([&] { load_parameter_file(missing); });
+  EXPECT_CONTAINS(missing_include, "missing.scene:2:3: cannot read the included file");
+  EXPECT_CONTAINS(missing_include, "nothere.scene");
   folder.write("a.scene", "x = 1\ninclude \"b.scene\"\n");
   folder.write("b.scene", "include \"a.scene\"\n");
-  try {
-    load_parameter_file(folder.write("loop.scene", "include \"a.scene\"\n"));
-    FAIL() << "an include cycle was accepted";
-  } catch (const fsi::Error& error) {
-    EXPECT_CONTAINS(error.what(), "b.scene:1:1");
-    EXPECT_CONTAINS(error.what(), "include cycle: a.scene -> b.scene -> a.scene");
-  }
+  const std::string include_cycle =
+      thrown_by([&] { load_parameter_file(folder.write("loop.scene", "include \"a.scene\"\n")); });
+  EXPECT_CONTAINS(include_cycle, "b.scene:1:1");
+  EXPECT_CONTAINS(include_cycle, "include cycle: a.scene -> b.scene -> a.scene");
   folder.write("broken.scene", "ok = 1\nbad = [1\n");
-  try {
-    load_parameter_file(folder.write("top.scene", "\n\ninclude \"broken.scene\"\n"));
-    FAIL() << "a syntax error in an included file was accepted";
-  } catch (const fsi::Error& error) {
-    EXPECT_CONTAINS(error.what(), "broken.scene:2:7 (included from ");
-    EXPECT_CONTAINS(error.what(), "top.scene:3:1)");
-  }
+  const std::string broken_include = thrown_by(
+      [&] { load_parameter_file(folder.write("top.scene", "\n\ninclude \"broken.scene\"\n")); });
+  EXPECT_CONTAINS(broken_include, "broken.scene:2:7 (included from ");
+  EXPECT_CONTAINS(broken_include, "top.scene:3:1)");
 }
 
 // Found by designing the scene fuzzer: a folder opened as a file read as empty, so
@@ -338,26 +330,15 @@ TEST(ParameterFile, IncludesAndScenesMustBeRegularFiles) {
   TempFolder folder;
   folder.write("data/x.scene", "x = 1\n");
   const std::string main = folder.write("main.scene", "a = 1\ninclude \"data\"\n");
-  try {
-    load_parameter_file(main);
-    FAIL() << "including a folder was accepted";
-  } catch (const fsi::Error& error) {
-    EXPECT_CONTAINS(error.what(), "main.scene:2:1: cannot read the included file");
-    EXPECT_CONTAINS(error.what(), "not a folder or a device");
-  }
-  try {
-    parse_parameter_text("include \"/dev/null\"\n", "t.scene");
-    FAIL() << "including a device was accepted";
-  } catch (const fsi::Error& error) {
-    EXPECT_CONTAINS(error.what(), "t.scene:1:1: cannot read the included file '/dev/null'");
-  }
+  const std::string folder_include = thrown_by([&] { load_parameter_file(main); });
+  EXPECT_CONTAINS(folder_include, "main.scene:2:1: cannot read the included file");
+  EXPECT_CONTAINS(folder_include, "not a folder or a device");
+  const std::string device_include =
+      thrown_by([&] { parse_parameter_text("include \"/dev/null\"\n", "t.scene"); });
+  EXPECT_CONTAINS(device_include, "t.scene:1:1: cannot read the included file '/dev/null'");
   const std::string data_folder = fs::path(main).parent_path() / "data";
-  try {
-    load_parameter_file(data_folder);
-    FAIL() << "a folder was accepted as a scene file";
-  } catch (const fsi::Error& error) {
-    EXPECT_CONTAINS(error.what(), "cannot read the scene file '" + data_folder + "'");
-  }
+  const std::string folder_scene = thrown_by([&] { load_parameter_file(data_folder); });
+  EXPECT_CONTAINS(folder_scene, "cannot read the scene file '" + data_folder + "'");
 }
 
 // The fuzzer's reader: includes come from memory only, relative to the including file's folder,
@@ -371,19 +352,14 @@ TEST(ParameterFile, InMemoryIncludesReadNothingElse) {
                                           "/scenes/main.scene", {}, files);
   EXPECT_DOUBLE_EQ(number_at(root, "w"), 2 * 9.81);
   for (const std::string outside : {"/etc/hostname", "../etc/hostname", "sub/../../etc/hostname"}) {
-    try {
+    const std::string read_outside = thrown_by([&] {
       parse_parameter_text("include \"" + outside + "\"\n", "/scenes/main.scene", {}, files);
-      FAIL() << "include \"" << outside << "\" was read";
-    } catch (const fsi::Error& error) {
-      EXPECT_CONTAINS(error.what(), "/scenes/main.scene:1:1: cannot read the included file");
-    }
+    });
+    EXPECT_CONTAINS(read_outside, "/scenes/main.scene:1:1: cannot read the included file");
   }
-  try {
-    parse_parameter_text("include \"loop.inc\"\n", "/scenes/main.scene", {}, files);
-    FAIL() << "an include cycle in memory was accepted";
-  } catch (const fsi::Error& error) {
-    EXPECT_CONTAINS(error.what(), "include cycle: loop.inc -> loop.inc");
-  }
+  const std::string memory_cycle = thrown_by(
+      [&] { parse_parameter_text("include \"loop.inc\"\n", "/scenes/main.scene", {}, files); });
+  EXPECT_CONTAINS(memory_cycle, "include cycle: loop.inc -> loop.inc");
 }
 
 // Found by fuzz_scene_parser: a string value with bytes that are not UTF-8 made the run manifest's
@@ -549,13 +525,11 @@ TEST(ParameterFile, AnIncludedFileMayStateItsVersionToo) {
   EXPECT_EQ(root.language_version, 1L);
   EXPECT_EQ(root.language_version_location.line, 1);
   EXPECT_EQ(number_at(root, "c"), 3.0);
-  try {
+  const std::string newer_include = thrown_by([&] {
     load_parameter_file(folder.write("bad.scene", "scene_language = 1\ninclude \"new.inc\"\n"));
-    FAIL() << "a newer included file was accepted";
-  } catch (const fsi::Error& error) {
-    EXPECT_CONTAINS(error.what(), "new.inc:1:18");
-    EXPECT_CONTAINS(error.what(), "written for scene language version 3");
-  }
+  });
+  EXPECT_CONTAINS(newer_include, "new.inc:1:18");
+  EXPECT_CONTAINS(newer_include, "written for scene language version 3");
 }
 
 TEST(ParameterFile, LookupHelpers) {

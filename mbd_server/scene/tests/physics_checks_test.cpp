@@ -8,11 +8,10 @@
 
 #include "fsi/scene/physics_checks.hpp"
 #include "fsi/scene/scene.hpp"
+#include "test_files.hpp"
 
 namespace fsi::scene {
 namespace {
-
-namespace fs = std::filesystem;
 
 #define EXPECT_CONTAINS(haystack, needle) \
   EXPECT_NE(std::string(haystack).find(needle), std::string::npos) << (haystack)
@@ -48,17 +47,13 @@ std::vector<Diagnostic> coarse_diagnostics(const std::vector<Override>& override
   return physics_checks(build_scene(kCoarseTank, overrides));
 }
 
-class SmallScene : public ::testing::Test {
+class SmallScene : public testing::FolderPerTest {
  protected:
   void SetUp() override {
-    folder_ = fs::temp_directory_path() /
-              ("fsi_physics_checks_" +
-               std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::create_directories(folder_);
+    FolderPerTest::SetUp();
     set_up_script("# set-up\nfix gravity all gravity 9.81 vector 0.0 -1.0 0.0\n");
     std::ofstream(folder_ / "after.in") << "# after the equilibration\n";
   }
-  void TearDown() override { fs::remove_all(folder_); }
 
   void set_up_script(const std::string& text) { std::ofstream(folder_ / "setup.in") << text; }
 
@@ -75,8 +70,6 @@ class SmallScene : public ::testing::Test {
         << extra << "\n";
     return build_scene((folder_ / "small.scene").string());
   }
-
-  fs::path folder_;
 };
 
 // A small scene of our own in a temporary folder: a floor from x = 0 to 0.1 at y = 0, gravity
@@ -307,6 +300,38 @@ TEST_F(SmallScene, FluidBoxNearARotatedBody) {
       of(physics_checks(build(kGoodSph, fluid + with_angle("pi/4"))), "fluid_overlap");
   ASSERT_EQ(warnings.size(), 1u);
   EXPECT_CONTAINS(warnings[0].message, "comes within 0.000858 m of the mesh of body 'block'");
+}
+
+TEST_F(SmallScene, FluidPolygonAroundABodyInItsHole) {
+  // The square of half-width 0.01 m at (0.05, 0.05) sits in a square hole of the fluid polygon:
+  // a hole of half-width 0.015 m leaves 0.005 m, one of 0.0105 m only 0.0005 m (r0/2 = 0.001 m),
+  // and one of 0.005 m puts fluid inside the body.
+  const std::string body =
+      "RigidBody2D { name = \"block\"; mass = 1; inertia = 1; position = [0.05, 0.05]\n"
+      "  Mesh { points = [[-0.01, -0.01], [0.01, -0.01], [0.01, 0.01], [-0.01, 0.01]]; "
+      "closed = 1 } }\n";
+  auto with_hole = [&](const std::string& low, const std::string& high) {
+    return "FluidRegion { shape = \"polygon\"; spacing = 0.001/1.9; density = 1000\n"
+           "  points = [[0.01, 0.001], [0.09, 0.001], [0.09, 0.08], [0.01, 0.08]]\n"
+           "  Hole { points = [[" +
+           low + ", " + low + "], [" + high + ", " + low + "], [" + high + ", " + high + "], [" +
+           low + ", " + high + "]] } }\n" + body;
+  };
+  const auto clear = physics_checks(build(kGoodSph, with_hole("0.035", "0.065")));
+  EXPECT_TRUE(of(clear, "fluid_overlap").empty()) << listing(clear);
+  EXPECT_TRUE(of(clear, "fluid_overlap", Severity::Info).empty()) << listing(clear);
+  const auto close =
+      of(physics_checks(build(kGoodSph, with_hole("0.0395", "0.0605"))), "fluid_overlap");
+  ASSERT_EQ(close.size(), 1u);
+  EXPECT_CONTAINS(close[0].message,
+                  "the fluid polygon comes within 0.0005 m of the mesh of body 'block'");
+  EXPECT_EQ(close[0].location.line, 13);  // FluidRegion.points
+  const auto inside =
+      of(physics_checks(build(kGoodSph, with_hole("0.045", "0.055"))), "fluid_overlap");
+  ASSERT_EQ(inside.size(), 1u);
+  EXPECT_CONTAINS(inside[0].message,
+                  "the fluid polygon overlaps the mesh of body 'block' (segment (0.04, "
+                  "0.04)-(0.06, 0.04)): particles start on or inside the structure");
 }
 
 TEST_F(SmallScene, AGoodSceneIsSilent) {

@@ -113,6 +113,20 @@ TEST(Schema, ReportsEveryProblemAtOnce) {
   EXPECT_EQ(all.find("cAB"), std::string::npos) << all;
 }
 
+TEST(Schema, ABlockGivenTwiceIsOneProblemWithoutFollowOns) {
+  // The second copy lacks end_time and Timeint.step_size: merged into the first it would not, so
+  // the only mistake is the second copy itself. Its own values are still checked.
+  const std::vector<Problem> problems = problems_of(
+      "SolverOptions { end_time = 1; Timeint { step_size = 1e-3 } }\n"
+      "SolverOptions { Timeint { stages = 7 } }\n");
+  const std::string all = listing(problems);
+  ASSERT_EQ(problems.size(), 2u) << all;
+  EXPECT_EQ(problems[0].text(),
+            "s.scene:2:1: block 'SolverOptions' is given twice (first at s.scene:1:1); merge the "
+            "two blocks; only element lists may repeat");
+  EXPECT_CONTAINS(all, "s.scene:2:27: 'SolverOptions[1].Timeint.stages' = 7 is out of range");
+}
+
 TEST(Schema, RangesMissingBlocksAndMixedUpEntries) {
   const std::vector<Problem> problems = problems_of(
       "SolverOptions { end_time { }\n"

@@ -1,14 +1,51 @@
 #pragma once
-// Files the scene tests write: a closed unit-cube STL surface, and a scene's problems as text.
+// Files the scene tests write: a folder of their own, a closed unit-cube STL surface, and a
+// scene's problems as text.
+
+#include <gtest/gtest.h>
 
 #include <array>
 #include <filesystem>
+#include <fstream>
 #include <string>
 
 #include "fsi/common/error.hpp"
 #include "fsi/scene/scene.hpp"
 
 namespace fsi::scene::testing {
+
+// The message of the fsi::Error that `call` throws ("" if it throws none).
+std::string thrown_by(auto&& call) {
+  try {
+    call();
+  } catch (const fsi::Error& error) {
+    return error.what();
+  }
+  return "";
+}
+
+// A fresh folder for each test, named after it, removed afterwards.
+class FolderPerTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
+    folder_ = std::filesystem::temp_directory_path() /
+              ("fsi_" + std::string(test->test_suite_name()) + "_" + test->name());
+    std::filesystem::remove_all(folder_);
+    std::filesystem::create_directories(folder_);
+  }
+  void TearDown() override { std::filesystem::remove_all(folder_); }
+
+  // Writes `text` to `name` in the folder (making sub-folders); the file's path.
+  std::string write(const std::string& name, const std::string& text) const {
+    const std::filesystem::path file = folder_ / name;
+    std::filesystem::create_directories(file.parent_path());
+    std::ofstream(file) << text;
+    return file.string();
+  }
+
+  std::filesystem::path folder_;
+};
 
 // The unit cube [0, 1]^3 as ASCII STL, 12 triangles (11 with drop_last_triangle: a hole).
 inline std::string unit_box_stl(bool drop_last_triangle = false) {

@@ -45,8 +45,12 @@ struct Polygon {
 // arbitrarily (the lattice offset of d/2 keeps them off axis-aligned edges at lattice values).
 bool inside(const Polygon& polygon, const Point2& point);
 // Why the polygon cannot be filled ("" if it can): fewer than 3 vertices, zero area, two edges
-// that cross (named by their vertex indices, 0-based), a hole vertex outside the outer ring.
+// that cross (named by their vertex indices, 0-based), a hole that reaches out of the outer ring
+// (a vertex outside it, or an edge across it: both edges named).
 std::string polygon_problem(const Polygon& polygon);
+// How far the segment a-b stays from the region (inside the outer ring, outside the holes); 0
+// when they share a point. For a polygon polygon_problem accepts.
+double distance_to_region(const Polygon& region, const Point2& a, const Point2& b);
 
 // x, y per particle. Throws fsi::Error for a bad polygon or spacing, or more than `max_points`.
 std::vector<double> fill_box(const Point2& lower, const Point2& upper,

@@ -15,6 +15,8 @@
 // e, ...). A name resolves in the innermost enclosing block first, then outwards, and only to
 // parameters defined earlier in the text, so there are no cycles. `--set KEY=EXPR` overrides
 // replace a parameter's expression at its original place: later parameters that use it follow.
+// An override of a parameter the file lacks (where an OverrideAdmission allows it) is added after
+// everything the file holds.
 
 #include <nlohmann/json.hpp>
 
@@ -114,6 +116,14 @@ struct Override {
 // Splits "KEY=EXPR"; throws fsi::Error if it is not of that form.
 Override parse_override(std::string_view text);
 
+// Whether `--set` may add a parameter the file lacks: asked with the names of the blocks on the
+// override's path (indices dropped), its key, and how many of those blocks, the last ones, the
+// file lacks (they are created). Returns "" to admit it, else why not (shown as the fix). The
+// scene's schema admits what it declares (schema.hpp, declared_parameters). Without one, `--set`
+// only replaces parameters the file defines.
+using OverrideAdmission = std::function<std::string(
+    const std::vector<std::string>& blocks, const std::string& key, std::size_t missing_blocks)>;
+
 // Where `include "file"` reads from: given the path (the name joined to the including file's
 // folder, normalized), the file's text, or nullopt if there is no readable regular file there.
 // Empty (the default): the file system. The fuzzer gives files held in memory (in_memory_files),
@@ -135,10 +145,12 @@ Block parse_parameter_text(const std::string& text, const std::string& file_name
 // parameters they concern are kept with `failed` set, so that later checks (schema, scene) can
 // report their own problems in the same run (`fsi-server --check` lists everything at once).
 // Syntax errors, include errors and bad overrides still throw: nothing after them is reliable.
+// `may_add` lets overrides add parameters the file lacks.
 Block load_parameter_file(const std::string& path, const std::vector<Override>& overrides,
-                          std::vector<Problem>& problems);
+                          std::vector<Problem>& problems, const OverrideAdmission& may_add = {});
 Block parse_parameter_text(const std::string& text, const std::string& file_name,
-                           const std::vector<Override>& overrides, std::vector<Problem>& problems);
+                           const std::vector<Override>& overrides, std::vector<Problem>& problems,
+                           const OverrideAdmission& may_add = {});
 
 // The evaluated tree in the language's syntax (for `fsi-server --print-params`); parsing it again
 // gives the same values. Each entry whose expression differs from its value carries the

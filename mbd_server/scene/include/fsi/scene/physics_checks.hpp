@@ -44,13 +44,19 @@ inline constexpr std::string_view kPhysicsCheckNames[] = {
     "wall_repulsion",      // k within 2-20 rho0 g h_max (thesis §6.2)
     "kernel_neighbours",   // 30-100 particles within the support radius 2h (thesis §3.1.2)
     "wall_viscosity",      // t within a factor 3 of nu rho / h (thesis eq. 6.4)
-    "fluid_overlap",       // fluid box clear of every mesh by r0 / 2
+    "fluid_overlap",       // fluid box or polygon clear of every mesh by r0 / 2
     "gravity",             // the scripts' fix gravity equals the Gravity block
 };
 
 // Every check over `scene`: warnings for broken rules, infos for checks skipped. Pure: reads the
 // scene only.
 std::vector<Diagnostic> physics_checks(const Scene& scene);
+
+// Not a rule of thumb but what the run will do: the coupled and the --mbd-only loop take
+// round(end_time / step_size) steps, so a step that does not divide end_time ends the run at
+// another time. One warning at SolverOptions.end_time saying where it ends and which steps and
+// end times fit; empty when the step divides end_time (to 1e-9 relative).
+std::vector<Diagnostic> end_time_check(const Scene& scene);
 
 // The speed of sound c [m/s] the checks use (LIGGGHTS_SPH_parameters.cAB), or nullopt when the
 // scene does not give a positive number; the server's progress line compares particle speeds to it.

@@ -100,6 +100,11 @@ BlockSpec block_spec(std::string name, std::string doc, std::vector<ParameterSpe
 // required entries, non-repeatable blocks given twice.
 std::vector<Problem> validate(const Block& root, const BlockSpec& root_spec);
 
+// What `--set` may add to a file that lacks it: a parameter `root` declares, in blocks the file
+// has or in blocks declared as not repeated (created then: an element of a list is not). `root`
+// must outlive the result.
+OverrideAdmission declared_parameters(const BlockSpec& root);
+
 // Thrown by View when it is asked for a parameter marked `failed` (its problem is reported
 // already): a scene builder skips the element that needs the value instead of reporting a
 // consequence of the same mistake.
