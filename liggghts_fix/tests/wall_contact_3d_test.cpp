@@ -971,6 +971,21 @@ TEST(WallContact3D, NonFiniteParticleIsNamedAndNothingIsWritten) {
   }
 }
 
+// The adapter turns NonFiniteParticle into "atom ID ... at step N"; 3D must throw the same type
+// with the same index as 2D, or the atom and the step are lost.
+TEST(WallContact3D, NonFiniteParticleIsRefusedAsIn2D) {
+  const BoundaryMesh3D mesh = two_triangles();
+  Particles p = particles_near_two_triangles();
+  p.v[3 * 3 + 2] = std::numeric_limits<double>::quiet_NaN();  // particle 3
+  std::vector<double> vertex_forces(mesh.positions.size(), 0.0);
+  try {
+    WallContact3D(unit_settings(1)).compute(mesh, p.arrays(), vertex_forces);
+    ADD_FAILURE() << "accepted a non-finite particle";
+  } catch (const NonFiniteParticle& error) {
+    EXPECT_EQ(error.index, 3u);
+  }
+}
+
 void expect_message(const std::function<void()>& action, const std::vector<std::string>& parts) {
   try {
     action();
