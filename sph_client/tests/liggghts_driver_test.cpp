@@ -303,6 +303,19 @@ TEST(LiggghtsDriver, ThreeDimensionalFluidRestsOnATriangleFloor) {
   }
 }
 
+// The refinement option the server sends with the mesh (the scene's Coupling.refinement_option)
+// is the one the fix samples with: the floor's two triangles (longest edge 0.028 m, resolution
+// 0.004 m) are split 3 times (64 sub-triangles each) by options 1-3 and not at all by option 0.
+TEST(LiggghtsDriver, TheMeshRefinementOptionReachesTheFix) {
+  const std::size_t points_per_triangle = 7;
+  for (int option : {0, 1, 2, 3}) {
+    Cube cube(option);
+    const std::size_t sub_triangles = option == 0 ? 1 : 64;
+    EXPECT_EQ(cube.boundary->diagnostics.sampling_points, 2 * sub_triangles * points_per_triangle)
+        << "option " << option;
+  }
+}
+
 TEST(LiggghtsDriver, NonFiniteAtomStopsThe3dRunNamingAtomAndStep) {
   Cube cube(1);
   cube.driver.step();
