@@ -86,16 +86,19 @@ void validate_mesh(const MeshShape& shape, std::span<const double> positions,
   }
 }
 
-void check_evaluation_inputs(const ParticleArrays& particles,
+void check_evaluation_inputs(const MeshShape& shape, const ParticleArrays& particles,
                              std::span<const double> vertex_positions,
-                             std::span<const double> vertex_forces, int dimension) {
+                             std::span<const double> vertex_velocities,
+                             std::span<const std::uint32_t> elements,
+                             std::span<const double> vertex_forces) {
   check_particles(particles);
   if (vertex_forces.size() != vertex_positions.size()) {
     throw std::invalid_argument("vertex force buffer holds " +
                                 std::to_string(vertex_forces.size()) + " values, the mesh needs " +
                                 std::to_string(vertex_positions.size()) + " (" +
-                                std::to_string(dimension) + " per vertex)");
+                                std::to_string(shape.dimension) + " per vertex)");
   }
+  validate_mesh(shape, vertex_positions, vertex_velocities, elements);
 }
 
 }  // namespace skeleton

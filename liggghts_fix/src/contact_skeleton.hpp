@@ -56,11 +56,13 @@ void validate_mesh(const MeshShape& shape, std::span<const double> positions,
                    std::span<const double> velocities, std::span<const std::uint32_t> elements);
 
 // The checks every evaluation makes before it writes anything: the particle arrays (throws
-// NonFiniteParticle for a participating particle with a non-finite position or velocity) and
-// the size of the vertex force buffer (`dimension` values per vertex, like vertex_positions).
-void check_evaluation_inputs(const ParticleArrays& particles,
+// NonFiniteParticle for a participating particle with a non-finite position or velocity), the
+// size of the vertex force buffer (like vertex_positions) and the mesh (validate_mesh).
+void check_evaluation_inputs(const MeshShape& shape, const ParticleArrays& particles,
                              std::span<const double> vertex_positions,
-                             std::span<const double> vertex_forces, int dimension);
+                             std::span<const double> vertex_velocities,
+                             std::span<const std::uint32_t> elements,
+                             std::span<const double> vertex_forces);
 
 // Accumulates everything of one evaluation; the only place forces are made.
 template <class Point>

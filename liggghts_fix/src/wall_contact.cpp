@@ -77,12 +77,6 @@ class SegmentSampling {
   const BoundaryMesh2D& mesh_;
 };
 
-void check_inputs(const BoundaryMesh2D& mesh, const ParticleArrays& particles,
-                  std::span<const double> vertex_forces) {
-  skeleton::check_evaluation_inputs(particles, mesh.positions, vertex_forces, 2);
-  mesh.validate();
-}
-
 }  // namespace
 
 void BoundaryMesh2D::validate() const {
@@ -119,7 +113,8 @@ WallContact2D::WallContact2D(const ContactSettings& settings) : settings_(settin
 ContactDiagnostics WallContact2D::compute(const BoundaryMesh2D& mesh,
                                           const ParticleArrays& particles,
                                           std::span<double> vertex_forces) {
-  check_inputs(mesh, particles, vertex_forces);
+  skeleton::check_evaluation_inputs(kSegmentMesh, particles, mesh.positions, mesh.velocities,
+                                    mesh.segments, vertex_forces);
   return skeleton::evaluate_near_particles(SegmentSampling(settings_, mesh), settings_.law,
                                            particles, mesh.positions, vertex_forces, buffers_);
 }
@@ -128,7 +123,8 @@ ContactDiagnostics compute_all_pairs(const ContactSettings& settings, const Boun
                                      const ParticleArrays& particles,
                                      std::span<double> vertex_forces) {
   settings.validate();
-  check_inputs(mesh, particles, vertex_forces);
+  skeleton::check_evaluation_inputs(kSegmentMesh, particles, mesh.positions, mesh.velocities,
+                                    mesh.segments, vertex_forces);
   return skeleton::evaluate_all_pairs(SegmentSampling(settings, mesh), settings.law, particles,
                                       vertex_forces);
 }

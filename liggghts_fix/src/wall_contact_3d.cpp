@@ -226,12 +226,6 @@ bool uses_pre_refinement(const ContactSettings3D& settings) {
   return settings.refinement_option == 2 || settings.refinement_option == 3;
 }
 
-void check_inputs(const BoundaryMesh3D& mesh, const ParticleArrays& particles,
-                  std::span<const double> vertex_forces) {
-  skeleton::check_evaluation_inputs(particles, mesh.positions, vertex_forces, 3);
-  mesh.validate();
-}
-
 }  // namespace
 
 void BoundaryMesh3D::validate() const {
@@ -283,7 +277,8 @@ void WallContact3D::prepare(const BoundaryMesh3D& mesh) {
 ContactDiagnostics WallContact3D::compute(const BoundaryMesh3D& mesh,
                                           const ParticleArrays& particles,
                                           std::span<double> vertex_forces) {
-  check_inputs(mesh, particles, vertex_forces);
+  skeleton::check_evaluation_inputs(kTriangleMesh, particles, mesh.positions, mesh.velocities,
+                                    mesh.triangles, vertex_forces);
   if (uses_pre_refinement(settings_)) {
     if (!prepared_) {
       prepare(mesh);
@@ -305,7 +300,8 @@ ContactDiagnostics compute_all_pairs_3d(const ContactSettings3D& settings,
                                         const BoundaryMesh3D& mesh, const ParticleArrays& particles,
                                         std::span<double> vertex_forces) {
   settings.validate();
-  check_inputs(mesh, particles, vertex_forces);
+  skeleton::check_evaluation_inputs(kTriangleMesh, particles, mesh.positions, mesh.velocities,
+                                    mesh.triangles, vertex_forces);
   std::vector<std::uint8_t> pre_refinement;
   if (uses_pre_refinement(settings)) pre_refine(settings, mesh, pre_refinement);
   std::vector<std::uint8_t> levels;

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "fsi/contact/triangle_quadrature.hpp"
+#include "particle_cloud.hpp"
 
 namespace fsi::contact {
 namespace {
@@ -109,28 +110,7 @@ TEST(TriangleRule, RejectsOtherCountsListingTheAvailableOnes) {
 
 // ---- helpers ----------------------------------------------------------------------------------
 
-struct Particles {
-  std::vector<double> x, v, f;
-  std::vector<int> mask;
-
-  void add(const Vector& position, const Vector& velocity = {0.0, 0.0, 0.0}) {
-    x.insert(x.end(), position.begin(), position.end());
-    v.insert(v.end(), velocity.begin(), velocity.end());
-    f.insert(f.end(), {0.0, 0.0, 0.0});
-    mask.push_back(1);
-  }
-  std::size_t count() const { return mask.size(); }
-  ParticleArrays arrays() {
-    ParticleArrays a;
-    a.count = count();
-    a.positions = x.data();
-    a.velocities = v.data();
-    a.forces = f.data();
-    a.group_mask = mask;
-    a.group_bit = 1;
-    return a;
-  }
-};
+using Particles = test_support::ParticleCloud;
 
 ContactSettings3D settings(int option = 1, double cutoff = 0.015625, double viscous = 0.5) {
   ContactSettings3D s;
