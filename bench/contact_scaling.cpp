@@ -12,8 +12,8 @@
 #include <limits>
 #include <vector>
 
+#include "contact_test_support.hpp"
 #include "fsi/contact/wall_contact.hpp"
-#include "particle_cloud.hpp"
 
 namespace {
 

@@ -11,9 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "exact_wall.hpp"
+#include "contact_test_support.hpp"
 #include "fsi/contact/wall_contact.hpp"
-#include "particle_cloud.hpp"
 
 namespace fsi::contact {
 namespace {

@@ -8,8 +8,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "exact_wall.hpp"
-#include "particle_cloud.hpp"
+#include "contact_test_support.hpp"
 
 namespace fsi::contact {
 namespace {
@@ -18,10 +17,7 @@ using Particles = test_support::ParticleCloud;
 
 ContactSettings settings(double cutoff = 0.01, double viscous = 0.5) {
   ContactSettings s;
-  s.law.repulsion_scale = 1000.0;
-  s.law.viscous_scale = viscous;
-  s.law.cutoff = cutoff;
-  s.law.equilibrium_distance = 0.8 * cutoff;  // with adhesion, to exercise both signs
+  s.law = test_support::adhesive_law(cutoff, viscous);
   s.gauss_points = 3;
   s.refinement_resolution = 2.0 * cutoff;
   return s;
