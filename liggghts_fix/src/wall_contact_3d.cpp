@@ -34,7 +34,7 @@ double norm(const Vector& a) {
 }
 
 // The geometry of one triangle in the current configuration.
-struct Element {
+struct Triangle {
   std::uint32_t vertex[3];
   const double* position[3];
   const double* velocity[3];
@@ -44,8 +44,8 @@ struct Element {
   double closest_distance(const double* particle, double closest_so_far) const;
 };
 
-Element element(const BoundaryMesh3D& mesh, std::size_t triangle) {
-  Element e{};
+Triangle element(const BoundaryMesh3D& mesh, std::size_t triangle) {
+  Triangle e{};
   for (int c = 0; c < 3; ++c) {
     e.vertex[c] = mesh.triangles[3 * triangle + c];
     e.position[c] = mesh.positions.data() + 3 * std::size_t{e.vertex[c]};
@@ -62,7 +62,7 @@ Element element(const BoundaryMesh3D& mesh, std::size_t triangle) {
   return e;
 }
 
-double longest_edge(const Element& e) {
+double longest_edge(const Triangle& e) {
   double longest = 0.0;
   for (int c = 0; c < 3; ++c) {
     longest = std::max(longest, norm(difference(e.position[(c + 1) % 3], e.position[c])));
@@ -109,7 +109,7 @@ void plan_levels(const ContactSettings3D& settings, const BoundaryMesh3D& mesh,
   levels.assign(mesh.triangle_count(), 0);
   if (settings.refinement_option == 0) return;
   for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
-    const Element e = element(mesh, t);
+    const Triangle e = element(mesh, t);
     if (!(e.area > 0.0)) continue;
     const double edge = longest_edge(e);
     int level = 0;
@@ -137,7 +137,7 @@ void plan_levels(const ContactSettings3D& settings, const BoundaryMesh3D& mesh,
 // in the original triangle.
 class TriangleSampling {
  public:
-  using Point = skeleton::SamplingPoint<Element, 3, 3>;
+  using Point = skeleton::SamplingPoint<Triangle, 3, 3>;
 
   // levels: from plan_levels().
   TriangleSampling(const ContactSettings3D& settings, const BoundaryMesh3D& mesh,
@@ -147,7 +147,7 @@ class TriangleSampling {
   template <class Visit>
   void for_each_point(Visit&& visit) const {
     for (std::size_t t = 0; t < mesh_.triangle_count(); ++t) {
-      const Element e = element(mesh_, t);
+      const Triangle e = element(mesh_, t);
       if (!(e.area > 0.0)) continue;  // zero area: no contribution
       const int level = levels_[t];
       const double sub_area = std::ldexp(e.area, -2 * level);
@@ -184,7 +184,7 @@ class TriangleSampling {
 // Distance of p to a triangle of positive area, given its distance to the triangle's plane. The
 // result is never below plane_distance, so a caller may skip the call when plane_distance alone
 // already exceeds what it is looking for.
-double distance_to_triangle(const double* p, const Element& e, double plane_distance) {
+double distance_to_triangle(const double* p, const Triangle& e, double plane_distance) {
   const double signed_height = dot(difference(p, e.position[0]), e.unit_normal);
   const double foot[3] = {p[0] - signed_height * e.unit_normal[0],
                           p[1] - signed_height * e.unit_normal[1],
@@ -204,7 +204,7 @@ double distance_to_triangle(const double* p, const Element& e, double plane_dist
   return std::max(closest, plane_distance);
 }
 
-double Element::closest_distance(const double* particle, double closest_so_far) const {
+double Triangle::closest_distance(const double* particle, double closest_so_far) const {
   // The distance to the plane is a lower bound: most pairs end there.
   const double plane_distance = std::abs(dot(difference(particle, position[0]), unit_normal));
   if (!(plane_distance < closest_so_far)) return closest_so_far;
@@ -215,7 +215,7 @@ void pre_refine(const ContactSettings3D& settings, const BoundaryMesh3D& mesh,
                 std::vector<std::uint8_t>& pre_refinement) {
   pre_refinement.assign(mesh.triangle_count(), 0);
   for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
-    const Element e = element(mesh, t);
+    const Triangle e = element(mesh, t);
     if (!(e.area > 0.0)) continue;
     pre_refinement[t] = static_cast<std::uint8_t>(
         triangle_refinement_level(longest_edge(e), settings.refinement_resolution, t));
