@@ -12,6 +12,7 @@
 #include <limits>
 #include <vector>
 
+#include "contact_test_support.hpp"
 #include "fsi/contact/wall_contact.hpp"
 
 namespace {
@@ -27,17 +28,7 @@ constexpr double kSpacing = 0.000323;  // and particle spacing
 constexpr double kWidth = 0.05;
 constexpr double kHeight = 0.03;
 
-struct Fluid {
-  std::vector<double> x, v, f;
-  ParticleArrays arrays() {
-    ParticleArrays a;
-    a.count = x.size() / 3;
-    a.positions = x.data();
-    a.velocities = v.data();
-    a.forces = f.data();
-    return a;
-  }
-};
+using Fluid = fsi::contact::test_support::ParticleCloud;
 
 // A block of particles on a lattice with the given spacing, slightly jittered.
 Fluid fluid_block(double spacing) {
@@ -49,9 +40,8 @@ Fluid fluid_block(double spacing) {
   };
   for (double y = 0.5 * spacing; y < kHeight; y += spacing) {
     for (double x = 0.5 * spacing; x < kWidth; x += spacing) {
-      fluid.x.insert(fluid.x.end(), {x + jitter(), y + jitter(), 0.0});
-      fluid.v.insert(fluid.v.end(), {1e-3, -1e-3, 0.0});
-      fluid.f.insert(fluid.f.end(), {0.0, 0.0, 0.0});
+      const double jittered_x = x + jitter();
+      fluid.add(jittered_x, y + jitter(), 1e-3, -1e-3);
     }
   }
   return fluid;

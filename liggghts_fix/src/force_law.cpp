@@ -59,6 +59,21 @@ double ForceLaw::repulsion(double distance) const {
          (cutoff * cutoff * equilibrium_distance * (2.0 * cutoff - equilibrium_distance));
 }
 
+double ForceLaw::steepest_repulsion_slope() const {
+  if (repulsion_law == RepulsionLaw::LennardJones) {
+    // Inside the core the law is constant; outside it the slope only falls off with distance.
+    const double core = kCoreFraction * equilibrium_distance;
+    const double ratio = equilibrium_distance / core;
+    return repulsion_scale * (lj_p1 * std::pow(ratio, lj_p1) - lj_p2 * std::pow(ratio, lj_p2)) /
+           core;
+  }
+  // d f_rep / d d = -k (4 g^3 - 2 (r_c - r_0)^2 g) / (r_c^2 r_0 (2 r_c - r_0)) with g = r_c - d is
+  // steepest at g = r_c.
+  const double rest = cutoff - equilibrium_distance;
+  return repulsion_scale * (4.0 * cutoff * cutoff - 2.0 * rest * rest) /
+         (cutoff * equilibrium_distance * (2.0 * cutoff - equilibrium_distance));
+}
+
 double ForceLaw::viscous_weight(double distance) const {
   const double support = effective_viscous_cutoff();
   if (!(distance < support)) return 0.0;

@@ -2,20 +2,18 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <stdexcept>
 #include <string>
 
+#include "contact_skeleton.hpp"
 #include "fsi/contact/triangle_quadrature.hpp"
 
 namespace fsi::contact {
 namespace {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
-// The cell search covers [s - r, s + r] widened by this fraction of r, so that a pair accepted by
-// the rounded test |x - s|^2 < r^2 is never in a cell the search skipped.
-constexpr double kSearchMargin = 1e-9;
+constexpr skeleton::MeshShape kTriangleMesh{3, 3, "triangle"};
 
 using Vector = std::array<double, 3>;
 
@@ -36,16 +34,18 @@ double norm(const Vector& a) {
 }
 
 // The geometry of one triangle in the current configuration.
-struct Element {
+struct Triangle {
   std::uint32_t vertex[3];
   const double* position[3];
   const double* velocity[3];
   double area;
   Vector unit_normal;  // only meaningful when area > 0
+
+  double closest_distance(const double* particle, double closest_so_far) const;
 };
 
-Element element(const BoundaryMesh3D& mesh, std::size_t triangle) {
-  Element e{};
+Triangle element(const BoundaryMesh3D& mesh, std::size_t triangle) {
+  Triangle e{};
   for (int c = 0; c < 3; ++c) {
     e.vertex[c] = mesh.triangles[3 * triangle + c];
     e.position[c] = mesh.positions.data() + 3 * std::size_t{e.vertex[c]};
@@ -62,22 +62,13 @@ Element element(const BoundaryMesh3D& mesh, std::size_t triangle) {
   return e;
 }
 
-double longest_edge(const Element& e) {
+double longest_edge(const Triangle& e) {
   double longest = 0.0;
   for (int c = 0; c < 3; ++c) {
     longest = std::max(longest, norm(difference(e.position[(c + 1) % 3], e.position[c])));
   }
   return longest;
 }
-
-// One sampling point, with what the pair kernel needs of its triangle.
-struct SamplingPoint {
-  double position[3];
-  double velocity[3];
-  double barycentric[3];  // with respect to the original triangle (eq. 4.11 in 3D)
-  double area_weight;     // A_sub * w_k
-  const Element* element;
-};
 
 using Barycentric = std::array<double, 3>;
 
@@ -118,7 +109,7 @@ void plan_levels(const ContactSettings3D& settings, const BoundaryMesh3D& mesh,
   levels.assign(mesh.triangle_count(), 0);
   if (settings.refinement_option == 0) return;
   for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
-    const Element e = element(mesh, t);
+    const Triangle e = element(mesh, t);
     if (!(e.area > 0.0)) continue;
     const double edge = longest_edge(e);
     int level = 0;
@@ -141,52 +132,59 @@ void plan_levels(const ContactSettings3D& settings, const BoundaryMesh3D& mesh,
   }
 }
 
-// Calls visit(point) for every sampling point of the refined mesh, with the levels of
-// plan_levels().
-template <class Visit>
-void for_each_sampling_point(const ContactSettings3D& settings, const BoundaryMesh3D& mesh,
-                             std::span<const std::uint8_t> levels, Visit&& visit) {
-  const auto rule = triangle_rule(settings.quadrature_points);
-  for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
-    const Element e = element(mesh, t);
-    if (!(e.area > 0.0)) continue;  // zero area: no contribution
-    const int level = levels[t];
-    const double sub_area = std::ldexp(e.area, -2 * level);
-    SamplingPoint point{};
-    point.element = &e;
-    auto leaf = [&](const Barycentric& c0, const Barycentric& c1, const Barycentric& c2) {
-      for (const TrianglePoint& q : rule) {
-        const auto& mu = q.barycentric;
-        for (int v = 0; v < 3; ++v)
-          point.barycentric[v] = mu[0] * c0[v] + mu[1] * c1[v] + mu[2] * c2[v];
-        const double* l = point.barycentric;
-        for (int k = 0; k < 3; ++k) {
-          point.position[k] =
-              l[0] * e.position[0][k] + l[1] * e.position[1][k] + l[2] * e.position[2][k];
-          point.velocity[k] =
-              l[0] * e.velocity[0][k] + l[1] * e.velocity[1][k] + l[2] * e.velocity[2][k];
-        }
-        point.area_weight = sub_area * q.weight;
-        visit(point);
-      }
-    };
-    split({1.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, {0.0, 0.0, 1.0}, level, leaf);
-  }
-}
+// Every triangle split to its planned level, every sub-triangle sampled by the symmetric rule;
+// positions, velocities and corner shares from the barycentric coordinates of the sampling point
+// in the original triangle.
+class TriangleSampling {
+ public:
+  using Point = skeleton::SamplingPoint<Triangle, 3, 3>;
 
-double distance_to_segment(const double* p, const double* a, const double* b) {
-  const Vector edge = difference(b, a);
-  const Vector offset = difference(p, a);
-  const double length2 = dot(edge, edge);
-  double t = 0.0;
-  if (length2 > 0.0) t = std::clamp(dot(offset, edge) / length2, 0.0, 1.0);
-  return norm({offset[0] - t * edge[0], offset[1] - t * edge[1], offset[2] - t * edge[2]});
-}
+  // levels: from plan_levels().
+  TriangleSampling(const ContactSettings3D& settings, const BoundaryMesh3D& mesh,
+                   std::span<const std::uint8_t> levels)
+      : rule_(triangle_rule(settings.quadrature_points)), mesh_(mesh), levels_(levels) {}
+
+  template <class Visit>
+  void for_each_point(Visit&& visit) const {
+    for (std::size_t t = 0; t < mesh_.triangle_count(); ++t) {
+      const Triangle e = element(mesh_, t);
+      if (!(e.area > 0.0)) continue;  // zero area: no contribution
+      const int level = levels_[t];
+      const double sub_area = std::ldexp(e.area, -2 * level);
+      Point point{};
+      point.element = &e;
+      for (int c = 0; c < 3; ++c)
+        point.corner_vertex[c] = e.vertex[c];
+      auto leaf = [&](const Barycentric& c0, const Barycentric& c1, const Barycentric& c2) {
+        for (const TrianglePoint& q : rule_) {
+          const auto& mu = q.barycentric;
+          for (int v = 0; v < 3; ++v)
+            point.corner_share[v] = mu[0] * c0[v] + mu[1] * c1[v] + mu[2] * c2[v];
+          const double* l = point.corner_share;
+          for (int k = 0; k < 3; ++k) {
+            point.position[k] =
+                l[0] * e.position[0][k] + l[1] * e.position[1][k] + l[2] * e.position[2][k];
+            point.velocity[k] =
+                l[0] * e.velocity[0][k] + l[1] * e.velocity[1][k] + l[2] * e.velocity[2][k];
+          }
+          point.measure_weight = sub_area * q.weight;
+          visit(point);
+        }
+      };
+      split({1.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, {0.0, 0.0, 1.0}, level, leaf);
+    }
+  }
+
+ private:
+  std::span<const TrianglePoint> rule_;
+  const BoundaryMesh3D& mesh_;
+  std::span<const std::uint8_t> levels_;
+};
 
 // Distance of p to a triangle of positive area, given its distance to the triangle's plane. The
 // result is never below plane_distance, so a caller may skip the call when plane_distance alone
 // already exceeds what it is looking for.
-double distance_to_triangle(const double* p, const Element& e, double plane_distance) {
+double distance_to_triangle(const double* p, const Triangle& e, double plane_distance) {
   const double signed_height = dot(difference(p, e.position[0]), e.unit_normal);
   const double foot[3] = {p[0] - signed_height * e.unit_normal[0],
                           p[1] - signed_height * e.unit_normal[1],
@@ -200,135 +198,24 @@ double distance_to_triangle(const double* p, const Element& e, double plane_dist
   if (inside) return plane_distance;
   double closest = kInfinity;
   for (int c = 0; c < 3; ++c) {
-    closest = std::min(closest, distance_to_segment(p, e.position[c], e.position[(c + 1) % 3]));
+    closest = std::min(closest,
+                       skeleton::distance_to_segment<3>(p, e.position[c], e.position[(c + 1) % 3]));
   }
   return std::max(closest, plane_distance);
 }
 
-// Accumulates everything of one evaluation; the pair kernel is the only place forces are made.
-class PairKernel {
- public:
-  PairKernel(const ForceLaw& law, const ParticleArrays& particles, std::span<double> vertex_forces,
-             std::vector<std::uint8_t>& in_range, ContactDiagnostics& diagnostics)
-      : law_(law),
-        range2_(law.range() * law.range()),
-        particles_(particles),
-        vertex_forces_(vertex_forces.data()),
-        in_range_(in_range),
-        diagnostics_(diagnostics) {}
-
-  void operator()(const SamplingPoint& s, std::size_t i) {
-    const double* x = particles_.positions + 3 * i;
-    const double dx[3] = {x[0] - s.position[0], x[1] - s.position[1], x[2] - s.position[2]};
-    const double distance2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
-    if (distance2 >= range2_) return;
-    const double distance = std::sqrt(distance2);
-    // At distance 0 the repulsion has no direction and contributes nothing.
-    const double along_line = distance > 0.0 ? law_.repulsion(distance) / distance : 0.0;
-    const double friction = law_.viscous_scale * law_.viscous_weight(distance);
-    const double* u = particles_.velocities + 3 * i;
-    double force[3];
-    for (int k = 0; k < 3; ++k) {
-      force[k] = (along_line * dx[k] - friction * (u[k] - s.velocity[k])) * s.area_weight;
-    }
-
-    double* f = particles_.forces + 3 * i;
-    for (int k = 0; k < 3; ++k) {
-      f[k] += force[k];
-      diagnostics_.force_on_particles[k] += force[k];
-    }
-    // Counterforce on the structure, redistributed to the vertices by barycentric weighting.
-    for (int v = 0; v < 3; ++v) {
-      double* target = vertex_forces_ + 3 * std::size_t{s.element->vertex[v]};
-      for (int k = 0; k < 3; ++k)
-        target[k] -= s.barycentric[v] * force[k];
-    }
-
-    diagnostics_.pair_force_magnitude_sum +=
-        std::sqrt(force[0] * force[0] + force[1] * force[1] + force[2] * force[2]);
-    ++diagnostics_.pair_count;
-    if (!in_range_[i]) {
-      in_range_[i] = 1;
-      ++diagnostics_.particles_in_range;
-    }
-    const double plane_distance =
-        std::abs(dot(difference(x, s.element->position[0]), s.element->unit_normal));
-    if (plane_distance < diagnostics_.closest_distance) {
-      diagnostics_.closest_distance = std::min(diagnostics_.closest_distance,
-                                               distance_to_triangle(x, *s.element, plane_distance));
-    }
-  }
-
- private:
-  const ForceLaw& law_;
-  double range2_;
-  const ParticleArrays& particles_;
-  double* vertex_forces_;
-  std::vector<std::uint8_t>& in_range_;
-  ContactDiagnostics& diagnostics_;
-};
-
-bool takes_part(const ParticleArrays& particles, std::size_t i) {
-  return particles.group_mask.empty() || (particles.group_mask[i] & particles.group_bit) != 0;
-}
-
-std::string coordinates(const double* x) {
-  char text[96];
-  std::snprintf(text, sizeof text, "(%.6g, %.6g, %.6g)", x[0], x[1], x[2]);
-  return text;
-}
-
-void check_particles(const ParticleArrays& particles) {
-  if (particles.count > 0 && (!particles.positions || !particles.velocities || !particles.forces)) {
-    throw std::invalid_argument("particle arrays are missing positions, velocities or forces");
-  }
-  if (!particles.group_mask.empty() && particles.group_mask.size() < particles.count) {
-    throw std::invalid_argument("group mask is shorter than the particle count");
-  }
-  if (particles.count > std::numeric_limits<std::uint32_t>::max()) {
-    throw std::invalid_argument("more than 2^32 particles on one process");
-  }
-  for (std::size_t i = 0; i < particles.count; ++i) {
-    if (!takes_part(particles, i)) continue;
-    const double* x = particles.positions + 3 * i;
-    const double* u = particles.velocities + 3 * i;
-    for (int k = 0; k < 3; ++k) {
-      if (!std::isfinite(x[k]) || !std::isfinite(u[k])) {
-        throw std::invalid_argument(
-            "particle " + std::to_string(i) + " has a non-finite position " + coordinates(x) +
-            " or velocity " + coordinates(u) +
-            "; the SPH state is broken (check the time step and the wall forces)");
-      }
-    }
-  }
-}
-
-void check_vertex_forces(const BoundaryMesh3D& mesh, std::span<const double> vertex_forces) {
-  if (vertex_forces.size() != mesh.positions.size()) {
-    throw std::invalid_argument("vertex force buffer holds " +
-                                std::to_string(vertex_forces.size()) + " values, the mesh needs " +
-                                std::to_string(mesh.positions.size()) + " (3 per vertex)");
-  }
-}
-
-void start_outputs(std::span<double> vertex_forces, ContactDiagnostics& diagnostics) {
-  std::fill(vertex_forces.begin(), vertex_forces.end(), 0.0);
-  diagnostics = ContactDiagnostics{};
-  diagnostics.closest_distance = kInfinity;
-}
-
-void finish_diagnostics(std::span<const double> vertex_forces, ContactDiagnostics& diagnostics) {
-  for (std::size_t k = 0; k < vertex_forces.size(); k += 3) {
-    for (int c = 0; c < 3; ++c)
-      diagnostics.force_on_structure[c] += vertex_forces[k + c];
-  }
+double Triangle::closest_distance(const double* particle, double closest_so_far) const {
+  // The distance to the plane is a lower bound: most pairs end there.
+  const double plane_distance = std::abs(dot(difference(particle, position[0]), unit_normal));
+  if (!(plane_distance < closest_so_far)) return closest_so_far;
+  return std::min(closest_so_far, distance_to_triangle(particle, *this, plane_distance));
 }
 
 void pre_refine(const ContactSettings3D& settings, const BoundaryMesh3D& mesh,
                 std::vector<std::uint8_t>& pre_refinement) {
   pre_refinement.assign(mesh.triangle_count(), 0);
   for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
-    const Element e = element(mesh, t);
+    const Triangle e = element(mesh, t);
     if (!(e.area > 0.0)) continue;
     pre_refinement[t] = static_cast<std::uint8_t>(
         triangle_refinement_level(longest_edge(e), settings.refinement_resolution, t));
@@ -342,32 +229,7 @@ bool uses_pre_refinement(const ContactSettings3D& settings) {
 }  // namespace
 
 void BoundaryMesh3D::validate() const {
-  if (positions.size() % 3 != 0 || velocities.size() != positions.size()) {
-    throw std::invalid_argument(
-        "3D boundary mesh needs x,y,z per vertex for positions and velocities (" +
-        std::to_string(positions.size()) + " position and " + std::to_string(velocities.size()) +
-        " velocity values)");
-  }
-  if (triangles.size() % 3 != 0) {
-    throw std::invalid_argument("3D boundary triangles need three vertex indices each (" +
-                                std::to_string(triangles.size()) + " indices given)");
-  }
-  for (std::size_t k = 0; k < triangles.size(); ++k) {
-    if (triangles[k] >= vertex_count()) {
-      throw std::invalid_argument("triangle " + std::to_string(k / 3) + " refers to vertex " +
-                                  std::to_string(triangles[k]) + " but the mesh has " +
-                                  std::to_string(vertex_count()) + " vertices (0 to " +
-                                  std::to_string(vertex_count()) + " - 1)");
-    }
-  }
-  for (std::size_t k = 0; k < positions.size(); ++k) {
-    if (!std::isfinite(positions[k]) || !std::isfinite(velocities[k])) {
-      const std::size_t vertex = k / 3;
-      throw std::invalid_argument("vertex " + std::to_string(vertex) + " has a non-finite " +
-                                  "position " + coordinates(&positions[3 * vertex]) +
-                                  " or velocity " + coordinates(&velocities[3 * vertex]));
-    }
-  }
+  skeleton::validate_mesh(kTriangleMesh, positions, velocities, triangles);
 }
 
 void ContactSettings3D::validate() const {
@@ -415,10 +277,8 @@ void WallContact3D::prepare(const BoundaryMesh3D& mesh) {
 ContactDiagnostics WallContact3D::compute(const BoundaryMesh3D& mesh,
                                           const ParticleArrays& particles,
                                           std::span<double> vertex_forces) {
-  // Every check before anything is written.
-  check_particles(particles);
-  mesh.validate();
-  check_vertex_forces(mesh, vertex_forces);
+  skeleton::check_evaluation_inputs(kTriangleMesh, particles, mesh.positions, mesh.velocities,
+                                    mesh.triangles, vertex_forces);
   if (uses_pre_refinement(settings_)) {
     if (!prepared_) {
       prepare(mesh);
@@ -430,52 +290,24 @@ ContactDiagnostics WallContact3D::compute(const BoundaryMesh3D& mesh,
                                   "; call prepare() after changing the mesh");
     }
   }
-  std::vector<std::uint8_t> levels;
-  plan_levels(settings_, mesh, pre_refinement_, levels);
-
-  ContactDiagnostics diagnostics;
-  start_outputs(vertex_forces, diagnostics);
-  mark_particles_near_mesh(particles, mesh.positions, 3, settings_.law.range(), near_);
-  grid_.build(particles.positions, near_, settings_.law.range());
-  in_range_.assign(particles.count, 0);
-  PairKernel kernel(settings_.law, particles, vertex_forces, in_range_, diagnostics);
-  const double reach = settings_.law.range() * (1.0 + kSearchMargin);
-
-  for_each_sampling_point(settings_, mesh, levels, [&](const SamplingPoint& s) {
-    ++diagnostics.sampling_points;
-    diagnostics.candidate_pairs +=
-        grid_.visit_near(s.position, reach, [&](std::uint32_t i) { kernel(s, i); });
-  });
-  finish_diagnostics(vertex_forces, diagnostics);
-  return diagnostics;
+  plan_levels(settings_, mesh, pre_refinement_, levels_);
+  return skeleton::evaluate_near_particles(TriangleSampling(settings_, mesh, levels_),
+                                           settings_.law, particles, mesh.positions, vertex_forces,
+                                           buffers_);
 }
 
 ContactDiagnostics compute_all_pairs_3d(const ContactSettings3D& settings,
                                         const BoundaryMesh3D& mesh, const ParticleArrays& particles,
                                         std::span<double> vertex_forces) {
   settings.validate();
-  check_particles(particles);
-  mesh.validate();
-  check_vertex_forces(mesh, vertex_forces);
+  skeleton::check_evaluation_inputs(kTriangleMesh, particles, mesh.positions, mesh.velocities,
+                                    mesh.triangles, vertex_forces);
   std::vector<std::uint8_t> pre_refinement;
   if (uses_pre_refinement(settings)) pre_refine(settings, mesh, pre_refinement);
   std::vector<std::uint8_t> levels;
   plan_levels(settings, mesh, pre_refinement, levels);
-
-  ContactDiagnostics diagnostics;
-  start_outputs(vertex_forces, diagnostics);
-  std::vector<std::uint8_t> in_range(particles.count, 0);
-  PairKernel kernel(settings.law, particles, vertex_forces, in_range, diagnostics);
-  for_each_sampling_point(settings, mesh, levels, [&](const SamplingPoint& s) {
-    ++diagnostics.sampling_points;
-    for (std::size_t i = 0; i < particles.count; ++i) {
-      if (!takes_part(particles, i)) continue;
-      ++diagnostics.candidate_pairs;
-      kernel(s, i);
-    }
-  });
-  finish_diagnostics(vertex_forces, diagnostics);
-  return diagnostics;
+  return skeleton::evaluate_all_pairs(TriangleSampling(settings, mesh, levels), settings.law,
+                                      particles, vertex_forces);
 }
 
 }  // namespace fsi::contact

@@ -4,7 +4,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <boost/math/quadrature/gauss_kronrod.hpp>
 #include <cmath>
 #include <numeric>
 #include <random>
@@ -12,28 +11,13 @@
 #include <string>
 #include <vector>
 
+#include "contact_test_support.hpp"
 #include "fsi/contact/wall_contact.hpp"
 
 namespace fsi::contact {
 namespace {
 
-struct Cloud {
-  std::vector<double> x, v, f;
-  void add(double px, double py, double vx = 0.0, double vy = 0.0) {
-    x.insert(x.end(), {px, py, 0.0});
-    v.insert(v.end(), {vx, vy, 0.0});
-    f.insert(f.end(), {0.0, 0.0, 0.0});
-  }
-  std::size_t size() const { return x.size() / 3; }
-  ParticleArrays arrays() {
-    ParticleArrays a;
-    a.count = size();
-    a.positions = x.data();
-    a.velocities = v.data();
-    a.forces = f.data();
-    return a;
-  }
-};
+using Cloud = test_support::ParticleCloud;
 
 double largest_magnitude(const std::vector<double>& values) {
   double m = 0.0;
@@ -89,13 +73,7 @@ TEST(ContactProperties, NoHolesAtTheThesisElementLength) {
 
 // Exact normal force of an infinite straight wall at distance d, by adaptive Gauss–Kronrod.
 double exact_wall_force(const ForceLaw& law, double d) {
-  const double reach = std::sqrt(law.cutoff * law.cutoff - d * d);
-  auto normal_density = [&](double s) {
-    const double rho = std::hypot(d, s);
-    return law.repulsion(rho) * d / rho;
-  };
-  return boost::math::quadrature::gauss_kronrod<double, 61>::integrate(normal_density, -reach,
-                                                                       reach, 12, 1e-13);
+  return test_support::exact_wall_repulsion(law, d, 12, 1e-13);
 }
 
 // Largest relative error of the repulsive wall force over d in [0.05, 0.75] r_c and particle
@@ -292,7 +270,7 @@ TEST(ContactProperties, RanksSplittingTheParticlesGiveTheSameVertexForces) {
   for (int trial = 0; trial < 5; ++trial) {
     Scene whole = random_scene(rng);
     Cloud left, right;
-    for (std::size_t i = 0; i < whole.cloud.size(); ++i) {
+    for (std::size_t i = 0; i < whole.cloud.count(); ++i) {
       Cloud& part = whole.cloud.x[3 * i] < 0.0 ? left : right;  // a subdomain border at x = 0
       part.add(whole.cloud.x[3 * i], whole.cloud.x[3 * i + 1], whole.cloud.v[3 * i],
                whole.cloud.v[3 * i + 1]);

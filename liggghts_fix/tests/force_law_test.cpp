@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -82,6 +83,35 @@ TEST(ForceLaw, ValidationNamesTheParameter) {
 
 namespace fsi::contact {
 namespace {
+
+// The physics checks take the wall's stiffness from here: it must be the steepest slope of the
+// law the fix evaluates, found here by central differences over the whole range.
+TEST(ForceLaw, SteepestRepulsionSlopeIsTheLargestSlopeOfTheLaw) {
+  auto steepest_by_differences = [](const ForceLaw& law, double from) {
+    const double step = 1e-6 * law.cutoff;
+    double steepest = 0.0;
+    for (double d = from; d + step < law.cutoff; d += 1e-3 * law.cutoff) {
+      const double slope = (law.repulsion(d + step) - law.repulsion(d - step)) / (2.0 * step);
+      steepest = std::max(steepest, std::abs(slope));
+    }
+    return steepest;
+  };
+  for (double r0 : {0.5, 1.0, 1.5, 2.0}) {
+    const ForceLaw law = thesis_law(r0);
+    // One-sided at contact, where the slope is largest.
+    const double step = 1e-7;
+    const double at_contact = std::abs(law.repulsion(step) - law.repulsion(0.0)) / step;
+    EXPECT_NEAR(law.steepest_repulsion_slope(), at_contact, 1e-5 * at_contact) << "r0 = " << r0;
+    EXPECT_GE(law.steepest_repulsion_slope() * (1.0 + 1e-6), steepest_by_differences(law, step))
+        << "r0 = " << r0;
+  }
+  EXPECT_DOUBLE_EQ(thesis_law(2.0).steepest_repulsion_slope(), 4.0 * 1000.0 / 2.0);
+  ForceLaw lj = thesis_law(0.5);
+  lj.repulsion_law = RepulsionLaw::LennardJones;
+  const double core = 0.05;  // r0 / 10: inside it the law is constant
+  const double just_outside = steepest_by_differences(lj, core + 3e-6);
+  EXPECT_NEAR(lj.steepest_repulsion_slope(), just_outside, 2e-3 * just_outside);
+}
 
 TEST(ForceLaw, LennardJonesIsThesisEquation43WithAFiniteCore) {
   ForceLaw law = thesis_law(0.5);

@@ -17,6 +17,7 @@
 #include <utility>
 #include <vector>
 
+#include "contact_test_support.hpp"
 #include "fsi/contact/triangle_quadrature.hpp"
 
 namespace fsi::contact {
@@ -109,35 +110,11 @@ TEST(TriangleRule, RejectsOtherCountsListingTheAvailableOnes) {
 
 // ---- helpers ----------------------------------------------------------------------------------
 
-struct Particles {
-  std::vector<double> x, v, f;
-  std::vector<int> mask;
-
-  void add(const Vector& position, const Vector& velocity = {0.0, 0.0, 0.0}) {
-    x.insert(x.end(), position.begin(), position.end());
-    v.insert(v.end(), velocity.begin(), velocity.end());
-    f.insert(f.end(), {0.0, 0.0, 0.0});
-    mask.push_back(1);
-  }
-  std::size_t count() const { return mask.size(); }
-  ParticleArrays arrays() {
-    ParticleArrays a;
-    a.count = count();
-    a.positions = x.data();
-    a.velocities = v.data();
-    a.forces = f.data();
-    a.group_mask = mask;
-    a.group_bit = 1;
-    return a;
-  }
-};
+using Particles = test_support::ParticleCloud;
 
 ContactSettings3D settings(int option = 1, double cutoff = 0.015625, double viscous = 0.5) {
   ContactSettings3D s;
-  s.law.repulsion_scale = 1000.0;
-  s.law.viscous_scale = viscous;
-  s.law.cutoff = cutoff;
-  s.law.equilibrium_distance = 0.8 * cutoff;  // with adhesion, to exercise both signs
+  s.law = test_support::adhesive_law(cutoff, viscous);
   s.quadrature_points = 7;
   s.refinement_option = option;
   s.refinement_resolution = cutoff;  // the project default: l ~ r_c = 2h (thesis eq. 4.7)
@@ -215,6 +192,19 @@ Particles random_particles(std::mt19937& rng, int count, double extent) {
   return p;
 }
 
+// Every refinement option against `trials` random closed meshes (spheres and boxes in turn), each
+// with 8000 random particles around it: check(option, trial, mesh, particles).
+template <class Check>
+void for_each_random_scene(std::mt19937& rng, int trials, Check&& check) {
+  for (int option = 0; option <= 3; ++option) {
+    for (int trial = 0; trial < trials; ++trial) {
+      const BoundaryMesh3D mesh = random_closed_mesh(rng, trial % 2 == 1);
+      Particles particles = random_particles(rng, 8000, 0.08);
+      check(option, trial, mesh, particles);
+    }
+  }
+}
+
 std::string scientific(double value) {
   char text[32];
   std::snprintf(text, sizeof text, "%.3g", value);
@@ -266,26 +256,23 @@ Vector moment_about(const std::vector<double>& positions, const std::vector<doub
 TEST(WallContact3D, ForcesOnStructureBalanceForcesOnParticles) {
   std::mt19937 rng(42);
   double worst = 0.0;
-  for (int option = 0; option <= 3; ++option) {
-    for (int trial = 0; trial < 8; ++trial) {
-      const BoundaryMesh3D mesh = random_closed_mesh(rng, trial % 2 == 1);
-      Particles p = random_particles(rng, 8000, 0.08);
-      std::vector<double> vertex_forces(mesh.positions.size(), 99.0);
-      WallContact3D contact(settings(option));
-      const ContactDiagnostics d = contact.compute(mesh, p.arrays(), vertex_forces);
-      ASSERT_GT(d.pair_count, 500u) << "option " << option << ", trial " << trial;
-      const Vector on_particles = sum_of_triples(p.f);
-      const Vector on_structure = sum_of_triples(vertex_forces);
-      const double scale = d.pair_force_magnitude_sum;
-      for (int k = 0; k < 3; ++k) {
-        worst = std::max(worst, std::abs(on_particles[k] + on_structure[k]) / scale);
-        EXPECT_LE(std::abs(on_particles[k] + on_structure[k]), 1e-12 * scale)
-            << "option " << option << ", trial " << trial;
-        EXPECT_NEAR(d.force_on_particles[k], on_particles[k], 1e-12 * scale);
-        EXPECT_NEAR(d.force_on_structure[k], on_structure[k], 1e-12 * scale);
-      }
-    }
-  }
+  for_each_random_scene(
+      rng, 8, [&](int option, int trial, const BoundaryMesh3D& mesh, Particles& p) {
+        std::vector<double> vertex_forces(mesh.positions.size(), 99.0);
+        WallContact3D contact(settings(option));
+        const ContactDiagnostics d = contact.compute(mesh, p.arrays(), vertex_forces);
+        ASSERT_GT(d.pair_count, 500u) << "option " << option << ", trial " << trial;
+        const Vector on_particles = sum_of_triples(p.f);
+        const Vector on_structure = sum_of_triples(vertex_forces);
+        const double scale = d.pair_force_magnitude_sum;
+        for (int k = 0; k < 3; ++k) {
+          worst = std::max(worst, std::abs(on_particles[k] + on_structure[k]) / scale);
+          EXPECT_LE(std::abs(on_particles[k] + on_structure[k]), 1e-12 * scale)
+              << "option " << option << ", trial " << trial;
+          EXPECT_NEAR(d.force_on_particles[k], on_particles[k], 1e-12 * scale);
+          EXPECT_NEAR(d.force_on_structure[k], on_structure[k], 1e-12 * scale);
+        }
+      });
   RecordProperty("largest_relative_imbalance", scientific(worst));
 }
 
@@ -297,34 +284,31 @@ TEST(WallContact3D, MomentsBalanceForCentralForces) {
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> anywhere(-1.0, 1.0);
   double worst = 0.0;
-  for (int option = 0; option <= 3; ++option) {
-    for (int trial = 0; trial < 6; ++trial) {
-      const BoundaryMesh3D mesh = random_closed_mesh(rng, trial % 2 == 1);
-      Particles p = random_particles(rng, 8000, 0.08);
-      std::vector<double> vertex_forces(mesh.positions.size());
-      const ContactDiagnostics d =
-          WallContact3D(settings(option, 0.015625, 0.0)).compute(mesh, p.arrays(), vertex_forces);
-      const Vector reference{anywhere(rng), anywhere(rng), anywhere(rng)};
-      const Vector on_particles = moment_about(p.x, p.f, reference);
-      const Vector on_structure = moment_about(mesh.positions, vertex_forces, reference);
-      // Scale: sum of |pair force| times the largest lever arm.
-      double lever = 0.0;
-      for (const std::vector<double>* positions : {&std::as_const(p.x), &mesh.positions}) {
-        for (std::size_t k = 0; k < positions->size(); k += 3) {
-          lever = std::max(
-              lever, std::hypot((*positions)[k] - reference[0], (*positions)[k + 1] - reference[1],
-                                (*positions)[k + 2] - reference[2]));
+  for_each_random_scene(
+      rng, 6, [&](int option, int trial, const BoundaryMesh3D& mesh, Particles& p) {
+        std::vector<double> vertex_forces(mesh.positions.size());
+        const ContactDiagnostics d =
+            WallContact3D(settings(option, 0.015625, 0.0)).compute(mesh, p.arrays(), vertex_forces);
+        const Vector reference{anywhere(rng), anywhere(rng), anywhere(rng)};
+        const Vector on_particles = moment_about(p.x, p.f, reference);
+        const Vector on_structure = moment_about(mesh.positions, vertex_forces, reference);
+        // Scale: sum of |pair force| times the largest lever arm.
+        double lever = 0.0;
+        for (const std::vector<double>* positions : {&std::as_const(p.x), &mesh.positions}) {
+          for (std::size_t k = 0; k < positions->size(); k += 3) {
+            lever = std::max(lever, std::hypot((*positions)[k] - reference[0],
+                                               (*positions)[k + 1] - reference[1],
+                                               (*positions)[k + 2] - reference[2]));
+          }
         }
-      }
-      const double scale = d.pair_force_magnitude_sum * lever;
-      ASSERT_GT(scale, 0.0);
-      for (int k = 0; k < 3; ++k) {
-        worst = std::max(worst, std::abs(on_particles[k] + on_structure[k]) / scale);
-        EXPECT_LE(std::abs(on_particles[k] + on_structure[k]), 1e-12 * scale)
-            << "option " << option << ", trial " << trial;
-      }
-    }
-  }
+        const double scale = d.pair_force_magnitude_sum * lever;
+        ASSERT_GT(scale, 0.0);
+        for (int k = 0; k < 3; ++k) {
+          worst = std::max(worst, std::abs(on_particles[k] + on_structure[k]) / scale);
+          EXPECT_LE(std::abs(on_particles[k] + on_structure[k]), 1e-12 * scale)
+              << "option " << option << ", trial " << trial;
+        }
+      });
   RecordProperty("largest_relative_imbalance", scientific(worst));
 }
 
@@ -679,71 +663,68 @@ TEST(WallContact3D, InvariantUnderRigidMotion) {
   std::mt19937 rng(2024);
   std::uniform_real_distribution<double> offset(-1.0, 1.0);
   double worst = 0.0;
-  for (int option = 0; option <= 3; ++option) {
-    for (int trial = 0; trial < 4; ++trial) {
-      const ContactSettings3D s = settings(option);
-      const BoundaryMesh3D mesh = random_closed_mesh(rng, trial % 2 == 1);
-      Particles p = random_particles(rng, 8000, 0.08);
-      const auto q = random_rotation(rng);
-      const Vector shift{offset(rng), offset(rng), offset(rng)};
-      BoundaryMesh3D moved = mesh;
-      moved.positions = rotated(mesh.positions, q, shift);
-      moved.velocities = rotated(mesh.velocities, q);
-      Particles m = p;
-      m.x = rotated(p.x, q, shift);
-      m.v = rotated(p.v, q);
-      std::vector<double> vertex_forces(mesh.positions.size()), moved_forces(mesh.positions.size());
-      const ContactDiagnostics a = WallContact3D(s).compute(mesh, p.arrays(), vertex_forces);
-      const ContactDiagnostics b = WallContact3D(s).compute(moved, m.arrays(), moved_forces);
-      ASSERT_GT(a.pair_count, 500u);
-      EXPECT_EQ(a.sampling_points, b.sampling_points);
-      const std::string what =
-          "option " + std::to_string(option) + ", trial " + std::to_string(trial);
-      const double particles_difference = relative_difference(m.f, rotated(p.f, q));
-      const double vertex_difference = relative_difference(moved_forces, rotated(vertex_forces, q));
-      worst = std::max({worst, particles_difference, vertex_difference});
-      EXPECT_LE(particles_difference, 1e-12) << what;
-      EXPECT_LE(vertex_difference, 1e-12) << what;
-    }
-  }
+  for_each_random_scene(
+      rng, 4, [&](int option, int trial, const BoundaryMesh3D& mesh, Particles& p) {
+        const ContactSettings3D s = settings(option);
+        const auto q = random_rotation(rng);
+        const Vector shift{offset(rng), offset(rng), offset(rng)};
+        BoundaryMesh3D moved = mesh;
+        moved.positions = rotated(mesh.positions, q, shift);
+        moved.velocities = rotated(mesh.velocities, q);
+        Particles m = p;
+        m.x = rotated(p.x, q, shift);
+        m.v = rotated(p.v, q);
+        std::vector<double> vertex_forces(mesh.positions.size()),
+            moved_forces(mesh.positions.size());
+        const ContactDiagnostics a = WallContact3D(s).compute(mesh, p.arrays(), vertex_forces);
+        const ContactDiagnostics b = WallContact3D(s).compute(moved, m.arrays(), moved_forces);
+        ASSERT_GT(a.pair_count, 500u);
+        EXPECT_EQ(a.sampling_points, b.sampling_points);
+        const std::string what =
+            "option " + std::to_string(option) + ", trial " + std::to_string(trial);
+        const double particles_difference = relative_difference(m.f, rotated(p.f, q));
+        const double vertex_difference =
+            relative_difference(moved_forces, rotated(vertex_forces, q));
+        worst = std::max({worst, particles_difference, vertex_difference});
+        EXPECT_LE(particles_difference, 1e-12) << what;
+        EXPECT_LE(vertex_difference, 1e-12) << what;
+      });
   RecordProperty("largest_relative_difference", scientific(worst));
 }
 
 TEST(WallContact3D, IndependentOfTriangleOrderAndVertexOrder) {
   std::mt19937 rng(77);
   double worst = 0.0;
-  for (int option = 0; option <= 3; ++option) {
-    for (int trial = 0; trial < 4; ++trial) {
-      const ContactSettings3D s = settings(option);
-      const BoundaryMesh3D mesh = random_closed_mesh(rng, trial % 2 == 1);
-      Particles p = random_particles(rng, 8000, 0.08);
-      BoundaryMesh3D shuffled = mesh;
-      std::vector<std::size_t> order(mesh.triangle_count());
-      std::iota(order.begin(), order.end(), 0);
-      std::shuffle(order.begin(), order.end(), rng);
-      std::uniform_int_distribution<int> rotation(0, 2);
-      std::bernoulli_distribution flip(0.5);
-      for (std::size_t t = 0; t < order.size(); ++t) {
-        const int r = rotation(rng);
-        const bool reverse = trial >= 2 && flip(rng);  // trials 2, 3: odd permutations too
-        for (int c = 0; c < 3; ++c) {
-          const int from = reverse ? (r + 3 - c) % 3 : (r + c) % 3;
-          shuffled.triangles[3 * t + static_cast<std::size_t>(c)] =
-              mesh.triangles[3 * order[t] + static_cast<std::size_t>(from)];
+  for_each_random_scene(
+      rng, 4, [&](int option, int trial, const BoundaryMesh3D& mesh, Particles& p) {
+        const ContactSettings3D s = settings(option);
+        BoundaryMesh3D shuffled = mesh;
+        std::vector<std::size_t> order(mesh.triangle_count());
+        std::iota(order.begin(), order.end(), 0);
+        std::shuffle(order.begin(), order.end(), rng);
+        std::uniform_int_distribution<int> rotation(0, 2);
+        std::bernoulli_distribution flip(0.5);
+        for (std::size_t t = 0; t < order.size(); ++t) {
+          const int r = rotation(rng);
+          const bool reverse = trial >= 2 && flip(rng);  // trials 2, 3: odd permutations too
+          for (int c = 0; c < 3; ++c) {
+            const int from = reverse ? (r + 3 - c) % 3 : (r + c) % 3;
+            shuffled.triangles[3 * t + static_cast<std::size_t>(c)] =
+                mesh.triangles[3 * order[t] + static_cast<std::size_t>(from)];
+          }
         }
-      }
-      Particles q = p;
-      std::vector<double> a(mesh.positions.size()), b(mesh.positions.size());
-      WallContact3D(s).compute(mesh, p.arrays(), a);
-      WallContact3D(s).compute(shuffled, q.arrays(), b);
-      const std::string what =
-          "option " + std::to_string(option) + ", trial " + std::to_string(trial);
-      const double difference = std::max(relative_difference(b, a), relative_difference(q.f, p.f));
-      worst = std::max(worst, difference);
-      EXPECT_LE(difference, 1e-12) << what;
-      ASSERT_GT(largest_magnitude(a), 0.0);
-    }
-  }
+        Particles q = p;
+        std::vector<double> a(mesh.positions.size()), b(mesh.positions.size());
+        WallContact3D(s).compute(mesh, p.arrays(), a);
+        WallContact3D(s).compute(shuffled, q.arrays(), b);
+        const std::string what =
+            "option " + std::to_string(option) + ", trial " + std::to_string(trial);
+        const double difference =
+            std::max(relative_difference(b, a), relative_difference(q.f, p.f));
+        worst = std::max(worst, difference);
+        EXPECT_LE(difference, 1e-12) << what;
+        ASSERT_GT(largest_magnitude(a), 0.0);
+      });
   RecordProperty("largest_relative_difference", scientific(worst));
 }
 
@@ -968,6 +949,21 @@ TEST(WallContact3D, NonFiniteParticleIsNamedAndNothingIsWritten) {
     Particles q = p;
     EXPECT_THROW(compute_all_pairs_3d(unit_settings(1), mesh, q.arrays(), vertex_forces),
                  std::invalid_argument);
+  }
+}
+
+// The adapter turns NonFiniteParticle into "atom ID ... at step N"; 3D must throw the same type
+// with the same index as 2D, or the atom and the step are lost.
+TEST(WallContact3D, NonFiniteParticleIsRefusedAsIn2D) {
+  const BoundaryMesh3D mesh = two_triangles();
+  Particles p = particles_near_two_triangles();
+  p.v[3 * 3 + 2] = std::numeric_limits<double>::quiet_NaN();  // particle 3
+  std::vector<double> vertex_forces(mesh.positions.size(), 0.0);
+  try {
+    WallContact3D(unit_settings(1)).compute(mesh, p.arrays(), vertex_forces);
+    ADD_FAILURE() << "accepted a non-finite particle";
+  } catch (const NonFiniteParticle& error) {
+    EXPECT_EQ(error.index, 3u);
   }
 }
 

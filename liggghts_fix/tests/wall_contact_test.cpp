@@ -3,44 +3,21 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <boost/math/quadrature/gauss_kronrod.hpp>
 #include <cmath>
 #include <random>
 #include <stdexcept>
 #include <vector>
 
+#include "contact_test_support.hpp"
+
 namespace fsi::contact {
 namespace {
 
-struct Particles {
-  std::vector<double> x, v, f;
-  std::vector<int> mask;
-
-  void add(double px, double py, double vx = 0.0, double vy = 0.0) {
-    x.insert(x.end(), {px, py, 0.0});
-    v.insert(v.end(), {vx, vy, 0.0});
-    f.insert(f.end(), {0.0, 0.0, 0.0});
-    mask.push_back(1);
-  }
-  ParticleArrays arrays() {
-    ParticleArrays a;
-    a.count = x.size() / 3;
-    a.positions = x.data();
-    a.velocities = v.data();
-    a.forces = f.data();
-    a.group_mask = mask;
-    a.group_bit = 1;
-    return a;
-  }
-  void clear_forces() { std::fill(f.begin(), f.end(), 0.0); }
-};
+using Particles = test_support::ParticleCloud;
 
 ContactSettings settings(double cutoff = 0.01, double viscous = 0.5) {
   ContactSettings s;
-  s.law.repulsion_scale = 1000.0;
-  s.law.viscous_scale = viscous;
-  s.law.cutoff = cutoff;
-  s.law.equilibrium_distance = 0.8 * cutoff;  // with adhesion, to exercise both signs
+  s.law = test_support::adhesive_law(cutoff, viscous);
   s.gauss_points = 3;
   s.refinement_resolution = 2.0 * cutoff;
   return s;
@@ -219,16 +196,8 @@ TEST(WallContact, OnlyParticlesOfTheGroupTakePart) {
   EXPECT_EQ(diagnostics.particles_in_range, 1u);
 }
 
-// Exact line integral of the repulsive density over an infinite straight wall at distance d.
 double exact_wall_repulsion(const ForceLaw& law, double d) {
-  if (d >= law.cutoff) return 0.0;
-  const double reach = std::sqrt(law.cutoff * law.cutoff - d * d);
-  auto normal_density = [&](double s) {
-    const double rho = std::hypot(d, s);
-    return law.repulsion(rho) * d / rho;
-  };
-  return boost::math::quadrature::gauss_kronrod<double, 61>::integrate(normal_density, -reach,
-                                                                       reach, 15, 1e-14);
+  return test_support::exact_wall_repulsion(law, d, 15, 1e-14);
 }
 
 double discrete_wall_force(const ContactSettings& s, double d, double* tangential, double speed) {

@@ -11,6 +11,7 @@
 
 #include "atom.h"
 #include "fsi/common/error.hpp"
+#include "update.h"
 
 namespace fsi::client {
 namespace {
@@ -180,19 +181,28 @@ TEST(LiggghtsDriver, FixWarnsWhenAParticleComesTooCloseToAWall) {
   EXPECT_TRUE(warned()) << "a particle on the wall must be reported";
 }
 
-TEST(LiggghtsDriver, NonFiniteAtomStopsTheFixWithItsId) {
-  Tank tank;
-  // LIGGGHTS' `set` refuses NaN; poison atom ID 7 directly, as a blown-up integration would.
-  LAMMPS_NS::Atom& atom = *tank.driver.lammps().atom;
+// A blown-up integration leaves NaN in an atom's state; LIGGGHTS' `set` refuses NaN, so poison
+// the atom directly. The fix must stop the run naming the atom ID and the step, in 2D and 3D.
+void expect_non_finite_atom_stops_the_run(LiggghtsDriver& driver) {
+  constexpr int kAtom = 7;
+  LAMMPS_NS::Atom& atom = *driver.lammps().atom;
   for (int i = 0; i < atom.nlocal; ++i)
-    if (atom.tag[i] == 7) atom.v[i][0] = std::nan("");
+    if (atom.tag[i] == kAtom) atom.v[i][0] = std::nan("");
   try {
-    tank.driver.step();
+    driver.step();
     FAIL() << "a NaN velocity went through the fix";
   } catch (const std::exception& error) {
-    EXPECT_NE(std::string(error.what()).find("atom 7 has a non-finite"), std::string::npos)
-        << error.what();
+    const std::string message = error.what();
+    EXPECT_NE(message.find("atom 7 has a non-finite"), std::string::npos) << message;
+    const std::string step = "at step " + std::to_string(driver.lammps().update->ntimestep) + ":";
+    EXPECT_NE(message.find(step), std::string::npos) << "'" << step << "' not in: " << message;
   }
+}
+
+TEST(LiggghtsDriver, NonFiniteAtomStopsThe2dRunNamingAtomAndStep) {
+  Tank tank;
+  tank.driver.step();
+  expect_non_finite_atom_stops_the_run(tank.driver);
 }
 
 // 3D: a cube of SPH water resting on a floor of two triangles (refined by the fix), gravity -z.
@@ -246,14 +256,26 @@ ParticleBlock cube_particles() {
   return block;
 }
 
-TEST(LiggghtsDriver, ThreeDimensionalFluidRestsOnATriangleFloor) {
-  for (int option : {1, 2, 3}) {
-    auto boundary = floor_boundary(option);
-    LiggghtsDriver driver(MPI_COMM_WORLD, DriverOptions{}, boundary);
-    const ParticleBlock particles = cube_particles();
-    driver.run_script("cube3d.in", kScript3d, [&] { driver.insert_particles(particles); });
+struct Cube {
+  std::shared_ptr<contact::CouplingBoundary> boundary;
+  LiggghtsDriver driver;
+  ParticleBlock particles = cube_particles();
+
+  explicit Cube(int refinement_option)
+      : boundary(floor_boundary(refinement_option)),
+        driver(MPI_COMM_WORLD, DriverOptions{}, boundary) {
+    driver.run_script("cube3d.in", kScript3d, [this] { driver.insert_particles(particles); });
     driver.set_time_step(2e-5);
     driver.run_with_setup(0);
+  }
+};
+
+TEST(LiggghtsDriver, ThreeDimensionalFluidRestsOnATriangleFloor) {
+  for (int option : {1, 2, 3}) {
+    Cube cube(option);
+    auto& boundary = cube.boundary;
+    LiggghtsDriver& driver = cube.driver;
+    const ParticleBlock& particles = cube.particles;
     ASSERT_TRUE(driver.has_fsi_fix());
     for (int i = 0; i < 300; ++i)
       driver.step();
@@ -279,6 +301,25 @@ TEST(LiggghtsDriver, ThreeDimensionalFluidRestsOnATriangleFloor) {
       ASSERT_GT(snapshot.positions[3 * i + 2], 0.0)
           << "particle " << i << " went through the floor";
   }
+}
+
+// The refinement option the server sends with the mesh (the scene's Coupling.refinement_option)
+// is the one the fix samples with: the floor's two triangles (longest edge 0.028 m, resolution
+// 0.004 m) are split 3 times (64 sub-triangles each) by options 1-3 and not at all by option 0.
+TEST(LiggghtsDriver, TheMeshRefinementOptionReachesTheFix) {
+  const std::size_t points_per_triangle = 7;
+  for (int option : {0, 1, 2, 3}) {
+    Cube cube(option);
+    const std::size_t sub_triangles = option == 0 ? 1 : 64;
+    EXPECT_EQ(cube.boundary->diagnostics.sampling_points, 2 * sub_triangles * points_per_triangle)
+        << "option " << option;
+  }
+}
+
+TEST(LiggghtsDriver, NonFiniteAtomStopsThe3dRunNamingAtomAndStep) {
+  Cube cube(1);
+  cube.driver.step();
+  expect_non_finite_atom_stops_the_run(cube.driver);
 }
 
 TEST(LiggghtsDriver, MeshDimensionMustMatchTheScript) {

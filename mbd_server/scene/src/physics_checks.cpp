@@ -12,6 +12,8 @@
 #include <optional>
 #include <sstream>
 
+#include "fsi/contact/fix_arguments.hpp"
+#include "fsi/contact/force_law.hpp"
 #include "fsi/scene/fluid_region.hpp"
 
 namespace fsi::scene {
@@ -135,11 +137,66 @@ struct GravityInput {
   SourceLocation location;
 };
 
+// The `fix ID group fsi/sph ...` line in force (the last one of script 1, then script 2), read by
+// the contact core's own parser (the one fsi-client uses) once the LIGGGHTS_SPH_parameters values
+// are substituted, so the checks judge exactly the force law the fix will evaluate.
+struct FsiFixLine {
+  std::vector<std::string> words;  // as the script writes them
+  SourceLocation location;
+  std::optional<contact::FixFsiSphArguments> arguments;  // when the line substitutes and parses
+  std::string refusal;                                   // otherwise: why not
+};
+
+std::optional<FsiFixLine> fsi_fix_line(const LiggghtsSetup& liggghts) {
+  std::optional<FsiFixLine> fix;
+  for (const auto* script : {&liggghts.script1_text, &liggghts.script2_text}) {
+    const std::string& name =
+        script == &liggghts.script1_text ? liggghts.script1_name : liggghts.script2_name;
+    for_each_command(*script, [&](const std::vector<std::string>& tokens, int line) {
+      if (tokens.size() < 4 || tokens[0] != "fix" || tokens[3] != "fsi/sph") return;
+      fix = FsiFixLine{tokens, SourceLocation{name, line, 1}, std::nullopt, ""};
+    });
+  }
+  if (!fix) return fix;
+  std::vector<std::string> substituted;
+  for (std::size_t i = 4; i < fix->words.size(); ++i) {
+    const auto word = substitute(fix->words[i], liggghts);
+    if (!word) {
+      fix->refusal = "'" + fix->words[i] + "' is not a LIGGGHTS_SPH_parameters value";
+      return fix;
+    }
+    substituted.push_back(*word);
+  }
+  try {
+    fix->arguments = contact::parse_fix_fsi_sph_arguments(substituted);
+  } catch (const std::invalid_argument& refused) {
+    // The parser's first line says what is wrong; the usage text after it belongs to --help.
+    std::string reason = refused.what();
+    reason = reason.substr(0, reason.find("; usage:"));
+    reason = reason.substr(0, reason.find('\n'));
+    constexpr std::string_view kPrefix = "fix fsi/sph: ";
+    if (reason.starts_with(kPrefix)) reason.erase(0, kPrefix.size());
+    fix->refusal = reason;
+  }
+  return fix;
+}
+
+// The value of a required wall keyword (k, t, r0 or cutoff) in the parsed force law.
+double wall_value(const contact::ForceLaw& law, std::string_view keyword) {
+  if (keyword == "k") return law.repulsion_scale;
+  if (keyword == "t") return law.viscous_scale;
+  if (keyword == "r0") return law.equilibrium_distance;
+  return law.cutoff;
+}
+
 // The inputs of one check, each from its declaration or, failing that, from the conventional
 // LIGGGHTS variable; remembers why an input is missing.
 class Inputs {
  public:
-  explicit Inputs(const Scene& scene) : scene_(scene), root_(scene.parameters) {}
+  explicit Inputs(const Scene& scene)
+      : scene_(scene), root_(scene.parameters), fix_(fsi_fix_line(scene.liggghts)) {}
+
+  const std::optional<FsiFixLine>& fix_line() const { return fix_; }
 
   bool complete() const { return missing_.empty(); }
   const std::vector<std::string>& missing() const { return missing_; }
@@ -161,42 +218,32 @@ class Inputs {
     return std::nullopt;
   }
 
-  // A wall-force value of `fix ... fsi/sph` (keyword k, t, r0 or cutoff) as the script gives it,
+  // A wall-force value of `fix ... fsi/sph` (keyword k, t, r0 or cutoff) as the fix will use it,
   // at its script line; without such a fix in the scripts, the conventional variable.
   std::optional<Quantity> wall(std::string_view keyword, std::string_view variable) {
-    const LiggghtsSetup& liggghts = scene_.liggghts;
-    std::optional<std::vector<std::string>> fix;  // the last fsi/sph fix: the one in force
-    SourceLocation at;
-    for (const auto* script : {&liggghts.script1_text, &liggghts.script2_text}) {
-      const std::string& name =
-          script == &liggghts.script1_text ? liggghts.script1_name : liggghts.script2_name;
-      for_each_command(*script, [&](const std::vector<std::string>& tokens, int line) {
-        if (tokens.size() < 4 || tokens[0] != "fix" || tokens[3] != "fsi/sph") return;
-        fix = tokens;
-        at = SourceLocation{name, line, 1};
-      });
-    }
-    if (!fix) return sph(variable);
-    for (std::size_t i = 4; i + 1 < fix->size(); ++i) {
-      if ((*fix)[i] != keyword) continue;
-      const std::string& word = (*fix)[i + 1];
+    if (!fix_) return sph(variable);
+    const std::vector<std::string>& words = fix_->words;
+    const std::string at = fix_->location.text();
+    for (std::size_t i = 4; i + 1 < words.size(); ++i) {
+      if (words[i] != keyword) continue;
+      const std::string& word = words[i + 1];
       // `${name}` alone: the value is a parameter of the scene; point the user there.
       if (word.size() > 3 && word.starts_with("${") && word.ends_with('}') &&
           find_sph(word.substr(2, word.size() - 3)) != nullptr)
         return sph(word.substr(2, word.size() - 3));
-      const auto value = script_number(word, liggghts);
-      if (!value) {
-        add_missing("fix fsi/sph " + std::string(keyword) + " '" + word + "' at " + at.text() +
+      if (!script_number(word, scene_.liggghts)) {
+        add_missing("fix fsi/sph " + std::string(keyword) + " '" + word + "' at " + at +
                     " is not a number or a LIGGGHTS_SPH_parameters value");
-      } else if (!(*value > 0.0)) {
-        add_missing("fix fsi/sph " + std::string(keyword) + " at " + at.text() +
-                    " is not positive");
+      } else if (!fix_->arguments) {
+        add_missing("fix fsi/sph at " + at + " is refused: " + fix_->refusal);
+      } else if (const double value = wall_value(fix_->arguments->law, keyword); !(value > 0.0)) {
+        add_missing("fix fsi/sph " + std::string(keyword) + " at " + at + " is not positive");
       } else {
-        return Quantity{*value, at};
+        return Quantity{value, fix_->location};
       }
       return std::nullopt;
     }
-    add_missing("fix fsi/sph at " + at.text() + " has no " + std::string(keyword));
+    add_missing("fix fsi/sph at " + at + " has no " + std::string(keyword));
     return std::nullopt;
   }
 
@@ -286,6 +333,7 @@ class Inputs {
 
   const Scene& scene_;
   const Block& root_;
+  std::optional<FsiFixLine> fix_;
   std::vector<std::string> missing_;
 };
 
@@ -348,21 +396,6 @@ void check_acoustic_time_step(const Scene& scene, Report& report) {
 
 // --- 2. time step against the stiffness of the wall contact ----------------------------------
 
-// The value after `keyword` on a `fix ID group fsi/sph ...` command of `script` ("" if none).
-std::string fsi_fix_keyword(const std::string& script, std::string_view keyword) {
-  std::string value;
-  for_each_command(script, [&](const std::vector<std::string>& tokens, int) {
-    if (!value.empty() || tokens.size() < 4 || tokens[0] != "fix" || tokens[3] != "fsi/sph") return;
-    for (std::size_t i = 4; i + 1 < tokens.size(); ++i) {
-      if (tokens[i] == keyword) {
-        value = tokens[i + 1];
-        return;
-      }
-    }
-  });
-  return value;
-}
-
 void check_contact_time_step(const Scene& scene, Report& report) {
   constexpr std::string_view kCheck = "contact_time_step";
   constexpr std::string_view kTitle = "contact time-step";
@@ -373,10 +406,11 @@ void check_contact_time_step(const Scene& scene, Report& report) {
                        {"a 3D scene (the contact stiffness estimate is for 2D segments only)"});
   }
   Inputs in(scene);
-  for (const std::string* script : {&scene.liggghts.script1_text, &scene.liggghts.script2_text}) {
-    const std::string law = fsi_fix_keyword(*script, "law");
-    if (!law.empty() && law != "thesis")
-      in.add_missing("fix fsi/sph uses law " + law + ", the estimate covers the thesis law only");
+  if (const auto& fix = in.fix_line();
+      fix && fix->arguments && fix->arguments->law.repulsion_law != contact::RepulsionLaw::Thesis) {
+    in.add_missing("fix fsi/sph uses law " +
+                   std::string(contact::name(fix->arguments->law.repulsion_law)) +
+                   ", the estimate covers the thesis law only");
   }
   const Quantity dt = in.time_step();
   const auto m = in.particle_mass();
@@ -386,12 +420,14 @@ void check_contact_time_step(const Scene& scene, Report& report) {
   if (r0 && rc && above(r0->value, rc->value))
     in.add_missing("SPH_wall_equilibriumdist exceeds SPH_wall_cutoff (fix fsi/sph refuses it)");
   if (!in.complete()) return report.skip(kCheck, kTitle, in.missing());
-  // Thesis law (eq. 4.2): f(d) = k [(rc - d)^4 - (rc - r0)^2 (rc - d)^2] / [rc^2 r0 (2 rc - r0)];
-  // its steepest slope is at d = 0. Over a wall piece of length rc (2D) that gives the stiffness
-  // k_eff = rc max|f'| = k (4 rc^2 - 2 (rc - r0)^2) / (r0 (2 rc - r0)), 4k for r0 = rc.
-  const double gap = rc->value - r0->value;
-  const double stiffness = k->value * (4.0 * rc->value * rc->value - 2.0 * gap * gap) /
-                           (r0->value * (2.0 * rc->value - r0->value));
+  // The law the fix evaluates (thesis eq. 4.2), steepest at contact. Over a wall piece of length
+  // rc (2D) it gives the stiffness k_eff = rc max|f'| = k (4 rc^2 - 2 (rc - r0)^2) / (r0 (2 rc -
+  // r0)), 4k for r0 = rc.
+  contact::ForceLaw law;
+  law.repulsion_scale = k->value;
+  law.equilibrium_distance = r0->value;
+  law.cutoff = rc->value;
+  const double stiffness = rc->value * law.steepest_repulsion_slope();
   const double time_scale = std::sqrt(m->value / stiffness);
   const double limit = kContactStepFraction * time_scale;
   if (!above(dt.value, limit)) return;

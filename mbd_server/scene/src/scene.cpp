@@ -12,6 +12,7 @@
 #include <tuple>
 
 #include "fsi/common/error.hpp"
+#include "fsi/contact/wall_contact_3d.hpp"
 #include "fsi/scene/fluid_region.hpp"
 #include "scene_assembly.hpp"
 #include "scene_elements.hpp"
@@ -338,9 +339,12 @@ BlockSpec make_schema() {
                        "segments are bisected until shorter than this (thesis eq. 4.7: ~2h)")),
        [] {
          ParameterSpec p = with_default(
-             integer("refinement_option", "thesis Table 5.1; 2D: always 1"), number_value(1));
-         p.minimum = 1;
-         p.maximum = 1;
+             integer("refinement_option",
+                     "3D triangles, thesis Table 5.1: 0 none, 1 recursive at every step, 2 "
+                     "pre-refined once, 3 pre-refined then recursive; 2D segments: always 1"),
+             number_value(1));
+         p.minimum = contact::kMinRefinementOption;
+         p.maximum = contact::kMaxRefinementOption;
          return p;
        }()}));
 
@@ -868,6 +872,12 @@ Scene build_scene(const std::string& path, const std::vector<Override>& override
     const View coupling = root.block("Coupling");
     scene.boundary.refinement_resolution = coupling.number("refinement_resolution");
     scene.boundary.refinement_option = static_cast<int>(coupling.integer("refinement_option"));
+    if (!spatial && scene.boundary.refinement_option != 1) {
+      problems.push_back({coupling.location("refinement_option"),
+                          "refinement_option " + std::to_string(scene.boundary.refinement_option) +
+                              " is for 3D triangle meshes; 2D segments are bisected at every step",
+                          "remove refinement_option or set it to 1"});
+    }
   });
   // 3D: a Ground mesh that gave no triangles has its own problem (no STL, unreadable file).
   bool surface_given = false;

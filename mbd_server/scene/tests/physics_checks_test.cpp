@@ -470,6 +470,21 @@ TEST_F(SmallScene, AFixValueTheChecksCannotReadSkipsThemWithTheReason) {
       "fix fsi/sph k 'v_k' at setup.in:2:1 is not a number or a LIGGGHTS_SPH_parameters value");
 }
 
+// The checks read the fix line with the parser fsi-client uses (fsi::contact): a line the fix
+// refuses is judged as refused, not as a set of numbers that look right.
+TEST_F(SmallScene, AFixLineTheFixRefusesIsNotJudged) {
+  set_up_script(
+      "fix gravity all gravity 9.81 vector 0.0 -1.0 0.0\n"
+      "fix fsi all fsi/sph k 200000 t 1000 r0 0.002 cutoff 0.002 speed 3\n");
+  const std::vector<Diagnostic> diagnostics = physics_checks(build(kGoodSph, kGoodFluid));
+  EXPECT_TRUE(of(diagnostics, "wall_repulsion").empty()) << listing(diagnostics);
+  const std::vector<Diagnostic> found = of(diagnostics, "wall_repulsion", Severity::Info);
+  ASSERT_EQ(found.size(), 1u) << listing(diagnostics);
+  EXPECT_CONTAINS(found[0].message,
+                  "fix fsi/sph at setup.in:2:1 is refused: unknown keyword 'speed': wall-repulsion "
+                  "check skipped");
+}
+
 TEST_F(SmallScene, SpeedOfSoundIsCabOrUnknown) {
   EXPECT_EQ(speed_of_sound(build(kGoodSph, kGoodFluid)), 20.0);
   EXPECT_EQ(speed_of_sound(build_scene(kCoarseTank, {{"LIGGGHTS_SPH_parameters.cAB", "35"}})),

@@ -31,13 +31,15 @@ class SpatialScene : public ::testing::Test {
   }
   void TearDown() override { fs::remove_all(folder_); }
 
-  fs::path write(const std::string& body, int dimension = 3) {
+  fs::path write(const std::string& body, int dimension = 3,
+                 const std::string& coupling = "refinement_resolution = 0.002") {
     const fs::path path = folder_ / "m.scene";
     std::ofstream(path) << "scene_language = 1\ndimension = " << dimension
                         << "\nSolverOptions { end_time = 1; Timeint { step_size = 1e-3 } }\n"
                         << body
                         << "LIGGGHTS { script1 = \"s.in\"; script2 = \"s.in\" }\n"
-                           "Coupling { refinement_resolution = 0.002 }\n";
+                           "Coupling { "
+                        << coupling << " }\n";
     return path;
   }
 
@@ -216,6 +218,32 @@ Ground { Mesh { points = [[0, 0], [1, 0]] } }
                                                         2));
   EXPECT_NE(planar.find("m.scene:5:1: PointMass is a spatial (3D) element: it needs dimension = 3"),
             std::string::npos)
+      << planar;
+}
+
+// Thesis Table 5.1's four refinement options of 3D triangles are the scene's choice; the session
+// sends the choice with the mesh and the fix refines by it (sph_client's
+// LiggghtsDriver.TheMeshRefinementOptionReachesTheFix).
+TEST_F(SpatialScene, RefinementOptionIsTheScenesChoice) {
+  const std::string ground = "Ground { Mesh { stl = \"box.stl\" } }\n";
+  EXPECT_EQ(build_scene(write(ground).string()).boundary.refinement_option, 1) << "the default";
+  for (int option = 0; option <= 3; ++option) {
+    const Scene scene = build_scene(
+        write(ground, 3,
+              "refinement_resolution = 0.002; refinement_option = " + std::to_string(option))
+            .string());
+    EXPECT_EQ(scene.boundary.refinement_option, option);
+  }
+  const std::string beyond = testing::build_error(
+      write(ground, 3, "refinement_resolution = 0.002; refinement_option = 4"));
+  EXPECT_NE(beyond.find("m.scene:6:"), std::string::npos) << beyond;
+  EXPECT_NE(beyond.find("refinement_option"), std::string::npos) << beyond;
+  // 2D segments are bisected at every step: another option there is a mistake, said at its line.
+  const std::string planar =
+      testing::build_error(write("Ground { Mesh { points = [[0, 0], [1, 0]] } }\n", 2,
+                                 "refinement_resolution = 0.002; refinement_option = 2"));
+  EXPECT_NE(planar.find("m.scene:6:"), std::string::npos) << planar;
+  EXPECT_NE(planar.find("refinement_option 2 is for 3D triangle meshes"), std::string::npos)
       << planar;
 }
 

@@ -48,6 +48,10 @@ struct ForceLaw {
   double repulsion(double distance) const;
   // Factor w(d) such that the viscous density is -viscous_scale * w(d) * v_rel; 0 beyond r_v.
   double viscous_weight(double distance) const;
+  // Largest |d f_rep / d d|, the stiffness of the wall against a particle pressed into it
+  // [N/m^3 per unit depth in 2D]. Thesis law: at contact, d = 0, k (4 r_c^2 - 2 (r_c - r_0)^2) /
+  // (r_c r_0 (2 r_c - r_0)), 4 k / r_c for r_0 = r_c. Lennard-Jones: at its core radius r_0/10.
+  double steepest_repulsion_slope() const;
 };
 
 std::string describe(const ForceLaw& law);

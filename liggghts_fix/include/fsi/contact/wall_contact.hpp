@@ -3,21 +3,20 @@
 // each segment is bisected until its pieces are shorter than the refinement resolution, each piece
 // is sampled by Gauss–Legendre points, every sampling point interacts with the particles within the
 // cut-off (found through a cell grid), and the counterforce of every pair is redistributed to the
-// segment's two vertices by linear weighting (eq. 4.11/4.12), which keeps forces and moments in
-// balance exactly.
+// segment's two vertices by linear weighting (eq. 4.11/4.12, redistribution.hpp), which keeps
+// forces and moments in balance exactly. Input checks, the pair kernel, the diagnostics and the
+// redistribution are those of the triangle half (wall_contact_3d.hpp): one skeleton
+// (src/contact_skeleton.hpp) over two samplings.
 //
-// Pure C++ over plain arrays: no LIGGGHTS or MPI types. Particle arrays use LAMMPS' layout
-// (3 doubles per particle, contiguous).
+// Pure C++ over plain arrays: no LIGGGHTS or MPI types.
 
-#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <span>
-#include <stdexcept>
-#include <string>
 #include <vector>
 
 #include "fsi/contact/cell_grid.hpp"
+#include "fsi/contact/contact_evaluation.hpp"
 #include "fsi/contact/force_law.hpp"
 
 namespace fsi::contact {
@@ -31,27 +30,9 @@ struct BoundaryMesh2D {
 
   std::size_t vertex_count() const { return positions.size() / 2; }
   std::size_t segment_count() const { return segments.size() / 2; }
-  // Throws std::invalid_argument on inconsistent sizes, bad indices or non-finite coordinates.
+  // Throws std::invalid_argument on inconsistent sizes, a segment referring to a missing vertex
+  // (naming both) or a vertex with a non-finite position or velocity (naming it).
   void validate() const;
-};
-
-// Thrown when a participating particle has a non-finite position or velocity. Nothing has been
-// written to any force array. index is the particle's index in ParticleArrays.
-struct NonFiniteParticle : std::invalid_argument {
-  NonFiniteParticle(std::size_t particle, const std::string& message)
-      : std::invalid_argument(message), index(particle) {}
-  std::size_t index;
-};
-
-// Particles owned by this process. forces is accumulated into (+=). A particle takes part if
-// group_mask is empty or (group_mask[i] & group_bit) != 0.
-struct ParticleArrays {
-  std::size_t count = 0;
-  const double* positions = nullptr;   // 3 per particle
-  const double* velocities = nullptr;  // 3 per particle
-  double* forces = nullptr;            // 3 per particle
-  std::span<const int> group_mask;
-  int group_bit = 0;
 };
 
 struct ContactSettings {
@@ -61,27 +42,6 @@ struct ContactSettings {
   // Throws std::invalid_argument naming the bad setting.
   void validate() const;
 };
-
-struct ContactDiagnostics {
-  std::array<double, 3> force_on_particles{};   // sum over all pairs, on the fluid
-  std::array<double, 3> force_on_structure{};   // sum over all vertex forces
-  double pair_force_magnitude_sum = 0.0;        // sum of |pair force|: scale for balance checks
-  std::size_t particles_in_range = 0;           // distinct particles within the cut-off
-  std::size_t pair_count = 0;                   // (particle, sampling point) pairs within range
-  std::size_t candidate_pairs = 0;              // pairs examined (cell-list candidates)
-  std::size_t sampling_points = 0;              // sampling points of this evaluation
-  double closest_distance = 0.0;                // smallest particle–segment distance in range;
-                                                // +inf when no particle is in range
-  void merge(const ContactDiagnostics& other);  // sum/min of two partial results
-};
-
-// Marks (near[i] = 1) the particles of the group that lie within `range` of the bounding box of
-// the mesh vertices (`dimension` coordinates per vertex in vertex_positions): only they can
-// interact with the mesh, so only they enter the cell grid. Far-away particles (a large fluid
-// domain around a small structure, a stray particle) then cost one comparison each.
-void mark_particles_near_mesh(const ParticleArrays& particles,
-                              std::span<const double> vertex_positions, int dimension, double range,
-                              std::vector<std::uint8_t>& near);
 
 // Number of bisection levels so that a segment of the given length is cut into pieces shorter
 // than the resolution: smallest k with length / 2^k < resolution.
@@ -96,15 +56,15 @@ class WallContact2D {
   const ContactSettings& settings() const { return settings_; }
 
   // Adds the contact forces to particles.forces, writes the vertex forces (2 per vertex, zeroed
-  // first) and returns the diagnostics of this evaluation.
+  // first) and returns the diagnostics of this evaluation. Throws, before writing anything,
+  // NonFiniteParticle for a particle with a non-finite position or velocity, and
+  // std::invalid_argument for a bad mesh or a wrong buffer size.
   ContactDiagnostics compute(const BoundaryMesh2D& mesh, const ParticleArrays& particles,
                              std::span<double> vertex_forces);
 
  private:
   ContactSettings settings_;
-  std::vector<std::uint8_t> near_;  // particles that can reach the mesh (grid members)
-  CellGrid<2> grid_;
-  std::vector<std::uint8_t> in_range_;
+  NeighbourSearchBuffers<2> buffers_;
 };
 
 // All-pairs reference of WallContact2D::compute (same sampling, no cell grid), for tests.

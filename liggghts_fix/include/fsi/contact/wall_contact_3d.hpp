@@ -4,8 +4,10 @@
 // by a symmetric triangle rule, every sampling point interacts with the particles within the
 // range of the force law (found through a cell grid), and the counterforce of every pair is
 // redistributed to the triangle's three vertices by the sampling point's barycentric coordinates
-// with respect to the original triangle — the 3D analogue of eq. (4.11/4.12), which keeps forces
-// and moments in balance exactly.
+// with respect to the original triangle — the 3D analogue of eq. (4.11/4.12), redistribution.hpp,
+// which keeps forces and moments in balance exactly. Input checks, the pair kernel, the
+// diagnostics and the redistribution are those of the segment half (wall_contact.hpp): one
+// skeleton (src/contact_skeleton.hpp) over two samplings.
 //
 // Refinement. A triangle is split into four by its edge midpoints. All four children are similar
 // to the parent with half its edge lengths, so recursive splitting "until every edge of every
@@ -20,8 +22,8 @@
 //   3  pre-refined as option 2, then at every evaluation each stored sub-triangle is refined
 //      further wherever its edges in the current geometry are not shorter than the resolution
 //
-// Pure C++ over plain arrays: no LIGGGHTS or MPI types. Particles use ParticleArrays of the 2D
-// core; results use its ContactDiagnostics.
+// Pure C++ over plain arrays: no LIGGGHTS or MPI types. Particles and diagnostics as in 2D
+// (contact_evaluation.hpp).
 
 #include <array>
 #include <cstddef>
@@ -30,8 +32,8 @@
 #include <vector>
 
 #include "fsi/contact/cell_grid.hpp"
+#include "fsi/contact/contact_evaluation.hpp"
 #include "fsi/contact/force_law.hpp"
-#include "fsi/contact/wall_contact.hpp"
 
 namespace fsi::contact {
 
@@ -87,22 +89,22 @@ class WallContact3D {
   void prepare(const BoundaryMesh3D& mesh);
 
   // Adds the contact forces to particles.forces, writes the vertex forces (3 per vertex, zeroed
-  // first) and returns the diagnostics of this evaluation. Throws std::invalid_argument, before
-  // writing anything, for a bad mesh, a particle with a non-finite position or velocity (naming
-  // it), a wrong buffer size, or a mesh whose triangle count differs from the prepared one.
+  // first) and returns the diagnostics of this evaluation. Throws, before writing anything,
+  // NonFiniteParticle for a particle with a non-finite position or velocity (naming it), and
+  // std::invalid_argument for a bad mesh, a wrong buffer size, or a mesh whose triangle count
+  // differs from the prepared one.
   ContactDiagnostics compute(const BoundaryMesh3D& mesh, const ParticleArrays& particles,
                              std::span<double> vertex_forces);
 
   // The grid of the latest compute(), for tests and diagnostics.
-  const CellGrid3D& grid() const { return grid_.geometry(); }
+  const CellGrid3D& grid() const { return buffers_.grid.geometry(); }
 
  private:
   ContactSettings3D settings_;
   std::vector<std::uint8_t> pre_refinement_;  // level per triangle (options 2, 3)
   bool prepared_ = false;
-  CellGrid<3> grid_;
-  std::vector<std::uint8_t> in_range_;
-  std::vector<std::uint8_t> near_;  // particles that can reach the mesh (grid members)
+  std::vector<std::uint8_t> levels_;  // refinement level per triangle of the latest compute()
+  NeighbourSearchBuffers<3> buffers_;
 };
 
 // All-pairs reference of WallContact3D::compute (same sampling, no cell grid), for tests. For

@@ -1,0 +1,217 @@
+#pragma once
+// The one skeleton of the wall contact (thesis ch. 4) that 2D segments and 3D triangles share:
+// input checks, the pair kernel (the only place forces are made), the diagnostics and the
+// redistribution of eq. (4.11)/(4.12). What differs between the two is only how an element is
+// sampled, so each half supplies a sampling: an object with
+//   using Point = SamplingPoint<Element, Dimension, Corners>;
+//   template <class Visit> void for_each_point(Visit&& visit) const;  // visit(const Point&)
+// and an Element type with
+//   double closest_distance(const double* particle, double closest_so_far) const;
+// returning min(closest_so_far, distance of the particle to the element).
+// Internal to fsi_contact: wall_contact.cpp and wall_contact_3d.cpp are its only users.
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "fsi/contact/cell_grid.hpp"
+#include "fsi/contact/contact_evaluation.hpp"
+#include "fsi/contact/force_law.hpp"
+#include "fsi/contact/redistribution.hpp"
+
+namespace fsi::contact::skeleton {
+
+// One quadrature point on a (sub-)element, with what the pair kernel needs of its element.
+template <class ElementType, int Dimension, int Corners>
+struct SamplingPoint {
+  using Element = ElementType;
+  static constexpr int kDimension = Dimension;
+  double position[Dimension];
+  double velocity[Dimension];
+  double measure_weight;  // length (2D) or area (3D) of the sub-element times the rule's weight
+  std::uint32_t corner_vertex[Corners];
+  double corner_share[Corners];  // eq. (4.11/4.12) weights of the point in the original element
+  const Element* element;
+};
+
+inline bool takes_part(const ParticleArrays& particles, std::size_t i) {
+  return particles.group_mask.empty() || (particles.group_mask[i] & particles.group_bit) != 0;
+}
+
+// The shape of a mesh in words, for the messages of validate_mesh.
+struct MeshShape {
+  int dimension;
+  int corners;               // vertex indices per element
+  const char* element_name;  // "segment", "triangle"
+};
+
+// Throws std::invalid_argument on inconsistent array sizes, an element referring to a missing
+// vertex (naming both) or a vertex with a non-finite position or velocity (naming it).
+void validate_mesh(const MeshShape& shape, std::span<const double> positions,
+                   std::span<const double> velocities, std::span<const std::uint32_t> elements);
+
+// The checks every evaluation makes before it writes anything: the particle arrays (throws
+// NonFiniteParticle for a participating particle with a non-finite position or velocity), the
+// size of the vertex force buffer (like vertex_positions) and the mesh (validate_mesh).
+void check_evaluation_inputs(const MeshShape& shape, const ParticleArrays& particles,
+                             std::span<const double> vertex_positions,
+                             std::span<const double> vertex_velocities,
+                             std::span<const std::uint32_t> elements,
+                             std::span<const double> vertex_forces);
+
+// Accumulates everything of one evaluation; the only place forces are made.
+template <class Point>
+class PairKernel {
+ public:
+  static constexpr int kDimension = Point::kDimension;
+
+  PairKernel(const ForceLaw& law, const ParticleArrays& particles, std::span<double> vertex_forces,
+             std::vector<std::uint8_t>& in_range, ContactDiagnostics& diagnostics)
+      : law_(law),
+        range2_(law.range() * law.range()),
+        particles_(particles),
+        vertex_forces_(vertex_forces.data()),
+        in_range_(in_range),
+        diagnostics_(diagnostics) {}
+
+  void operator()(const Point& s, std::size_t i) {
+    const double* x = particles_.positions + 3 * i;
+    double offset[kDimension];
+    for (int k = 0; k < kDimension; ++k)
+      offset[k] = x[k] - s.position[k];
+    double distance2 = offset[0] * offset[0];
+    for (int k = 1; k < kDimension; ++k)
+      distance2 += offset[k] * offset[k];
+    if (distance2 >= range2_) return;
+    const double distance = std::sqrt(distance2);
+    // At distance 0 the repulsion has no direction and contributes nothing.
+    const double along_line = distance > 0.0 ? law_.repulsion(distance) / distance : 0.0;
+    const double friction = law_.viscous_scale * law_.viscous_weight(distance);
+    const double* u = particles_.velocities + 3 * i;
+    double force[kDimension];
+    for (int k = 0; k < kDimension; ++k)
+      force[k] = (along_line * offset[k] - friction * (u[k] - s.velocity[k])) * s.measure_weight;
+
+    double* f = particles_.forces + 3 * i;
+    for (int k = 0; k < kDimension; ++k) {
+      f[k] += force[k];
+      diagnostics_.force_on_particles[k] += force[k];
+    }
+    redistribute(force, s.corner_vertex, s.corner_share, vertex_forces_);
+
+    double magnitude2 = force[0] * force[0];
+    for (int k = 1; k < kDimension; ++k)
+      magnitude2 += force[k] * force[k];
+    diagnostics_.pair_force_magnitude_sum += std::sqrt(magnitude2);
+    ++diagnostics_.pair_count;
+    if (!in_range_[i]) {
+      in_range_[i] = 1;
+      ++diagnostics_.particles_in_range;
+    }
+    diagnostics_.closest_distance = s.element->closest_distance(x, diagnostics_.closest_distance);
+  }
+
+ private:
+  const ForceLaw& law_;
+  double range2_;
+  const ParticleArrays& particles_;
+  double* vertex_forces_;
+  std::vector<std::uint8_t>& in_range_;
+  ContactDiagnostics& diagnostics_;
+};
+
+// Zeroes the vertex forces and starts the diagnostics (no particle seen yet).
+inline ContactDiagnostics start_evaluation(std::span<double> vertex_forces) {
+  std::fill(vertex_forces.begin(), vertex_forces.end(), 0.0);
+  ContactDiagnostics diagnostics;
+  diagnostics.closest_distance = std::numeric_limits<double>::infinity();
+  return diagnostics;
+}
+
+// The force on the structure is the sum of the vertex forces, as the server will apply them.
+template <int Dimension>
+void finish_evaluation(std::span<const double> vertex_forces, ContactDiagnostics& diagnostics) {
+  for (std::size_t v = 0; v < vertex_forces.size(); v += Dimension) {
+    for (int k = 0; k < Dimension; ++k)
+      diagnostics.force_on_structure[k] += vertex_forces[v + k];
+  }
+}
+
+// The cell grid's search radius is the range widened by this fraction, so that a pair accepted by
+// the rounded test |x - s|^2 < r^2 is never in a cell the search skipped.
+inline constexpr double kSearchMargin = 1e-9;
+
+// The evaluation with a cell grid over the particles near the mesh (thesis §5.5.2). The inputs
+// must have passed check_evaluation_inputs.
+template <class Sampling>
+ContactDiagnostics evaluate_near_particles(
+    const Sampling& sampling, const ForceLaw& law, const ParticleArrays& particles,
+    std::span<const double> vertex_positions, std::span<double> vertex_forces,
+    NeighbourSearchBuffers<Sampling::Point::kDimension>& buffers) {
+  using Point = typename Sampling::Point;
+  ContactDiagnostics diagnostics = start_evaluation(vertex_forces);
+  const double range = law.range();
+  mark_particles_near_mesh(particles, vertex_positions, Point::kDimension, range, buffers.near);
+  buffers.grid.build(particles.positions, buffers.near, range);
+  buffers.in_range.assign(particles.count, 0);
+  PairKernel<Point> kernel(law, particles, vertex_forces, buffers.in_range, diagnostics);
+  const double reach = range * (1.0 + kSearchMargin);
+  sampling.for_each_point([&](const Point& s) {
+    ++diagnostics.sampling_points;
+    diagnostics.candidate_pairs +=
+        buffers.grid.visit_near(s.position, reach, [&](std::uint32_t i) { kernel(s, i); });
+  });
+  finish_evaluation<Point::kDimension>(vertex_forces, diagnostics);
+  return diagnostics;
+}
+
+// The same sampling against every participating particle: the reference the cell grid is
+// tested against. The inputs must have passed check_evaluation_inputs.
+template <class Sampling>
+ContactDiagnostics evaluate_all_pairs(const Sampling& sampling, const ForceLaw& law,
+                                      const ParticleArrays& particles,
+                                      std::span<double> vertex_forces) {
+  using Point = typename Sampling::Point;
+  ContactDiagnostics diagnostics = start_evaluation(vertex_forces);
+  std::vector<std::uint8_t> in_range(particles.count, 0);
+  PairKernel<Point> kernel(law, particles, vertex_forces, in_range, diagnostics);
+  sampling.for_each_point([&](const Point& s) {
+    ++diagnostics.sampling_points;
+    for (std::size_t i = 0; i < particles.count; ++i) {
+      if (!takes_part(particles, i)) continue;
+      ++diagnostics.candidate_pairs;
+      kernel(s, i);
+    }
+  });
+  finish_evaluation<Point::kDimension>(vertex_forces, diagnostics);
+  return diagnostics;
+}
+
+// Distance of point p to the segment a-b (Dimension coordinates each).
+template <int Dimension>
+double distance_to_segment(const double* p, const double* a, const double* b) {
+  double edge[Dimension];
+  double offset[Dimension];
+  double length2 = 0.0;
+  double along = 0.0;
+  for (int k = 0; k < Dimension; ++k) {
+    edge[k] = b[k] - a[k];
+    offset[k] = p[k] - a[k];
+    length2 += edge[k] * edge[k];
+    along += offset[k] * edge[k];
+  }
+  const double t = length2 > 0.0 ? std::clamp(along / length2, 0.0, 1.0) : 0.0;
+  double distance2 = 0.0;
+  for (int k = 0; k < Dimension; ++k) {
+    const double gap = offset[k] - t * edge[k];
+    distance2 += gap * gap;
+  }
+  return std::sqrt(distance2);
+}
+
+}  // namespace fsi::contact::skeleton
