@@ -19,7 +19,7 @@ Eigen::Vector2d cross_partner(const Eigen::Vector2d& w) {
 
 PrismaticConstraint::PrismaticConstraint(std::string description, BodyPoint origin, BodyPoint tip,
                                          BodyPoint slider, double axis_length)
-    : description_(std::move(description)),
+    : ConstraintRow(std::move(description)),
       origin_(origin),
       tip_(tip),
       slider_(slider),
@@ -100,7 +100,7 @@ Eigen::Vector2d turned_rate(double angle, const Eigen::Vector2d& p) {
 SlopeOnBodyConstraint::SlopeOnBodyConstraint(std::string description, int slope_x, int slope_y,
                                              int angle, const Eigen::Vector2d& vector,
                                              int component)
-    : description_(std::move(description)),
+    : ConstraintRow(std::move(description)),
       slope_x_(slope_x),
       slope_y_(slope_y),
       angle_(angle),
@@ -159,7 +159,10 @@ void SlopeOnBodyConstraint::add_force_derivative_entries(double, const Eigen::Ve
 
 RelativeAngleConstraint::RelativeAngleConstraint(std::string description, int angle_a, int angle_b,
                                                  double offset)
-    : description_(std::move(description)), angle_a_(angle_a), angle_b_(angle_b), offset_(offset) {}
+    : LinearConstraintRow(std::move(description)),
+      angle_a_(angle_a),
+      angle_b_(angle_b),
+      offset_(offset) {}
 
 double RelativeAngleConstraint::residual(double, const Eigen::VectorXd& q,
                                          const Eigen::VectorXd&) const {

@@ -21,18 +21,15 @@
 
 namespace fsi::mbd::detail {
 
-class PrismaticConstraint final : public SparseConstraint {
+class PrismaticConstraint final : public ConstraintRow {
  public:
   // |tip - origin| in body a's frame is the axis length the row is divided by.
   PrismaticConstraint(std::string description, BodyPoint origin, BodyPoint tip, BodyPoint slider,
                       double axis_length);
 
-  std::string description() const override { return description_; }
-  ConstraintLevel level() const override { return ConstraintLevel::Position; }
   double residual(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v) const override;
   void add_jacobian_entries(double time, const Eigen::VectorXd& q, int row,
                             MatrixSink& jacobian) const override;
-  double explicit_time_derivative(double, const Eigen::VectorXd&) const override { return 0.0; }
   double acceleration_remainder(double time, const Eigen::VectorXd& q,
                                 const Eigen::VectorXd& v) const override;
   void add_force_derivative_entries(double time, const Eigen::VectorXd& q, double multiplier,
@@ -47,7 +44,6 @@ class PrismaticConstraint final : public SparseConstraint {
   };
   Geometry geometry(const Eigen::VectorXd& q) const;
 
-  std::string description_;
   BodyPoint origin_;
   BodyPoint tip_;
   BodyPoint slider_;
@@ -58,25 +54,21 @@ class PrismaticConstraint final : public SparseConstraint {
 // clamped to a body): the direction row C = (R(phi) m) . s (m the initial normal of the slope in
 // the body frame; the stretch stays free), or a component row C = s_k - (R(phi) u)_k (u the
 // initial slope in the body frame; two of them hold the slope entirely).
-class SlopeOnBodyConstraint final : public SparseConstraint {
+class SlopeOnBodyConstraint final : public ConstraintRow {
  public:
   // component < 0: the direction row with m = `vector`; 0 or 1: the component row with u.
   SlopeOnBodyConstraint(std::string description, int slope_x, int slope_y, int angle,
                         const Eigen::Vector2d& vector, int component);
 
-  std::string description() const override { return description_; }
-  ConstraintLevel level() const override { return ConstraintLevel::Position; }
   double residual(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v) const override;
   void add_jacobian_entries(double time, const Eigen::VectorXd& q, int row,
                             MatrixSink& jacobian) const override;
-  double explicit_time_derivative(double, const Eigen::VectorXd&) const override { return 0.0; }
   double acceleration_remainder(double time, const Eigen::VectorXd& q,
                                 const Eigen::VectorXd& v) const override;
   void add_force_derivative_entries(double time, const Eigen::VectorXd& q, double multiplier,
                                     MatrixSink& derivative) const override;
 
  private:
-  std::string description_;
   int slope_x_;
   int slope_y_;
   int angle_;
@@ -85,23 +77,15 @@ class SlopeOnBodyConstraint final : public SparseConstraint {
 };
 
 // phi_a - phi_b - offset = 0; an angle index < 0 stands for the ground.
-class RelativeAngleConstraint final : public SparseConstraint {
+class RelativeAngleConstraint final : public LinearConstraintRow {
  public:
   RelativeAngleConstraint(std::string description, int angle_a, int angle_b, double offset);
 
-  std::string description() const override { return description_; }
-  ConstraintLevel level() const override { return ConstraintLevel::Position; }
   double residual(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v) const override;
   void add_jacobian_entries(double time, const Eigen::VectorXd& q, int row,
                             MatrixSink& jacobian) const override;
-  double explicit_time_derivative(double, const Eigen::VectorXd&) const override { return 0.0; }
-  double acceleration_remainder(double, const Eigen::VectorXd&,
-                                const Eigen::VectorXd&) const override {
-    return 0.0;  // linear in q
-  }
 
  private:
-  std::string description_;
   int angle_a_;
   int angle_b_;
   double offset_;

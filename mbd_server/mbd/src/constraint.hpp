@@ -18,70 +18,46 @@ namespace fsi::mbd::detail {
 using Constraint = ConstraintElement;
 
 // q_i - value = 0.
-class CoordinateConstraint final : public SparseConstraint {
+class CoordinateConstraint final : public LinearConstraintRow {
  public:
   CoordinateConstraint(std::string description, int coordinate_index, double value);
 
-  std::string description() const override { return description_; }
-  ConstraintLevel level() const override { return ConstraintLevel::Position; }
   double residual(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v) const override;
   void add_jacobian_entries(double time, const Eigen::VectorXd& q, int row,
                             MatrixSink& jacobian) const override;
-  double explicit_time_derivative(double, const Eigen::VectorXd&) const override { return 0.0; }
-  double acceleration_remainder(double, const Eigen::VectorXd&,
-                                const Eigen::VectorXd&) const override {
-    return 0.0;
-  }
 
  private:
-  std::string description_;
   int index_;
   double value_;
 };
 
 // sum_k w_k q_(i_k) - value = 0: a fixed linear combination of coordinates (a clamped beam
 // slope's direction).
-class LinearCoordinateConstraint final : public SparseConstraint {
+class LinearCoordinateConstraint final : public LinearConstraintRow {
  public:
   LinearCoordinateConstraint(std::string description, Eigen::VectorXi indices,
                              Eigen::VectorXd weights, double value);
 
-  std::string description() const override { return description_; }
-  ConstraintLevel level() const override { return ConstraintLevel::Position; }
   double residual(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v) const override;
   void add_jacobian_entries(double time, const Eigen::VectorXd& q, int row,
                             MatrixSink& jacobian) const override;
-  double explicit_time_derivative(double, const Eigen::VectorXd&) const override { return 0.0; }
-  double acceleration_remainder(double, const Eigen::VectorXd&,
-                                const Eigen::VectorXd&) const override {
-    return 0.0;
-  }
 
  private:
-  std::string description_;
   Eigen::VectorXi indices_;
   Eigen::VectorXd weights_;
   double value_;
 };
 
 // dq_i/dt - velocity = 0.
-class VelocityConstraint final : public SparseConstraint {
+class VelocityConstraint final : public LinearConstraintRow {
  public:
   VelocityConstraint(std::string description, int coordinate_index, double velocity);
 
-  std::string description() const override { return description_; }
-  ConstraintLevel level() const override { return ConstraintLevel::Velocity; }
   double residual(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v) const override;
   void add_jacobian_entries(double time, const Eigen::VectorXd& q, int row,
                             MatrixSink& jacobian) const override;
-  double explicit_time_derivative(double, const Eigen::VectorXd&) const override { return 0.0; }
-  double acceleration_remainder(double, const Eigen::VectorXd&,
-                                const Eigen::VectorXd&) const override {
-    return 0.0;  // the prescribed velocity is constant
-  }
 
  private:
-  std::string description_;
   int index_;
   double velocity_;
 };
@@ -89,13 +65,11 @@ class VelocityConstraint final : public SparseConstraint {
 class SpatialPoint;
 
 // q_i - s(t) = 0 with the rate s'(t) given; s'' by central differences of s' (initial lambda).
-class PrescribedCoordinate final : public SparseConstraint {
+class PrescribedCoordinate final : public ConstraintRow {
  public:
   PrescribedCoordinate(std::string description, int coordinate_index,
                        std::function<double(double)> position, std::function<double(double)> rate);
 
-  std::string description() const override { return description_; }
-  ConstraintLevel level() const override { return ConstraintLevel::Position; }
   double residual(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v) const override;
   void add_jacobian_entries(double time, const Eigen::VectorXd& q, int row,
                             MatrixSink& jacobian) const override;
@@ -106,29 +80,24 @@ class PrescribedCoordinate final : public SparseConstraint {
                                 const Eigen::VectorXd& v) const override;
 
  private:
-  std::string description_;
   int index_;
   std::function<double(double)> position_;
   std::function<double(double)> rate_;
 };
 
 // dq_i/dt - g(t) = 0; dg/dt by central differences (initial lambda only).
-class TimeVelocityConstraint final : public SparseConstraint {
+class TimeVelocityConstraint final : public ConstraintRow {
  public:
   TimeVelocityConstraint(std::string description, int coordinate_index,
                          std::function<double(double)> velocity);
 
-  std::string description() const override { return description_; }
-  ConstraintLevel level() const override { return ConstraintLevel::Velocity; }
   double residual(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v) const override;
   void add_jacobian_entries(double time, const Eigen::VectorXd& q, int row,
                             MatrixSink& jacobian) const override;
-  double explicit_time_derivative(double, const Eigen::VectorXd&) const override { return 0.0; }
   double acceleration_remainder(double time, const Eigen::VectorXd& q,
                                 const Eigen::VectorXd& v) const override;
 
  private:
-  std::string description_;
   int index_;
   std::function<double(double)> velocity_;
 };
@@ -137,23 +106,19 @@ class TimeVelocityConstraint final : public SparseConstraint {
 // points, or fix a body point to the ground; three (x, y, z) a spherical joint between spatial
 // points. Point: BodyPoint (D = 2) or SpatialPoint (D = 3), instantiated for both.
 template <typename Point, int D>
-class BasicPointConstraint final : public SparseConstraint {
+class BasicPointConstraint final : public ConstraintRow {
  public:
   BasicPointConstraint(std::string description, Point a, Point b, int axis);
 
-  std::string description() const override { return description_; }
-  ConstraintLevel level() const override { return ConstraintLevel::Position; }
   double residual(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v) const override;
   void add_jacobian_entries(double time, const Eigen::VectorXd& q, int row,
                             MatrixSink& jacobian) const override;
-  double explicit_time_derivative(double, const Eigen::VectorXd&) const override { return 0.0; }
   double acceleration_remainder(double time, const Eigen::VectorXd& q,
                                 const Eigen::VectorXd& v) const override;
   void add_force_derivative_entries(double time, const Eigen::VectorXd& q, double multiplier,
                                     MatrixSink& derivative) const override;
 
  private:
-  std::string description_;
   Point a_;
   Point b_;
   int axis_;
@@ -168,16 +133,13 @@ using SpatialPointConstraint = BasicPointConstraint<SpatialPoint, 3>;
 // the unit direction e = d / |d| at consistent states, so lambda is the rod force [N]: -G^T lambda
 // pulls point a by +lambda e and point b by -lambda e, lambda > 0 is tension.
 template <typename Point, int D>
-class BasicDistanceConstraint final : public SparseConstraint {
+class BasicDistanceConstraint final : public ConstraintRow {
  public:
   BasicDistanceConstraint(std::string description, Point a, Point b, double length);
 
-  std::string description() const override { return description_; }
-  ConstraintLevel level() const override { return ConstraintLevel::Position; }
   double residual(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v) const override;
   void add_jacobian_entries(double time, const Eigen::VectorXd& q, int row,
                             MatrixSink& jacobian) const override;
-  double explicit_time_derivative(double, const Eigen::VectorXd&) const override { return 0.0; }
   double acceleration_remainder(double time, const Eigen::VectorXd& q,
                                 const Eigen::VectorXd& v) const override;
   void add_force_derivative_entries(double time, const Eigen::VectorXd& q, double multiplier,
@@ -187,7 +149,6 @@ class BasicDistanceConstraint final : public SparseConstraint {
   // dd/dq = dr_b/dq - dr_a/dq (D x n).
   PointColumns<D> separation_jacobian(const Eigen::VectorXd& q) const;
 
-  std::string description_;
   Point a_;
   Point b_;
   double length_;

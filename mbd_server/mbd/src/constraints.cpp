@@ -13,7 +13,7 @@ using Vector = Eigen::Matrix<double, D, 1>;
 
 CoordinateConstraint::CoordinateConstraint(std::string description, int coordinate_index,
                                            double value)
-    : description_(std::move(description)), index_(coordinate_index), value_(value) {}
+    : LinearConstraintRow(std::move(description)), index_(coordinate_index), value_(value) {}
 
 double CoordinateConstraint::residual(double, const Eigen::VectorXd& q,
                                       const Eigen::VectorXd&) const {
@@ -28,7 +28,7 @@ void CoordinateConstraint::add_jacobian_entries(double, const Eigen::VectorXd&, 
 LinearCoordinateConstraint::LinearCoordinateConstraint(std::string description,
                                                        Eigen::VectorXi indices,
                                                        Eigen::VectorXd weights, double value)
-    : description_(std::move(description)),
+    : LinearConstraintRow(std::move(description)),
       indices_(std::move(indices)),
       weights_(std::move(weights)),
       value_(value) {}
@@ -49,7 +49,9 @@ void LinearCoordinateConstraint::add_jacobian_entries(double, const Eigen::Vecto
 
 VelocityConstraint::VelocityConstraint(std::string description, int coordinate_index,
                                        double velocity)
-    : description_(std::move(description)), index_(coordinate_index), velocity_(velocity) {}
+    : LinearConstraintRow(std::move(description), ConstraintLevel::Velocity),
+      index_(coordinate_index),
+      velocity_(velocity) {}
 
 double VelocityConstraint::residual(double, const Eigen::VectorXd&,
                                     const Eigen::VectorXd& v) const {
@@ -64,7 +66,7 @@ void VelocityConstraint::add_jacobian_entries(double, const Eigen::VectorXd&, in
 template <typename Point, int D>
 BasicPointConstraint<Point, D>::BasicPointConstraint(std::string description, Point a, Point b,
                                                      int axis)
-    : description_(std::move(description)), a_(a), b_(b), axis_(axis) {}
+    : ConstraintRow(std::move(description)), a_(a), b_(b), axis_(axis) {}
 
 template <typename Point, int D>
 double BasicPointConstraint<Point, D>::residual(double, const Eigen::VectorXd& q,
@@ -100,7 +102,7 @@ void BasicPointConstraint<Point, D>::add_force_derivative_entries(double, const 
 template <typename Point, int D>
 BasicDistanceConstraint<Point, D>::BasicDistanceConstraint(std::string description, Point a,
                                                            Point b, double length)
-    : description_(std::move(description)), a_(a), b_(b), length_(length) {}
+    : ConstraintRow(std::move(description)), a_(a), b_(b), length_(length) {}
 
 template <typename Point, int D>
 PointColumns<D> BasicDistanceConstraint<Point, D>::separation_jacobian(
@@ -163,7 +165,7 @@ double time_derivative(const std::function<double(double)>& f, double time) {
 PrescribedCoordinate::PrescribedCoordinate(std::string description, int coordinate_index,
                                            std::function<double(double)> position,
                                            std::function<double(double)> rate)
-    : description_(std::move(description)),
+    : ConstraintRow(std::move(description)),
       index_(coordinate_index),
       position_(std::move(position)),
       rate_(std::move(rate)) {}
@@ -185,7 +187,7 @@ double PrescribedCoordinate::acceleration_remainder(double time, const Eigen::Ve
 
 TimeVelocityConstraint::TimeVelocityConstraint(std::string description, int coordinate_index,
                                                std::function<double(double)> velocity)
-    : description_(std::move(description)),
+    : ConstraintRow(std::move(description), ConstraintLevel::Velocity),
       index_(coordinate_index),
       velocity_(std::move(velocity)) {}
 

@@ -12,7 +12,7 @@ namespace fsi::mbd::detail {
 
 RotationalSpringDamper::RotationalSpringDamper(std::string description, int angle_a, int angle_b,
                                                double stiffness, double damping, double rest_angle)
-    : description_(std::move(description)),
+    : SparseForceElement(std::move(description)),
       angle_a_(angle_a),
       angle_b_(angle_b),
       stiffness_(stiffness),
@@ -133,7 +133,7 @@ double UserTension::energy(double elongation) const {
 
 PointToPointForce::PointToPointForce(std::string description, BodyPoint a, BodyPoint b,
                                      double rest_length, std::shared_ptr<const TensionLaw> law)
-    : description_(std::move(description)),
+    : SparseForceElement(std::move(description)),
       a_(a),
       b_(b),
       rest_length_(rest_length),
@@ -204,7 +204,7 @@ double PointToPointForce::potential_energy(const Eigen::VectorXd& q) const {
 // ---- time-dependent loads ----
 
 Torque::Torque(std::string description, int angle, std::function<double(double)> torque)
-    : description_(std::move(description)), angle_(angle), torque_(std::move(torque)) {}
+    : SparseForceElement(std::move(description)), angle_(angle), torque_(std::move(torque)) {}
 
 void Torque::add_force(double time, const Eigen::VectorXd&, const Eigen::VectorXd&,
                        Eigen::VectorXd& force) const {

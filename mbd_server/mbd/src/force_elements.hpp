@@ -32,7 +32,6 @@ class RotationalSpringDamper final : public SparseForceElement, public MeasuredF
   bool add_jacobian_entries(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
                             MatrixSink& force_by_position,
                             MatrixSink& force_by_velocity) const override;
-  std::string description() const override { return description_; }
   double potential_energy(const Eigen::VectorXd& q) const override;
   // The torque on body a [N m].
   double measured_force(double time, const Eigen::VectorXd& q,
@@ -41,7 +40,6 @@ class RotationalSpringDamper final : public SparseForceElement, public MeasuredF
  private:
   double angle(const Eigen::VectorXd& x, int index) const { return index >= 0 ? x(index) : 0.0; }
 
-  std::string description_;
   int angle_a_;
   int angle_b_;
   double stiffness_;
@@ -103,14 +101,12 @@ class PointToPointForce final : public SparseForceElement, public MeasuredForce 
   bool add_jacobian_entries(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
                             MatrixSink& force_by_position,
                             MatrixSink& force_by_velocity) const override;
-  std::string description() const override { return description_; }
   double potential_energy(const Eigen::VectorXd& q) const override;
   // The tension [N].
   double measured_force(double time, const Eigen::VectorXd& q,
                         const Eigen::VectorXd& v) const override;
 
  private:
-  std::string description_;
   BodyPoint a_;
   BodyPoint b_;
   double rest_length_;
@@ -124,7 +120,7 @@ class BasicPointForce final : public SparseForceElement {
  public:
   using Vector = Eigen::Matrix<double, D, 1>;
   BasicPointForce(std::string description, Point point, std::function<Vector(double)> force)
-      : description_(std::move(description)), point_(point), force_(std::move(force)) {}
+      : SparseForceElement(std::move(description)), point_(point), force_(std::move(force)) {}
 
   void add_force(double time, const Eigen::VectorXd& q, const Eigen::VectorXd&,
                  Eigen::VectorXd& force) const override {
@@ -135,10 +131,8 @@ class BasicPointForce final : public SparseForceElement {
     point_.add_load_derivative(q, force_(time), force_by_position);
     return true;
   }
-  std::string description() const override { return description_; }
 
  private:
-  std::string description_;
   Point point_;
   std::function<Vector(double)> force_;
 };
@@ -157,10 +151,8 @@ class Torque final : public SparseForceElement {
                             MatrixSink&) const override {
     return true;  // independent of q and v
   }
-  std::string description() const override { return description_; }
 
  private:
-  std::string description_;
   int angle_;
   std::function<double(double)> torque_;
 };

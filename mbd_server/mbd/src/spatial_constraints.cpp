@@ -13,7 +13,7 @@ SpatialColumns SpatialDirection::jacobian(const Eigen::VectorXd& q) const {
 
 PerpendicularityConstraint::PerpendicularityConstraint(std::string description, SpatialDirection a,
                                                        SpatialDirection b)
-    : description_(std::move(description)), a_(a), b_(b) {}
+    : ConstraintRow(std::move(description)), a_(a), b_(b) {}
 
 double PerpendicularityConstraint::residual(double, const Eigen::VectorXd& q,
                                             const Eigen::VectorXd&) const {
@@ -59,7 +59,9 @@ Eigen::Matrix3d cross_matrix(const Eigen::Vector3d& w) {
 
 SpatialTorque::SpatialTorque(std::string description, int axes_offset,
                              std::function<Eigen::Vector3d(double)> torque)
-    : description_(std::move(description)), axes_offset_(axes_offset), torque_(std::move(torque)) {}
+    : SparseForceElement(std::move(description)),
+      axes_offset_(axes_offset),
+      torque_(std::move(torque)) {}
 
 void SpatialTorque::add_force(double time, const Eigen::VectorXd& q, const Eigen::VectorXd&,
                               Eigen::VectorXd& force) const {

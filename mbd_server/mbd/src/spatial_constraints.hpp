@@ -40,23 +40,19 @@ struct SpatialDirection {
   }
 };
 
-class PerpendicularityConstraint final : public SparseConstraint {
+class PerpendicularityConstraint final : public ConstraintRow {
  public:
   PerpendicularityConstraint(std::string description, SpatialDirection a, SpatialDirection b);
 
-  std::string description() const override { return description_; }
-  ConstraintLevel level() const override { return ConstraintLevel::Position; }
   double residual(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v) const override;
   void add_jacobian_entries(double time, const Eigen::VectorXd& q, int row,
                             MatrixSink& jacobian) const override;
-  double explicit_time_derivative(double, const Eigen::VectorXd&) const override { return 0.0; }
   double acceleration_remainder(double time, const Eigen::VectorXd& q,
                                 const Eigen::VectorXd& v) const override;
   void add_force_derivative_entries(double time, const Eigen::VectorXd& q, double multiplier,
                                     MatrixSink& derivative) const override;
 
  private:
-  std::string description_;
   SpatialDirection a_;
   SpatialDirection b_;
 };
@@ -73,10 +69,8 @@ class SpatialTorque final : public SparseForceElement {
   bool add_jacobian_entries(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
                             MatrixSink& force_by_position,
                             MatrixSink& force_by_velocity) const override;
-  std::string description() const override { return description_; }
 
  private:
-  std::string description_;
   int axes_offset_;
   std::function<Eigen::Vector3d(double)> torque_;
 };

@@ -166,14 +166,7 @@ TEST(MbdConnectors, ClampToGroundHoldsTheBodyAgainstGravity) {
 TEST(MbdConnectors, InvalidConnectorsAreErrorsNamingThem) {
   Model model;
   const BodyId body = model.add_rigid_body(rigid("slider", 1.0, 1.0));
-  auto message = [](auto&& add) -> std::string {
-    try {
-      add();
-    } catch (const fsi::Error& error) {
-      return error.what();
-    }
-    return "accepted";
-  };
+  const auto message = [](auto&& add) { return testing::error_message(add); };
   EXPECT_NE(message([&] {
               model.add_prismatic_joint(
                   {.name = "rail", .a = {body, {0, 0}}, .b = {body, {1, 0}}, .axis = {1, 0}});

@@ -175,14 +175,7 @@ TEST(MbdForceElements, SpringForcesAreMeasuredAndStoreEnergy) {
 TEST(MbdForceElements, InvalidElementsAreErrorsNamingThem) {
   Model model;
   const BodyId body = model.add_rigid_body(rigid("arm", 1.0, 1.0));
-  auto message = [](auto&& add) -> std::string {
-    try {
-      add();
-    } catch (const fsi::Error& error) {
-      return error.what();
-    }
-    return "accepted";
-  };
+  const auto message = [](auto&& add) { return testing::error_message(add); };
   EXPECT_NE(message([&] {
               model.add_rotational_spring_damper(
                   {.name = "coil", .a = body, .b = kGround, .stiffness = -1.0});
