@@ -610,27 +610,6 @@ void Model::applied_force(double time, const Eigen::VectorXd& q, const Eigen::Ve
     element->add_force(time, q, v, force);
 }
 
-void Model::applied_force_derivatives(double time, const Eigen::VectorXd& q,
-                                      const Eigen::VectorXd& v, Eigen::MatrixXd& by_position,
-                                      Eigen::MatrixXd& by_velocity) const {
-  const int n = coordinate_count();
-  by_position.setZero(n, n);
-  by_velocity.setZero(n, n);
-  DenseMatrixSink position_sink(by_position), velocity_sink(by_velocity);
-  add_applied_force_derivatives(time, q, v, position_sink, velocity_sink);
-}
-
-void Model::applied_force_derivatives(double time, const Eigen::VectorXd& q,
-                                      const Eigen::VectorXd& v,
-                                      Eigen::SparseMatrix<double>& by_position,
-                                      Eigen::SparseMatrix<double>& by_velocity) const {
-  const int n = coordinate_count();
-  TripletSink position_sink, velocity_sink;
-  add_applied_force_derivatives(time, q, v, position_sink, velocity_sink);
-  position_sink.to_matrix(n, n, by_position);
-  velocity_sink.to_matrix(n, n, by_velocity);
-}
-
 void Model::add_applied_force_derivatives(double time, const Eigen::VectorXd& q,
                                           const Eigen::VectorXd& v, MatrixSink& by_position,
                                           MatrixSink& by_velocity) const {
@@ -729,40 +708,10 @@ void Model::constraint_acceleration_remainder(double time, const Eigen::VectorXd
     remainder(k) = data_->constraints[k]->acceleration_remainder(time, q, v);
 }
 
-void Model::constraint_jacobian(double time, const Eigen::VectorXd& q,
-                                Eigen::MatrixXd& jacobian) const {
-  jacobian.setZero(constraint_count(), coordinate_count());
-  DenseMatrixSink sink(jacobian);
-  add_constraint_jacobian(time, q, sink);
-}
-
-void Model::constraint_jacobian(double time, const Eigen::VectorXd& q,
-                                Eigen::SparseMatrix<double>& jacobian) const {
-  TripletSink sink;
-  add_constraint_jacobian(time, q, sink);
-  sink.to_matrix(constraint_count(), coordinate_count(), jacobian);
-}
-
 void Model::add_constraint_jacobian(double time, const Eigen::VectorXd& q,
                                     MatrixSink& jacobian) const {
   for (int k = 0; k < constraint_count(); ++k)
     data_->constraints[k]->add_jacobian_entries(time, q, k, jacobian);
-}
-
-void Model::constraint_force_derivative(double time, const Eigen::VectorXd& q,
-                                        const Eigen::VectorXd& lambda,
-                                        Eigen::MatrixXd& derivative) const {
-  derivative.setZero(coordinate_count(), coordinate_count());
-  DenseMatrixSink sink(derivative);
-  add_constraint_force_derivative(time, q, lambda, sink);
-}
-
-void Model::constraint_force_derivative(double time, const Eigen::VectorXd& q,
-                                        const Eigen::VectorXd& lambda,
-                                        Eigen::SparseMatrix<double>& derivative) const {
-  TripletSink sink;
-  add_constraint_force_derivative(time, q, lambda, sink);
-  sink.to_matrix(coordinate_count(), coordinate_count(), derivative);
 }
 
 namespace {

@@ -124,16 +124,17 @@ StaticResult solve_static(Model& model, const State& start, const StaticOptions&
   return result;
 }
 
-std::vector<double> natural_frequencies(const Model& model, const State& state, int count) {
-  const int n = model.coordinate_count();
-  const int m = model.constraint_count();
+std::vector<double> natural_frequencies(const ConstrainedSystem& system, const State& state,
+                                        int count) {
+  const int n = system.coordinate_count();
+  const int m = system.constraint_count();
   FSI_ASSERT(state.q.size() == n && state.v.size() == n, "the state does not match the model");
   Eigen::MatrixXd by_position, by_velocity, jacobian, force_derivative;
-  model.applied_force_derivatives(state.time, state.q, state.v, by_position, by_velocity);
-  model.constraint_jacobian(state.time, state.q, jacobian);
+  system.applied_force_derivatives(state.time, state.q, state.v, by_position, by_velocity);
+  system.constraint_jacobian(state.time, state.q, jacobian);
   const Eigen::VectorXd lambda =
       state.lambda.size() == m ? Eigen::VectorXd(state.lambda) : Eigen::VectorXd::Zero(m);
-  model.constraint_force_derivative(state.time, state.q, lambda, force_derivative);
+  system.constraint_force_derivative(state.time, state.q, lambda, force_derivative);
   const Eigen::MatrixXd tangent = force_derivative - by_position;
   const Eigen::MatrixXd stiffness = 0.5 * (tangent + tangent.transpose());
 
@@ -148,7 +149,7 @@ std::vector<double> natural_frequencies(const Model& model, const State& state, 
     basis = q_full.rightCols(n - rank);
   }
   const Eigen::MatrixXd reduced_stiffness = basis.transpose() * stiffness * basis;
-  const Eigen::MatrixXd reduced_mass = basis.transpose() * model.mass_matrix() * basis;
+  const Eigen::MatrixXd reduced_mass = basis.transpose() * system.mass_matrix() * basis;
   const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> solver(
       0.5 * (reduced_stiffness + reduced_stiffness.transpose()),
       0.5 * (reduced_mass + reduced_mass.transpose()), Eigen::EigenvaluesOnly);

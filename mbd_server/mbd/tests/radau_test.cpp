@@ -6,6 +6,7 @@
 
 #include "fsi/common/error.hpp"
 #include "fsi/mbd/integrator.hpp"
+#include "fsi/mbd/model.hpp"
 #include "test_elements.hpp"
 
 namespace fsi::mbd {

@@ -9,6 +9,7 @@
 #include <cstdio>
 
 #include "fsi/mbd/integrator.hpp"
+#include "fsi/mbd/model.hpp"
 
 namespace fsi::mbd {
 namespace {
