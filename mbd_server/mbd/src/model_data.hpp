@@ -240,4 +240,14 @@ struct Model::Data {
   }
 };
 
+namespace detail {
+
+// The readouts' view of a model's storage (src/readouts.cpp).
+struct ModelAccess {
+  using Data = Model::Data;
+  static const Data& data(const Model& model) { return *model.data_; }
+};
+
+}  // namespace detail
+
 }  // namespace fsi::mbd

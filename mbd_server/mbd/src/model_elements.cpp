@@ -208,33 +208,6 @@ int Model::add_torque(const TorqueSpec& spec) {
 
 // --- readouts ---
 
-double Model::force_element_force(const State& state, int element) const {
-  const auto* measured = dynamic_cast<const detail::MeasuredForce*>(&force_element(element));
-  if (measured == nullptr) {
-    throw Error(force_element(element).description() + " measures no force", "spring force sensor",
-                "measure a spring-damper, nonlinear spring-damper, spring actor or rotational "
-                "spring-damper");
-  }
-  return measured->measured_force(state.time, state.q, state.v);
-}
-
-Eigen::Vector3d Model::joint_reaction(const State& state, int first_row, int rows,
-                                      BodyId body) const {
-  FSI_ASSERT(first_row >= 0 && rows >= 0 && first_row + rows <= constraint_count(),
-             "joint rows out of range");
-  // Sparse G (a sensor per output step must not cost O(m n)); the multipliers of the other rows
-  // are left out.
-  Eigen::SparseMatrix<double> jacobian;
-  constraint_jacobian(state.time, state.q, jacobian);
-  Eigen::VectorXd multipliers = Eigen::VectorXd::Zero(constraint_count());
-  multipliers.segment(first_row, rows) = state.lambda.segment(first_row, rows);
-  const Eigen::VectorXd force = -(jacobian.transpose() * multipliers);
-  if (body == kGround) return Eigen::Vector3d::Zero();
-  return {force(coordinate_index(body, Coordinate::X)),
-          force(coordinate_index(body, Coordinate::Y)),
-          force(coordinate_index(body, Coordinate::Angle))};
-}
-
 std::string Model::non_finite_source(double time, const Eigen::VectorXd& q,
                                      const Eigen::VectorXd& v) const {
   for (int i = 0; i < coordinate_count(); ++i) {

@@ -22,15 +22,17 @@ class LoadScaling {
   explicit LoadScaling(Model& model)
       : model_(model),
         gravity_(model.gravity()),
-        spatial_gravity_(model.spatial_gravity()),
         loads_(model.point_loads().begin(), model.point_loads().end()) {}
   ~LoadScaling() { apply(1.0); }
   LoadScaling(const LoadScaling&) = delete;
   LoadScaling& operator=(const LoadScaling&) = delete;
 
   void apply(double factor) {
-    model_.set_gravity(factor * gravity_);
-    model_.set_spatial_gravity(factor * spatial_gravity_);
+    if (model_.dimension() == 3) {
+      model_.set_spatial_gravity(factor * gravity_);
+    } else {
+      model_.set_gravity(factor * Eigen::Vector2d(gravity_.head<2>()));
+    }
     scaled_ = loads_;
     for (double& load : scaled_)
       load *= factor;
@@ -39,8 +41,7 @@ class LoadScaling {
 
  private:
   Model& model_;
-  Eigen::Vector2d gravity_;
-  Eigen::Vector3d spatial_gravity_;
+  Eigen::Vector3d gravity_;
   std::vector<double> loads_;
   std::vector<double> scaled_;
 };

@@ -19,8 +19,9 @@
 // slope per node, constant consistent mass matrix, elastic forces inside F), coordinate
 // constraints on position or velocity level, beam clamps, joints and force elements.
 // Bodies and constraints are internal element classes behind narrow interfaces
-// (src/body.hpp, src/constraint.hpp). The element specs are in fsi/mbd/element_specs.hpp; the
-// integrators see the model only as a ConstrainedSystem (fsi/mbd/constrained_system.hpp).
+// (src/body.hpp, the rows' base ConstraintRow in src/sink_elements.hpp). The element specs are in
+// fsi/mbd/element_specs.hpp; the integrators see the model only as a ConstrainedSystem
+// (fsi/mbd/constrained_system.hpp).
 
 #include <Eigen/Dense>
 #include <Eigen/SparseCore>
@@ -43,7 +44,8 @@ namespace fsi::mbd {
 
 namespace detail {
 class BodyPoint;
-}
+struct ModelAccess;
+}  // namespace detail
 
 class Model final : public ConstrainedSystem {
  public:
@@ -128,7 +130,6 @@ class Model final : public ConstrainedSystem {
   // rows: the slope stays normal to two initial normals; its length, the axial strain, is free).
   int add_cable_clamp(BodyId cable, int node);
   void set_spatial_gravity(const Eigen::Vector3d& acceleration);
-  const Eigen::Vector3d& spatial_gravity() const;
   // A marker on a spatial body (or a fixed one with kGround); returns its index. Point loads then
   // have three values (x, y, z) per marker.
   int add_spatial_marker(BodyId body, const Eigen::Vector3d& local_coordinates);
@@ -170,25 +171,6 @@ class Model final : public ConstrainedSystem {
   int cable_node_count(BodyId cable) const;
   // Index in q of component `component` (0-2: x, y, z; 3-5: slope x, y, z) of a cable node.
   int cable_coordinate_index(BodyId cable, int node, int component) const;
-  Eigen::Vector3d spatial_marker_position(const State& state, int marker) const;
-  Eigen::Vector3d spatial_marker_velocity(const State& state, int marker) const;
-  const Eigen::Vector3d& spatial_marker_local_coordinates(int marker) const;
-  // dr/dq (3 x n); zero for ground markers.
-  Eigen::MatrixXd spatial_marker_jacobian(const Eigen::VectorXd& q, int marker) const;
-  Eigen::Vector3d spatial_point_position(const State& state, const SpatialPointSpec& point) const;
-  Eigen::Vector3d spatial_point_velocity(const State& state, const SpatialPointSpec& point) const;
-  // The rotation matrix [e1 e2 e3] of a spatial rigid body (orthonormal up to the constraint
-  // drift) and its angular velocity in the world frame, from dR/dt = [omega]x R.
-  Eigen::Matrix3d orientation(const State& state, BodyId body) const;
-  Eigen::Vector3d angular_velocity(const State& state, BodyId body) const;
-  // Resultant of the point loads on a spatial body: force (x, y, z), then the torque about its
-  // centre of mass.
-  Eigen::Matrix<double, 6, 1> spatial_point_load_resultant(const State& state, BodyId body) const;
-  // The force and the torque about the centre of mass that the rows first_row .. first_row +
-  // rows - 1 exert on a spatial rigid body or point mass: its part of -G^T lambda (force: the
-  // centre-of-mass components; torque: sum_k e_k x Q_(e_k)).
-  Eigen::Matrix<double, 6, 1> spatial_joint_reaction(const State& state, int first_row, int rows,
-                                                     BodyId body) const;
 
   // --- structure ---
   int coordinate_count() const override;
@@ -207,11 +189,13 @@ class Model final : public ConstrainedSystem {
   BodyId find_body(std::string_view name) const;
   int coordinate_index(BodyId body, Coordinate coordinate) const;
   BodyId marker_body(int marker) const;
-  const Eigen::Vector2d& marker_local_coordinates(int marker) const;
+  // Body-fixed local coordinates of a marker (planar: z = 0), the world position for the ground.
+  Eigen::Vector3d marker_local_coordinates(int marker) const;
   std::string constraint_description(
       int constraint) const override;  // "velocity constraint on piston.y"
   ConstraintLevel constraint_level(int constraint) const override;
-  const Eigen::Vector2d& gravity() const;
+  // The acceleration of gravity of the model's dimension (planar: z = 0).
+  Eigen::Vector3d gravity() const;
   int force_element_count() const;
   const ForceElement& force_element(int element) const;
   // "body 'link' coordinate angle" (planar rigid bodies) or "body 'beam' coordinate 4".
@@ -265,55 +249,28 @@ class Model final : public ConstrainedSystem {
   void set_point_loads(std::span<const double> loads);
   std::span<const double> point_loads() const override;
 
-  // --- markers ---
-  Eigen::Vector2d marker_position(const State& state, int marker) const;
-  Eigen::Vector2d marker_velocity(const State& state, int marker) const;
-  // dr/dq (2 x n); zero for ground markers.
+  // --- markers (positions, velocities and loads: fsi/mbd/readouts.hpp) ---
+  // dr/dq (dimension() x n); zero for ground markers.
   Eigen::MatrixXd marker_jacobian(const Eigen::VectorXd& q, int marker) const;
-  // All markers at once: x0, y0, x1, y1, ... (size 2 * marker_count()).
-  void marker_positions(const State& state, std::span<double> xy) const;
-  void marker_velocities(const State& state, std::span<double> xy) const;
 
-  // --- readouts for sensors ---
+  // --- coordinates of planar rigid bodies (every other readout: fsi/mbd/readouts.hpp) ---
   double coordinate(const State& state, BodyId body, Coordinate coordinate) const;
   double velocity(const State& state, BodyId body, Coordinate coordinate) const;
-  // -G^T lambda, the generalised force of all constraints on the bodies (size n).
-  Eigen::VectorXd generalised_constraint_force(const State& state) const;
-  // One component of it: the constraint force (x, y) or torque (angle) on a body.
-  double constraint_force(const State& state, BodyId body, Coordinate coordinate) const;
-  // Resultant of the point loads on a body: force x, force y, torque about the centre of mass.
-  Eigen::Vector3d point_load_resultant(const State& state, BodyId body) const;
-  double kinetic_energy(const State& state) const;
-  // Gravity (zero at the origin) plus the elastic energy of the force elements
-  // (ForceElement::potential_energy).
-  double potential_energy(const State& state) const;
-  // What a force element measures (src/model_elements.cpp): the tension of a spring-damper
-  // along its line [N] (linear, nonlinear, spring actor), the torque on body a of a rotational
-  // spring-damper [N m]; throws fsi::Error for elements that measure nothing (loads).
-  double force_element_force(const State& state, int element) const;
-  // The force (x, y) and the torque about the centre of mass that the constraint rows
-  // first_row .. first_row + rows - 1 (one joint) exert on `body`: its part of -G^T lambda.
-  Eigen::Vector3d joint_reaction(const State& state, int first_row, int rows, BodyId body) const;
   // The first element whose contribution is not finite at (t, q, v): a force element, a point
   // load or a constraint row, by description; empty when all are finite. For error messages.
   std::string non_finite_source(double time, const Eigen::VectorXd& q,
                                 const Eigen::VectorXd& v) const override;
-  double strain_energy(const State& state) const;  // of the beams' elastic deformation
-  // World position and velocity of a body point in `state` (on a beam local = (s, eta)); throws
-  // fsi::Error for an unknown body or a point outside a beam. Readouts such as the VTK centre
-  // lines of beams.
-  Eigen::Vector2d point_position(const State& state, const BodyPointSpec& point) const;
   // Throws fsi::Error naming `user` if the point is not a point of its body (unknown body,
-  // planar/spatial mismatch, outside a beam or cable, off a cable's centre line).
+  // planar/spatial mismatch, outside a beam or cable, off a cable's centre line). Two names, not
+  // overloads: a braced point {body, {x, y}} would convert to either spec (Eigen's vector
+  // constructors are not constrained), so the call would be ambiguous.
   void check_point(const BodyPointSpec& point, const std::string& user) const;
   void check_spatial_point(const SpatialPointSpec& point, const std::string& user) const;
-  Eigen::Vector2d point_velocity(const State& state, const BodyPointSpec& point) const;
-  // Largest |C| over position-level rows.
-  double position_constraint_drift(const State& state) const;
-  // Largest velocity-level residual: |G v - g| of velocity rows and |G v + C_t| of position rows.
-  double velocity_constraint_drift(const State& state) const;
 
  private:
+  // The readouts (src/readouts.cpp) read the storage directly.
+  friend struct detail::ModelAccess;
+
   // A body point as the elements see it; throws naming `user` (src/model_elements.cpp).
   detail::BodyPoint body_point(const BodyPointSpec& spec, const std::string& user) const;
   // World position of a body point in the bodies' initial state.
