@@ -1,5 +1,5 @@
 #pragma once
-// Force elements of planar connectors and time-dependent loads (internal; built in
+// Force elements of connectors and time-dependent loads (internal; built in
 // model_elements.cpp). All give exact dQ/dq and dQ/dv, except where a user function is
 // differentiated by central differences (UserTension).
 //
@@ -8,6 +8,7 @@
 //   PointToPointForce        tension T(l - l_0, dl/dt) along the line of two points, as the linear
 //                            spring-damper (spring_damper.hpp), with a TensionLaw
 //   PointForce, Torque       f(t) at a body point (world frame), tau(t) on a body angle
+//   SpatialTorque            tau(t) on a spatial rigid body in natural coordinates
 
 #include <functional>
 #include <memory>
@@ -155,6 +156,24 @@ class Torque final : public SparseForceElement {
  private:
   int angle_;
   std::function<double(double)> torque_;
+};
+
+// A time-dependent torque on a spatial rigid body (the point force is force_elements.hpp's
+// SpatialPointForce).
+// On a RigidBody3D whose axes e_1..e_3 start at q(axes_offset): Q_(e_k) = 1/2 tau x e_k.
+class SpatialTorque final : public SparseForceElement {
+ public:
+  SpatialTorque(std::string description, int axes_offset,
+                std::function<Eigen::Vector3d(double)> torque);
+  void add_force(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                 Eigen::VectorXd& force) const override;
+  bool add_jacobian_entries(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                            MatrixSink& force_by_position,
+                            MatrixSink& force_by_velocity) const override;
+
+ private:
+  int axes_offset_;
+  std::function<Eigen::Vector3d(double)> torque_;
 };
 
 }  // namespace fsi::mbd::detail

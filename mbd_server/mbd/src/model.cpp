@@ -9,10 +9,12 @@
 #include <limits>
 #include <vector>
 
-#include "connectors.hpp"
+#include "coordinate_rows.hpp"
+#include "direction_rows.hpp"
 #include "fsi/common/error.hpp"
 #include "model_data.hpp"
 #include "number_text.hpp"
+#include "point_rows.hpp"
 #include "rigid_body_3d.hpp"
 #include "spring_damper.hpp"
 

@@ -8,14 +8,14 @@
 #include <string>
 
 #include "body_point.hpp"
-#include "connectors.hpp"
-#include "constraint.hpp"
+#include "coordinate_rows.hpp"
 #include "force_elements.hpp"
 #include "fsi/common/error.hpp"
 #include "fsi/mbd/model.hpp"
 #include "measured_force.hpp"
 #include "model_data.hpp"
 #include "number_text.hpp"
+#include "point_rows.hpp"
 
 namespace fsi::mbd {
 

@@ -6,14 +6,14 @@
 #include <string>
 
 #include "ancf_cable_3d.hpp"
-#include "constraint.hpp"
+#include "direction_rows.hpp"
 #include "force_elements.hpp"
 #include "fsi/common/error.hpp"
 #include "fsi/mbd/model.hpp"
 #include "model_data.hpp"
 #include "number_text.hpp"
+#include "point_rows.hpp"
 #include "rigid_body_3d.hpp"
-#include "spatial_constraints.hpp"
 #include "spring_damper.hpp"
 
 namespace fsi::mbd {

@@ -7,7 +7,7 @@
 #include <numbers>
 #include <vector>
 
-#include "connectors.hpp"
+#include "direction_rows.hpp"
 #include "element_checks.hpp"
 #include "fsi/mbd/model.hpp"
 #include "fsi/mbd/readouts.hpp"

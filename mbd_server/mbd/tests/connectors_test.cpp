@@ -11,12 +11,13 @@
 
 #include "body.hpp"
 #include "body_point.hpp"
-#include "connectors.hpp"
+#include "coordinate_rows.hpp"
 #include "element_checks.hpp"
 #include "fsi/common/error.hpp"
 #include "fsi/mbd/integrator.hpp"
 #include "fsi/mbd/model.hpp"
 #include "fsi/mbd/readouts.hpp"
+#include "point_rows.hpp"
 
 namespace fsi::mbd {
 namespace {

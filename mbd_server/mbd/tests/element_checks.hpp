@@ -10,8 +10,11 @@
 
 #include <cmath>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "body.hpp"
+#include "body_point.hpp"
 #include "fsi/common/error.hpp"
 #include "fsi/mbd/constraint_element.hpp"
 #include "fsi/mbd/force_element.hpp"
@@ -33,6 +36,14 @@ struct BodyPair {
   detail::RigidBody2D second{rigid("second", 1.5, 0.2)};
   Eigen::VectorXd q{{0.3, -0.2, 0.7, 1.1, 0.4, -2.1}};
   Eigen::VectorXd v{{0.5, -1.5, 2.0, -0.7, 0.9, 3.0}};
+
+  // The ends an element test runs over: body-body, body-ground and ground-body.
+  std::vector<std::pair<detail::BodyPoint, detail::BodyPoint>> point_pairs() const {
+    const detail::BodyPoint on_first(&first, 0, {0.2, -0.15});
+    const detail::BodyPoint on_second(&second, 3, {-0.1, 0.35});
+    const detail::BodyPoint on_ground(nullptr, 0, {-0.4, 0.25});
+    return {{on_first, on_second}, {on_first, on_ground}, {on_ground, on_second}};
+  }
 };
 
 inline Eigen::RowVectorXd jacobian_row_of(const ConstraintElement& row, const Eigen::VectorXd& q) {

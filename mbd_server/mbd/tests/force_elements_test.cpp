@@ -24,15 +24,7 @@ constexpr NewtonOptions kTight{.relative_tolerance = 1e-12, .max_iterations = 20
 
 using testing::rigid;
 
-// The shared pair with the body points the force elements join.
-struct Pair : testing::BodyPair {
-  std::vector<std::pair<detail::BodyPoint, detail::BodyPoint>> ends() const {
-    const detail::BodyPoint on_first(&first, 0, {0.2, -0.15});
-    const detail::BodyPoint on_second(&second, 3, {-0.1, 0.35});
-    const detail::BodyPoint on_ground(nullptr, 0, {-0.4, 0.25});
-    return {{on_first, on_second}, {on_first, on_ground}, {on_ground, on_second}};
-  }
-};
+using Pair = testing::BodyPair;
 
 TEST(MbdForceElements, RotationalSpringDamperTorqueAndDerivatives) {
   const Pair pair;
@@ -53,7 +45,7 @@ TEST(MbdForceElements, NonlinearSpringDamperHasExactDerivatives) {
   auto law = std::make_shared<detail::UserTension>(
       [](double e, double r) { return 300.0 * e + 4e4 * e * e * e + 15.0 * r + 2.0 * r * r * r; });
   int index = 0;
-  for (const auto& [a, b] : pair.ends()) {
+  for (const auto& [a, b] : pair.point_pairs()) {
     const detail::PointToPointForce spring("cubic", a, b, 0.9, law);
     testing::expect_exact_force_derivatives(spring, 0.0, pair.q, pair.v,
                                             "ends " + std::to_string(index++));
@@ -67,7 +59,7 @@ TEST(MbdForceElements, SpringActorHasExactDerivativesAwayFromItsKinks) {
   auto law = std::make_shared<detail::PiecewiseLinearTension>(
       std::vector<Eigen::Vector2d>{{-1.0, -20.0}, {0.0, 0.0}, {0.1, 0.0}, {1.0, 900.0}}, 7.0);
   int index = 0;
-  for (const auto& [a, b] : pair.ends()) {
+  for (const auto& [a, b] : pair.point_pairs()) {
     const detail::PointToPointForce actor("actor", a, b, 0.5, law);
     testing::expect_exact_force_derivatives(actor, 0.0, pair.q, pair.v,
                                             "ends " + std::to_string(index++));

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "ancf_cable_3d.hpp"
+#include "direction_rows.hpp"
 #include "element_checks.hpp"
 #include "force_elements.hpp"
 #include "fsi/common/error.hpp"
@@ -18,8 +19,8 @@
 #include "fsi/mbd/model.hpp"
 #include "fsi/mbd/readouts.hpp"
 #include "fsi/mbd/static_analysis.hpp"
+#include "point_rows.hpp"
 #include "rigid_body_3d.hpp"
-#include "spatial_constraints.hpp"
 #include "spring_damper.hpp"
 
 namespace fsi::mbd {

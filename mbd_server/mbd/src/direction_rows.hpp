@@ -1,31 +1,49 @@
 #pragma once
-// Constraint rows of the 2D connectors beyond the revolute joint (internal; built by
-// Model::add_prismatic_joint and Model::add_clamp in model_elements.cpp):
+// Constraint rows on body directions (internal; the row interface is
+// fsi/mbd/constraint_element.hpp, the common part ConstraintRow in sink_elements.hpp):
 //
-//   prismatic row    C = (e x d) / |axis|,  e = r_tip - r_origin,  d = r_slider - r_origin
-//                    (2D cross product); origin and tip are two points of body a on the
-//                    sliding line, so e = R(phi_a) axis, and the slider point of body b stays
-//                    on that line. At consistent states G is the unit normal, lambda a force.
-//   relative angle   C = phi_a - phi_b - offset   (phi of the ground: 0), lambda a torque.
+//   perpendicularity   d_a . d_b = 0 with the spatial body directions d = r(p + u) - r(p), exact
+//                      for rigid bodies; two of them keep a revolute joint's axis, three a fixed
+//                      joint's orientation
+//   slope on a body    a beam node's slope held in the frame of a planar rigid body
 //
-// A clamp is two PointConstraint rows (the clamped body's centre of mass, constraint.hpp) and one
-// relative angle row.
+// (The orthonormality rows of a spatial rigid body's own axes are with the body,
+// rigid_body_3d.hpp.)
 
 #include <Eigen/Dense>
 
 #include <string>
 
-#include "body_point.hpp"
 #include "fsi/mbd/constraint_element.hpp"
 #include "sink_elements.hpp"
+#include "spatial_body.hpp"
 
 namespace fsi::mbd::detail {
 
-class PrismaticConstraint final : public ConstraintRow {
+// A body direction as the difference of two of its material points (tip - base).
+struct SpatialDirection {
+  SpatialPoint base;
+  SpatialPoint tip;
+  Eigen::Vector3d value(const Eigen::VectorXd& q) const {
+    return tip.position(q) - base.position(q);
+  }
+  Eigen::Vector3d rate(const Eigen::VectorXd& q, const Eigen::VectorXd& v) const {
+    return tip.velocity(q, v) - base.velocity(q, v);
+  }
+  SpatialColumns jacobian(const Eigen::VectorXd& q) const;
+  Eigen::Vector3d acceleration_remainder(const Eigen::VectorXd& q, const Eigen::VectorXd& v) const {
+    return tip.acceleration_remainder(q, v) - base.acceleration_remainder(q, v);
+  }
+  void add_load_derivative(const Eigen::VectorXd& q, const Eigen::Vector3d& force,
+                           MatrixSink& derivative) const {
+    tip.add_load_derivative(q, force, derivative);
+    base.add_load_derivative(q, -force, derivative);
+  }
+};
+
+class PerpendicularityConstraint final : public ConstraintRow {
  public:
-  // |tip - origin| in body a's frame is the axis length the row is divided by.
-  PrismaticConstraint(std::string description, BodyPoint origin, BodyPoint tip, BodyPoint slider,
-                      double axis_length);
+  PerpendicularityConstraint(std::string description, SpatialDirection a, SpatialDirection b);
 
   double residual(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v) const override;
   void add_jacobian_entries(double time, const Eigen::VectorXd& q, int row,
@@ -36,18 +54,8 @@ class PrismaticConstraint final : public ConstraintRow {
                                     MatrixSink& derivative) const override;
 
  private:
-  struct Geometry {
-    Eigen::Vector2d axis;               // e
-    Eigen::Vector2d separation;         // d
-    SparseColumns axis_jacobian;        // de/dq (2 x n)
-    SparseColumns separation_jacobian;  // dd/dq (2 x n)
-  };
-  Geometry geometry(const Eigen::VectorXd& q) const;
-
-  BodyPoint origin_;
-  BodyPoint tip_;
-  BodyPoint slider_;
-  double axis_length_;
+  SpatialDirection a_;
+  SpatialDirection b_;
 };
 
 // A beam node's slope s = r' held in the frame of a planar rigid body with angle phi (a beam
@@ -74,21 +82,6 @@ class SlopeOnBodyConstraint final : public ConstraintRow {
   int angle_;
   Eigen::Vector2d vector_;
   int component_;
-};
-
-// phi_a - phi_b - offset = 0; an angle index < 0 stands for the ground.
-class RelativeAngleConstraint final : public LinearConstraintRow {
- public:
-  RelativeAngleConstraint(std::string description, int angle_a, int angle_b, double offset);
-
-  double residual(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v) const override;
-  void add_jacobian_entries(double time, const Eigen::VectorXd& q, int row,
-                            MatrixSink& jacobian) const override;
-
- private:
-  int angle_a_;
-  int angle_b_;
-  double offset_;
 };
 
 }  // namespace fsi::mbd::detail
