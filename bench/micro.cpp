@@ -7,6 +7,7 @@
 
 #include "fsi/contact/wall_contact.hpp"
 #include "fsi/mbd/integrator.hpp"
+#include "fsi/mbd/model.hpp"
 #include "fsi/protocol/messages.hpp"
 
 namespace {

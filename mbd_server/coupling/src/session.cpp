@@ -20,6 +20,7 @@
 #include "fsi/coupling/output.hpp"
 #include "fsi/coupling/progress.hpp"
 #include "fsi/coupling/vtk_output.hpp"
+#include "fsi/mbd/readouts.hpp"
 #include "fsi/protocol/channel.hpp"
 #include "fsi/scene/physics_checks.hpp"
 
@@ -567,8 +568,8 @@ class Session {
         integrator_ ? integrator_->statistics() : mbd::IntegratorStatistics{};
     // A run that failed before the set-up has no state yet.
     const bool have_state = state_.q.size() == scene_.model.coordinate_count();
-    auto drift = [&](double (mbd::Model::*measure)(const mbd::State&) const) {
-      return have_state ? json((scene_.model.*measure)(state_)) : json(nullptr);
+    auto drift = [&](double (*measure)(const mbd::ConstrainedSystem&, const mbd::State&)) {
+      return have_state ? json(measure(scene_.model, state_)) : json(nullptr);
     };
     manifest["newton"] = {{"steps", stats.steps},
                           {"iterations", stats.newton_iterations},
@@ -590,8 +591,8 @@ class Session {
         {"max_particle_speed_over_speed_of_sound_at_snapshots",
          checks_.health_samples > 0 && speed_of_sound_ ? json(checks_.max_speed / *speed_of_sound_)
                                                        : json(nullptr)},
-        {"position_constraint_drift", drift(&mbd::Model::position_constraint_drift)},
-        {"velocity_constraint_drift", drift(&mbd::Model::velocity_constraint_drift)}};
+        {"position_constraint_drift", drift(&mbd::position_constraint_drift)},
+        {"velocity_constraint_drift", drift(&mbd::velocity_constraint_drift)}};
     manifest["warnings"] = options_.warnings;
     manifest["status"] = status_;
     if (!reason_.empty()) manifest["reason"] = reason_;

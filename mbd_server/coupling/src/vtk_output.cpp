@@ -3,6 +3,7 @@
 #include <vector>
 
 #include "fsi/common/error.hpp"
+#include "fsi/mbd/readouts.hpp"
 #include "fsi/output/vtk_files.hpp"
 
 namespace fsi::coupling {
@@ -90,8 +91,8 @@ void VtkOutput::write_centre_lines(std::uint64_t step, const mbd::Model& model,
       // s = L i / samples, the last exactly L (a point past the beam's end is refused).
       const double s = i == samples ? length : length * i / samples;
       const mbd::BodyPointSpec point{b, {s, 0.0}};
-      const Eigen::Vector2d r = model.point_position(state, point);
-      const Eigen::Vector2d v = model.point_velocity(state, point);
+      const Eigen::Vector2d r = point_position(model, state, point).head<2>();
+      const Eigen::Vector2d v = point_velocity(model, state, point).head<2>();
       positions.insert(positions.end(), {r.x(), r.y()});
       velocities.insert(velocities.end(), {v.x(), v.y()});
     }

@@ -91,7 +91,7 @@ AdaptiveRadau::~AdaptiveRadau() = default;
 AdaptiveRadau::AdaptiveRadau(AdaptiveRadau&&) noexcept = default;
 AdaptiveRadau& AdaptiveRadau::operator=(AdaptiveRadau&&) noexcept = default;
 
-void AdaptiveRadau::advance(const Model& model, State& state, double end_time) {
+void AdaptiveRadau::advance(const ConstrainedSystem& system, State& state, double end_time) {
   Impl& w = *impl_;
   const AdaptiveOptions& o = w.options;
   if (!(end_time > state.time) || !std::isfinite(end_time)) {
@@ -111,9 +111,9 @@ void AdaptiveRadau::advance(const Model& model, State& state, double end_time) {
     double err = 0.0;
     bool converged = true;
     try {
-      w.count(w.whole.step(model, coarse, h));
-      w.count(w.halves.step(model, fine, 0.5 * h));
-      w.count(w.halves.step(model, fine, 0.5 * h));
+      w.count(w.whole.step(system, coarse, h));
+      w.count(w.halves.step(system, fine, 0.5 * h));
+      w.count(w.halves.step(system, fine, 0.5 * h));
       err = w.error(coarse, fine, h);
     } catch (const Error&) {
       converged = false;

@@ -12,7 +12,7 @@ namespace fsi::mbd::detail {
 
 RotationalSpringDamper::RotationalSpringDamper(std::string description, int angle_a, int angle_b,
                                                double stiffness, double damping, double rest_angle)
-    : description_(std::move(description)),
+    : SparseForceElement(std::move(description)),
       angle_a_(angle_a),
       angle_b_(angle_b),
       stiffness_(stiffness),
@@ -133,7 +133,7 @@ double UserTension::energy(double elongation) const {
 
 PointToPointForce::PointToPointForce(std::string description, BodyPoint a, BodyPoint b,
                                      double rest_length, std::shared_ptr<const TensionLaw> law)
-    : description_(std::move(description)),
+    : SparseForceElement(std::move(description)),
       a_(a),
       b_(b),
       rest_length_(rest_length),
@@ -204,11 +204,49 @@ double PointToPointForce::potential_energy(const Eigen::VectorXd& q) const {
 // ---- time-dependent loads ----
 
 Torque::Torque(std::string description, int angle, std::function<double(double)> torque)
-    : description_(std::move(description)), angle_(angle), torque_(std::move(torque)) {}
+    : SparseForceElement(std::move(description)), angle_(angle), torque_(std::move(torque)) {}
 
 void Torque::add_force(double time, const Eigen::VectorXd&, const Eigen::VectorXd&,
                        Eigen::VectorXd& force) const {
   force(angle_) += torque_(time);
+}
+
+// ---- spatial torque ----
+
+namespace {
+
+Eigen::Matrix3d cross_matrix(const Eigen::Vector3d& w) {
+  Eigen::Matrix3d m;
+  m << 0.0, -w.z(), w.y(), w.z(), 0.0, -w.x(), -w.y(), w.x(), 0.0;
+  return m;
+}
+
+}  // namespace
+
+SpatialTorque::SpatialTorque(std::string description, int axes_offset,
+                             std::function<Eigen::Vector3d(double)> torque)
+    : SparseForceElement(std::move(description)),
+      axes_offset_(axes_offset),
+      torque_(std::move(torque)) {}
+
+void SpatialTorque::add_force(double time, const Eigen::VectorXd& q, const Eigen::VectorXd&,
+                              Eigen::VectorXd& force) const {
+  const Eigen::Vector3d tau = torque_(time);
+  for (int k = 0; k < 3; ++k) {
+    const int e = axes_offset_ + 3 * k;
+    force.segment<3>(e) += 0.5 * tau.cross(q.segment<3>(e));
+  }
+}
+
+bool SpatialTorque::add_jacobian_entries(double time, const Eigen::VectorXd&,
+                                         const Eigen::VectorXd&, MatrixSink& force_by_position,
+                                         MatrixSink&) const {
+  const Eigen::Matrix3d block = 0.5 * cross_matrix(torque_(time));
+  for (int k = 0; k < 3; ++k) {
+    const int e = axes_offset_ + 3 * k;
+    force_by_position.add_block(e, e, block);
+  }
+  return true;
 }
 
 }  // namespace fsi::mbd::detail

@@ -1,5 +1,5 @@
 #pragma once
-// Force elements of planar connectors and time-dependent loads (internal; built in
+// Force elements of connectors and time-dependent loads (internal; built in
 // model_elements.cpp). All give exact dQ/dq and dQ/dv, except where a user function is
 // differentiated by central differences (UserTension).
 //
@@ -8,6 +8,7 @@
 //   PointToPointForce        tension T(l - l_0, dl/dt) along the line of two points, as the linear
 //                            spring-damper (spring_damper.hpp), with a TensionLaw
 //   PointForce, Torque       f(t) at a body point (world frame), tau(t) on a body angle
+//   SpatialTorque            tau(t) on a spatial rigid body in natural coordinates
 
 #include <functional>
 #include <memory>
@@ -32,7 +33,6 @@ class RotationalSpringDamper final : public SparseForceElement, public MeasuredF
   bool add_jacobian_entries(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
                             MatrixSink& force_by_position,
                             MatrixSink& force_by_velocity) const override;
-  std::string description() const override { return description_; }
   double potential_energy(const Eigen::VectorXd& q) const override;
   // The torque on body a [N m].
   double measured_force(double time, const Eigen::VectorXd& q,
@@ -41,7 +41,6 @@ class RotationalSpringDamper final : public SparseForceElement, public MeasuredF
  private:
   double angle(const Eigen::VectorXd& x, int index) const { return index >= 0 ? x(index) : 0.0; }
 
-  std::string description_;
   int angle_a_;
   int angle_b_;
   double stiffness_;
@@ -103,14 +102,12 @@ class PointToPointForce final : public SparseForceElement, public MeasuredForce 
   bool add_jacobian_entries(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
                             MatrixSink& force_by_position,
                             MatrixSink& force_by_velocity) const override;
-  std::string description() const override { return description_; }
   double potential_energy(const Eigen::VectorXd& q) const override;
   // The tension [N].
   double measured_force(double time, const Eigen::VectorXd& q,
                         const Eigen::VectorXd& v) const override;
 
  private:
-  std::string description_;
   BodyPoint a_;
   BodyPoint b_;
   double rest_length_;
@@ -124,7 +121,7 @@ class BasicPointForce final : public SparseForceElement {
  public:
   using Vector = Eigen::Matrix<double, D, 1>;
   BasicPointForce(std::string description, Point point, std::function<Vector(double)> force)
-      : description_(std::move(description)), point_(point), force_(std::move(force)) {}
+      : SparseForceElement(std::move(description)), point_(point), force_(std::move(force)) {}
 
   void add_force(double time, const Eigen::VectorXd& q, const Eigen::VectorXd&,
                  Eigen::VectorXd& force) const override {
@@ -135,10 +132,8 @@ class BasicPointForce final : public SparseForceElement {
     point_.add_load_derivative(q, force_(time), force_by_position);
     return true;
   }
-  std::string description() const override { return description_; }
 
  private:
-  std::string description_;
   Point point_;
   std::function<Vector(double)> force_;
 };
@@ -157,12 +152,28 @@ class Torque final : public SparseForceElement {
                             MatrixSink&) const override {
     return true;  // independent of q and v
   }
-  std::string description() const override { return description_; }
 
  private:
-  std::string description_;
   int angle_;
   std::function<double(double)> torque_;
+};
+
+// A time-dependent torque on a spatial rigid body (the point force is force_elements.hpp's
+// SpatialPointForce).
+// On a RigidBody3D whose axes e_1..e_3 start at q(axes_offset): Q_(e_k) = 1/2 tau x e_k.
+class SpatialTorque final : public SparseForceElement {
+ public:
+  SpatialTorque(std::string description, int axes_offset,
+                std::function<Eigen::Vector3d(double)> torque);
+  void add_force(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                 Eigen::VectorXd& force) const override;
+  bool add_jacobian_entries(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                            MatrixSink& force_by_position,
+                            MatrixSink& force_by_velocity) const override;
+
+ private:
+  int axes_offset_;
+  std::function<Eigen::Vector3d(double)> torque_;
 };
 
 }  // namespace fsi::mbd::detail

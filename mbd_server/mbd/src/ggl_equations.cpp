@@ -8,34 +8,34 @@
 
 namespace fsi::mbd::detail {
 
-void GglEquations::bind(const Model& model) {
-  model_ = &model;
-  n_ = model.coordinate_count();
-  m_ = model.constraint_count();
+void GglEquations::bind(const ConstrainedSystem& system) {
+  system_ = &system;
+  n_ = system.coordinate_count();
+  m_ = system.constraint_count();
   position_rows_.clear();
   for (int k = 0; k < m_; ++k) {
-    if (model.constraint_level(k) == ConstraintLevel::Position) position_rows_.push_back(k);
+    if (system.constraint_level(k) == ConstraintLevel::Position) position_rows_.push_back(k);
   }
   p_ = static_cast<int>(position_rows_.size());
 }
 
 void GglEquations::residual(double time, const Eigen::VectorXd& y, const Eigen::VectorXd& yp,
                             Eigen::VectorXd& residual) {
-  FSI_ASSERT(model_ != nullptr && y.size() == size() && yp.size() == size(),
+  FSI_ASSERT(system_ != nullptr && y.size() == size() && yp.size() == size(),
              "GGL equations not bound");
-  const Model& model = *model_;
+  const ConstrainedSystem& system = *system_;
   q_ = y.segment(q_offset(), n_);
   v_ = y.segment(v_offset(), n_);
-  model.applied_force(time, q_, v_, force_);
-  model.constraint_jacobian(time, q_, g_);
-  model.constraint_residual(time, q_, v_, constraint_);
-  model.constraint_rate(time, q_, v_, rate_);
+  system.applied_force(time, q_, v_, force_);
+  system.constraint_jacobian(time, q_, g_);
+  system.constraint_residual(time, q_, v_, constraint_);
+  system.constraint_rate(time, q_, v_, rate_);
   residual.resize(size());
   auto kinematic = residual.segment(q_offset(), n_);
   kinematic = yp.segment(q_offset(), n_) - v_;
   for (int r = 0; r < p_; ++r)
     kinematic += g_.row(position_rows_[r]).transpose() * y(mu_offset() + r);
-  residual.segment(v_offset(), n_) = model.mass_matrix() * yp.segment(v_offset(), n_) - force_ +
+  residual.segment(v_offset(), n_) = system.mass_matrix() * yp.segment(v_offset(), n_) - force_ +
                                      g_.transpose() * y.segment(lambda_offset(), m_);
   // Position rows of C, then the velocity level of every row (rows in the order of the unknowns
   // lambda and mu: the velocity rows take lambda's place, the position rows mu's).
@@ -46,32 +46,32 @@ void GglEquations::residual(double time, const Eigen::VectorXd& y, const Eigen::
 
 void GglEquations::jacobian(double time, double cj, const Eigen::VectorXd& y,
                             Eigen::Ref<Eigen::MatrixXd> jacobian) {
-  FSI_ASSERT(model_ != nullptr && y.size() == size() && jacobian.rows() == size() &&
+  FSI_ASSERT(system_ != nullptr && y.size() == size() && jacobian.rows() == size() &&
                  jacobian.cols() == size(),
              "GGL equations not bound");
-  const Model& model = *model_;
+  const ConstrainedSystem& system = *system_;
   q_ = y.segment(q_offset(), n_);
   v_ = y.segment(v_offset(), n_);
   lambda_ = y.segment(lambda_offset(), m_);
   mu_full_.setZero(m_);
   for (int r = 0; r < p_; ++r)
     mu_full_(position_rows_[r]) = y(mu_offset() + r);
-  model.constraint_jacobian(time, q_, g_);
-  model.applied_force_derivatives(time, q_, v_, by_position_, by_velocity_);
+  system.constraint_jacobian(time, q_, g_);
+  system.applied_force_derivatives(time, q_, v_, by_position_, by_velocity_);
   jacobian.setZero();
 
   const int qo = q_offset(), vo = v_offset(), lo = lambda_offset(), mo = mu_offset();
   // kinematic rows
-  model.constraint_force_derivative(time, q_, mu_full_, derivative_);
+  system.constraint_force_derivative(time, q_, mu_full_, derivative_);
   jacobian.block(qo, qo, n_, n_) = derivative_;
   jacobian.block(qo, qo, n_, n_).diagonal().array() += cj;
   jacobian.block(qo, vo, n_, n_).diagonal().array() -= 1.0;
   for (int r = 0; r < p_; ++r)
     jacobian.block(qo, mo + r, n_, 1) = g_.row(position_rows_[r]).transpose();
   // dynamic rows
-  model.constraint_force_derivative(time, q_, lambda_, derivative_);
+  system.constraint_force_derivative(time, q_, lambda_, derivative_);
   jacobian.block(vo, qo, n_, n_) = derivative_ - by_position_;
-  jacobian.block(vo, vo, n_, n_) = cj * model.mass_matrix() - by_velocity_;
+  jacobian.block(vo, vo, n_, n_) = cj * system.mass_matrix() - by_velocity_;
   jacobian.block(vo, lo, n_, m_) = g_.transpose();
   // position rows
   for (int r = 0; r < p_; ++r)
@@ -81,13 +81,13 @@ void GglEquations::jacobian(double time, double cj, const Eigen::VectorXd& y,
   if (p_ == 0) return;
   const double dt =
       std::cbrt(std::numeric_limits<double>::epsilon()) * std::max(1.0, std::abs(time));
-  model.constraint_jacobian(time + dt, q_, g_plus_);
-  model.constraint_jacobian(time - dt, q_, g_minus_);
+  system.constraint_jacobian(time + dt, q_, g_plus_);
+  system.constraint_jacobian(time - dt, q_, g_minus_);
   Eigen::VectorXd unit = Eigen::VectorXd::Zero(m_);
   for (int r = 0; r < p_; ++r) {
     const int k = position_rows_[r];
     unit(k) = 1.0;
-    model.constraint_force_derivative(time, q_, unit, hessian_);
+    system.constraint_force_derivative(time, q_, unit, hessian_);
     unit(k) = 0.0;
     jacobian.block(lo + k, qo, 1, n_) =
         (hessian_.transpose() * v_).transpose() + (g_plus_.row(k) - g_minus_.row(k)) / (2.0 * dt);
@@ -95,20 +95,20 @@ void GglEquations::jacobian(double time, double cj, const Eigen::VectorXd& y,
 }
 
 bool GglEquations::consistent_vectors(const State& state, Eigen::VectorXd& y, Eigen::VectorXd& yp) {
-  FSI_ASSERT(model_ != nullptr, "GGL equations not bound");
-  const Model& model = *model_;
-  model.applied_force(state.time, state.q, state.v, force_);
-  model.constraint_jacobian(state.time, state.q, g_);
+  FSI_ASSERT(system_ != nullptr, "GGL equations not bound");
+  const ConstrainedSystem& system = *system_;
+  system.applied_force(state.time, state.q, state.v, force_);
+  system.constraint_jacobian(state.time, state.q, g_);
   Eigen::VectorXd remainder;
-  model.constraint_acceleration_remainder(state.time, state.q, state.v, remainder);
-  Eigen::MatrixXd system = Eigen::MatrixXd::Zero(n_ + m_, n_ + m_);
-  system.topLeftCorner(n_, n_) = model.mass_matrix();
-  system.topRightCorner(n_, m_) = g_.transpose();
-  system.bottomLeftCorner(m_, n_) = g_;
+  system.constraint_acceleration_remainder(state.time, state.q, state.v, remainder);
+  Eigen::MatrixXd augmented = Eigen::MatrixXd::Zero(n_ + m_, n_ + m_);
+  augmented.topLeftCorner(n_, n_) = system.mass_matrix();
+  augmented.topRightCorner(n_, m_) = g_.transpose();
+  augmented.bottomLeftCorner(m_, n_) = g_;
   Eigen::VectorXd right(n_ + m_);
   right.head(n_) = force_;
   right.tail(m_) = -remainder;
-  const Eigen::FullPivLU<Eigen::MatrixXd> lu(system);
+  const Eigen::FullPivLU<Eigen::MatrixXd> lu(augmented);
   if (!lu.isInvertible()) return false;
   const Eigen::VectorXd solution = lu.solve(right);
   y.setZero(size());
@@ -122,16 +122,16 @@ bool GglEquations::consistent_vectors(const State& state, Eigen::VectorXd& y, Ei
 }
 
 std::string GglEquations::describe_row(int row) const {
-  FSI_ASSERT(model_ != nullptr && row >= 0 && row < size(), "row out of range");
+  FSI_ASSERT(system_ != nullptr && row >= 0 && row < size(), "row out of range");
   if (row < v_offset()) return "kinematic row of coordinate " + std::to_string(row);
   if (row < lambda_offset()) {
     return "equation of motion of coordinate " + std::to_string(row - v_offset()) +
            " (applied forces)";
   }
   if (row < mu_offset()) {
-    return "velocity level of " + model_->constraint_description(row - lambda_offset());
+    return "velocity level of " + system_->constraint_description(row - lambda_offset());
   }
-  return "position level of " + model_->constraint_description(position_rows_[row - mu_offset()]);
+  return "position level of " + system_->constraint_description(position_rows_[row - mu_offset()]);
 }
 
 void GglEquations::to_state(const Eigen::VectorXd& y, double time, State& state) const {

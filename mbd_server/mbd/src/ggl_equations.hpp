@@ -1,7 +1,8 @@
 #pragma once
-// The equations of motion of fsi::mbd::Model in the stabilised index-2 form of Gear, Gupta and
-// Leimkuhler (GGL), as a fully implicit DAE r(t, y, y') = 0 for SUNDIALS IDA (internal; the
-// driver is ida_integrator.cpp, the reasons for this form are in docs/theory.md).
+// The equations of motion of a ConstrainedSystem (fsi::mbd::Model or any other) in the stabilised
+// index-2 form of Gear, Gupta and Leimkuhler (GGL), as a fully implicit DAE r(t, y, y') = 0 for
+// SUNDIALS IDA (internal; the driver is ida_integrator.cpp, the reasons for this form are in
+// docs/theory.md).
 //
 // Unknowns y = (q, v, lambda, mu): n coordinates, n velocities, one multiplier per constraint
 // row (m) and one stabilising multiplier mu per position-level row (p of them, in row order).
@@ -29,14 +30,14 @@
 #include <string>
 #include <vector>
 
-#include "fsi/mbd/model.hpp"
+#include "fsi/mbd/constrained_system.hpp"
 
 namespace fsi::mbd::detail {
 
 class GglEquations {
  public:
   // Binds the model (sizes, which rows are on position level).
-  void bind(const Model& model);
+  void bind(const ConstrainedSystem& system);
 
   int size() const { return 2 * n_ + m_ + p_; }
   int coordinates() const { return n_; }
@@ -66,7 +67,7 @@ class GglEquations {
   void to_state(const Eigen::VectorXd& y, double time, State& state) const;
 
  private:
-  const Model* model_ = nullptr;
+  const ConstrainedSystem* system_ = nullptr;
   int n_ = 0, m_ = 0, p_ = 0;
   std::vector<int> position_rows_;  // constraint index of each mu
   // Scratch.

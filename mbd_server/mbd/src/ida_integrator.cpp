@@ -63,7 +63,7 @@ struct IdaIntegrator::Impl {
   long counted_steps = 0, counted_newton = 0, counted_jacobians = 0, counted_residuals = 0,
        counted_error_fails = 0, counted_convergence_fails = 0;
   // What IDA's history belongs to.
-  const Model* model = nullptr;
+  const ConstrainedSystem* system = nullptr;
   State last;
   std::vector<double> last_loads;
   bool running = false;
@@ -167,9 +167,9 @@ struct IdaIntegrator::Impl {
   }
 
   // Builds IDA from a consistent restart at `state`.
-  void start(const Model& m, const State& state) {
+  void start(const ConstrainedSystem& candidate, const State& state) {
     free_solver();
-    equations.bind(m);
+    equations.bind(candidate);
     const sunindextype size = equations.size();
     y = N_VNew_Serial(size, context);
     yp = N_VNew_Serial(size, context);
@@ -188,7 +188,7 @@ struct IdaIntegrator::Impl {
                   "constrain each coordinate once; Model::check_consistency lists the rows");
     }
     view(y) = y0;
-    mass_scale = equations.coordinates() > 0 ? m.mass_matrix().diagonal().maxCoeff() : 1.0;
+    mass_scale = equations.coordinates() > 0 ? candidate.mass_matrix().diagonal().maxCoeff() : 1.0;
     view(yp) = yp0;
     auto ids = view(id);
     ids.setZero();
@@ -217,16 +217,16 @@ struct IdaIntegrator::Impl {
     check(IDASetJacFn(ida, &Impl::jacobian), "IDASetJacFn");
     counted_steps = counted_newton = counted_jacobians = counted_residuals = 0;
     counted_error_fails = counted_convergence_fails = 0;
-    model = &m;
+    system = &candidate;
     running = true;
     ++totals.initialisations;
   }
 
-  bool continues(const Model& m, const State& state) const {
-    if (!running || model != &m || state.time != last.time) return false;
+  bool continues(const ConstrainedSystem& candidate, const State& state) const {
+    if (!running || system != &candidate || state.time != last.time) return false;
     if (state.q.size() != last.q.size() || state.v.size() != last.v.size()) return false;
     if (state.q != last.q || state.v != last.v) return false;
-    const auto loads = m.point_loads();
+    const auto loads = candidate.point_loads();
     return std::equal(loads.begin(), loads.end(), last_loads.begin(), last_loads.end());
   }
 
@@ -264,7 +264,7 @@ IdaIntegrator::~IdaIntegrator() = default;
 IdaIntegrator::IdaIntegrator(IdaIntegrator&&) noexcept = default;
 IdaIntegrator& IdaIntegrator::operator=(IdaIntegrator&&) noexcept = default;
 
-void IdaIntegrator::advance(const Model& model, State& state, double end_time) {
+void IdaIntegrator::advance(const ConstrainedSystem& system, State& state, double end_time) {
   Impl& w = *impl_;
   if (!(end_time > state.time) || !std::isfinite(end_time)) {
     char text[128];
@@ -272,12 +272,12 @@ void IdaIntegrator::advance(const Model& model, State& state, double end_time) {
                   end_time, state.time);
     throw Error(text, "IDA integrator", "advance to a later time");
   }
-  if (state.q.size() != model.coordinate_count() || state.v.size() != model.coordinate_count() ||
-      state.lambda.size() != model.constraint_count()) {
+  if (state.q.size() != system.coordinate_count() || state.v.size() != system.coordinate_count() ||
+      state.lambda.size() != system.constraint_count()) {
     throw Error("the state does not match the model", "IDA integrator",
                 "start from Model::initial_state() of this model");
   }
-  if (!w.continues(model, state)) w.start(model, state);
+  if (!w.continues(system, state)) w.start(system, state);
   w.last_message.clear();
   w.bad_residual.clear();
   w.check(IDASetStopTime(w.ida, end_time), "IDASetStopTime");
@@ -301,7 +301,7 @@ void IdaIntegrator::advance(const Model& model, State& state, double end_time) {
   }
   w.equations.to_state(view(w.y), end_time, state);
   w.last = state;
-  const auto loads = model.point_loads();
+  const auto loads = system.point_loads();
   w.last_loads.assign(loads.begin(), loads.end());
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 // What a force element reports to a sensor (internal): the tension of a spring along its line, or
-// the torque of a rotational spring on its first body. Model::force_element_force reads it.
+// the torque of a rotational spring on its first body. force_element_force (fsi/mbd/readouts.hpp)
+// reads it.
 
 #include <Eigen/Dense>
 

@@ -9,10 +9,12 @@
 #include <limits>
 #include <vector>
 
-#include "connectors.hpp"
+#include "coordinate_rows.hpp"
+#include "direction_rows.hpp"
 #include "fsi/common/error.hpp"
 #include "model_data.hpp"
 #include "number_text.hpp"
+#include "point_rows.hpp"
 #include "rigid_body_3d.hpp"
 #include "spring_damper.hpp"
 
@@ -346,9 +348,10 @@ BodyId Model::marker_body(int marker) const {
   return data_->markers[marker].body;
 }
 
-const Eigen::Vector2d& Model::marker_local_coordinates(int marker) const {
+Eigen::Vector3d Model::marker_local_coordinates(int marker) const {
   data_->check_marker(marker);
-  return data_->markers[marker].local;
+  const Marker& m = data_->markers[marker];
+  return data_->dimension == 3 ? m.spatial_local : Eigen::Vector3d(m.local.x(), m.local.y(), 0.0);
 }
 
 std::string Model::constraint_description(int constraint) const {
@@ -361,8 +364,9 @@ ConstraintLevel Model::constraint_level(int constraint) const {
   return data_->constraints[constraint]->level();
 }
 
-const Eigen::Vector2d& Model::gravity() const {
-  return data_->gravity;
+Eigen::Vector3d Model::gravity() const {
+  if (data_->dimension == 3) return data_->spatial_gravity;
+  return {data_->gravity.x(), data_->gravity.y(), 0.0};
 }
 
 int Model::force_element_count() const {
@@ -396,14 +400,6 @@ detail::BodyPoint Model::body_point(const BodyPointSpec& spec, const std::string
 
 void Model::check_point(const BodyPointSpec& point, const std::string& user) const {
   (void)data_->point(point, user);
-}
-
-Eigen::Vector2d Model::point_position(const State& state, const BodyPointSpec& point) const {
-  return body_point(point, "a position readout").position(state.q);
-}
-
-Eigen::Vector2d Model::point_velocity(const State& state, const BodyPointSpec& point) const {
-  return body_point(point, "a velocity readout").velocity(state.q, state.v);
 }
 
 Eigen::Vector2d Model::initial_point_position(const BodyPointSpec& spec) const {
@@ -648,27 +644,6 @@ void Model::applied_force(double time, const Eigen::VectorXd& q, const Eigen::Ve
     element->add_force(time, q, v, force);
 }
 
-void Model::applied_force_derivatives(double time, const Eigen::VectorXd& q,
-                                      const Eigen::VectorXd& v, Eigen::MatrixXd& by_position,
-                                      Eigen::MatrixXd& by_velocity) const {
-  const int n = coordinate_count();
-  by_position.setZero(n, n);
-  by_velocity.setZero(n, n);
-  DenseMatrixSink position_sink(by_position), velocity_sink(by_velocity);
-  add_applied_force_derivatives(time, q, v, position_sink, velocity_sink);
-}
-
-void Model::applied_force_derivatives(double time, const Eigen::VectorXd& q,
-                                      const Eigen::VectorXd& v,
-                                      Eigen::SparseMatrix<double>& by_position,
-                                      Eigen::SparseMatrix<double>& by_velocity) const {
-  const int n = coordinate_count();
-  TripletSink position_sink, velocity_sink;
-  add_applied_force_derivatives(time, q, v, position_sink, velocity_sink);
-  position_sink.to_matrix(n, n, by_position);
-  velocity_sink.to_matrix(n, n, by_velocity);
-}
-
 void Model::add_applied_force_derivatives(double time, const Eigen::VectorXd& q,
                                           const Eigen::VectorXd& v, MatrixSink& by_position,
                                           MatrixSink& by_velocity) const {
@@ -767,40 +742,10 @@ void Model::constraint_acceleration_remainder(double time, const Eigen::VectorXd
     remainder(k) = data_->constraints[k]->acceleration_remainder(time, q, v);
 }
 
-void Model::constraint_jacobian(double time, const Eigen::VectorXd& q,
-                                Eigen::MatrixXd& jacobian) const {
-  jacobian.setZero(constraint_count(), coordinate_count());
-  DenseMatrixSink sink(jacobian);
-  add_constraint_jacobian(time, q, sink);
-}
-
-void Model::constraint_jacobian(double time, const Eigen::VectorXd& q,
-                                Eigen::SparseMatrix<double>& jacobian) const {
-  TripletSink sink;
-  add_constraint_jacobian(time, q, sink);
-  sink.to_matrix(constraint_count(), coordinate_count(), jacobian);
-}
-
 void Model::add_constraint_jacobian(double time, const Eigen::VectorXd& q,
                                     MatrixSink& jacobian) const {
   for (int k = 0; k < constraint_count(); ++k)
     data_->constraints[k]->add_jacobian_entries(time, q, k, jacobian);
-}
-
-void Model::constraint_force_derivative(double time, const Eigen::VectorXd& q,
-                                        const Eigen::VectorXd& lambda,
-                                        Eigen::MatrixXd& derivative) const {
-  derivative.setZero(coordinate_count(), coordinate_count());
-  DenseMatrixSink sink(derivative);
-  add_constraint_force_derivative(time, q, lambda, sink);
-}
-
-void Model::constraint_force_derivative(double time, const Eigen::VectorXd& q,
-                                        const Eigen::VectorXd& lambda,
-                                        Eigen::SparseMatrix<double>& derivative) const {
-  TripletSink sink;
-  add_constraint_force_derivative(time, q, lambda, sink);
-  sink.to_matrix(coordinate_count(), coordinate_count(), derivative);
 }
 
 namespace {
@@ -857,66 +802,19 @@ std::span<const double> Model::point_loads() const {
 
 // --- markers ---
 
-Eigen::Vector2d Model::marker_position(const State& state, int marker) const {
-  data_->check_marker(marker);
-  FSI_ASSERT(data_->dimension != 3, "planar marker readout of a spatial model");
-  const Marker& m = data_->markers[marker];
-  if (m.body == kGround) return m.local;
-  return data_->bodies[m.body]->position(data_->segment(state.q, m.body), m.local);
-}
-
-Eigen::Vector2d Model::marker_velocity(const State& state, int marker) const {
-  data_->check_marker(marker);
-  FSI_ASSERT(data_->dimension != 3, "planar marker readout of a spatial model");
-  const Marker& m = data_->markers[marker];
-  if (m.body == kGround) return Eigen::Vector2d::Zero();
-  return data_->bodies[m.body]->velocity(data_->segment(state.q, m.body),
-                                         data_->segment(state.v, m.body), m.local);
-}
-
 Eigen::MatrixXd Model::marker_jacobian(const Eigen::VectorXd& q, int marker) const {
   data_->check_marker(marker);
-  Eigen::MatrixXd jacobian = Eigen::MatrixXd::Zero(2, coordinate_count());
   const Marker& m = data_->markers[marker];
+  Eigen::MatrixXd jacobian = Eigen::MatrixXd::Zero(dimension(), coordinate_count());
   if (m.body == kGround) return jacobian;
   const auto& body = *data_->bodies[m.body];
-  body.position_jacobian(data_->segment(q, m.body), m.local,
-                         jacobian.middleCols(data_->offsets[m.body], body.coordinate_count()));
+  auto columns = jacobian.middleCols(data_->offsets[m.body], body.coordinate_count());
+  if (const auto* spatial = data_->as_spatial(m.body)) {
+    spatial->spatial_position_jacobian(data_->segment(q, m.body), m.spatial_local, columns);
+  } else {
+    body.position_jacobian(data_->segment(q, m.body), m.local, columns);
+  }
   return jacobian;
-}
-
-void Model::marker_positions(const State& state, std::span<double> xy) const {
-  if (data_->dimension == 3) {
-    FSI_ASSERT(xy.size() >= 3 * data_->markers.size(), "marker position buffer too small");
-    for (int k = 0; k < marker_count(); ++k) {
-      const Eigen::Vector3d r = spatial_marker_position(state, k);
-      std::copy(r.data(), r.data() + 3, xy.begin() + 3 * k);
-    }
-    return;
-  }
-  FSI_ASSERT(xy.size() >= 2 * data_->markers.size(), "marker position buffer too small");
-  for (int k = 0; k < marker_count(); ++k) {
-    const Eigen::Vector2d r = marker_position(state, k);
-    xy[2 * k] = r.x();
-    xy[2 * k + 1] = r.y();
-  }
-}
-
-void Model::marker_velocities(const State& state, std::span<double> xy) const {
-  if (data_->dimension == 3) {
-    FSI_ASSERT(xy.size() >= 3 * data_->markers.size(), "marker velocity buffer too small");
-    for (int k = 0; k < marker_count(); ++k) {
-      const Eigen::Vector3d u = spatial_marker_velocity(state, k);
-      std::copy(u.data(), u.data() + 3, xy.begin() + 3 * k);
-    }
-    return;
-  }
-  FSI_ASSERT(xy.size() >= 2 * data_->markers.size(), "marker velocity buffer too small");
-  for (int k = 0; k < marker_count(); ++k) {
-    const Eigen::Vector2d u = marker_velocity(state, k);
-    xy[2 * k] = u.x();
-    xy[2 * k + 1] = u.y();
-  }
 }
 
 // --- readouts ---
@@ -927,86 +825,6 @@ double Model::coordinate(const State& state, BodyId body, Coordinate c) const {
 
 double Model::velocity(const State& state, BodyId body, Coordinate c) const {
   return state.v(coordinate_index(body, c));
-}
-
-Eigen::VectorXd Model::generalised_constraint_force(const State& state) const {
-  Eigen::SparseMatrix<double> jacobian;
-  constraint_jacobian(state.time, state.q, jacobian);
-  return -jacobian.transpose() * state.lambda;
-}
-
-double Model::constraint_force(const State& state, BodyId body, Coordinate c) const {
-  return generalised_constraint_force(state)(coordinate_index(body, c));
-}
-
-Eigen::Vector3d Model::point_load_resultant(const State& state, BodyId body) const {
-  data_->check_body(body, "a point-load resultant");
-  if (data_->as_spatial(body) != nullptr) {
-    throw Error("'" + data_->bodies[body]->name() + "' is a spatial body", "a point-load resultant",
-                "use spatial_point_load_resultant for 3D bodies");
-  }
-  const Eigen::Vector2d centre =
-      data_->bodies[body]->reference_point(data_->segment(state.q, body));
-  Eigen::Vector3d resultant = Eigen::Vector3d::Zero();
-  for (int k = 0; k < marker_count(); ++k) {
-    if (data_->markers[k].body != body) continue;
-    const Eigen::Vector2d load(data_->point_loads[2 * k], data_->point_loads[2 * k + 1]);
-    const Eigen::Vector2d arm = marker_position(state, k) - centre;
-    resultant += Eigen::Vector3d(load.x(), load.y(), arm.x() * load.y() - arm.y() * load.x());
-  }
-  return resultant;
-}
-
-double Model::kinetic_energy(const State& state) const {
-  return 0.5 * state.v.dot(sparse_mass_matrix() * state.v);
-}
-
-double Model::potential_energy(const State& state) const {
-  double energy = 0.0;
-  for (int b = 0; b < body_count(); ++b) {
-    const auto q = data_->segment(state.q, b);
-    if (const auto* spatial = data_->as_spatial(b)) {
-      energy += spatial->spatial_gravity_potential(q, data_->spatial_gravity);
-    } else {
-      energy += data_->bodies[b]->gravity_potential(q, data_->gravity);
-    }
-  }
-  for (const auto& element : data_->force_elements)
-    energy += element->potential_energy(state.q);
-  return energy;
-}
-
-double Model::strain_energy(const State& state) const {
-  double energy = 0.0;
-  for (int b = 0; b < body_count(); ++b)
-    energy += data_->bodies[b]->internal_energy(data_->segment(state.q, b));
-  return energy;
-}
-
-double Model::position_constraint_drift(const State& state) const {
-  double drift = 0.0;
-  for (const auto& constraint : data_->constraints) {
-    if (constraint->level() == ConstraintLevel::Position) {
-      drift = std::max(drift, std::abs(constraint->residual(state.time, state.q, state.v)));
-    }
-  }
-  return drift;
-}
-
-double Model::velocity_constraint_drift(const State& state) const {
-  Eigen::SparseMatrix<double> jacobian;
-  constraint_jacobian(state.time, state.q, jacobian);
-  const Eigen::VectorXd jacobian_v = jacobian * state.v;
-  double drift = 0.0;
-  for (int k = 0; k < constraint_count(); ++k) {
-    const auto& constraint = *data_->constraints[k];
-    const double residual =
-        constraint.level() == ConstraintLevel::Position
-            ? jacobian_v(k) + constraint.explicit_time_derivative(state.time, state.q)
-            : constraint.residual(state.time, state.q, state.v);
-    drift = std::max(drift, std::abs(residual));
-  }
-  return drift;
 }
 
 }  // namespace fsi::mbd

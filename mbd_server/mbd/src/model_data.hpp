@@ -16,9 +16,10 @@
 #include "ancf_beam_2d.hpp"
 #include "body.hpp"
 #include "body_point.hpp"
-#include "constraint.hpp"
+#include "coordinate_rows.hpp"
 #include "fsi/common/error.hpp"
 #include "fsi/mbd/model.hpp"
+#include "point_rows.hpp"
 #include "rigid_body_3d.hpp"
 #include "spatial_body.hpp"
 
@@ -77,7 +78,7 @@ struct Model::Data {
   std::vector<int> offsets;  // index of each body's first coordinate in q
   int coordinates = 0;
   std::vector<detail::Marker> markers;
-  std::vector<std::unique_ptr<detail::Constraint>> constraints;
+  std::vector<std::unique_ptr<ConstraintElement>> constraints;
   std::vector<std::unique_ptr<ForceElement>> force_elements;
   Eigen::Vector2d gravity = Eigen::Vector2d::Zero();
   Eigen::Vector3d spatial_gravity = Eigen::Vector3d::Zero();
@@ -243,5 +244,15 @@ struct Model::Data {
     return x.segment(offsets[body], bodies[body]->coordinate_count());
   }
 };
+
+namespace detail {
+
+// The readouts' view of a model's storage (src/readouts.cpp).
+struct ModelAccess {
+  using Data = Model::Data;
+  static const Data& data(const Model& model) { return *model.data_; }
+};
+
+}  // namespace detail
 
 }  // namespace fsi::mbd

@@ -8,14 +8,14 @@
 #include <string>
 
 #include "body_point.hpp"
-#include "connectors.hpp"
-#include "constraint.hpp"
+#include "coordinate_rows.hpp"
 #include "force_elements.hpp"
 #include "fsi/common/error.hpp"
 #include "fsi/mbd/model.hpp"
 #include "measured_force.hpp"
 #include "model_data.hpp"
 #include "number_text.hpp"
+#include "point_rows.hpp"
 
 namespace fsi::mbd {
 
@@ -51,6 +51,21 @@ int angle_index(const Model& model, BodyId body, const std::string& user) {
   }
 }
 
+// Two planar rigid bodies' angles in q (-1 for the ground) and their initial relative angle
+// phi_a - phi_b (the ground's angle is 0): what a relative-angle row or a rotational spring needs.
+struct AnglePair {
+  int a = -1;
+  int b = -1;
+  double initial_difference = 0.0;
+};
+
+AnglePair angle_pair(const Model& model, BodyId a, BodyId b, const std::string& user) {
+  AnglePair angles{angle_index(model, a, user), angle_index(model, b, user), 0.0};
+  angles.initial_difference =
+      (angles.a >= 0 ? model.body(a).angle : 0.0) - (angles.b >= 0 ? model.body(b).angle : 0.0);
+  return angles;
+}
+
 }  // namespace
 
 int Model::add_prismatic_joint(const PrismaticJointSpec& spec) {
@@ -64,14 +79,11 @@ int Model::add_prismatic_joint(const PrismaticJointSpec& spec) {
   const detail::BodyPoint origin = body_point(spec.a, user);
   const detail::BodyPoint tip = body_point({spec.a.body, spec.a.local + spec.axis}, user);
   const detail::BodyPoint slider = body_point(spec.b, user);
-  const int angle_a = angle_index(*this, spec.a.body, user);
-  const int angle_b = angle_index(*this, spec.b.body, user);
-  const double offset = (angle_a >= 0 ? body(spec.a.body).angle : 0.0) -
-                        (angle_b >= 0 ? body(spec.b.body).angle : 0.0);
+  const AnglePair angles = angle_pair(*this, spec.a.body, spec.b.body, user);
   add_constraint_element(std::make_unique<detail::PrismaticConstraint>(user + " (normal)", origin,
                                                                        tip, slider, axis_length));
   add_constraint_element(std::make_unique<detail::RelativeAngleConstraint>(
-      user + " (angle)", angle_a, angle_b, offset));
+      user + " (angle)", angles.a, angles.b, angles.initial_difference));
   return first_row;
 }
 
@@ -82,17 +94,14 @@ int Model::add_clamp(const ClampSpec& spec) {
     throw Error("the clamped body is the ground", user, "clamp a body to the ground or a body");
   }
   require_two_ends(spec.body, spec.to, user);
-  const int angle_body = angle_index(*this, spec.body, user);
-  const int angle_to = angle_index(*this, spec.to, user);
+  const AnglePair angles = angle_pair(*this, spec.body, spec.to, user);
   const RigidBody2DSpec& clamped = body(spec.body);
   // The clamped body's centre of mass in the frame of `to` (world frame for the ground).
   Eigen::Vector2d seen_from_to = clamped.position;
-  double offset = clamped.angle;
   if (spec.to != kGround) {
     const RigidBody2DSpec& holder = body(spec.to);
     seen_from_to =
         Eigen::Rotation2Dd(holder.angle).inverse() * (clamped.position - holder.position);
-    offset -= holder.angle;
   }
   const detail::BodyPoint centre = body_point({spec.body, Eigen::Vector2d::Zero()}, user);
   const detail::BodyPoint held = body_point({spec.to, seen_from_to}, user);
@@ -101,7 +110,7 @@ int Model::add_clamp(const ClampSpec& spec) {
         user + (axis == 0 ? " (x)" : " (y)"), centre, held, axis));
   }
   add_constraint_element(std::make_unique<detail::RelativeAngleConstraint>(
-      user + " (angle)", angle_body, angle_to, offset));
+      user + " (angle)", angles.a, angles.b, angles.initial_difference));
   return first_row;
 }
 
@@ -112,16 +121,14 @@ int Model::add_rotational_spring_damper(const RotationalSpringDamperSpec& spec) 
     throw Error("body a is the ground", user, "put the ground, if any, at end b");
   }
   require_two_ends(spec.a, spec.b, user);
-  const int angle_a = angle_index(*this, spec.a, user);
-  const int angle_b = angle_index(*this, spec.b, user);
-  const double initial = body(spec.a).angle - (spec.b == kGround ? 0.0 : body(spec.b).angle);
-  const double rest = spec.rest_angle.value_or(initial);
+  const AnglePair angles = angle_pair(*this, spec.a, spec.b, user);
+  const double rest = spec.rest_angle.value_or(angles.initial_difference);
   if (!non_negative(spec.stiffness) || !non_negative(spec.damping) || !std::isfinite(rest)) {
     throw Error("stiffness and damping must be finite and non-negative and the rest angle finite",
                 user, "check stiffness, damping and rest_angle");
   }
   add_force_element(std::make_unique<detail::RotationalSpringDamper>(
-      user, angle_a, angle_b, spec.stiffness, spec.damping, rest));
+      user, angles.a, angles.b, spec.stiffness, spec.damping, rest));
   return index;
 }
 
@@ -207,33 +214,6 @@ int Model::add_torque(const TorqueSpec& spec) {
 }
 
 // --- readouts ---
-
-double Model::force_element_force(const State& state, int element) const {
-  const auto* measured = dynamic_cast<const detail::MeasuredForce*>(&force_element(element));
-  if (measured == nullptr) {
-    throw Error(force_element(element).description() + " measures no force", "spring force sensor",
-                "measure a spring-damper, nonlinear spring-damper, spring actor or rotational "
-                "spring-damper");
-  }
-  return measured->measured_force(state.time, state.q, state.v);
-}
-
-Eigen::Vector3d Model::joint_reaction(const State& state, int first_row, int rows,
-                                      BodyId body) const {
-  FSI_ASSERT(first_row >= 0 && rows >= 0 && first_row + rows <= constraint_count(),
-             "joint rows out of range");
-  // Sparse G (a sensor per output step must not cost O(m n)); the multipliers of the other rows
-  // are left out.
-  Eigen::SparseMatrix<double> jacobian;
-  constraint_jacobian(state.time, state.q, jacobian);
-  Eigen::VectorXd multipliers = Eigen::VectorXd::Zero(constraint_count());
-  multipliers.segment(first_row, rows) = state.lambda.segment(first_row, rows);
-  const Eigen::VectorXd force = -(jacobian.transpose() * multipliers);
-  if (body == kGround) return Eigen::Vector3d::Zero();
-  return {force(coordinate_index(body, Coordinate::X)),
-          force(coordinate_index(body, Coordinate::Y)),
-          force(coordinate_index(body, Coordinate::Angle))};
-}
 
 std::string Model::non_finite_source(double time, const Eigen::VectorXd& q,
                                      const Eigen::VectorXd& v) const {

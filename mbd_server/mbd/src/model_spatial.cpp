@@ -1,4 +1,4 @@
-// Model's spatial (3D) bodies, connectors, markers and readouts (fsi/mbd/model.hpp, "spatial
+// Model's spatial (3D) bodies, connectors and markers (fsi/mbd/model.hpp, "spatial
 // bodies and connectors"); the planar ones are in model.cpp and model_elements.cpp.
 
 #include <cmath>
@@ -6,14 +6,14 @@
 #include <string>
 
 #include "ancf_cable_3d.hpp"
-#include "constraint.hpp"
+#include "direction_rows.hpp"
 #include "force_elements.hpp"
 #include "fsi/common/error.hpp"
 #include "fsi/mbd/model.hpp"
 #include "model_data.hpp"
 #include "number_text.hpp"
+#include "point_rows.hpp"
 #include "rigid_body_3d.hpp"
-#include "spatial_constraints.hpp"
 #include "spring_damper.hpp"
 
 namespace fsi::mbd {
@@ -101,10 +101,6 @@ void Model::set_spatial_gravity(const Eigen::Vector3d& acceleration) {
     throw Error("gravity is not finite", "multibody model", "give a finite acceleration vector");
   }
   data_->spatial_gravity = acceleration;
-}
-
-const Eigen::Vector3d& Model::spatial_gravity() const {
-  return data_->spatial_gravity;
 }
 
 int Model::add_spatial_marker(BodyId body, const Eigen::Vector3d& local_coordinates) {
@@ -221,35 +217,6 @@ int Model::add_cable_surface_marker(BodyId cable_id, double s, double angle, dou
   data_->markers[marker].tube_radius = radius;
   data_->markers[marker].tube_offset = std::cos(angle) * n1 + std::sin(angle) * n2;
   return marker;
-}
-
-Eigen::Matrix<double, 6, 1> Model::spatial_joint_reaction(const State& state, int first_row,
-                                                          int rows, BodyId body) const {
-  const auto& spatial = data_->spatial_body(body, "a joint reaction");
-  FSI_ASSERT(first_row >= 0 && rows >= 0 && first_row + rows <= constraint_count(),
-             "joint rows out of range");
-  const bool rigid = dynamic_cast<const detail::RigidBody3D*>(&spatial) != nullptr;
-  if (!rigid && dynamic_cast<const detail::PointMass3D*>(&spatial) == nullptr) {
-    throw Error("'" + spatial.name() + "' is neither a spatial rigid body nor a point mass",
-                "a joint reaction", "measure a RigidBody3D or a PointMass");
-  }
-  // Sparse G: a sensor per output step must not cost O(m n).
-  Eigen::SparseMatrix<double> jacobian;
-  constraint_jacobian(state.time, state.q, jacobian);
-  Eigen::VectorXd multipliers = Eigen::VectorXd::Zero(constraint_count());
-  multipliers.segment(first_row, rows) = state.lambda.segment(first_row, rows);
-  const Eigen::VectorXd generalised = -(jacobian.transpose() * multipliers);
-  const auto own = data_->segment(generalised, body);
-  const auto q = data_->segment(state.q, body);
-  Eigen::Matrix<double, 6, 1> reaction = Eigen::Matrix<double, 6, 1>::Zero();
-  reaction.head<3>() = own.head<3>();
-  if (rigid) {
-    for (int k = 0; k < 3; ++k) {
-      reaction.tail<3>() += Eigen::Vector3d(q.segment<3>(3 + 3 * k))
-                                .cross(Eigen::Vector3d(own.segment<3>(3 + 3 * k)));
-    }
-  }
-  return reaction;
 }
 
 int Model::add_spatial_distance_constraint(const SpatialPointSpec& a, const SpatialPointSpec& b,
@@ -373,99 +340,8 @@ int Model::cable_coordinate_index(BodyId cable_id, int node, int component) cons
   return data_->offsets[cable_id] + 6 * node + component;
 }
 
-Eigen::Vector3d Model::spatial_marker_position(const State& state, int marker) const {
-  data_->check_marker(marker);
-  const detail::Marker& m = data_->markers[marker];
-  if (m.body == kGround) return m.spatial_local;
-  const auto& body = *data_->as_spatial(m.body);
-  const auto q = data_->segment(state.q, m.body);
-  const Eigen::Vector3d centre = body.spatial_position(q, m.spatial_local);
-  if (m.tube_radius == 0.0) return centre;
-  // The initial normals turned by the rotation that takes the initial tangent t0 to the current
-  // t: R v = c v + w x v + w (w . v) / (1 + c), w = t0 x t, c = t0 . t (regular unless t = -t0).
-  const auto& cable = dynamic_cast<const detail::AncfCable3D&>(body);
-  const Eigen::Vector3d t0 = (cable.spec().end - cable.spec().start).normalized();
-  const Eigen::Vector3d t = cable.tangent(q, m.spatial_local.x());
-  const Eigen::Vector3d& offset = m.tube_offset;
-  const Eigen::Vector3d w = t0.cross(t);
-  const double c = t0.dot(t);
-  const Eigen::Vector3d turned = c * offset + w.cross(offset) + w * w.dot(offset) / (1.0 + c);
-  return centre + m.tube_radius * turned;
-}
-
-Eigen::Vector3d Model::spatial_marker_velocity(const State& state, int marker) const {
-  data_->check_marker(marker);
-  const detail::Marker& m = data_->markers[marker];
-  if (m.body == kGround) return Eigen::Vector3d::Zero();
-  return data_->as_spatial(m.body)->spatial_velocity(
-      data_->segment(state.q, m.body), data_->segment(state.v, m.body), m.spatial_local);
-}
-
-const Eigen::Vector3d& Model::spatial_marker_local_coordinates(int marker) const {
-  data_->check_marker(marker);
-  return data_->markers[marker].spatial_local;
-}
-
-Eigen::MatrixXd Model::spatial_marker_jacobian(const Eigen::VectorXd& q, int marker) const {
-  data_->check_marker(marker);
-  Eigen::MatrixXd jacobian = Eigen::MatrixXd::Zero(3, coordinate_count());
-  const detail::Marker& m = data_->markers[marker];
-  if (m.body == kGround) return jacobian;
-  const auto& body = *data_->as_spatial(m.body);
-  body.spatial_position_jacobian(
-      data_->segment(q, m.body), m.spatial_local,
-      jacobian.middleCols(data_->offsets[m.body], body.coordinate_count()));
-  return jacobian;
-}
-
 void Model::check_spatial_point(const SpatialPointSpec& point, const std::string& user) const {
   (void)data_->spatial_point(point, user);
-}
-
-Eigen::Vector3d Model::spatial_point_position(const State& state,
-                                              const SpatialPointSpec& point) const {
-  return data_->spatial_point(point, "a position readout").position(state.q);
-}
-
-Eigen::Vector3d Model::spatial_point_velocity(const State& state,
-                                              const SpatialPointSpec& point) const {
-  return data_->spatial_point(point, "a velocity readout").velocity(state.q, state.v);
-}
-
-Eigen::Matrix3d Model::orientation(const State& state, BodyId body) const {
-  (void)rigid_body_3d(body);
-  const auto q = data_->segment(state.q, body);
-  Eigen::Matrix3d r;
-  for (int k = 0; k < 3; ++k)
-    r.col(k) = q.segment<3>(3 + 3 * k);
-  return r;
-}
-
-Eigen::Vector3d Model::angular_velocity(const State& state, BodyId body) const {
-  const Eigen::Matrix3d r = orientation(state, body);
-  const auto v = data_->segment(state.v, body);
-  Eigen::Matrix3d rate;
-  for (int k = 0; k < 3; ++k)
-    rate.col(k) = v.segment<3>(3 + 3 * k);
-  // dR/dt = [omega]x R, so [omega]x = dR/dt R^T; its skew part is exact also off the manifold.
-  const Eigen::Matrix3d spin = rate * r.transpose();
-  const Eigen::Matrix3d skew = 0.5 * (spin - spin.transpose());
-  return {skew(2, 1), skew(0, 2), skew(1, 0)};
-}
-
-Eigen::Matrix<double, 6, 1> Model::spatial_point_load_resultant(const State& state,
-                                                                BodyId body) const {
-  const auto& spatial = data_->spatial_body(body, "a point-load resultant");
-  const Eigen::Vector3d centre = spatial.spatial_reference_point(data_->segment(state.q, body));
-  Eigen::Matrix<double, 6, 1> resultant = Eigen::Matrix<double, 6, 1>::Zero();
-  for (int k = 0; k < marker_count(); ++k) {
-    if (data_->markers[k].body != body) continue;
-    const Eigen::Vector3d load(data_->point_loads[3 * k], data_->point_loads[3 * k + 1],
-                               data_->point_loads[3 * k + 2]);
-    resultant.head<3>() += load;
-    resultant.tail<3>() += (spatial_marker_position(state, k) - centre).cross(load);
-  }
-  return resultant;
 }
 
 }  // namespace fsi::mbd

@@ -78,12 +78,12 @@ struct RadauIIA::Workspace {
   std::vector<int> analysed_outer, analysed_inner;
   // What the kept factorisation belongs to.
   bool factorised = false;
-  const Model* factorised_model = nullptr;
+  const ConstrainedSystem* factorised_system = nullptr;
   int factorised_size = -1;
   double factorised_step_size = 0.0;
   int steps_with_factorisation = 0;
   double last_contraction = 0.0;
-  const Model* current_model = nullptr;
+  const ConstrainedSystem* current_system = nullptr;
   double current_step_size = 0.0;
 
   explicit Workspace(const RadauOptions& o)
@@ -96,31 +96,32 @@ struct RadauIIA::Workspace {
   bool full_newton() const { return options.max_modified_newton_steps == 0; }
 
   // --- initialise: check the input, bind the step, keep or drop the factorisation ---
-  void initialise(const Model& model, const State& state, double h) {
+  void initialise(const ConstrainedSystem& system, const State& state, double h) {
     if (!(h > 0.0) || !std::isfinite(h)) {
       char text[96];
       std::snprintf(text, sizeof text, "step size must be positive and finite, got %g", h);
       throw Error(text, "Radau IIA step", "give a positive step size");
     }
-    if (state.q.size() != model.coordinate_count() || state.v.size() != model.coordinate_count() ||
-        state.lambda.size() != model.constraint_count()) {
+    if (state.q.size() != system.coordinate_count() ||
+        state.v.size() != system.coordinate_count() ||
+        state.lambda.size() != system.constraint_count()) {
       throw Error("the state does not match the model (" + std::to_string(state.q.size()) +
                       " coordinates, " + std::to_string(state.lambda.size()) + " multipliers for " +
-                      std::to_string(model.coordinate_count()) + " and " +
-                      std::to_string(model.constraint_count()) + ")",
+                      std::to_string(system.coordinate_count()) + " and " +
+                      std::to_string(system.constraint_count()) + ")",
                   "Radau IIA step", "start from Model::initial_state() of this model");
     }
     // Automatic: SparseLU from sparse_threshold unknowns on; the stage equations then use the
     // sparse M and G as well.
-    const int size = model.constraint_count() + 2 * model.coordinate_count();
+    const int size = system.constraint_count() + 2 * system.coordinate_count();
     equations.set_constraint_form(constraint_form);
     equations.set_sparse(options.linear_solver == LinearSolver::Sparse ||
                          (options.linear_solver == LinearSolver::Automatic &&
                           equations.stages() * size >= options.sparse_threshold));
-    equations.begin_step(model, state, h);
-    current_model = &model;
+    equations.begin_step(system, state, h);
+    current_system = &system;
     current_step_size = h;
-    if (factorised_model != &model || factorised_size != equations.size() ||
+    if (factorised_system != &system || factorised_size != equations.size() ||
         factorised_step_size != h) {
       factorised = false;
     }
@@ -146,7 +147,7 @@ struct RadauIIA::Workspace {
     }
     ++stats.factorisations;
     factorised = true;
-    factorised_model = current_model;
+    factorised_system = current_system;
     factorised_size = equations.size();
     factorised_step_size = current_step_size;
     steps_with_factorisation = 0;
@@ -235,14 +236,14 @@ struct RadauIIA::Workspace {
   // or else the equation with the largest residual (a stage's rows are n kinematic, n dynamic,
   // then m constraint rows).
   std::string culprit(const State& state, double h) const {
-    const Model& model = *current_model;
-    const int n = model.coordinate_count();
-    const int block = 2 * n + model.constraint_count();
+    const ConstrainedSystem& system = *current_system;
+    const int n = system.coordinate_count();
+    const int block = 2 * n + system.constraint_count();
     if (!residual.allFinite() || !increment.allFinite()) {
       for (int i = 0; i < equations.stages(); ++i) {
         const std::string source =
-            model.non_finite_source(state.time + tableau.c(i) * h, equations.position(unknowns, i),
-                                    equations.velocity(unknowns, i));
+            system.non_finite_source(state.time + tableau.c(i) * h, equations.position(unknowns, i),
+                                     equations.velocity(unknowns, i));
         if (!source.empty()) return "; not finite: " + source;
       }
       return "; every element is finite at the stage values (a singular Newton matrix: "
@@ -253,12 +254,12 @@ struct RadauIIA::Workspace {
     residual.cwiseAbs().maxCoeff(&largest);
     const int row = static_cast<int>(largest % block);
     if (row < n)
-      return "; largest residual in the kinematics of " + model.coordinate_description(row);
+      return "; largest residual in the kinematics of " + system.coordinate_description(row);
     if (row < 2 * n) {
       return "; largest residual in the equation of motion of " +
-             model.coordinate_description(row - n);
+             system.coordinate_description(row - n);
     }
-    return "; largest residual in " + model.constraint_description(row - 2 * n);
+    return "; largest residual in " + system.constraint_description(row - 2 * n);
   }
 
   // --- accept or reject ---
@@ -306,10 +307,10 @@ RadauIIA::~RadauIIA() = default;
 RadauIIA::RadauIIA(RadauIIA&&) noexcept = default;
 RadauIIA& RadauIIA::operator=(RadauIIA&&) noexcept = default;
 
-StepStatistics RadauIIA::step(const Model& model, State& state, double step_size) {
+StepStatistics RadauIIA::step(const ConstrainedSystem& system, State& state, double step_size) {
   Workspace& w = *work_;
   StepStatistics stats;
-  w.initialise(model, state, step_size);
+  w.initialise(system, state, step_size);
   // A kept factorisation is tried first; if that attempt fails, the step restarts from the
   // prediction with a fresh matrix before giving up.
   const bool reuse = w.factorised;

@@ -21,16 +21,17 @@ RadauStageEquations::RadauStageEquations(const ButcherTableau& tableau)
       stages_(static_cast<int>(tableau.c.size())),
       first_stage_is_start_(tableau.a.row(0).isZero(0.0)) {}
 
-void RadauStageEquations::begin_step(const Model& model, const State& start, double step_size) {
-  model_ = &model;
+void RadauStageEquations::begin_step(const ConstrainedSystem& system, const State& start,
+                                     double step_size) {
+  system_ = &system;
   start_ = start;
   step_size_ = step_size;
-  n_ = model.coordinate_count();
-  m_ = model.constraint_count();
+  n_ = system.coordinate_count();
+  m_ = system.constraint_count();
   block_ = 2 * n_ + m_;
   position_level_.resize(m_);
   for (int k = 0; k < m_; ++k)
-    position_level_[k] = model.constraint_level(k) == ConstraintLevel::Position;
+    position_level_[k] = system.constraint_level(k) == ConstraintLevel::Position;
   stage_force_.assign(stages_, Eigen::VectorXd::Zero(n_));
   if (sparse_) {
     stage_constraint_jacobian_.clear();
@@ -63,17 +64,17 @@ Eigen::VectorXd RadauStageEquations::multiplier(const Eigen::VectorXd& unknowns,
 }
 
 void RadauStageEquations::residual(const Eigen::VectorXd& unknowns, Eigen::VectorXd& residual) {
-  FSI_ASSERT(model_ != nullptr && unknowns.size() == size(), "stage equations not bound");
-  const Model& model = *model_;
+  FSI_ASSERT(system_ != nullptr && unknowns.size() == size(), "stage equations not bound");
+  const ConstrainedSystem& system = *system_;
   const double h = step_size_;
   for (int j = 0; j < stages_; ++j) {
     q_ = position(unknowns, j);
     v_ = velocity(unknowns, j);
-    model.applied_force(stage_time(j), q_, v_, stage_force_[j]);
+    system.applied_force(stage_time(j), q_, v_, stage_force_[j]);
     if (sparse_) {
-      model.constraint_jacobian(stage_time(j), q_, stage_sparse_constraint_jacobian_[j]);
+      system.constraint_jacobian(stage_time(j), q_, stage_sparse_constraint_jacobian_[j]);
     } else {
-      model.constraint_jacobian(stage_time(j), q_, stage_constraint_jacobian_[j]);
+      system.constraint_jacobian(stage_time(j), q_, stage_constraint_jacobian_[j]);
     }
   }
   residual.resize(size());
@@ -83,9 +84,9 @@ void RadauStageEquations::residual(const Eigen::VectorXd& unknowns, Eigen::Vecto
     auto dynamic = residual.segment(v_offset(i), n_);
     kinematic = unknowns.segment(z_offset(i), n_);
     if (sparse_) {
-      dynamic = model.sparse_mass_matrix() * (unknowns.segment(v_offset(i), n_) - start_.v);
+      dynamic = system.sparse_mass_matrix() * (unknowns.segment(v_offset(i), n_) - start_.v);
     } else {
-      dynamic = model.mass_matrix() * (unknowns.segment(v_offset(i), n_) - start_.v);
+      dynamic = system.mass_matrix() * (unknowns.segment(v_offset(i), n_) - start_.v);
     }
     for (int j = 0; j < stages_; ++j) {
       kinematic -= a_(i, j) * unknowns.segment(v_offset(j), n_);
@@ -106,11 +107,11 @@ void RadauStageEquations::residual(const Eigen::VectorXd& unknowns, Eigen::Vecto
     v_ = velocity(unknowns, i);
     if (index2_) {
       // G V + dC/dt for position rows, G V - g for velocity rows: all on velocity level.
-      model.constraint_rate(stage_time(i), q_, v_, rate_);
+      system.constraint_rate(stage_time(i), q_, v_, rate_);
       residual.segment(l_offset(i), m_) = rate_;
       continue;
     }
-    model.constraint_residual(stage_time(i), q_, v_, constraint_);
+    system.constraint_residual(stage_time(i), q_, v_, constraint_);
     for (int k = 0; k < m_; ++k) {
       residual(l_offset(i) + k) = position_level_[k] ? constraint_(k) / h : constraint_(k);
       if (position_level_[k])
@@ -120,10 +121,10 @@ void RadauStageEquations::residual(const Eigen::VectorXd& unknowns, Eigen::Vecto
 }
 
 void RadauStageEquations::jacobian(const Eigen::VectorXd& unknowns, Eigen::MatrixXd& jacobian) {
-  FSI_ASSERT(model_ != nullptr && unknowns.size() == size(), "stage equations not bound");
-  const Model& model = *model_;
+  FSI_ASSERT(system_ != nullptr && unknowns.size() == size(), "stage equations not bound");
+  const ConstrainedSystem& system = *system_;
   const double h = step_size_;
-  const Eigen::MatrixXd& mass = model.mass_matrix();
+  const Eigen::MatrixXd& mass = system.mass_matrix();
   jacobian.setZero(size(), size());
   force_rounding_ = 0.0;
   force_velocity_rounding_ = 0.0;
@@ -131,16 +132,16 @@ void RadauStageEquations::jacobian(const Eigen::VectorXd& unknowns, Eigen::Matri
     q_ = position(unknowns, j);
     v_ = velocity(unknowns, j);
     const double t = stage_time(j);
-    model.applied_force_derivatives(t, q_, v_, by_position_, by_velocity_);
+    system.applied_force_derivatives(t, q_, v_, by_position_, by_velocity_);
     // F_r is evaluated from coordinates of size |q|: its rounding is ~eps sum_k |dF_r/dq_k| |q_k|
     // (plus the same for v). Newton passes it to V_r damped by the inertia and the stiffness.
     add_force_rounding(
         by_position_.cwiseAbs() * q_.cwiseAbs() + by_velocity_.cwiseAbs() * v_.cwiseAbs(),
         by_position_.diagonal(), by_velocity_.diagonal());
-    model.constraint_jacobian(t, q_, stage_constraint_jacobian_[j]);
+    system.constraint_jacobian(t, q_, stage_constraint_jacobian_[j]);
     lambda_ = unknowns.segment(l_offset(j), m_);
     // d/dZ_j (G(Q_j)^T L_j) = h * [d(G^T mu)/dq at mu = L_j].
-    model.constraint_force_derivative(t, q_, lambda_, constraint_force_derivative_);
+    system.constraint_force_derivative(t, q_, lambda_, constraint_force_derivative_);
     const Eigen::MatrixXd& g = stage_constraint_jacobian_[j];
     for (int i = 0; i < stages_; ++i) {
       const double a = a_(i, j);
@@ -161,7 +162,7 @@ void RadauStageEquations::jacobian(const Eigen::VectorXd& unknowns, Eigen::Matri
       jacobian.block(l_offset(j), v_offset(j), m_, n_) = g;
       velocity_derivative_.setZero(m_, n_);
       DenseMatrixSink sink(velocity_derivative_);
-      model.add_constraint_velocity_derivative(t, q_, v_, sink);
+      system.add_constraint_velocity_derivative(t, q_, v_, sink);
       jacobian.block(l_offset(j), z_offset(j), m_, n_) = h * velocity_derivative_;
       continue;
     }
@@ -176,7 +177,7 @@ void RadauStageEquations::add_force_rounding(const Eigen::VectorXd& rounding,
                                              const Eigen::VectorXd& by_position_diagonal,
                                              const Eigen::VectorXd& by_velocity_diagonal) {
   const double h = step_size_;
-  const Eigen::VectorXd& mass = model_->mass_diagonal();
+  const Eigen::VectorXd& mass = system_->mass_diagonal();
   for (int r = 0; r < n_; ++r) {
     const double resistance = mass(r) + h * std::abs(by_velocity_diagonal(r)) +
                               h * h * std::abs(by_position_diagonal(r)) +
@@ -188,10 +189,10 @@ void RadauStageEquations::add_force_rounding(const Eigen::VectorXd& rounding,
 
 void RadauStageEquations::jacobian(const Eigen::VectorXd& unknowns,
                                    Eigen::SparseMatrix<double>& jacobian) {
-  FSI_ASSERT(model_ != nullptr && unknowns.size() == size(), "stage equations not bound");
-  const Model& model = *model_;
+  FSI_ASSERT(system_ != nullptr && unknowns.size() == size(), "stage equations not bound");
+  const ConstrainedSystem& system = *system_;
   const double h = step_size_;
-  const Eigen::SparseMatrix<double>& mass = model.sparse_mass_matrix();
+  const Eigen::SparseMatrix<double>& mass = system.sparse_mass_matrix();
   using Iterator = Eigen::SparseMatrix<double>::InnerIterator;
   // The same blocks as the dense jacobian(), entry by entry.
   triplets_.clear();
@@ -202,14 +203,14 @@ void RadauStageEquations::jacobian(const Eigen::VectorXd& unknowns,
     q_ = position(unknowns, j);
     v_ = velocity(unknowns, j);
     const double t = stage_time(j);
-    model.applied_force_derivatives(t, q_, v_, sparse_by_position_, sparse_by_velocity_);
+    system.applied_force_derivatives(t, q_, v_, sparse_by_position_, sparse_by_velocity_);
     rounding = sparse_by_position_.cwiseAbs() * q_.cwiseAbs() +
                sparse_by_velocity_.cwiseAbs() * v_.cwiseAbs();
     add_force_rounding(rounding, sparse_by_position_.diagonal(), sparse_by_velocity_.diagonal());
     Eigen::SparseMatrix<double>& g = stage_sparse_constraint_jacobian_[j];
-    model.constraint_jacobian(t, q_, g);
+    system.constraint_jacobian(t, q_, g);
     lambda_ = unknowns.segment(l_offset(j), m_);
-    model.constraint_force_derivative(t, q_, lambda_, sparse_constraint_force_derivative_);
+    system.constraint_force_derivative(t, q_, lambda_, sparse_constraint_force_derivative_);
     for (int i = 0; i < stages_; ++i) {
       const double a = a_(i, j);
       if (a == 0.0) continue;
@@ -243,7 +244,7 @@ void RadauStageEquations::jacobian(const Eigen::VectorXd& unknowns,
           triplets_.emplace_back(l_offset(j) + it.row(), v_offset(j) + c, it.value());
       }
       TripletSink velocity_derivative;
-      model.add_constraint_velocity_derivative(t, q_, v_, velocity_derivative);
+      system.add_constraint_velocity_derivative(t, q_, v_, velocity_derivative);
       for (const auto& entry : velocity_derivative.triplets())
         triplets_.emplace_back(l_offset(j) + entry.row(), z_offset(j) + entry.col(),
                                h * entry.value());
@@ -270,7 +271,7 @@ double RadauStageEquations::increment_norm(const Eigen::VectorXd& unknowns,
                                            const NewtonOptions& options) const {
   const double h = step_size_;
   const double round_off = 100.0 * std::numeric_limits<double>::epsilon();
-  const Eigen::VectorXd& mass = model_->mass_diagonal();
+  const Eigen::VectorXd& mass = system_->mass_diagonal();
   double force = 0.0;
   for (const auto& f : stage_force_)
     force = std::max(force, max_abs(f));

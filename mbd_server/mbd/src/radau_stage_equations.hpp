@@ -1,6 +1,7 @@
 #pragma once
 // The nonlinear stage equations of one Radau IIA (or Lobatto IIIA) step on the index-3 DAE of
-// fsi::mbd::Model, in scaled unknowns (internal; the Newton driver is radau_iia.cpp).
+// a ConstrainedSystem (fsi::mbd::Model or any other), in scaled unknowns (internal; the Newton
+// driver is radau_iia.cpp).
 //
 // Physical stage values at t_i = t_n + c_i h: positions Q_i, velocities V_i, multipliers Lambda_i.
 // Unknowns per stage i, in this order:
@@ -30,8 +31,8 @@
 
 #include <vector>
 
+#include "fsi/mbd/constrained_system.hpp"
 #include "fsi/mbd/integrator.hpp"
-#include "fsi/mbd/model.hpp"
 
 namespace fsi::mbd::detail {
 
@@ -40,7 +41,7 @@ class RadauStageEquations {
   explicit RadauStageEquations(const ButcherTableau& tableau);
 
   // Binds the model and the start of the step (t_n, q_n, v_n, lambda_n) and the step size.
-  void begin_step(const Model& model, const State& start, double step_size);
+  void begin_step(const ConstrainedSystem& system, const State& start, double step_size);
 
   // Sparse matrices (large systems): residual() multiplies the sparse M and G, and the sparse
   // jacobian() is assembled from triplets in O(non-zeros). Dense (the default): dense M and G,
@@ -99,7 +100,7 @@ class RadauStageEquations {
   Eigen::VectorXd c_;
   int stages_;
   bool first_stage_is_start_;  // Lobatto IIIA: a_1j = 0
-  const Model* model_ = nullptr;
+  const ConstrainedSystem* system_ = nullptr;
   State start_;
   double step_size_ = 0.0;
   int n_ = 0;

@@ -167,7 +167,7 @@ void PointMass3D::spatial_position_jacobian(const ConstVector&, const Eigen::Vec
 
 OrthonormalityConstraint::OrthonormalityConstraint(std::string description, int offset, int i,
                                                    int j)
-    : description_(std::move(description)), offset_(offset), i_(i), j_(j) {}
+    : ConstraintRow(std::move(description)), offset_(offset), i_(i), j_(j) {}
 
 double OrthonormalityConstraint::residual(double, const Eigen::VectorXd& q,
                                           const Eigen::VectorXd&) const {

@@ -88,16 +88,13 @@ class PointMass3D final : public SpatialBody {
 // One of the six rows e_i . e_j = delta_ij of a RigidBody3D whose coordinates start at `offset`
 // (e_k at offset + 3 + 3 (k - 1)). Written 1/2 (e_i . e_i - 1) for i = j so that G has unit
 // entries at consistent states.
-class OrthonormalityConstraint final : public SparseConstraint {
+class OrthonormalityConstraint final : public ConstraintRow {
  public:
   OrthonormalityConstraint(std::string description, int offset, int i, int j);
 
-  std::string description() const override { return description_; }
-  ConstraintLevel level() const override { return ConstraintLevel::Position; }
   double residual(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v) const override;
   void add_jacobian_entries(double time, const Eigen::VectorXd& q, int row,
                             MatrixSink& jacobian) const override;
-  double explicit_time_derivative(double, const Eigen::VectorXd&) const override { return 0.0; }
   double acceleration_remainder(double time, const Eigen::VectorXd& q,
                                 const Eigen::VectorXd& v) const override;
   void add_force_derivative_entries(double time, const Eigen::VectorXd& q, double multiplier,
@@ -107,7 +104,6 @@ class OrthonormalityConstraint final : public SparseConstraint {
   int first_index() const { return offset_ + 3 * (i_ + 1); }
   int second_index() const { return offset_ + 3 * (j_ + 1); }
 
-  std::string description_;
   int offset_;
   int i_;
   int j_;

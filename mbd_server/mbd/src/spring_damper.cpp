@@ -7,7 +7,12 @@ namespace fsi::mbd::detail {
 template <typename Point, int D>
 BasicSpringDamper<Point, D>::BasicSpringDamper(Point a, Point b, double stiffness, double damping,
                                                double rest_length)
-    : a_(a), b_(b), stiffness_(stiffness), damping_(damping), rest_length_(rest_length) {}
+    : SparseForceElement("spring-damper"),
+      a_(a),
+      b_(b),
+      stiffness_(stiffness),
+      damping_(damping),
+      rest_length_(rest_length) {}
 
 template <typename Point, int D>
 double BasicSpringDamper<Point, D>::tension(const Eigen::VectorXd& q,

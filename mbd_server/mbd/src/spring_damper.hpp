@@ -30,7 +30,6 @@ class BasicSpringDamper final : public SparseForceElement, public MeasuredForce 
   bool add_jacobian_entries(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
                             MatrixSink& force_by_position,
                             MatrixSink& force_by_velocity) const override;
-  std::string description() const override { return "spring-damper"; }
   // k (l - rest_length)^2 / 2.
   double potential_energy(const Eigen::VectorXd& q) const override;
   double measured_force(double, const Eigen::VectorXd& q, const Eigen::VectorXd& v) const override {

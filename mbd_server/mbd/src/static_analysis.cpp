@@ -22,15 +22,17 @@ class LoadScaling {
   explicit LoadScaling(Model& model)
       : model_(model),
         gravity_(model.gravity()),
-        spatial_gravity_(model.spatial_gravity()),
         loads_(model.point_loads().begin(), model.point_loads().end()) {}
   ~LoadScaling() { apply(1.0); }
   LoadScaling(const LoadScaling&) = delete;
   LoadScaling& operator=(const LoadScaling&) = delete;
 
   void apply(double factor) {
-    model_.set_gravity(factor * gravity_);
-    model_.set_spatial_gravity(factor * spatial_gravity_);
+    if (model_.dimension() == 3) {
+      model_.set_spatial_gravity(factor * gravity_);
+    } else {
+      model_.set_gravity(factor * Eigen::Vector2d(gravity_.head<2>()));
+    }
     scaled_ = loads_;
     for (double& load : scaled_)
       load *= factor;
@@ -39,8 +41,7 @@ class LoadScaling {
 
  private:
   Model& model_;
-  Eigen::Vector2d gravity_;
-  Eigen::Vector3d spatial_gravity_;
+  Eigen::Vector3d gravity_;
   std::vector<double> loads_;
   std::vector<double> scaled_;
 };
@@ -124,16 +125,17 @@ StaticResult solve_static(Model& model, const State& start, const StaticOptions&
   return result;
 }
 
-std::vector<double> natural_frequencies(const Model& model, const State& state, int count) {
-  const int n = model.coordinate_count();
-  const int m = model.constraint_count();
+std::vector<double> natural_frequencies(const ConstrainedSystem& system, const State& state,
+                                        int count) {
+  const int n = system.coordinate_count();
+  const int m = system.constraint_count();
   FSI_ASSERT(state.q.size() == n && state.v.size() == n, "the state does not match the model");
   Eigen::MatrixXd by_position, by_velocity, jacobian, force_derivative;
-  model.applied_force_derivatives(state.time, state.q, state.v, by_position, by_velocity);
-  model.constraint_jacobian(state.time, state.q, jacobian);
+  system.applied_force_derivatives(state.time, state.q, state.v, by_position, by_velocity);
+  system.constraint_jacobian(state.time, state.q, jacobian);
   const Eigen::VectorXd lambda =
       state.lambda.size() == m ? Eigen::VectorXd(state.lambda) : Eigen::VectorXd::Zero(m);
-  model.constraint_force_derivative(state.time, state.q, lambda, force_derivative);
+  system.constraint_force_derivative(state.time, state.q, lambda, force_derivative);
   const Eigen::MatrixXd tangent = force_derivative - by_position;
   const Eigen::MatrixXd stiffness = 0.5 * (tangent + tangent.transpose());
 
@@ -148,7 +150,7 @@ std::vector<double> natural_frequencies(const Model& model, const State& state, 
     basis = q_full.rightCols(n - rank);
   }
   const Eigen::MatrixXd reduced_stiffness = basis.transpose() * stiffness * basis;
-  const Eigen::MatrixXd reduced_mass = basis.transpose() * model.mass_matrix() * basis;
+  const Eigen::MatrixXd reduced_mass = basis.transpose() * system.mass_matrix() * basis;
   const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> solver(
       0.5 * (reduced_stiffness + reduced_stiffness.transpose()),
       0.5 * (reduced_mass + reduced_mass.transpose()), Eigen::EigenvaluesOnly);

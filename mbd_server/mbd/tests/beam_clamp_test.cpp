@@ -7,9 +7,10 @@
 #include <numbers>
 #include <vector>
 
-#include "connectors.hpp"
+#include "direction_rows.hpp"
 #include "element_checks.hpp"
 #include "fsi/mbd/model.hpp"
+#include "fsi/mbd/readouts.hpp"
 #include "fsi/mbd/static_analysis.hpp"
 
 namespace fsi::mbd {
@@ -62,7 +63,7 @@ Eigen::Vector2d tip_displacement(bool on_body, BeamClamp clamp) {
                                Eigen::Vector2d(-along.y(), along.x());  // normal to the beam
   model.set_point_loads(std::vector<double>{load.x(), load.y()});
   const StaticResult result = solve_static(model, model.initial_state());
-  return model.marker_position(result.state, tip) - kLength * along;
+  return marker_position(model, result.state, tip).head<2>() - kLength * along;
 }
 
 TEST(MbdBeamClampToBody, CantileverOnATurnedHeldBodyBendsAsOnTheGround) {

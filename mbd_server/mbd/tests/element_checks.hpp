@@ -10,8 +10,12 @@
 
 #include <cmath>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "body.hpp"
+#include "body_point.hpp"
+#include "fsi/common/error.hpp"
 #include "fsi/mbd/constraint_element.hpp"
 #include "fsi/mbd/force_element.hpp"
 #include "fsi/mbd/model.hpp"
@@ -32,6 +36,14 @@ struct BodyPair {
   detail::RigidBody2D second{rigid("second", 1.5, 0.2)};
   Eigen::VectorXd q{{0.3, -0.2, 0.7, 1.1, 0.4, -2.1}};
   Eigen::VectorXd v{{0.5, -1.5, 2.0, -0.7, 0.9, 3.0}};
+
+  // The ends an element test runs over: body-body, body-ground and ground-body.
+  std::vector<std::pair<detail::BodyPoint, detail::BodyPoint>> point_pairs() const {
+    const detail::BodyPoint on_first(&first, 0, {0.2, -0.15});
+    const detail::BodyPoint on_second(&second, 3, {-0.1, 0.35});
+    const detail::BodyPoint on_ground(nullptr, 0, {-0.4, 0.25});
+    return {{on_first, on_second}, {on_first, on_ground}, {on_ground, on_second}};
+  }
 };
 
 inline Eigen::RowVectorXd jacobian_row_of(const ConstraintElement& row, const Eigen::VectorXd& q) {
@@ -125,6 +137,17 @@ inline void expect_sparse_model_matrices_equal(const Model& model, const State& 
   EXPECT_LE(difference(dense_derivative, sparse_derivative), 1e-14);
   EXPECT_EQ(Eigen::MatrixXd(model.sparse_mass_matrix()), model.mass_matrix());
   EXPECT_EQ(model.mass_diagonal(), model.mass_matrix().diagonal());
+}
+
+// The message of the fsi::Error that `add` throws, or "accepted" when it throws none.
+template <typename Add>
+std::string error_message(Add&& add) {
+  try {
+    add();
+  } catch (const fsi::Error& error) {
+    return error.what();
+  }
+  return "accepted";
 }
 
 }  // namespace fsi::mbd::testing

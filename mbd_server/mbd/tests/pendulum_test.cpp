@@ -12,50 +12,18 @@
 #include <vector>
 
 #include "fsi/mbd/integrator.hpp"
+#include "fsi/mbd/readouts.hpp"
+#include "reference_problems.hpp"
 
 namespace fsi::mbd {
 namespace {
 
-constexpr double kLength = 1.0;
-constexpr double kGravity = 9.81;
-// T = 4 sqrt(L/g) K(sin(pi/4)) for release at 90 degrees.
-constexpr double kExactPeriod = 2.3678419476;
-
-Model point_mass_pendulum() {
-  Model model;
-  RigidBody2DSpec bob;
-  bob.name = "bob";
-  bob.mass = 1.0;
-  bob.inertia = 1.0;  // irrelevant: no torque acts on the body
-  bob.position = {kLength, 0.0};
-  const BodyId body = model.add_rigid_body(bob);
-  model.set_gravity({0.0, -kGravity});
-  model.add_distance_constraint({kGround, {0.0, 0.0}}, {body, {0.0, 0.0}});
-  return model;
-}
+using reference::hermite_root;
+using reference::point_mass_pendulum;
+constexpr double kExactPeriod = reference::kPendulumPeriod;
 
 double energy(const Model& model, const State& state) {
-  return model.kinetic_energy(state) + model.potential_energy(state);
-}
-
-// The root of the cubic Hermite interpolant of x between two steps (x and dx/dt at both ends),
-// by bisection: the interpolation error is O(h^4), 1e-13 s at h = 1e-3.
-double hermite_root(double t0, double h, double x0, double v0, double x1, double v1) {
-  auto x = [&](double s) {
-    const double s2 = s * s, s3 = s2 * s;
-    return (2 * s3 - 3 * s2 + 1) * x0 + (s3 - 2 * s2 + s) * h * v0 + (-2 * s3 + 3 * s2) * x1 +
-           (s3 - s2) * h * v1;
-  };
-  double low = 0.0, high = 1.0;
-  for (int k = 0; k < 60; ++k) {
-    const double mid = 0.5 * (low + high);
-    if ((x(low) < 0) == (x(mid) < 0)) {
-      low = mid;
-    } else {
-      high = mid;
-    }
-  }
-  return t0 + 0.5 * (low + high) * h;
+  return kinetic_energy(model, state) + potential_energy(model, state);
 }
 
 struct PendulumRun {
@@ -83,9 +51,9 @@ PendulumRun run_two_periods(const RadauOptions& options, double h) {
     }
     run.energy_drift = std::max(run.energy_drift, std::abs(energy(model, state) - start_energy));
     run.position_constraint_drift =
-        std::max(run.position_constraint_drift, model.position_constraint_drift(state));
+        std::max(run.position_constraint_drift, position_constraint_drift(model, state));
     run.velocity_constraint_drift =
-        std::max(run.velocity_constraint_drift, model.velocity_constraint_drift(state));
+        std::max(run.velocity_constraint_drift, velocity_constraint_drift(model, state));
   }
   EXPECT_EQ(crossings.size(), 4u);
   if (crossings.size() >= 4) run.period = (crossings[3] - crossings[0]) / 1.5;

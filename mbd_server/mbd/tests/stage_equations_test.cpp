@@ -6,6 +6,7 @@
 #include <random>
 
 #include "fsi/mbd/integrator.hpp"
+#include "fsi/mbd/model.hpp"
 #include "radau_stage_equations.hpp"
 #include "test_elements.hpp"
 

@@ -9,6 +9,8 @@
 #include <cstdio>
 
 #include "fsi/mbd/integrator.hpp"
+#include "fsi/mbd/model.hpp"
+#include "fsi/mbd/readouts.hpp"
 
 namespace fsi::mbd {
 namespace {
@@ -43,7 +45,7 @@ Model stiff_chain() {
 double chain_energy(const Model& model, const State& state) {
   const double x[] = {0.0, state.q(0), state.q(3), state.q(6)};
   const double stiffness[] = {kSoft, kStiff, kSoft};
-  double energy = model.kinetic_energy(state);
+  double energy = kinetic_energy(model, state);
   for (int k = 0; k < 3; ++k)
     energy += 0.5 * stiffness[k] * std::pow(x[k + 1] - x[k] - 1.0, 2);
   return energy;

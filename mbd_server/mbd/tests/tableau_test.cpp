@@ -15,6 +15,19 @@ double sum_b_c_power(const ButcherTableau& t, int power) {
   return sum;
 }
 
+// C(s): sum_j a_ij c_j^(k-1) = c_i^k / k, k = 1..s.
+void expect_stage_order(const ButcherTableau& t) {
+  const auto s = static_cast<int>(t.c.size());
+  for (int i = 0; i < s; ++i) {
+    for (int k = 1; k <= s; ++k) {
+      double row = 0.0;
+      for (int j = 0; j < s; ++j)
+        row += t.a(i, j) * std::pow(t.c(j), k - 1);
+      EXPECT_NEAR(row, std::pow(t.c(i), k) / k, 2e-16) << "s = " << s << ", C(" << k << ")";
+    }
+  }
+}
+
 TEST(MbdRadauTableau, SatisfiesTheSimplifyingAssumptionsOfOrder2sMinus1) {
   for (int s = 1; s <= 3; ++s) {
     const ButcherTableau t = radau_iia(s);
@@ -29,15 +42,7 @@ TEST(MbdRadauTableau, SatisfiesTheSimplifyingAssumptionsOfOrder2sMinus1) {
       EXPECT_NEAR(sum_b_c_power(t, k - 1), 1.0 / k, 2e-16) << "s = " << s << ", B(" << k << ")";
     // The quadrature is not better than that: B(2s) fails, so the order is exactly 2s-1.
     EXPECT_GT(std::abs(sum_b_c_power(t, 2 * s - 1) - 1.0 / (2 * s)), 1e-4);
-    // C(s): sum_j a_ij c_j^(k-1) = c_i^k / k, k = 1..s.
-    for (int i = 0; i < s; ++i) {
-      for (int k = 1; k <= s; ++k) {
-        double row = 0.0;
-        for (int j = 0; j < s; ++j)
-          row += t.a(i, j) * std::pow(t.c(j), k - 1);
-        EXPECT_NEAR(row, std::pow(t.c(i), k) / k, 2e-16) << "s = " << s << ", C(" << k << ")";
-      }
-    }
+    expect_stage_order(t);
     // Nodes distinct and inside (0, 1].
     for (int i = 0; i < s; ++i) {
       EXPECT_GT(t.c(i), 0.0);
@@ -61,14 +66,7 @@ TEST(MbdLobattoTableau, SatisfiesTheSimplifyingAssumptionsOfOrder2sMinus2) {
     for (int k = 1; k <= 2 * s - 2; ++k)
       EXPECT_NEAR(sum_b_c_power(t, k - 1), 1.0 / k, 2e-16) << "s = " << s << ", B(" << k << ")";
     EXPECT_GT(std::abs(sum_b_c_power(t, 2 * s - 2) - 1.0 / (2 * s - 1)), 1e-4);
-    for (int i = 0; i < s; ++i) {
-      for (int k = 1; k <= s; ++k) {
-        double row = 0.0;
-        for (int j = 0; j < s; ++j)
-          row += t.a(i, j) * std::pow(t.c(j), k - 1);
-        EXPECT_NEAR(row, std::pow(t.c(i), k) / k, 2e-16) << "s = " << s << ", C(" << k << ")";
-      }
-    }
+    expect_stage_order(t);
   }
   EXPECT_THROW(lobatto_iiia(1), fsi::Error);
   EXPECT_THROW(lobatto_iiia(4), fsi::Error);

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "fsi/common/error.hpp"
+#include "fsi/mbd/readouts.hpp"
 #include "fsi/scene/scene.hpp"
 
 namespace fsi::scene {
@@ -17,13 +18,13 @@ void boundary_state(const BoundaryMesh& boundary, const mbd::Model& model, const
   positions.assign(dimension * boundary.vertex_count, 0.0);
   velocities.assign(positions.size(), 0.0);
   if (dimension == 2) {
-    model.marker_positions(state, positions);  // 2D: every vertex is a marker (ground ones too)
-    model.marker_velocities(state, velocities);
+    marker_positions(model, state, positions);  // 2D: every vertex is a marker (ground ones too)
+    marker_velocities(model, state, velocities);
     return;
   }
   if (dynamic > 0) {
-    model.marker_positions(state, std::span<double>(positions.data(), dynamic));
-    model.marker_velocities(state, std::span<double>(velocities.data(), dynamic));
+    marker_positions(model, state, std::span<double>(positions.data(), dynamic));
+    marker_velocities(model, state, std::span<double>(velocities.data(), dynamic));
   }
   FSI_ASSERT(dynamic + boundary.static_positions.size() == positions.size(),
              "3D boundary vertices do not add up");

@@ -2,6 +2,7 @@
 // determines.
 
 #include "fsi/common/error.hpp"
+#include "fsi/mbd/readouts.hpp"
 #include "fsi/scene/scene.hpp"
 
 namespace fsi::scene {
@@ -16,14 +17,14 @@ double structure_sensor_value(const mbd::Model& model, const SensorSpec& sensor,
                      : Eigen::Vector3d::Zero()};
     switch (sensor.type) {
       case SensorType::Position:
-        return model.spatial_point_position(state, centre)(sensor.axis);
+        return point_position(model, state, centre)(sensor.axis);
       case SensorType::Velocity:
-        return model.spatial_point_velocity(state, centre)(sensor.axis);
+        return point_velocity(model, state, centre)(sensor.axis);
       case SensorType::FluidForce:
-        return model.spatial_point_load_resultant(state, sensor.body)(sensor.axis);
+        return point_load_resultant(model, state, sensor.body).stacked()(sensor.axis);
       case SensorType::JointForce:
-        return model.spatial_joint_reaction(state, sensor.first_row, sensor.rows,
-                                            sensor.body)(sensor.axis);
+        return joint_reaction(model, state, sensor.first_row, sensor.rows, sensor.body)
+            .stacked()(sensor.axis);
       default:
         break;  // energies below; the builder refuses the rest in 3D
     }
@@ -31,8 +32,8 @@ double structure_sensor_value(const mbd::Model& model, const SensorSpec& sensor,
   if (sensor.point &&
       (sensor.type == SensorType::Position || sensor.type == SensorType::Velocity)) {
     const mbd::BodyPointSpec point{sensor.body, {(*sensor.point)[0], (*sensor.point)[1]}};
-    return (sensor.type == SensorType::Position ? model.point_position(state, point)
-                                                : model.point_velocity(state, point))(sensor.axis);
+    return (sensor.type == SensorType::Position ? point_position(model, state, point)
+                                                : point_velocity(model, state, point))(sensor.axis);
   }
   switch (sensor.type) {
     case SensorType::Position:
@@ -40,17 +41,18 @@ double structure_sensor_value(const mbd::Model& model, const SensorSpec& sensor,
     case SensorType::Velocity:
       return model.velocity(state, sensor.body, sensor.component);
     case SensorType::FluidForce:
-      return model.point_load_resultant(state, sensor.body)(component);
+      return point_load_resultant(model, state, sensor.body).planar()(component);
     case SensorType::ConstraintForce:
-      return model.constraint_force(state, sensor.body, sensor.component);
+      return constraint_force(model, state, sensor.body, sensor.component);
     case SensorType::JointForce:
-      return model.joint_reaction(state, sensor.first_row, sensor.rows, sensor.body)(component);
+      return joint_reaction(model, state, sensor.first_row, sensor.rows, sensor.body)
+          .planar()(component);
     case SensorType::SpringForce:
-      return model.force_element_force(state, sensor.force_element);
+      return force_element_force(model, state, sensor.force_element);
     case SensorType::KineticEnergy:
-      return model.kinetic_energy(state);
+      return kinetic_energy(model, state);
     case SensorType::PotentialEnergy:
-      return model.potential_energy(state);
+      return potential_energy(model, state);
     case SensorType::TotalFluidForce:
       break;
   }

@@ -6,6 +6,7 @@
 #include <fstream>
 
 #include "fsi/common/error.hpp"
+#include "fsi/mbd/readouts.hpp"
 #include "fsi/scene/scene.hpp"
 #include "test_files.hpp"
 
@@ -327,10 +328,10 @@ Coupling { refinement_resolution = 0.002 }
   EXPECT_EQ(scene.boundary.segments.size(), 2u * 18);
   const mbd::State state = model.initial_state();
   // The beam runs along +y: its left normal is -x. Upper face first (s = 0 .. L), then back.
-  EXPECT_NEAR(model.marker_position(state, 0).x(), -0.002, 1e-15);
-  EXPECT_NEAR(model.marker_position(state, 8).y(), 0.1, 1e-15);
-  EXPECT_NEAR(model.marker_position(state, 9).x(), 0.002, 1e-15);
-  EXPECT_NEAR(model.marker_position(state, 17).y(), 0.0, 1e-15);
+  EXPECT_NEAR(marker_position(model, state, 0).x(), -0.002, 1e-15);
+  EXPECT_NEAR(marker_position(model, state, 8).y(), 0.1, 1e-15);
+  EXPECT_NEAR(marker_position(model, state, 9).x(), 0.002, 1e-15);
+  EXPECT_NEAR(marker_position(model, state, 17).y(), 0.0, 1e-15);
   ASSERT_EQ(scene.sensors.size(), 1u);
   EXPECT_EQ(scene.sensors[0].body, valve);
 

@@ -18,7 +18,6 @@
 #include <memory>
 
 #include "fsi/mbd/integrator.hpp"
-#include "fsi/mbd/model.hpp"
 
 namespace fsi::mbd {
 
@@ -53,7 +52,7 @@ class AdaptiveRadau {
   // Integrates from state.time to end_time, landing on it exactly (the last step is shortened).
   // The step size carries over to the next call. Throws fsi::Error with the time reached if the
   // step falls below min_step; `state` is then the last accepted state.
-  void advance(const Model& model, State& state, double end_time);
+  void advance(const ConstrainedSystem& system, State& state, double end_time);
 
   double step_size() const;  // the next step size the controller proposes
   const AdaptiveStatistics& statistics() const;

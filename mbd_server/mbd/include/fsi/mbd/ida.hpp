@@ -1,9 +1,9 @@
 #pragma once
 // SUNDIALS IDA (variable-order, variable-step BDF, orders 1-5) as the alternative integrator of
-// fsi::mbd::Model, for runs of the multibody system alone. The constraints are posed in the
-// stabilised index-2 form of Gear, Gupta and Leimkuhler (position and velocity level both
-// enforced, the multipliers excluded from the error test); the Newton matrix is the model's
-// analytic Jacobian, factorised by SUNDIALS' dense LU. Formulation and why: docs/theory.md;
+// a ConstrainedSystem (fsi::mbd::Model), for runs of the multibody system alone. The constraints
+// are posed in the stabilised index-2 form of Gear, Gupta and Leimkuhler (position and velocity
+// level both enforced, the multipliers excluded from the error test); the Newton matrix is the
+// model's analytic Jacobian, factorised by SUNDIALS' dense LU. Formulation and why: docs/theory.md;
 // the equations: src/ggl_equations.hpp.
 //
 // The SUNDIALS types stay in the source file: this header needs only Eigen and the model.
@@ -11,7 +11,7 @@
 #include <cstdint>
 #include <memory>
 
-#include "fsi/mbd/model.hpp"
+#include "fsi/mbd/constrained_system.hpp"
 
 namespace fsi::mbd {
 
@@ -50,7 +50,7 @@ class IdaIntegrator {
   // multipliers and accelerations made consistent ([M G^T; G 0] [a; lambda] = [F; -remainder]).
   // Throws fsi::Error naming the time reached and IDA's reason on failure; `state` is then left
   // unchanged.
-  void advance(const Model& model, State& state, double end_time);
+  void advance(const ConstrainedSystem& system, State& state, double end_time);
 
   // Forgets the history: the next advance() restarts.
   void reset();

@@ -2,11 +2,11 @@
 // Implicit Runge-Kutta integration of the constrained equations of motion (thesis §2.1.3.3):
 // Radau IIA with s = 1, 2, 3 stages (orders 1, 3, 5; stiffly accurate, L-stable), or Lobatto
 // IIIA with s = 2, 3 stages (orders 2, 4; stiffly accurate, A-stable but not L-stable; HOTINT's
-// tableau_name), applied directly to the index-3 DAE of fsi::mbd::Model, with a fixed step given
-// per call. Orders on the constrained problem: docs/theory.md. The stage
-// equations are solved by (modified) Newton iterations with a dense LU factorisation; a step runs
-// the named stages initialise, predict, Newton increment, accept/reject, finalise.
-// Equations, unknowns and their scaling: mbd_server/mbd/README.md.
+// tableau_name), applied directly to the index-3 DAE of a ConstrainedSystem (fsi::mbd::Model or any
+// other), with a fixed step given per call. Orders on the constrained problem: docs/theory.md. The
+// stage equations are solved by (modified) Newton iterations with a dense LU factorisation; a step
+// runs the named stages initialise, predict, Newton increment, accept/reject, finalise. Equations,
+// unknowns and their scaling: mbd_server/mbd/README.md.
 
 #include <Eigen/Dense>
 #include <Eigen/SparseCore>
@@ -16,7 +16,7 @@
 #include <memory>
 #include <string>
 
-#include "fsi/mbd/model.hpp"
+#include "fsi/mbd/constrained_system.hpp"
 
 namespace fsi::mbd {
 
@@ -99,7 +99,7 @@ class RadauIIA {
   // Advances `state` from state.time by `step_size`. The model's point loads are held constant
   // over the step (thesis Fig. 4.10). Throws fsi::Error naming time, step size and residual if
   // Newton does not converge; `state` is then left unchanged.
-  StepStatistics step(const Model& model, State& state, double step_size);
+  StepStatistics step(const ConstrainedSystem& system, State& state, double step_size);
 
   // Drops the kept factorisation; needed only after changing the model's structure in place.
   void reset();

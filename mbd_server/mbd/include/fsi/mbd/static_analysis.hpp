@@ -39,6 +39,7 @@ StaticResult solve_static(Model& model, const State& start, const StaticOptions&
 // the constraint Jacobian G, with K symmetrised (the non-conservative part of follower loads is
 // left out). Ascending; an unstable mode (omega^2 < 0) is returned as -sqrt(-omega^2) / (2 pi).
 // Velocity-level constraints restrict the velocities and are included in G.
-std::vector<double> natural_frequencies(const Model& model, const State& state, int count);
+std::vector<double> natural_frequencies(const ConstrainedSystem& system, const State& state,
+                                        int count);
 
 }  // namespace fsi::mbd

@@ -1,8 +1,7 @@
-#include <utility>
-
-#include "constraint.hpp"
+#include "point_rows.hpp"
 
 #include <cmath>
+#include <utility>
 
 #include "spatial_body.hpp"
 
@@ -11,60 +10,10 @@ namespace fsi::mbd::detail {
 template <int D>
 using Vector = Eigen::Matrix<double, D, 1>;
 
-CoordinateConstraint::CoordinateConstraint(std::string description, int coordinate_index,
-                                           double value)
-    : description_(std::move(description)), index_(coordinate_index), value_(value) {}
-
-double CoordinateConstraint::residual(double, const Eigen::VectorXd& q,
-                                      const Eigen::VectorXd&) const {
-  return q(index_) - value_;
-}
-
-void CoordinateConstraint::add_jacobian_entries(double, const Eigen::VectorXd&, int row,
-                                                MatrixSink& jacobian) const {
-  jacobian.add(row, index_, 1.0);
-}
-
-LinearCoordinateConstraint::LinearCoordinateConstraint(std::string description,
-                                                       Eigen::VectorXi indices,
-                                                       Eigen::VectorXd weights, double value)
-    : description_(std::move(description)),
-      indices_(std::move(indices)),
-      weights_(std::move(weights)),
-      value_(value) {}
-
-double LinearCoordinateConstraint::residual(double, const Eigen::VectorXd& q,
-                                            const Eigen::VectorXd&) const {
-  double sum = -value_;
-  for (Eigen::Index k = 0; k < indices_.size(); ++k)
-    sum += weights_(k) * q(indices_(k));
-  return sum;
-}
-
-void LinearCoordinateConstraint::add_jacobian_entries(double, const Eigen::VectorXd&, int row,
-                                                      MatrixSink& jacobian) const {
-  for (Eigen::Index k = 0; k < indices_.size(); ++k)
-    jacobian.add(row, indices_(k), weights_(k));
-}
-
-VelocityConstraint::VelocityConstraint(std::string description, int coordinate_index,
-                                       double velocity)
-    : description_(std::move(description)), index_(coordinate_index), velocity_(velocity) {}
-
-double VelocityConstraint::residual(double, const Eigen::VectorXd&,
-                                    const Eigen::VectorXd& v) const {
-  return v(index_) - velocity_;
-}
-
-void VelocityConstraint::add_jacobian_entries(double, const Eigen::VectorXd&, int row,
-                                              MatrixSink& jacobian) const {
-  jacobian.add(row, index_, 1.0);
-}
-
 template <typename Point, int D>
 BasicPointConstraint<Point, D>::BasicPointConstraint(std::string description, Point a, Point b,
                                                      int axis)
-    : description_(std::move(description)), a_(a), b_(b), axis_(axis) {}
+    : ConstraintRow(std::move(description)), a_(a), b_(b), axis_(axis) {}
 
 template <typename Point, int D>
 double BasicPointConstraint<Point, D>::residual(double, const Eigen::VectorXd& q,
@@ -100,7 +49,7 @@ void BasicPointConstraint<Point, D>::add_force_derivative_entries(double, const 
 template <typename Point, int D>
 BasicDistanceConstraint<Point, D>::BasicDistanceConstraint(std::string description, Point a,
                                                            Point b, double length)
-    : description_(std::move(description)), a_(a), b_(b), length_(length) {}
+    : ConstraintRow(std::move(description)), a_(a), b_(b), length_(length) {}
 
 template <typename Point, int D>
 PointColumns<D> BasicDistanceConstraint<Point, D>::separation_jacobian(
@@ -152,56 +101,83 @@ void BasicDistanceConstraint<Point, D>::add_force_derivative_entries(double,
 
 namespace {
 
-// d f/dt by a central difference with a step balancing truncation and rounding.
-double time_derivative(const std::function<double(double)>& f, double time) {
-  const double step = 1e-5 * (1.0 + std::abs(time));
-  return (f(time + step) - f(time - step)) / (2.0 * step);
+// The 2D cross product u x w = u^T S w.
+double cross(const Eigen::Vector2d& u, const Eigen::Vector2d& w) {
+  return u.x() * w.y() - u.y() * w.x();
+}
+
+// S w with u x w = u . (S w): a quarter turn clockwise.
+Eigen::Vector2d cross_partner(const Eigen::Vector2d& w) {
+  return {w.y(), -w.x()};
 }
 
 }  // namespace
 
-PrescribedCoordinate::PrescribedCoordinate(std::string description, int coordinate_index,
-                                           std::function<double(double)> position,
-                                           std::function<double(double)> rate)
-    : description_(std::move(description)),
-      index_(coordinate_index),
-      position_(std::move(position)),
-      rate_(std::move(rate)) {}
+PrismaticConstraint::PrismaticConstraint(std::string description, BodyPoint origin, BodyPoint tip,
+                                         BodyPoint slider, double axis_length)
+    : ConstraintRow(std::move(description)),
+      origin_(origin),
+      tip_(tip),
+      slider_(slider),
+      axis_length_(axis_length) {}
 
-double PrescribedCoordinate::residual(double time, const Eigen::VectorXd& q,
-                                      const Eigen::VectorXd&) const {
-  return q(index_) - position_(time);
+PrismaticConstraint::Geometry PrismaticConstraint::geometry(const Eigen::VectorXd& q) const {
+  Geometry g{
+      tip_.position(q) - origin_.position(q), slider_.position(q) - origin_.position(q), {}, {}};
+  tip_.add_jacobian(q, 1.0, g.axis_jacobian);
+  origin_.add_jacobian(q, -1.0, g.axis_jacobian);
+  slider_.add_jacobian(q, 1.0, g.separation_jacobian);
+  origin_.add_jacobian(q, -1.0, g.separation_jacobian);
+  return g;
 }
 
-void PrescribedCoordinate::add_jacobian_entries(double, const Eigen::VectorXd&, int row,
-                                                MatrixSink& jacobian) const {
-  jacobian.add(row, index_, 1.0);
+double PrismaticConstraint::residual(double, const Eigen::VectorXd& q,
+                                     const Eigen::VectorXd&) const {
+  const Eigen::Vector2d e = tip_.position(q) - origin_.position(q);
+  const Eigen::Vector2d d = slider_.position(q) - origin_.position(q);
+  return cross(e, d) / axis_length_;
 }
 
-double PrescribedCoordinate::acceleration_remainder(double time, const Eigen::VectorXd&,
-                                                    const Eigen::VectorXd&) const {
-  return -time_derivative(rate_, time);  // d^2C/dt^2 = a_i - s''(t)
+void PrismaticConstraint::add_jacobian_entries(double, const Eigen::VectorXd& q, int row,
+                                               MatrixSink& jacobian) const {
+  // d(e x d) = (S d) . de - (S e) . dd, since e x d = -(d x e).
+  const Geometry g = geometry(q);
+  g.axis_jacobian.add_row(jacobian, row, cross_partner(g.separation) / axis_length_);
+  g.separation_jacobian.add_row(jacobian, row, -cross_partner(g.axis) / axis_length_);
 }
 
-TimeVelocityConstraint::TimeVelocityConstraint(std::string description, int coordinate_index,
-                                               std::function<double(double)> velocity)
-    : description_(std::move(description)),
-      index_(coordinate_index),
-      velocity_(std::move(velocity)) {}
-
-double TimeVelocityConstraint::residual(double time, const Eigen::VectorXd&,
-                                        const Eigen::VectorXd& v) const {
-  return v(index_) - velocity_(time);
+double PrismaticConstraint::acceleration_remainder(double, const Eigen::VectorXd& q,
+                                                   const Eigen::VectorXd& v) const {
+  // (e x d)'' = e'' x d + 2 e' x d' + e x d''; the acceleration-free parts of e'' and d''.
+  const Eigen::Vector2d e = tip_.position(q) - origin_.position(q);
+  const Eigen::Vector2d d = slider_.position(q) - origin_.position(q);
+  const Eigen::Vector2d e_rate = tip_.velocity(q, v) - origin_.velocity(q, v);
+  const Eigen::Vector2d d_rate = slider_.velocity(q, v) - origin_.velocity(q, v);
+  const Eigen::Vector2d origin_remainder = origin_.acceleration_remainder(q, v);
+  const Eigen::Vector2d e_remainder = tip_.acceleration_remainder(q, v) - origin_remainder;
+  const Eigen::Vector2d d_remainder = slider_.acceleration_remainder(q, v) - origin_remainder;
+  return (cross(e_remainder, d) + 2.0 * cross(e_rate, d_rate) + cross(e, d_remainder)) /
+         axis_length_;
 }
 
-void TimeVelocityConstraint::add_jacobian_entries(double, const Eigen::VectorXd&, int row,
-                                                  MatrixSink& jacobian) const {
-  jacobian.add(row, index_, 1.0);
-}
-
-double TimeVelocityConstraint::acceleration_remainder(double time, const Eigen::VectorXd&,
-                                                      const Eigen::VectorXd&) const {
-  return -time_derivative(velocity_, time);
+void PrismaticConstraint::add_force_derivative_entries(double, const Eigen::VectorXd& q,
+                                                       double multiplier,
+                                                       MatrixSink& derivative) const {
+  // mu G^T = (mu / |axis|) (E^T S d - D^T S e), E = de/dq, D = dd/dq. Its q-derivative: the
+  // products E^T S D - D^T S E, plus E^T and D^T differentiated at fixed vectors, which are
+  // the point-load derivatives of the loads mu S d / |axis| (tip +, origin -) and
+  // -mu S e / |axis| (slider +, origin -).
+  const Geometry g = geometry(q);
+  const double scale = multiplier / axis_length_;
+  Eigen::Matrix2d quarter_turn;
+  quarter_turn << 0.0, 1.0, -1.0, 0.0;  // S
+  g.axis_jacobian.add_transpose_product(derivative, quarter_turn, g.separation_jacobian, scale);
+  g.separation_jacobian.add_transpose_product(derivative, quarter_turn, g.axis_jacobian, -scale);
+  const Eigen::Vector2d on_tip = scale * cross_partner(g.separation);
+  const Eigen::Vector2d on_slider = -scale * cross_partner(g.axis);
+  tip_.add_load_derivative(q, on_tip, derivative);
+  slider_.add_load_derivative(q, on_slider, derivative);
+  origin_.add_load_derivative(q, -on_tip - on_slider, derivative);
 }
 
 template class BasicPointConstraint<BodyPoint, 2>;

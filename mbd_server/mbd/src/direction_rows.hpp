@@ -1,0 +1,87 @@
+#pragma once
+// Constraint rows on body directions (internal; the row interface is
+// fsi/mbd/constraint_element.hpp, the common part ConstraintRow in sink_elements.hpp):
+//
+//   perpendicularity   d_a . d_b = 0 with the spatial body directions d = r(p + u) - r(p), exact
+//                      for rigid bodies; two of them keep a revolute joint's axis, three a fixed
+//                      joint's orientation
+//   slope on a body    a beam node's slope held in the frame of a planar rigid body
+//
+// (The orthonormality rows of a spatial rigid body's own axes are with the body,
+// rigid_body_3d.hpp.)
+
+#include <Eigen/Dense>
+
+#include <string>
+
+#include "fsi/mbd/constraint_element.hpp"
+#include "sink_elements.hpp"
+#include "spatial_body.hpp"
+
+namespace fsi::mbd::detail {
+
+// A body direction as the difference of two of its material points (tip - base).
+struct SpatialDirection {
+  SpatialPoint base;
+  SpatialPoint tip;
+  Eigen::Vector3d value(const Eigen::VectorXd& q) const {
+    return tip.position(q) - base.position(q);
+  }
+  Eigen::Vector3d rate(const Eigen::VectorXd& q, const Eigen::VectorXd& v) const {
+    return tip.velocity(q, v) - base.velocity(q, v);
+  }
+  SpatialColumns jacobian(const Eigen::VectorXd& q) const;
+  Eigen::Vector3d acceleration_remainder(const Eigen::VectorXd& q, const Eigen::VectorXd& v) const {
+    return tip.acceleration_remainder(q, v) - base.acceleration_remainder(q, v);
+  }
+  void add_load_derivative(const Eigen::VectorXd& q, const Eigen::Vector3d& force,
+                           MatrixSink& derivative) const {
+    tip.add_load_derivative(q, force, derivative);
+    base.add_load_derivative(q, -force, derivative);
+  }
+};
+
+class PerpendicularityConstraint final : public ConstraintRow {
+ public:
+  PerpendicularityConstraint(std::string description, SpatialDirection a, SpatialDirection b);
+
+  double residual(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v) const override;
+  void add_jacobian_entries(double time, const Eigen::VectorXd& q, int row,
+                            MatrixSink& jacobian) const override;
+  double acceleration_remainder(double time, const Eigen::VectorXd& q,
+                                const Eigen::VectorXd& v) const override;
+  void add_force_derivative_entries(double time, const Eigen::VectorXd& q, double multiplier,
+                                    MatrixSink& derivative) const override;
+
+ private:
+  SpatialDirection a_;
+  SpatialDirection b_;
+};
+
+// A beam node's slope s = r' held in the frame of a planar rigid body with angle phi (a beam
+// clamped to a body): the direction row C = (R(phi) m) . s (m the initial normal of the slope in
+// the body frame; the stretch stays free), or a component row C = s_k - (R(phi) u)_k (u the
+// initial slope in the body frame; two of them hold the slope entirely).
+class SlopeOnBodyConstraint final : public ConstraintRow {
+ public:
+  // component < 0: the direction row with m = `vector`; 0 or 1: the component row with u.
+  SlopeOnBodyConstraint(std::string description, int slope_x, int slope_y, int angle,
+                        const Eigen::Vector2d& vector, int component);
+
+  double residual(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v) const override;
+  void add_jacobian_entries(double time, const Eigen::VectorXd& q, int row,
+                            MatrixSink& jacobian) const override;
+  double acceleration_remainder(double time, const Eigen::VectorXd& q,
+                                const Eigen::VectorXd& v) const override;
+  void add_force_derivative_entries(double time, const Eigen::VectorXd& q, double multiplier,
+                                    MatrixSink& derivative) const override;
+
+ private:
+  int slope_x_;
+  int slope_y_;
+  int angle_;
+  Eigen::Vector2d vector_;
+  int component_;
+};
+
+}  // namespace fsi::mbd::detail
