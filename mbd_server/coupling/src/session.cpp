@@ -128,6 +128,17 @@ class Session {
     take_ready(ready);
     take_forces(ready.initial_forces, 0);
     timings_.setup.stop();
+    write_initial_output();
+  }
+
+  // Row and frame at t = 0: the structure as given and the fluid as equilibrated around it, with
+  // the forces they exchange before the first step.
+  void write_initial_output() {
+    {
+      ScopedTimer timer(timings_.output);
+      sensors_->write(0.0, structure_->initial_sensor_readout(total_fluid_force_));
+    }
+    if (scene_.output.snapshot_every_steps > 0) take_snapshot(0);
   }
 
   void take_ready(const FluidReady& ready) {

@@ -115,12 +115,23 @@ void StructureSide::apply_vertex_forces(std::span<const double> forces, std::uin
 
 std::vector<double> StructureSide::sensor_readout(
     const std::array<double, 3>& total_fluid_force) const {
+  return readout(state_, total_fluid_force);
+}
+
+std::vector<double> StructureSide::initial_sensor_readout(
+    const std::array<double, 3>& total_fluid_force) const {
+  // initial_state() solves the multipliers with the point loads now set on the model.
+  return readout(scene_.model.initial_state(), total_fluid_force);
+}
+
+std::vector<double> StructureSide::readout(const mbd::State& state,
+                                           const std::array<double, 3>& total_fluid_force) const {
   std::vector<double> values;
   values.reserve(scene_.sensors.size());
   for (const auto& sensor : scene_.sensors) {
     values.push_back(sensor.type == scene::SensorType::TotalFluidForce
                          ? total_fluid_force[static_cast<std::size_t>(sensor.axis)]
-                         : scene::structure_sensor_value(scene_.model, sensor, state_));
+                         : scene::structure_sensor_value(scene_.model, sensor, state));
   }
   return values;
 }

@@ -1,5 +1,6 @@
 // The session loop against the in-process fake fluid side (no LIGGGHTS, no TCP): set-up,
-// equilibration, 100 coupled steps, snapshots, and a fault that ends the run failed.
+// equilibration, the t = 0 row and snapshot, 100 coupled steps, snapshots, and a fault that ends
+// the run failed.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -91,7 +92,8 @@ TEST_F(SessionLoop, SetsUpEquilibratesAndCouplesOneHundredSteps) {
     EXPECT_EQ(motion.time_step, kStep);
     EXPECT_EQ(motion.positions.size(), 2 * scene.boundary.dynamic_vertex_count);
   }
-  EXPECT_EQ(fluid.snapshot_steps, (std::vector<std::uint64_t>{50, 100}));
+  // The first snapshot is the fluid as equilibrated, before the first step.
+  EXPECT_EQ(fluid.snapshot_steps, (std::vector<std::uint64_t>{0, 50, 100}));
   EXPECT_EQ(fluid.finish_calls, 1);
   EXPECT_TRUE(fluid.reported_faults.empty());
 
@@ -108,7 +110,10 @@ TEST_F(SessionLoop, SetsUpEquilibratesAndCouplesOneHundredSteps) {
   const auto columns = sensors();
   const double expected_total =
       per_vertex_y * static_cast<double>(scene.boundary.dynamic_vertex_count);
-  ASSERT_EQ(columns.at("time").size(), static_cast<std::size_t>(kSteps));
+  // A row at t = 0 (the forces on the initial configuration), then one per step.
+  ASSERT_EQ(columns.at("time").size(), static_cast<std::size_t>(kSteps) + 1);
+  EXPECT_EQ(columns.at("time").front(), 0.0);
+  EXPECT_EQ(columns.at("time")[1], kStep);
   EXPECT_EQ(columns.at("time").back(), kSteps * kStep);
   for (std::size_t row = 0; row < columns.at("time").size(); ++row) {
     EXPECT_NEAR(columns.at("bottom_fluid_force_y")[row] + columns.at("piston_fluid_force_y")[row],
@@ -120,10 +125,11 @@ TEST_F(SessionLoop, SetsUpEquilibratesAndCouplesOneHundredSteps) {
   EXPECT_EQ(run["mode"], "coupled");
   EXPECT_EQ(run["status"], "completed");
   EXPECT_EQ(run["steps"], kSteps);
-  EXPECT_EQ(run["snapshots"], 2);
+  EXPECT_EQ(run["snapshots"], 3);
   EXPECT_EQ(run["newton"]["steps"], kSteps);
   EXPECT_EQ(run["fluid"]["particle_count"], fluid.particle_count);
   EXPECT_TRUE(run["client"].is_null());  // an in-process fluid has no client
+  EXPECT_TRUE(fs::exists(output_ / "snapshots" / "particles_000000000.csv"));
   EXPECT_TRUE(fs::exists(output_ / "snapshots" / "particles_000000050.csv"));
   EXPECT_TRUE(fs::exists(output_ / "vtk" / "boundary.pvd"));
 }

@@ -40,6 +40,10 @@ class StructureSide {
   // The scene's sensors at the current state, in the scene's order. total_fluid_force is the
   // fluid's force on every boundary (walls included), which only the fluid side knows.
   std::vector<double> sensor_readout(const std::array<double, 3>& total_fluid_force) const;
+  // The same at t = 0, before the first step, with the multipliers consistent with the loads
+  // applied by then (the fluid's forces on the initial configuration); the state the first step
+  // starts from keeps its own.
+  std::vector<double> initial_sensor_readout(const std::array<double, 3>& total_fluid_force) const;
 
   const mbd::State& state() const { return state_; }
   double time() const { return state_.time; }
@@ -49,6 +53,9 @@ class StructureSide {
   std::optional<double> velocity_constraint_drift() const;
 
  private:
+  std::vector<double> readout(const mbd::State& state,
+                              const std::array<double, 3>& total_fluid_force) const;
+
   scene::Scene& scene_;
   mbd::State state_;
   mbd::RadauIIA integrator_;
