@@ -44,7 +44,7 @@ int run_mbd_only(scene::Scene& scene, const MbdOnlyOptions& options) {
     sensors = std::make_unique<SensorFile>(fs::path(options.output_dir) / "sensors.csv",
                                            "fsi-server --mbd-only sensors of " + scene.file,
                                            scene.sensors);
-    structure = std::make_unique<StructureSide>(scene);
+    structure = std::make_unique<StructureSide>(scene, scene.solver.method);
     sensors->write(0.0, structure->initial_sensor_readout(kNoFluidForce));
     spdlog::info("multibody alone: {} steps of {:.3g} s to t = {:.6g} s ({})", steps, dt,
                  static_cast<double>(steps) * dt, scene.solver.integrator_description());

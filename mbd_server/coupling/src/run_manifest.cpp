@@ -42,7 +42,7 @@ json scene_entry(const scene::Scene& scene) {
   return {{"file", fs::absolute(scene.file).string()}, {"fnv1a64", hex(fnv1a(scene_text.str()))}};
 }
 
-json model_entry(const scene::Scene& scene) {
+json model_entry(const scene::Scene& scene, RunMode mode) {
   json bodies = json::array();
   const mbd::Model& model = scene.model;
   for (int b = 0; b < model.body_count(); ++b) {
@@ -60,7 +60,7 @@ json model_entry(const scene::Scene& scene) {
   return {{"gravity", gravity},
           {"bodies", bodies},
           {"constraints", model.constraint_count()},
-          {"integrator", scene.solver.integrator_description()}};
+          {"integrator", scene.solver.integrator_description(mode == RunMode::Coupled)}};
 }
 
 json mesh_entry(const scene::Scene& scene) {
@@ -168,7 +168,7 @@ void write_run_manifest(const fs::path& output_dir, const scene::Scene& scene,
   manifest["parameters"] = scene::to_json(scene.parameters);
   manifest["parameters_flat"] = scene::flatten_numbers(scene.parameters);
   manifest["dimension"] = scene.dimension;
-  manifest["model"] = model_entry(scene);
+  manifest["model"] = model_entry(scene, record.mode);
   manifest["fluid"] = record.fluid ? fluid_entry(scene, *record.fluid) : json(nullptr);
   manifest["mesh"] = mesh_entry(scene);
   manifest["time_step"] = scene.solver.step_size;

@@ -112,7 +112,9 @@ class Session {
 
   void set_up() {
     timings_.setup.start();
-    structure_ = std::make_unique<StructureSide>(scene_);
+    // The fluid advances by the coupled step, so the structure does too, whatever
+    // Timeint.method says (fsi-server warns about that before the run).
+    structure_ = std::make_unique<StructureSide>(scene_, scene::IntegrationMethod::FixedStep);
     std::vector<double> positions, velocities;
     structure_->boundary_state(positions, velocities);
     fluid_.set_up(scene_, positions, velocities);

@@ -48,16 +48,73 @@ bool finite(const mbd::State& state) {
 
 }  // namespace
 
-StructureSide::StructureSide(scene::Scene& scene)
+StructureSide::StructureSide(scene::Scene& scene, scene::IntegrationMethod method)
     : scene_(scene),
+      method_(method),
       state_(scene.model.initial_state()),
-      integrator_(scene.solver.integrator_options()) {}
+      integrator_(scene.solver.integrator_options()) {
+  const scene::SolverSettings& solver = scene.solver;
+  if (method == scene::IntegrationMethod::AdaptiveRadau) {
+    adaptive_ = std::make_unique<mbd::AdaptiveRadau>(
+        solver.integrator_options(),
+        mbd::AdaptiveOptions{.relative_tolerance = solver.relative_tolerance,
+                             .absolute_tolerance = solver.absolute_tolerance,
+                             .initial_step = solver.step_size,
+                             .max_step = solver.max_step});
+  } else if (method == scene::IntegrationMethod::Ida) {
+    ida_ = std::make_unique<mbd::IdaIntegrator>(
+        mbd::IdaOptions{.relative_tolerance = solver.relative_tolerance,
+                        .absolute_tolerance = solver.absolute_tolerance,
+                        .max_step = solver.max_step});
+  }
+}
+
+void StructureSide::integrate_to(double end_time, double step_size) {
+  switch (method_) {
+    case scene::IntegrationMethod::FixedStep:
+      integrator_.step(scene_.model, state_, step_size);
+      return;
+    case scene::IntegrationMethod::AdaptiveRadau:
+      adaptive_->advance(scene_.model, state_, end_time);
+      return;
+    case scene::IntegrationMethod::Ida:
+      ida_->advance(scene_.model, state_, end_time);
+      return;
+  }
+}
+
+mbd::IntegratorStatistics StructureSide::statistics() const {
+  mbd::IntegratorStatistics totals;
+  switch (method_) {
+    case scene::IntegrationMethod::FixedStep:
+      return integrator_.statistics();
+    case scene::IntegrationMethod::AdaptiveRadau: {
+      const mbd::AdaptiveStatistics& adaptive = adaptive_->statistics();
+      totals.steps = adaptive.accepted;
+      totals.newton_iterations = adaptive.newton_iterations;
+      totals.jacobian_evaluations = adaptive.jacobian_evaluations;
+      totals.factorisations = adaptive.factorisations;
+      totals.retries = adaptive.rejected;
+      return totals;
+    }
+    case scene::IntegrationMethod::Ida: {
+      const mbd::IdaStatistics ida = ida_->statistics();
+      totals.steps = ida.steps;
+      totals.newton_iterations = ida.newton_iterations;
+      totals.jacobian_evaluations = ida.jacobian_evaluations;
+      totals.factorisations = ida.jacobian_evaluations;  // one dense LU per Jacobian
+      totals.retries = ida.error_test_failures + ida.convergence_failures;
+      return totals;
+    }
+  }
+  return totals;
+}
 
 void StructureSide::advance(std::uint64_t step, double step_size) {
   // A model without bodies (a static 3D container) has nothing to integrate.
   if (scene_.model.coordinate_count() > 0) {
     try {
-      integrator_.step(scene_.model, state_, step_size);
+      integrate_to(static_cast<double>(step) * step_size, step_size);
     } catch (const Error& failure) {
       throw Error(failure.fault(),
                   step_and_time(step, state_.time) + ", " + std::string(failure.location()),

@@ -134,6 +134,18 @@ TEST_F(SessionLoop, SetsUpEquilibratesAndCouplesOneHundredSteps) {
   EXPECT_TRUE(fs::exists(output_ / "vtk" / "boundary.pvd"));
 }
 
+TEST_F(SessionLoop, KeepsTheFixedCoupledStepWhateverMethodTheSceneChooses) {
+  scene::Scene scene = static_tank();
+  scene.solver.method = scene::IntegrationMethod::Ida;
+  FakeFluidSide fluid(2, FakeFluidSide::constant({0.0, 0.0}));
+
+  ASSERT_EQ(run_session(scene, options_, fluid), 0);
+
+  const auto run = manifest();
+  EXPECT_EQ(run["model"]["integrator"], "Radau IIA, 3 stages");
+  EXPECT_EQ(run["newton"]["steps"], kSteps);  // one Radau IIA step per coupled step
+}
+
 TEST_F(SessionLoop, AFluidFaultEndsTheRunFailedWithTheFaultRecorded) {
   scene::Scene scene = static_tank();
   FakeFluidSide fluid(2, FakeFluidSide::constant({0.0, -0.25}));

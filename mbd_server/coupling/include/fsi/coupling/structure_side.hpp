@@ -2,15 +2,20 @@
 // The structure as the coupling loop sees it: the scene's multibody model with its state and
 // integrator. It advances one step with the fluid forces of the previous exchange held constant
 // (thesis Fig. 4.10), tells where the boundary vertices are, takes the fluid's vertex forces as
-// point loads, and reads the scene's sensors. Coupled and --mbd-only runs use the same one.
+// point loads, and reads the scene's sensors. Coupled and --mbd-only runs use the same one; a
+// coupled run integrates with the fixed step, an --mbd-only run with the scene's method (fixed
+// step, adaptive Radau IIA or IDA, landing on every output step).
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <span>
 #include <vector>
 
 #include "fsi/coupling/fluid_side.hpp"
+#include "fsi/mbd/adaptive_radau.hpp"
+#include "fsi/mbd/ida.hpp"
 #include "fsi/mbd/integrator.hpp"
 #include "fsi/scene/scene.hpp"
 
@@ -19,11 +24,12 @@ namespace fsi::coupling {
 class StructureSide {
  public:
   // Starts from the model's initial state at t = 0.
-  explicit StructureSide(scene::Scene& scene);
+  StructureSide(scene::Scene& scene, scene::IntegrationMethod method);
 
   // Integrates from t(step - 1) to t(step) = step * step_size (the clock does not drift over
-  // many steps). Throws fsi::Error naming the step and time when Newton fails or the state
-  // becomes non-finite; the state is then the last good one.
+  // many steps); an error-controlled method takes the steps its tolerances need in between. Throws
+  // fsi::Error naming the step and time when Newton fails or the state becomes non-finite; the
+  // state is then the last good one.
   void advance(std::uint64_t step, double step_size);
 
   // The dynamic vertices at the current state, for the fluid.
@@ -47,18 +53,24 @@ class StructureSide {
 
   const mbd::State& state() const { return state_; }
   double time() const { return state_.time; }
-  const mbd::IntegratorStatistics& statistics() const { return integrator_.statistics(); }
+  // Steps, Newton iterations, Jacobians, factorisations and rejected or retried steps of
+  // whichever integrator runs.
+  mbd::IntegratorStatistics statistics() const;
   // Constraint drift of the current state; none when the state is not finite.
   std::optional<double> position_constraint_drift() const;
   std::optional<double> velocity_constraint_drift() const;
 
  private:
+  void integrate_to(double end_time, double step_size);
   std::vector<double> readout(const mbd::State& state,
                               const std::array<double, 3>& total_fluid_force) const;
 
   scene::Scene& scene_;
+  scene::IntegrationMethod method_;
   mbd::State state_;
   mbd::RadauIIA integrator_;
+  std::unique_ptr<mbd::AdaptiveRadau> adaptive_;
+  std::unique_ptr<mbd::IdaIntegrator> ida_;
   std::vector<double> loads_;
 };
 
