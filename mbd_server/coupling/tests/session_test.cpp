@@ -76,8 +76,15 @@ class SessionLoop : public ::testing::Test {
 
 TEST_F(SessionLoop, SetsUpEquilibratesAndCouplesOneHundredSteps) {
   scene::Scene scene = static_tank();
-  const double per_vertex_y = -0.25;  // N on every dynamic vertex
-  FakeFluidSide fluid(2, FakeFluidSide::constant({0.0, per_vertex_y}));
+  // Every dynamic vertex feels a force that grows with the time of the boundary state it is
+  // computed for, so that the rows show which exchange's forces acted in which step.
+  auto per_vertex_y = [](double time) { return -0.25 * (1.0 + time / (kSteps * kStep)); };
+  FakeFluidSide fluid(2, [&](const BoundaryMotion& motion) {
+    std::vector<double> forces(motion.positions.size(), 0.0);
+    for (std::size_t i = 1; i < forces.size(); i += 2)
+      forces[i] = per_vertex_y(motion.time);
+    return forces;
+  });
 
   ASSERT_EQ(run_session(scene, options_, fluid), 0);
 
@@ -106,19 +113,22 @@ TEST_F(SessionLoop, SetsUpEquilibratesAndCouplesOneHundredSteps) {
   EXPECT_GT(largest_descent, 0.0);
 
   // Every dynamic vertex's fake force reaches the bodies' fluid-force sensors, and the fluid's
-  // own total reaches total_fluid_force_y.
+  // own total reaches total_fluid_force_y. The row of t(n) holds f(t(n-1)), the forces held over
+  // step n (thesis Fig. 4.10); the row of t = 0 the forces on the initial configuration.
   const auto columns = sensors();
-  const double expected_total =
-      per_vertex_y * static_cast<double>(scene.boundary.dynamic_vertex_count);
+  const auto vertices = static_cast<double>(scene.boundary.dynamic_vertex_count);
   // A row at t = 0 (the forces on the initial configuration), then one per step.
   ASSERT_EQ(columns.at("time").size(), static_cast<std::size_t>(kSteps) + 1);
   EXPECT_EQ(columns.at("time").front(), 0.0);
   EXPECT_EQ(columns.at("time")[1], kStep);
   EXPECT_EQ(columns.at("time").back(), kSteps * kStep);
   for (std::size_t row = 0; row < columns.at("time").size(); ++row) {
+    const double acting_since = row == 0 ? 0.0 : static_cast<double>(row - 1) * kStep;
+    const double expected_total = per_vertex_y(acting_since) * vertices;
     EXPECT_NEAR(columns.at("bottom_fluid_force_y")[row] + columns.at("piston_fluid_force_y")[row],
-                expected_total, 1e-12);
-    EXPECT_NEAR(columns.at("total_fluid_force_y")[row], expected_total, 1e-12);
+                expected_total, 1e-12)
+        << "row " << row;
+    EXPECT_NEAR(columns.at("total_fluid_force_y")[row], expected_total, 1e-12) << "row " << row;
   }
 
   const auto run = manifest();
