@@ -117,16 +117,16 @@ BlockSpec make_schema() {
        with_default(positive(number("absolute_tolerance", "SI",
                                     "increment tolerance where a whole block stays zero")),
                     number_value(1e-14))});
-  BlockSpec error_control = block(
-      "ErrorControl",
-      "Local error test of Timeint.method = adaptive or ida (--mbd-only): per coordinate and "
-      "velocity |e| <= relative_tolerance |y| + absolute_tolerance (weighted RMS).",
-      {with_default(positive(number("relative_tolerance", "", "relative local error")),
-                    number_value(1e-6)),
-       with_default(positive(number("absolute_tolerance", "SI", "absolute local error")),
-                    number_value(1e-8)),
-       with_default(at_least(number("max_step", "s", "largest step (0: no limit)"), 0.0),
-                    number_value(0.0))});
+  BlockSpec error_control =
+      block("ErrorControl",
+            "Local error test of Timeint.method = adaptive or ida (--mbd-only): per coordinate and "
+            "velocity |e| <= relative_tolerance |y| + absolute_tolerance (weighted RMS).",
+            {with_default(positive(number("relative_tolerance", "", "relative local error")),
+                          number_value(1e-6)),
+             with_default(positive(number("absolute_tolerance", "SI", "absolute local error")),
+                          number_value(1e-8)),
+             with_default(at_least(number("max_step", "s", "largest step (0: no limit)"), 0.0),
+                          number_value(0.0))});
   BlockSpec solver =
       required(block("SolverOptions", "Solver settings of the run.",
                      {positive(number("end_time", "s", "simulated time of the coupled phase"))},
