@@ -73,7 +73,7 @@ printed = [float(line.rsplit("=", 1)[1]) for line in result.stdout.splitlines()
 check(len(printed) == 2 and all(abs(value - weight) <= 1e-12 * weight for value in printed),
       f"the declared reference N m g = {printed} equals particle_count * particle_mass * g = {weight!r} of run.json")
 frames = sorted(os.listdir(os.path.join(run_dir, "plots", "frames")))
-check(frames == [f"frame_{step:09d}.png" for step in (250, 500, 750, 1000)], f"one frame per snapshot: {frames}")
+check(frames == [f"frame_{step:09d}.png" for step in (0, 250, 500, 750, 1000)], f"one frame per snapshot (t = 0 first): {frames}")
 for frame in frames:
     # About 2 000 coloured particles: a frame with one particle and the walls has ~29 kB.
     check_png(os.path.join(run_dir, "plots", "frames", frame), 60_000)
@@ -95,8 +95,8 @@ probe = subprocess.run(["ffprobe", "-v", "error", "-count_frames", "-select_stre
                        capture_output=True, text=True, timeout=60)
 stream = json.loads(probe.stdout)["streams"][0]
 print(stream)
-check(probe.returncode == 0 and stream["codec_name"] == "h264" and int(stream["nb_read_frames"]) == 4,
-      f"ffprobe decodes {stream.get('nb_read_frames')} H.264 frames = the 4 snapshots (--max-frames does not cap it)")
+check(probe.returncode == 0 and stream["codec_name"] == "h264" and int(stream["nb_read_frames"]) == 5,
+      f"ffprobe decodes {stream.get('nb_read_frames')} H.264 frames = the 5 snapshots (--max-frames does not cap it)")
 check(stream["width"] >= 300 and stream["height"] >= 300, f"video is {stream['width']}x{stream['height']}")
 no_ffmpeg = subprocess.run([binary("fsi-plot"), run_dir, "--mp4", "--output", os.path.join(output, "none")],
                            capture_output=True, text=True, timeout=120, env=dict(os.environ, PATH="/nonexistent"))

@@ -36,7 +36,7 @@ check(run["newton"]["iterations"] >= STEPS, "run.json has the Newton statistics"
 
 sensors = load_sensors(run_dir)
 times = sensors["time"] if "time" in sensors else sensors[list(sensors)[0]]
-check(len(times) == STEPS, f"sensors.csv has {STEPS} rows")
+check(len(times) == STEPS + 1 and times[0] == 0.0, f"sensors.csv has {STEPS + 1} rows, the first at t = 0")
 check(all(math.isfinite(v) for column in sensors.values() for v in column), "no NaN or inf in sensors.csv")
 check(abs(times[-1] - STEPS * DT) < 1e-12, f"the last row is t = {STEPS * DT}")
 piston = max(abs(y - (0.0725 - 0.05 * t)) for t, y in zip(times, sensors["piston_position_y"]))

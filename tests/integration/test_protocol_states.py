@@ -34,7 +34,10 @@ def server_state(name, state, act, expected_code, needle):
     """Brings a real fsi-server into `state` with a fake client, lets `act` misbehave, and checks
     the Error the server answers with (None: no answer) and its exit."""
     run_dir = os.path.join(output, name)
-    server, port = start_server(scene, run_dir, ["Resolution.end_time=1e-4"],
+    # No particle snapshots: the first message after Forces 0 is then Step 1 (with snapshots it
+    # is SnapshotRequest 0, the fluid as equilibrated at t = 0).
+    server, port = start_server(scene, run_dir, ["Resolution.end_time=1e-4",
+                                                 "Resolution.snapshot_every_steps=0"],
                                 ["--peer-timeout", str(timeout)])
     connection = socket.create_connection(("127.0.0.1", port), timeout=30)
     if state != "handshake":

@@ -17,7 +17,7 @@ for ranks in (1, 2):
     histories[ranks] = load_sensors(run_dir)
 
 one, two = histories[1], histories[2]
-check(len(one["time"]) == 100 and len(two["time"]) == 100, "100 sensor rows each")
+check(len(one["time"]) == 101 and len(two["time"]) == 101, "101 sensor rows each (t = 0 and 100 steps)")
 for name in one:
     scale = max(abs(v) for v in one[name]) or 1.0
     worst = max(abs(a - b) for a, b in zip(one[name], two[name])) / scale

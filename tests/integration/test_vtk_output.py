@@ -35,7 +35,8 @@ vertex_count = run["mesh"]["vertices"]
 dynamic_count = run["mesh"]["dynamic_vertices"]
 segment_count = run["mesh"]["segments"]
 time_step = run["time_step"]
-snapshot_steps = list(range(SNAPSHOT_EVERY, STEPS + 1, SNAPSHOT_EVERY))
+# The first snapshot is at t = 0: the fluid as equilibrated, before the first step.
+snapshot_steps = list(range(0, STEPS + 1, SNAPSHOT_EVERY))
 check(run["snapshots"] == len(snapshot_steps), f"run.json counts {len(snapshot_steps)} snapshots")
 vtk_dir = os.path.join(run_dir, "vtk")
 

@@ -155,6 +155,23 @@ void log_diagnostics(const fsi::scene::Scene& scene,
   }
 }
 
+// A coupled run advances with the fluid's step: an error-controlled method of the scene serves
+// only --mbd-only runs of it, which the user should hear before the run, not find in run.json.
+fsi::scene::Diagnostic coupled_step_notice(const fsi::scene::Scene& scene) {
+  fsi::scene::Diagnostic notice;
+  notice.severity = fsi::scene::Severity::Warning;
+  notice.check = "integration_method";
+  notice.location = scene.solver.method_location;
+  char step[32];
+  std::snprintf(step, sizeof step, "%g", scene.solver.step_size);
+  notice.message = "Timeint.method chooses " + scene.solver.integrator_description() +
+                   ", which applies to --mbd-only runs; this coupled run integrates with " +
+                   scene.solver.integrator_description(true) + " at the coupled step " + step +
+                   " s";
+  notice.fix = "run with --mbd-only for the error-controlled method, or write method = \"fixed\"";
+  return notice;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -274,7 +291,9 @@ int main(int argc, char** argv) {
     return 0;
   }
   // Warnings only: a scene may break a rule of thumb on purpose.
-  const std::vector<fsi::scene::Diagnostic> diagnostics = fsi::scene::physics_checks(scene);
+  std::vector<fsi::scene::Diagnostic> diagnostics = fsi::scene::physics_checks(scene);
+  if (!mbd_only && scene.solver.method != fsi::scene::IntegrationMethod::FixedStep)
+    diagnostics.push_back(coupled_step_notice(scene));
   // Not a rule of thumb: what the run will do with the scene's end time.
   const std::vector<fsi::scene::Diagnostic> run_warnings = fsi::scene::end_time_check(scene);
   if (check_only) {

@@ -25,6 +25,28 @@ SensorFile::SensorFile(const std::string& path, const std::string& title,
   std::fflush(file_);
 }
 
+namespace {
+
+std::vector<std::string> names_of(const std::vector<scene::SensorSpec>& sensors) {
+  std::vector<std::string> names;
+  for (const auto& sensor : sensors)
+    names.push_back(sensor.name);
+  return names;
+}
+
+std::vector<std::string> units_of(const std::vector<scene::SensorSpec>& sensors) {
+  std::vector<std::string> units;
+  for (const auto& sensor : sensors)
+    units.push_back(sensor.unit);
+  return units;
+}
+
+}  // namespace
+
+SensorFile::SensorFile(const std::filesystem::path& path, const std::string& title,
+                       const std::vector<scene::SensorSpec>& sensors)
+    : SensorFile(path.string(), title, names_of(sensors), units_of(sensors)) {}
+
 SensorFile::~SensorFile() {
   if (file_) std::fclose(file_);
 }

@@ -59,6 +59,7 @@ struct AdaptiveRadau::Impl {
     ++stats.radau_steps;
     stats.newton_iterations += static_cast<std::uint64_t>(s.newton_iterations);
     stats.jacobian_evaluations += static_cast<std::uint64_t>(s.jacobian_evaluations);
+    stats.factorisations += static_cast<std::uint64_t>(s.factorisations);
   }
 
   // Weighted RMS norm of the differences in q and v (adaptive_radau.hpp): weights

@@ -73,7 +73,15 @@ BlockSpec make_schema() {
   BlockSpec timeint = required(block(
       "Timeint", "Time integration of the multibody system (fixed step when coupled).",
       {positive(number("step_size", "s",
-                       "coupled time step, the same on both sides; SPH needs <= 0.25 h/c")),
+                       "coupled time step, the same on both sides; SPH needs <= 0.25 h/c; "
+                       "--mbd-only with an error-controlled method: the output step")),
+       with_default(choice(text("method",
+                                "fixed: the tableau at step_size; adaptive: the tableau with "
+                                "step-doubling error control; ida: SUNDIALS IDA (BDF 1-5); the "
+                                "last two for --mbd-only (ErrorControl), a coupled run always "
+                                "takes the fixed step"),
+                           {"fixed", "adaptive", "ida"}),
+                    text_value("fixed")),
        with_default(choice(text("tableau", "implicit Runge-Kutta scheme (HOTINT's tableau_name)"),
                            {"RadauIIA", "LobattoIIIA"}),
                     text_value("RadauIIA")),
@@ -111,10 +119,20 @@ BlockSpec make_schema() {
        with_default(positive(number("absolute_tolerance", "SI",
                                     "increment tolerance where a whole block stays zero")),
                     number_value(1e-14))});
+  BlockSpec error_control =
+      block("ErrorControl",
+            "Local error test of Timeint.method = adaptive or ida (--mbd-only): per coordinate and "
+            "velocity |e| <= relative_tolerance |y| + absolute_tolerance (weighted RMS).",
+            {with_default(positive(number("relative_tolerance", "", "relative local error")),
+                          number_value(1e-6)),
+             with_default(positive(number("absolute_tolerance", "SI", "absolute local error")),
+                          number_value(1e-8)),
+             with_default(at_least(number("max_step", "s", "largest step (0: no limit)"), 0.0),
+                          number_value(0.0))});
   BlockSpec solver =
       required(block("SolverOptions", "Solver settings of the run.",
                      {positive(number("end_time", "s", "simulated time of the coupled phase"))},
-                     {timeint, newton}));
+                     {timeint, newton, error_control}));
 
   BlockSpec output = block(
       "Output", "What the server writes into the output folder.",
@@ -641,6 +659,15 @@ Scene build_scene(const std::string& path, const std::vector<Override>& override
                                        ? mbd::ConstraintForm::Index2
                                        : mbd::ConstraintForm::Index3;
     scene.solver.family = lobatto ? mbd::TableauFamily::LobattoIIIA : mbd::TableauFamily::RadauIIA;
+    const std::string& method = solver.block("Timeint").string("method");
+    scene.solver.method = method == "adaptive" ? IntegrationMethod::AdaptiveRadau
+                          : method == "ida"    ? IntegrationMethod::Ida
+                                               : IntegrationMethod::FixedStep;
+    scene.solver.method_location = solver.block("Timeint").location("method");
+    const View error_control = solver.block("ErrorControl");
+    scene.solver.relative_tolerance = error_control.number("relative_tolerance");
+    scene.solver.absolute_tolerance = error_control.number("absolute_tolerance");
+    scene.solver.max_step = error_control.number("max_step");
     if (lobatto && scene.solver.stages < 2) {
       problems.push_back(
           {solver.block("Timeint").location("stages"),

@@ -1,8 +1,8 @@
 #pragma once
 // `fsi-server --mbd-only SCENE`: the scene's multibody part alone, without a fluid client (the
-// fluid forces are zero). Integrates with Radau IIA at the scene's fixed step, stages and Newton
-// settings up to its end time and writes sensors.csv and run.json into the output folder like a
-// coupled run (run.json's "mode" is "mbd-only").
+// fluid forces are zero). Integrates up to its end time with SolverOptions.Timeint.method (the
+// fixed-step tableau, adaptive Radau IIA or IDA, sensors every step_size) and writes sensors.csv
+// (from t = 0) and run.json into the output folder like a coupled run ("mode": "mbd-only").
 
 #include <string>
 #include <vector>

@@ -4,8 +4,11 @@
 
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <string>
 #include <vector>
+
+#include "fsi/scene/scene.hpp"
 
 namespace fsi::coupling {
 
@@ -14,6 +17,9 @@ class SensorFile {
   // names/units exclude the time column.
   SensorFile(const std::string& path, const std::string& title,
              const std::vector<std::string>& names, const std::vector<std::string>& units);
+  // One column per sensor of the scene, named and united as declared.
+  SensorFile(const std::filesystem::path& path, const std::string& title,
+             const std::vector<scene::SensorSpec>& sensors);
   ~SensorFile();
   SensorFile(const SensorFile&) = delete;
   SensorFile& operator=(const SensorFile&) = delete;

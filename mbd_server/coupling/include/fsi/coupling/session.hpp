@@ -39,8 +39,17 @@ struct ServerOptions {
   std::vector<std::string> warnings;  // the scene's physics warnings, recorded in run.json
 };
 
-// Runs the session; returns the process exit status (0 success, 1 failure). Never throws for
-// faults of the run: they are logged, told to the client if possible, and recorded in run.json.
+class FluidSide;
+
+// Runs the session loop against any fluid side (tcp_fluid_side.hpp, or a test's in-process
+// fake); the listening and handshake options are the TCP side's. Returns the process exit status
+// (0 success, 1 failure). Never throws for faults of the run: they are logged, reported to the
+// fluid side, and recorded in run.json.
+int run_session(scene::Scene& scene, const ServerOptions& options, FluidSide& fluid);
+
+// Runs the session with fsi-client over TCP; returns the process exit status (0 success, 1
+// failure). Never throws for faults of the run: they are logged, told to the client if possible,
+// and recorded in run.json.
 int run_coupled_session(scene::Scene& scene, const ServerOptions& options);
 
 }  // namespace fsi::coupling

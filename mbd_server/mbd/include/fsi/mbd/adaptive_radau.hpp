@@ -39,6 +39,7 @@ struct AdaptiveStatistics {
   std::uint64_t radau_steps = 0;      // every Radau IIA step taken: 3 per trial (h, h/2, h/2)
   std::uint64_t newton_iterations = 0;
   std::uint64_t jacobian_evaluations = 0;
+  std::uint64_t factorisations = 0;
 };
 
 class AdaptiveRadau {

@@ -17,6 +17,15 @@
 
 namespace fsi::scene {
 
+// SolverOptions.Timeint.method: how the multibody system is integrated. A coupled run always
+// takes the fixed step (the fluid's); the error-controlled methods serve --mbd-only runs, which
+// write their sensors every step_size.
+enum class IntegrationMethod {
+  FixedStep,      // the tableau (Radau IIA or Lobatto IIIA) at step_size
+  AdaptiveRadau,  // the same tableau, step size by step doubling (fsi/mbd/adaptive_radau.hpp)
+  Ida             // SUNDIALS IDA, BDF orders 1-5 (fsi/mbd/ida.hpp)
+};
+
 struct SolverSettings {
   double end_time = 0.0;
   double step_size = 0.0;
@@ -24,15 +33,19 @@ struct SolverSettings {
   mbd::TableauFamily family = mbd::TableauFamily::RadauIIA;
   mbd::NewtonOptions newton;
   mbd::ConstraintForm constraint_form = mbd::ConstraintForm::Index3;
+  IntegrationMethod method = IntegrationMethod::FixedStep;
+  SourceLocation method_location;  // where the scene chose it, for messages
+  // SolverOptions.ErrorControl: the local error test of the error-controlled methods.
+  double relative_tolerance = 1e-6;
+  double absolute_tolerance = 1e-8;
+  double max_step = 0.0;  // [s]; 0: no limit
 
-  // The integrator these settings ask for, and its name for logs and run.json
-  // ("Radau IIA, 3 stages"; ", index-2 constraints" when so); both are valid before any
-  // integrator exists.
+  // The fixed-step integrator these settings ask for (also the adaptive method's stepper).
   mbd::RadauOptions integrator_options() const { return {stages, newton, family, constraint_form}; }
-  std::string integrator_description() const {
-    return mbd::butcher_tableau(family, stages).name + ", " + std::to_string(stages) + " stages" +
-           (constraint_form == mbd::ConstraintForm::Index2 ? ", index-2 constraints" : "");
-  }
+  // The integrator's name for logs and run.json ("Radau IIA, 3 stages"; ", index-2 constraints"
+  // when so; "adaptive ..." and "SUNDIALS IDA ..." with their tolerances); valid before any
+  // integrator exists. `coupled`: what a coupled run integrates with (always the fixed step).
+  std::string integrator_description(bool coupled = false) const;
 };
 
 struct OutputSettings {

@@ -1,0 +1,86 @@
+#pragma once
+// The fluid as the coupling loop sees it (thesis §4.4, Fig. 4.10): set it up around the
+// structure's boundary, let it settle, then per step hand it the boundary's motion over dt and
+// take back the forces on the dynamic vertices. The loop knows nothing of how the fluid is
+// computed: TcpFluidSide (tcp_fluid_side.hpp) drives fsi-client over fsi::protocol, the unit
+// tests of the loop use an in-process fake.
+
+#include <cstdint>
+#include <exception>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "fsi/coupling/output.hpp"
+#include "fsi/protocol/messages.hpp"
+#include "fsi/scene/scene.hpp"
+
+namespace fsi::coupling {
+
+// Forces of the fluid on the dynamic boundary vertices (dimension values each, in the mesh's
+// vertex order) and the fluid's account of that exchange.
+struct FluidForces {
+  std::vector<double> forces;
+  protocol::ForceDiagnostics diagnostics;
+};
+
+// Where the dynamic boundary vertices are at the end of a step.
+struct BoundaryMotion {
+  std::uint64_t step = 0;
+  double time = 0.0;  // end of the step
+  double time_step = 0.0;
+  std::vector<double> positions;   // dynamic vertices only, dimension values each
+  std::vector<double> velocities;  // as positions
+};
+
+// The fluid after its set-up and equilibration, with its forces on the initial configuration.
+struct FluidReady {
+  std::uint64_t particle_count = 0;
+  std::string liggghts_version;
+  double seconds_setup = 0.0;
+  double seconds_equilibration = 0.0;
+  FluidForces initial_forces;
+};
+
+// Who computed the fluid, for run.json; a fluid side without a remote peer has none.
+struct FluidPeer {
+  std::uint32_t capabilities = 0;  // agreed in the handshake
+  bool authenticated = false;
+  std::string software_version;
+  std::string host;
+  std::uint32_t mpi_ranks = 1;
+};
+
+class FluidSide {
+ public:
+  virtual ~FluidSide() = default;
+
+  // Sends everything the fluid needs before it can settle: the scene's fluid and scripts, and
+  // the whole boundary (static vertices included, all dimension values each) at t = 0.
+  virtual void set_up(const scene::Scene& scene, const std::vector<double>& boundary_positions,
+                      const std::vector<double>& boundary_velocities) = 0;
+  // Waits until the fluid has settled around the initial configuration.
+  virtual FluidReady equilibrate() = 0;
+  // One coupled step: the fluid advances over motion.time_step with the walls at `motion`.
+  virtual FluidForces exchange(const BoundaryMotion& motion) = 0;
+  // Every particle at the end of `step`.
+  virtual ParticleSnapshot snapshot(std::uint64_t step) = 0;
+  // The end time is reached: the fluid side closes its resources in good order.
+  virtual void finish() = 0;
+  // The run ends because of `failure` (during_coupled_steps: after equilibration). Never throws:
+  // it is called while the run is already failing.
+  virtual void report_fault(const std::exception& failure, bool during_coupled_steps) noexcept = 0;
+
+  // While the structure computes (or the server writes output) the fluid side waits; a remote
+  // one may keep its peer informed meanwhile (heartbeats). Ends when the returned scope does.
+  class WaitScope {
+   public:
+    virtual ~WaitScope() = default;
+  };
+  [[nodiscard]] virtual std::unique_ptr<WaitScope> waiting() { return nullptr; }
+
+  virtual std::optional<FluidPeer> peer() const { return std::nullopt; }
+};
+
+}  // namespace fsi::coupling

@@ -1,0 +1,69 @@
+#pragma once
+// run.json, the manifest of one run (docs/user-guide.md, "run.json"): one builder and one shape
+// for coupled and --mbd-only runs. Entries a mode does not have (the fluid, the client, the
+// protocol in an --mbd-only run; the fluid's timings and checks) are null, never missing.
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "fsi/coupling/fluid_side.hpp"
+#include "fsi/mbd/integrator.hpp"
+#include "fsi/scene/scene.hpp"
+
+namespace fsi::coupling {
+
+// Version 2: one shape for every mode ("mode", gravity with `dimension` components, bodies as a
+// list, null for what a mode does not have).
+inline constexpr int kRunManifestFormatVersion = 2;
+
+enum class RunMode { Coupled, MbdOnly };
+
+// What the fluid side reported and what the server checked of it.
+struct FluidRecord {
+  std::optional<FluidPeer> peer;  // none: not connected, or an in-process fluid side
+  std::uint64_t particle_count = 0;
+  std::string liggghts_version;
+  double seconds_client_setup = 0.0;
+  double seconds_client_equilibration = 0.0;
+  double seconds_liggghts = 0.0;
+  double seconds_contact = 0.0;
+  double seconds_client_communication = 0.0;
+  double seconds_round_trip = 0.0;   // of the exchanges, as the server waited for them
+  double max_action_reaction = 0.0;  // |F_fluid + F_structure| / sum |pair forces|
+  std::optional<double> closest_approach_over_r0;
+  std::uint64_t particles_initial = 0;
+  std::uint64_t particles_final = 0;
+  std::uint64_t snapshots_checked = 0;  // snapshots whose fluid health was measured
+  double max_density_deviation = 0.0;   // max |rho/rho0 - 1| over those snapshots
+  double max_particle_speed = 0.0;
+  std::optional<double> speed_of_sound;
+};
+
+struct RunRecord {
+  RunMode mode = RunMode::Coupled;
+  std::string command_line;
+  std::vector<std::string> warnings;
+  std::string status = "started";  // "completed" or "failed" at the end
+  std::string reason;              // why it failed; empty otherwise
+  std::uint64_t steps = 0;         // done
+  std::uint64_t snapshots = 0;
+  double seconds_total = 0.0;
+  double seconds_setup_and_equilibration = 0.0;
+  double seconds_stepping = 0.0;  // the coupled phase, or the --mbd-only steps
+  double seconds_mbd = 0.0;
+  double seconds_output = 0.0;
+  mbd::IntegratorStatistics newton;
+  std::optional<double> position_constraint_drift;
+  std::optional<double> velocity_constraint_drift;
+  std::optional<FluidRecord> fluid;  // coupled runs only
+};
+
+// Writes DIR/run.json. Throws fsi::Error if it cannot.
+void write_run_manifest(const std::filesystem::path& output_dir, const scene::Scene& scene,
+                        const RunRecord& record);
+
+}  // namespace fsi::coupling

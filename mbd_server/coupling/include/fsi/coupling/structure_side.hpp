@@ -1,0 +1,77 @@
+#pragma once
+// The structure as the coupling loop sees it: the scene's multibody model with its state and
+// integrator. It advances one step with the fluid forces of the previous exchange held constant
+// (thesis Fig. 4.10), tells where the boundary vertices are, takes the fluid's vertex forces as
+// point loads, and reads the scene's sensors. Coupled and --mbd-only runs use the same one; a
+// coupled run integrates with the fixed step, an --mbd-only run with the scene's method (fixed
+// step, adaptive Radau IIA or IDA, landing on every output step).
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "fsi/coupling/fluid_side.hpp"
+#include "fsi/mbd/adaptive_radau.hpp"
+#include "fsi/mbd/ida.hpp"
+#include "fsi/mbd/integrator.hpp"
+#include "fsi/scene/scene.hpp"
+
+namespace fsi::coupling {
+
+class StructureSide {
+ public:
+  // Starts from the model's initial state at t = 0.
+  StructureSide(scene::Scene& scene, scene::IntegrationMethod method);
+
+  // Integrates from t(step - 1) to t(step) = step * step_size (the clock does not drift over
+  // many steps); an error-controlled method takes the steps its tolerances need in between. Throws
+  // fsi::Error naming the step and time when Newton fails or the state becomes non-finite; the
+  // state is then the last good one.
+  void advance(std::uint64_t step, double step_size);
+
+  // The dynamic vertices at the current state, for the fluid.
+  BoundaryMotion boundary_motion(std::uint64_t step, double step_size) const;
+  // Every boundary vertex (static ones too), dimension values each.
+  void boundary_state(std::vector<double>& positions, std::vector<double>& velocities) const;
+
+  // Forces on the dynamic vertices (dimension values each), held as point loads over the next
+  // step. Throws fsi::Error if their count does not match the mesh or one is not finite.
+  void apply_vertex_forces(std::span<const double> forces, std::uint64_t step);
+  // One load per marker (static 2D vertices carry zero), as applied.
+  std::span<const double> vertex_loads() const { return loads_; }
+
+  // The scene's sensors at the current state, in the scene's order. total_fluid_force is the
+  // fluid's force on every boundary (walls included), which only the fluid side knows.
+  std::vector<double> sensor_readout(const std::array<double, 3>& total_fluid_force) const;
+  // The same at t = 0, before the first step, with the multipliers consistent with the loads
+  // applied by then (the fluid's forces on the initial configuration); the state the first step
+  // starts from keeps its own.
+  std::vector<double> initial_sensor_readout(const std::array<double, 3>& total_fluid_force) const;
+
+  const mbd::State& state() const { return state_; }
+  double time() const { return state_.time; }
+  // Steps, Newton iterations, Jacobians, factorisations and rejected or retried steps of
+  // whichever integrator runs.
+  mbd::IntegratorStatistics statistics() const;
+  // Constraint drift of the current state; none when the state is not finite.
+  std::optional<double> position_constraint_drift() const;
+  std::optional<double> velocity_constraint_drift() const;
+
+ private:
+  void integrate_to(double end_time, double step_size);
+  std::vector<double> readout(const mbd::State& state,
+                              const std::array<double, 3>& total_fluid_force) const;
+
+  scene::Scene& scene_;
+  scene::IntegrationMethod method_;
+  mbd::State state_;
+  mbd::RadauIIA integrator_;
+  std::unique_ptr<mbd::AdaptiveRadau> adaptive_;
+  std::unique_ptr<mbd::IdaIntegrator> ida_;
+  std::vector<double> loads_;
+};
+
+}  // namespace fsi::coupling

@@ -1,0 +1,45 @@
+#pragma once
+// The fluid side over TCP: fsi-client (LIGGGHTS under MPI) as the peer of fsi::protocol
+// (docs/protocol.md). Listens and accepts the client at set-up, then maps each FluidSide call to
+// its messages: Setup, Mesh and Particles; Ready and Forces of step 0; Step and Forces;
+// SnapshotRequest and Snapshot; Shutdown and Goodbye; Error.
+
+#include <memory>
+
+#include "fsi/coupling/fluid_side.hpp"
+#include "fsi/coupling/session.hpp"
+
+namespace fsi::protocol {
+class Channel;
+class HeartbeatSender;
+}  // namespace fsi::protocol
+
+namespace fsi::coupling {
+
+class TcpFluidSide final : public FluidSide {
+ public:
+  explicit TcpFluidSide(const ServerOptions& options);
+  ~TcpFluidSide() override;
+
+  void set_up(const scene::Scene& scene, const std::vector<double>& boundary_positions,
+              const std::vector<double>& boundary_velocities) override;
+  FluidReady equilibrate() override;
+  FluidForces exchange(const BoundaryMotion& motion) override;
+  ParticleSnapshot snapshot(std::uint64_t step) override;
+  void finish() override;
+  void report_fault(const std::exception& failure, bool during_coupled_steps) noexcept override;
+  std::unique_ptr<WaitScope> waiting() override;
+  std::optional<FluidPeer> peer() const override;
+
+ private:
+  void connect();
+  FluidForces expect_forces(std::uint64_t step);
+
+  ServerOptions options_;
+  std::unique_ptr<protocol::Channel> channel_;
+  std::optional<protocol::Hello> client_;
+  std::uint32_t capabilities_ = 0;
+  std::unique_ptr<protocol::HeartbeatSender> heartbeat_;
+};
+
+}  // namespace fsi::coupling

@@ -1,0 +1,193 @@
+#include "fsi/coupling/run_manifest.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "fsi/common/error.hpp"
+#include "fsi/common/version.hpp"
+#include "fsi/protocol/frame.hpp"
+
+namespace fsi::coupling {
+namespace {
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+std::uint64_t fnv1a(const std::string& text) {
+  std::uint64_t hash = 1469598103934665603ull;
+  for (unsigned char c : text) {
+    hash ^= c;
+    hash *= 1099511628211ull;
+  }
+  return hash;
+}
+
+std::string hex(std::uint64_t value) {
+  char text[24];
+  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(value));
+  return text;
+}
+
+json optional_number(const std::optional<double>& value) {
+  return value ? json(*value) : json(nullptr);
+}
+
+json scene_entry(const scene::Scene& scene) {
+  std::ifstream scene_file(scene.file);
+  std::stringstream scene_text;
+  scene_text << scene_file.rdbuf();
+  return {{"file", fs::absolute(scene.file).string()}, {"fnv1a64", hex(fnv1a(scene_text.str()))}};
+}
+
+json model_entry(const scene::Scene& scene, RunMode mode) {
+  json bodies = json::array();
+  const mbd::Model& model = scene.model;
+  for (int b = 0; b < model.body_count(); ++b) {
+    json body = {
+        {"name", model.body_name(b)}, {"type", model.body_kind(b)}, {"mass", model.body_mass(b)}};
+    if (model.body_kind(b) == "rigid_body_2d") body["inertia"] = model.body(b).inertia;
+    if (model.is_beam(b)) body["elements"] = model.beam(b).element_count;
+    if (model.body_kind(b) == "ancf_cable") body["elements"] = model.cable(b).element_count;
+    bodies.push_back(body);
+  }
+  // One component per dimension: scene.gravity holds all three (z = 0 in 2D).
+  json gravity = json::array();
+  for (int k = 0; k < scene.dimension; ++k)
+    gravity.push_back(scene.gravity[static_cast<std::size_t>(k)]);
+  return {{"gravity", gravity},
+          {"bodies", bodies},
+          {"constraints", model.constraint_count()},
+          {"integrator", scene.solver.integrator_description(mode == RunMode::Coupled)}};
+}
+
+json mesh_entry(const scene::Scene& scene) {
+  return {{"vertices", scene.boundary.vertex_count},
+          {"dynamic_vertices", scene.boundary.dynamic_vertex_count},
+          {scene.dimension == 3 ? "triangles" : "segments", scene.boundary.element_count()},
+          {"refinement_resolution", scene.boundary.refinement_resolution}};
+}
+
+json fluid_entry(const scene::Scene& scene, const FluidRecord& fluid) {
+  return {{"particle_count", fluid.particle_count ? fluid.particle_count : scene.fluid.count()},
+          {"generated_particles", scene.fluid.count()},
+          {"particle_mass", scene.fluid.mass},
+          {"density", scene.fluid.density},
+          {"spacing", scene.fluid.spacing}};
+}
+
+json protocol_entry(const std::optional<FluidRecord>& fluid) {
+  if (!fluid) return nullptr;
+  const std::uint32_t capabilities = fluid->peer ? fluid->peer->capabilities : 0;
+  return {{"major", protocol::kMajorVersion},
+          {"minor", protocol::kMinorVersion},
+          {"capabilities", capabilities},
+          {"authenticated", fluid->peer && fluid->peer->authenticated}};
+}
+
+json client_entry(const std::optional<FluidRecord>& fluid) {
+  if (!fluid || !fluid->peer) return nullptr;
+  return {{"software_version", fluid->peer->software_version},
+          {"host", fluid->peer->host},
+          {"mpi_ranks", fluid->peer->mpi_ranks},
+          {"liggghts_version", fluid->liggghts_version}};
+}
+
+json timings_entry(const RunRecord& record) {
+  const FluidRecord* fluid = record.fluid ? &*record.fluid : nullptr;
+  auto of_fluid = [&](double FluidRecord::*seconds) {
+    return fluid ? json(fluid->*seconds) : json(nullptr);
+  };
+  // What the server waited for beyond the client's own computing.
+  const json communication =
+      fluid ? json(std::max(0.0, fluid->seconds_round_trip - fluid->seconds_liggghts -
+                                     fluid->seconds_contact))
+            : json(nullptr);
+  return {{"total", record.seconds_total},
+          {"setup_and_equilibration", record.seconds_setup_and_equilibration},
+          {"client_setup", of_fluid(&FluidRecord::seconds_client_setup)},
+          {"client_equilibration", of_fluid(&FluidRecord::seconds_client_equilibration)},
+          {"coupled_phase", fluid ? json(record.seconds_stepping) : json(nullptr)},
+          {"stepping", record.seconds_stepping},
+          {"mbd", record.seconds_mbd},
+          {"liggghts", of_fluid(&FluidRecord::seconds_liggghts)},
+          {"contact_fix", of_fluid(&FluidRecord::seconds_contact)},
+          {"communication", communication},
+          {"client_mpi_communication", of_fluid(&FluidRecord::seconds_client_communication)},
+          {"output", record.seconds_output}};
+}
+
+json checks_entry(const RunRecord& record) {
+  json checks = {{"max_action_reaction_relative", nullptr},
+                 {"closest_approach_over_r0", nullptr},
+                 {"particles_initial", nullptr},
+                 {"particles_final", nullptr},
+                 {"snapshots_checked", nullptr},
+                 {"max_density_deviation_at_snapshots", nullptr},
+                 {"max_particle_speed_at_snapshots", nullptr},
+                 {"speed_of_sound", nullptr},
+                 {"max_particle_speed_over_speed_of_sound_at_snapshots", nullptr},
+                 {"position_constraint_drift", optional_number(record.position_constraint_drift)},
+                 {"velocity_constraint_drift", optional_number(record.velocity_constraint_drift)}};
+  if (!record.fluid) return checks;
+  const FluidRecord& fluid = *record.fluid;
+  const bool health = fluid.snapshots_checked > 0;
+  checks["max_action_reaction_relative"] = fluid.max_action_reaction;
+  checks["closest_approach_over_r0"] = optional_number(fluid.closest_approach_over_r0);
+  checks["particles_initial"] = fluid.particles_initial;
+  checks["particles_final"] = fluid.particles_final;
+  checks["snapshots_checked"] = fluid.snapshots_checked;
+  checks["max_density_deviation_at_snapshots"] =
+      health ? json(fluid.max_density_deviation) : json(nullptr);
+  checks["max_particle_speed_at_snapshots"] =
+      health ? json(fluid.max_particle_speed) : json(nullptr);
+  checks["speed_of_sound"] = optional_number(fluid.speed_of_sound);
+  checks["max_particle_speed_over_speed_of_sound_at_snapshots"] =
+      health && fluid.speed_of_sound ? json(fluid.max_particle_speed / *fluid.speed_of_sound)
+                                     : json(nullptr);
+  return checks;
+}
+
+}  // namespace
+
+void write_run_manifest(const fs::path& output_dir, const scene::Scene& scene,
+                        const RunRecord& record) {
+  json manifest;
+  manifest["format"] = "fsi-run-manifest";
+  manifest["format_version"] = kRunManifestFormatVersion;
+  manifest["mode"] = record.mode == RunMode::Coupled ? "coupled" : "mbd-only";
+  manifest["program"] = {{"name", "fsi-server"},
+                         {"version", std::string(fsi::software_version())},
+                         {"git_revision", std::string(fsi::git_revision())},
+                         {"command_line", record.command_line}};
+  manifest["protocol"] = protocol_entry(record.fluid);
+  manifest["client"] = client_entry(record.fluid);
+  manifest["scene"] = scene_entry(scene);
+  manifest["parameters"] = scene::to_json(scene.parameters);
+  manifest["parameters_flat"] = scene::flatten_numbers(scene.parameters);
+  manifest["dimension"] = scene.dimension;
+  manifest["model"] = model_entry(scene, record.mode);
+  manifest["fluid"] = record.fluid ? fluid_entry(scene, *record.fluid) : json(nullptr);
+  manifest["mesh"] = mesh_entry(scene);
+  manifest["time_step"] = scene.solver.step_size;
+  manifest["end_time"] = scene.solver.end_time;
+  manifest["steps"] = record.steps;
+  manifest["snapshots"] = record.snapshots;
+  manifest["timings_seconds"] = timings_entry(record);
+  manifest["newton"] = {{"steps", record.newton.steps},
+                        {"iterations", record.newton.newton_iterations},
+                        {"jacobian_evaluations", record.newton.jacobian_evaluations},
+                        {"factorisations", record.newton.factorisations}};
+  manifest["checks"] = checks_entry(record);
+  manifest["warnings"] = record.warnings;
+  manifest["status"] = record.status;
+  manifest["reason"] = record.reason.empty() ? json(nullptr) : json(record.reason);
+  const fs::path path = output_dir / "run.json";
+  std::ofstream out(path);
+  out << manifest.dump(2) << "\n";
+  if (!out) throw Error("cannot write " + path.string(), "output folder", "free disk space");
+}
+
+}  // namespace fsi::coupling

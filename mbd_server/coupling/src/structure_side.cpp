@@ -1,0 +1,207 @@
+#include "fsi/coupling/structure_side.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "fsi/common/error.hpp"
+#include "fsi/mbd/readouts.hpp"
+
+namespace fsi::coupling {
+namespace {
+
+std::string step_and_time(std::uint64_t step, double time) {
+  char text[96];
+  std::snprintf(text, sizeof text, "step %llu (t = %.9g s)", static_cast<unsigned long long>(step),
+                time);
+  return text;
+}
+
+// The first non-finite entry of the state, named by body where possible.
+std::string non_finite_entry(const mbd::Model& model, const mbd::State& state) {
+  for (int b = 0; b < model.body_count(); ++b) {
+    try {
+      for (const mbd::Coordinate c :
+           {mbd::Coordinate::X, mbd::Coordinate::Y, mbd::Coordinate::Angle}) {
+        const int i = model.coordinate_index(b, c);
+        if (!std::isfinite(state.q(i)) || !std::isfinite(state.v(i))) {
+          return "body '" + model.body(b).name + "' coordinate " + std::string(mbd::name(c));
+        }
+      }
+    } catch (const Error&) {
+      // not a planar rigid body: named by index below
+    }
+  }
+  for (int i = 0; i < state.q.size(); ++i) {
+    if (!std::isfinite(state.q(i)) || !std::isfinite(state.v(i))) {
+      return model.coordinate_description(i);
+    }
+  }
+  for (int k = 0; k < model.constraint_count(); ++k) {
+    if (!std::isfinite(state.lambda(k))) return "multiplier of " + model.constraint_description(k);
+  }
+  return "the state";
+}
+
+bool finite(const mbd::State& state) {
+  return state.q.allFinite() && state.v.allFinite() && state.lambda.allFinite();
+}
+
+}  // namespace
+
+StructureSide::StructureSide(scene::Scene& scene, scene::IntegrationMethod method)
+    : scene_(scene),
+      method_(method),
+      state_(scene.model.initial_state()),
+      integrator_(scene.solver.integrator_options()) {
+  const scene::SolverSettings& solver = scene.solver;
+  if (method == scene::IntegrationMethod::AdaptiveRadau) {
+    adaptive_ = std::make_unique<mbd::AdaptiveRadau>(
+        solver.integrator_options(),
+        mbd::AdaptiveOptions{.relative_tolerance = solver.relative_tolerance,
+                             .absolute_tolerance = solver.absolute_tolerance,
+                             .initial_step = solver.step_size,
+                             .max_step = solver.max_step});
+  } else if (method == scene::IntegrationMethod::Ida) {
+    ida_ = std::make_unique<mbd::IdaIntegrator>(
+        mbd::IdaOptions{.relative_tolerance = solver.relative_tolerance,
+                        .absolute_tolerance = solver.absolute_tolerance,
+                        .max_step = solver.max_step});
+  }
+}
+
+void StructureSide::integrate_to(double end_time, double step_size) {
+  switch (method_) {
+    case scene::IntegrationMethod::FixedStep:
+      integrator_.step(scene_.model, state_, step_size);
+      return;
+    case scene::IntegrationMethod::AdaptiveRadau:
+      adaptive_->advance(scene_.model, state_, end_time);
+      return;
+    case scene::IntegrationMethod::Ida:
+      ida_->advance(scene_.model, state_, end_time);
+      return;
+  }
+}
+
+mbd::IntegratorStatistics StructureSide::statistics() const {
+  mbd::IntegratorStatistics totals;
+  switch (method_) {
+    case scene::IntegrationMethod::FixedStep:
+      return integrator_.statistics();
+    case scene::IntegrationMethod::AdaptiveRadau: {
+      const mbd::AdaptiveStatistics& adaptive = adaptive_->statistics();
+      totals.steps = adaptive.accepted;
+      totals.newton_iterations = adaptive.newton_iterations;
+      totals.jacobian_evaluations = adaptive.jacobian_evaluations;
+      totals.factorisations = adaptive.factorisations;
+      totals.retries = adaptive.rejected;
+      return totals;
+    }
+    case scene::IntegrationMethod::Ida: {
+      const mbd::IdaStatistics ida = ida_->statistics();
+      totals.steps = ida.steps;
+      totals.newton_iterations = ida.newton_iterations;
+      totals.jacobian_evaluations = ida.jacobian_evaluations;
+      totals.factorisations = ida.jacobian_evaluations;  // one dense LU per Jacobian
+      totals.retries = ida.error_test_failures + ida.convergence_failures;
+      return totals;
+    }
+  }
+  return totals;
+}
+
+void StructureSide::advance(std::uint64_t step, double step_size) {
+  // A model without bodies (a static 3D container) has nothing to integrate.
+  if (scene_.model.coordinate_count() > 0) {
+    try {
+      integrate_to(static_cast<double>(step) * step_size, step_size);
+    } catch (const Error& failure) {
+      throw Error(failure.fault(),
+                  step_and_time(step, state_.time) + ", " + std::string(failure.location()),
+                  failure.remedy());
+    }
+    if (!finite(state_)) {
+      throw Error("the multibody state is not finite: " + non_finite_entry(scene_.model, state_),
+                  step_and_time(step, static_cast<double>(step) * step_size),
+                  "check the scene's forces and constraints for that element");
+    }
+  }
+  state_.time = static_cast<double>(step) * step_size;
+}
+
+BoundaryMotion StructureSide::boundary_motion(std::uint64_t step, double step_size) const {
+  BoundaryMotion motion;
+  motion.step = step;
+  motion.time = state_.time;
+  motion.time_step = step_size;
+  boundary_state(motion.positions, motion.velocities);
+  const std::size_t dynamic_values =
+      static_cast<std::size_t>(scene_.dimension) * scene_.boundary.dynamic_vertex_count;
+  motion.positions.resize(dynamic_values);
+  motion.velocities.resize(dynamic_values);
+  return motion;
+}
+
+void StructureSide::boundary_state(std::vector<double>& positions,
+                                   std::vector<double>& velocities) const {
+  scene::boundary_state(scene_.boundary, scene_.model, state_, positions, velocities);
+}
+
+void StructureSide::apply_vertex_forces(std::span<const double> forces, std::uint64_t step) {
+  const auto dimension = static_cast<std::size_t>(scene_.dimension);
+  const std::size_t dynamic_values = dimension * scene_.boundary.dynamic_vertex_count;
+  if (forces.size() != dynamic_values) {
+    throw Error("Forces carry " + std::to_string(forces.size() / dimension) +
+                    " vertices, the mesh has " +
+                    std::to_string(scene_.boundary.dynamic_vertex_count) + " dynamic ones",
+                "step " + std::to_string(step), "use matching fsi-server and fsi-client releases");
+  }
+  for (double f : forces) {
+    if (!std::isfinite(f)) {
+      throw Error("the fluid forces of step " + std::to_string(step) + " are not finite",
+                  "fluid side",
+                  "reduce the time step or the contact stiffness k (see the thesis' §6.2 rules)");
+    }
+  }
+  // One load per marker: in 2D every vertex is a marker (the ground ones carry none), in 3D
+  // only the dynamic vertices are.
+  loads_.assign(dimension * static_cast<std::size_t>(scene_.model.marker_count()), 0.0);
+  std::copy(forces.begin(), forces.end(), loads_.begin());
+  scene_.model.set_point_loads(loads_);
+}
+
+std::vector<double> StructureSide::sensor_readout(
+    const std::array<double, 3>& total_fluid_force) const {
+  return readout(state_, total_fluid_force);
+}
+
+std::vector<double> StructureSide::initial_sensor_readout(
+    const std::array<double, 3>& total_fluid_force) const {
+  // initial_state() solves the multipliers with the point loads now set on the model.
+  return readout(scene_.model.initial_state(), total_fluid_force);
+}
+
+std::vector<double> StructureSide::readout(const mbd::State& state,
+                                           const std::array<double, 3>& total_fluid_force) const {
+  std::vector<double> values;
+  values.reserve(scene_.sensors.size());
+  for (const auto& sensor : scene_.sensors) {
+    values.push_back(sensor.type == scene::SensorType::TotalFluidForce
+                         ? total_fluid_force[static_cast<std::size_t>(sensor.axis)]
+                         : scene::structure_sensor_value(scene_.model, sensor, state));
+  }
+  return values;
+}
+
+std::optional<double> StructureSide::position_constraint_drift() const {
+  if (!finite(state_)) return std::nullopt;
+  return mbd::position_constraint_drift(scene_.model, state_);
+}
+
+std::optional<double> StructureSide::velocity_constraint_drift() const {
+  if (!finite(state_)) return std::nullopt;
+  return mbd::velocity_constraint_drift(scene_.model, state_);
+}
+
+}  // namespace fsi::coupling

@@ -1,0 +1,189 @@
+#include "fsi/coupling/tcp_fluid_side.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "fsi/common/error.hpp"
+#include "fsi/common/version.hpp"
+#include "fsi/protocol/channel.hpp"
+
+namespace fsi::coupling {
+namespace {
+
+namespace fs = std::filesystem;
+
+void write_port_file(const std::string& path, std::uint16_t port) {
+  // Written to a temporary name and renamed, so a reader never sees a partial number.
+  const std::string temporary = path + ".tmp";
+  {
+    std::ofstream out(temporary);
+    out << port << "\n";
+    if (!out)
+      throw Error("cannot write port file " + temporary, "--port-file", "choose a writable path");
+  }
+  fs::rename(temporary, path);
+}
+
+class HeartbeatScope final : public FluidSide::WaitScope {
+ public:
+  explicit HeartbeatScope(protocol::HeartbeatSender& sender) : busy_(sender.busy()) {}
+
+ private:
+  protocol::HeartbeatSender::Busy busy_;
+};
+
+}  // namespace
+
+TcpFluidSide::TcpFluidSide(const ServerOptions& options) : options_(options) {}
+
+TcpFluidSide::~TcpFluidSide() = default;
+
+void TcpFluidSide::connect() {
+  protocol::Listener listener(options_.listen_address, options_.port);
+  spdlog::info("listening on {}:{} for fsi-client (mpirun -np N fsi-client --server {}:{})",
+               options_.listen_address, listener.port(), options_.listen_address, listener.port());
+  if (!options_.port_file.empty()) write_port_file(options_.port_file, listener.port());
+  channel_ = std::make_unique<protocol::Channel>(listener.accept(options_.accept_timeout));
+  protocol::ServerHandshake handshake;
+  handshake.token = options_.token;
+  handshake.software_version = std::string(fsi::software_version());
+  handshake.run_name = fs::path(options_.output_dir).filename().string();
+  handshake.timeout = options_.handshake_timeout;
+  const protocol::ServerHandshakeResult opened = protocol::accept_client(*channel_, handshake);
+  const protocol::Hello& hello = opened.hello;
+  client_ = hello;
+  capabilities_ = opened.capabilities;
+  heartbeat_ = std::make_unique<protocol::HeartbeatSender>(
+      *channel_, (capabilities_ & protocol::kCapabilityHeartbeat) != 0);
+  spdlog::info("fsi-client {} connected from {} ({}, {} MPI rank(s)){}", hello.software_version,
+               channel_->peer_description(), hello.host, hello.mpi_ranks,
+               (capabilities_ & protocol::kCapabilityAuthentication) != 0
+                   ? "; authenticated with the token of " + options_.token->file()
+                   : std::string());
+}
+
+void TcpFluidSide::set_up(const scene::Scene& scene, const std::vector<double>& boundary_positions,
+                          const std::vector<double>& boundary_velocities) {
+  connect();
+  protocol::Setup setup;
+  setup.dimension = static_cast<std::uint32_t>(scene.dimension);
+  setup.time_step = scene.solver.step_size;
+  setup.equilibration_steps = scene.liggghts.equilibration_steps;
+  for (const auto& [name, value] : scene.liggghts.variables)
+    setup.liggghts_variables.push_back({name, value});
+  setup.script1_name = scene.liggghts.script1_name;
+  setup.script1_text = scene.liggghts.script1_text;
+  setup.script2_name = scene.liggghts.script2_name;
+  setup.script2_text = scene.liggghts.script2_text;
+  channel_->send(setup);
+
+  const auto& boundary = scene.boundary;
+  protocol::Mesh mesh;
+  mesh.dimension = static_cast<std::uint32_t>(boundary.dimension);
+  mesh.dynamic_vertex_count = static_cast<std::uint32_t>(boundary.dynamic_vertex_count);
+  mesh.refinement_option = static_cast<std::uint32_t>(boundary.refinement_option);
+  mesh.refinement_resolution = boundary.refinement_resolution;
+  // Every vertex; the static ones travel only here, the dynamic ones with every Step.
+  mesh.positions = boundary_positions;
+  mesh.velocities = boundary_velocities;
+  mesh.element_vertices = boundary.elements();
+  channel_->send(mesh);
+
+  protocol::Particles particles;
+  particles.dimension = static_cast<std::uint32_t>(scene.fluid.dimension);
+  particles.atom_type = static_cast<std::uint32_t>(scene.fluid.atom_type);
+  particles.mass = scene.fluid.mass;
+  particles.density = scene.fluid.density;
+  particles.positions = scene.fluid.positions;
+  particles.velocities = scene.fluid.velocities;
+  channel_->send(particles);
+}
+
+FluidReady TcpFluidSide::equilibrate() {
+  // Set-up and equilibration may take long: a client that sends heartbeats (1.1) is waited for
+  // as long as it computes; one of protocol 1.0 (no heartbeats) as long as it takes.
+  const bool client_heartbeats = (capabilities_ & protocol::kCapabilityHeartbeat) != 0;
+  const auto ready = channel_->expect<protocol::Ready>(
+      client_heartbeats ? std::optional(options_.peer_timeout) : std::nullopt);
+  FluidReady result;
+  result.particle_count = ready.particle_count;
+  result.liggghts_version = ready.liggghts_version;
+  result.seconds_setup = ready.seconds_setup;
+  result.seconds_equilibration = ready.seconds_equilibration;
+  result.initial_forces = expect_forces(0);
+  return result;
+}
+
+FluidForces TcpFluidSide::expect_forces(std::uint64_t step) {
+  auto forces = channel_->expect<protocol::Forces>(options_.peer_timeout);
+  if (forces.step != step) {
+    throw Error("Forces of step " + std::to_string(forces.step) + " arrived, step " +
+                    std::to_string(step) + " was expected",
+                "coupled step", "use matching fsi-server and fsi-client releases");
+  }
+  return {std::move(forces.forces), forces.diagnostics};
+}
+
+FluidForces TcpFluidSide::exchange(const BoundaryMotion& motion) {
+  protocol::Step step;
+  step.step = motion.step;
+  step.time = motion.time;
+  step.time_step = motion.time_step;
+  step.positions = motion.positions;
+  step.velocities = motion.velocities;
+  channel_->send(step);
+  return expect_forces(motion.step);
+}
+
+ParticleSnapshot TcpFluidSide::snapshot(std::uint64_t step) {
+  channel_->send(protocol::SnapshotRequest{step});
+  auto reply = channel_->expect<protocol::Snapshot>(options_.peer_timeout);
+  ParticleSnapshot snapshot;
+  snapshot.step = reply.step;
+  snapshot.time = reply.time;
+  snapshot.dimension = static_cast<int>(reply.dimension);
+  snapshot.ids = std::move(reply.ids);
+  snapshot.positions = std::move(reply.positions);
+  snapshot.velocities = std::move(reply.velocities);
+  snapshot.density = std::move(reply.density);
+  snapshot.pressure = std::move(reply.pressure);
+  return snapshot;
+}
+
+void TcpFluidSide::finish() {
+  channel_->send(protocol::Shutdown{"end time reached"});
+  const auto goodbye = channel_->expect<protocol::Goodbye>(std::chrono::seconds(60));
+  spdlog::info("client finished: {} steps, {:.1f} s", goodbye.steps_done, goodbye.seconds_total);
+  channel_->close();
+}
+
+void TcpFluidSide::report_fault(const std::exception& failure, bool during_coupled_steps) noexcept {
+  // Told to the client unless it reported the fault itself (docs/protocol.md §7): before the
+  // coupled steps a failure of ours is a set-up failure, during them (solver, signal) an abort.
+  try {
+    const auto code =
+        protocol::error_code_for(failure, during_coupled_steps ? protocol::ErrorCode::PeerAborted
+                                                               : protocol::ErrorCode::SetupFailed);
+    if (channel_ && code) {
+      channel_->send(protocol::ErrorMessage{*code, failure.what()});
+      channel_->close();
+    }
+  } catch (...) {
+    // The connection may be the fault itself; the run records the failure either way.
+  }
+}
+
+std::unique_ptr<FluidSide::WaitScope> TcpFluidSide::waiting() {
+  if (!heartbeat_) return nullptr;
+  return std::make_unique<HeartbeatScope>(*heartbeat_);
+}
+
+std::optional<FluidPeer> TcpFluidSide::peer() const {
+  if (!client_) return std::nullopt;
+  return FluidPeer{capabilities_, (capabilities_ & protocol::kCapabilityAuthentication) != 0,
+                   client_->software_version, client_->host, client_->mpi_ranks};
+}
+
+}  // namespace fsi::coupling

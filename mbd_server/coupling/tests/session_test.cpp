@@ -1,0 +1,213 @@
+// The session loop against the in-process fake fluid side (no LIGGGHTS, no TCP): set-up,
+// equilibration, the t = 0 row and snapshot, 100 coupled steps, snapshots, and a fault that ends
+// the run failed.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "fake_fluid_side.hpp"
+#include "fsi/coupling/session.hpp"
+#include "fsi/scene/scene.hpp"
+
+namespace fsi::coupling {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::FakeFluidSide;
+
+constexpr double kStep = 1e-5;  // the coarse static tank's
+constexpr int kSteps = 100;
+constexpr int kSnapshotEvery = 50;
+
+scene::Scene static_tank() {
+  return scene::build_scene(FSI_EXAMPLES_DIR "/static_tank/static_tank_coarse.scene",
+                            {{"Resolution.end_time", std::to_string(kSteps * kStep)},
+                             {"Resolution.snapshot_every_steps", std::to_string(kSnapshotEvery)}});
+}
+
+class SessionLoop : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    output_ = fs::temp_directory_path() /
+              ("fsi_session_test_" +
+               std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(output_);
+    options_.output_dir = output_.string();
+  }
+  void TearDown() override { fs::remove_all(output_); }
+
+  nlohmann::json manifest() const {
+    std::ifstream in(output_ / "run.json");
+    return nlohmann::json::parse(in);
+  }
+
+  // sensors.csv as columns by name.
+  std::map<std::string, std::vector<double>> sensors() const {
+    std::ifstream in(output_ / "sensors.csv");
+    std::string line;
+    std::vector<std::string> header;
+    std::map<std::string, std::vector<double>> columns;
+    while (std::getline(in, line)) {
+      if (line.empty() || line[0] == '#') continue;
+      std::stringstream fields(line);
+      std::string field;
+      if (header.empty()) {
+        while (std::getline(fields, field, ','))
+          header.push_back(field);
+        continue;
+      }
+      for (std::size_t i = 0; std::getline(fields, field, ','); ++i)
+        columns[header.at(i)].push_back(std::stod(field));
+    }
+    return columns;
+  }
+
+  fs::path output_;
+  ServerOptions options_;
+};
+
+TEST_F(SessionLoop, SetsUpEquilibratesAndCouplesOneHundredSteps) {
+  scene::Scene scene = static_tank();
+  // Every dynamic vertex feels a force that grows with the time of the boundary state it is
+  // computed for, so that the rows show which exchange's forces acted in which step.
+  auto per_vertex_y = [](double time) { return -0.25 * (1.0 + time / (kSteps * kStep)); };
+  FakeFluidSide fluid(2, [&](const BoundaryMotion& motion) {
+    std::vector<double> forces(motion.positions.size(), 0.0);
+    for (std::size_t i = 1; i < forces.size(); i += 2)
+      forces[i] = per_vertex_y(motion.time);
+    return forces;
+  });
+
+  ASSERT_EQ(run_session(scene, options_, fluid), 0);
+
+  EXPECT_EQ(fluid.set_up_calls, 1);
+  EXPECT_EQ(fluid.set_up_vertex_values, 2 * scene.boundary.vertex_count);  // static ones too
+  EXPECT_EQ(fluid.equilibrate_calls, 1);
+  ASSERT_EQ(fluid.exchanges.size(), static_cast<std::size_t>(kSteps));
+  for (std::size_t k = 0; k < fluid.exchanges.size(); ++k) {
+    const BoundaryMotion& motion = fluid.exchanges[k];
+    EXPECT_EQ(motion.step, k + 1);
+    EXPECT_EQ(motion.time, static_cast<double>(k + 1) * kStep);
+    EXPECT_EQ(motion.time_step, kStep);
+    EXPECT_EQ(motion.positions.size(), 2 * scene.boundary.dynamic_vertex_count);
+  }
+  // The first snapshot is the fluid as equilibrated, before the first step.
+  EXPECT_EQ(fluid.snapshot_steps, (std::vector<std::uint64_t>{0, 50, 100}));
+  EXPECT_EQ(fluid.finish_calls, 1);
+  EXPECT_TRUE(fluid.reported_faults.empty());
+
+  // The piston moves down at its prescribed speed, and the boundary the fluid sees with it.
+  double largest_descent = 0.0;
+  for (std::size_t i = 1; i < fluid.exchanges.front().positions.size(); i += 2) {
+    largest_descent = std::max(largest_descent, fluid.exchanges.front().positions[i] -
+                                                    fluid.exchanges.back().positions[i]);
+  }
+  EXPECT_GT(largest_descent, 0.0);
+
+  // Every dynamic vertex's fake force reaches the bodies' fluid-force sensors, and the fluid's
+  // own total reaches total_fluid_force_y. The row of t(n) holds f(t(n-1)), the forces held over
+  // step n (thesis Fig. 4.10); the row of t = 0 the forces on the initial configuration.
+  const auto columns = sensors();
+  const auto vertices = static_cast<double>(scene.boundary.dynamic_vertex_count);
+  // A row at t = 0 (the forces on the initial configuration), then one per step.
+  ASSERT_EQ(columns.at("time").size(), static_cast<std::size_t>(kSteps) + 1);
+  EXPECT_EQ(columns.at("time").front(), 0.0);
+  EXPECT_EQ(columns.at("time")[1], kStep);
+  EXPECT_EQ(columns.at("time").back(), kSteps * kStep);
+  for (std::size_t row = 0; row < columns.at("time").size(); ++row) {
+    const double acting_since = row == 0 ? 0.0 : static_cast<double>(row - 1) * kStep;
+    const double expected_total = per_vertex_y(acting_since) * vertices;
+    EXPECT_NEAR(columns.at("bottom_fluid_force_y")[row] + columns.at("piston_fluid_force_y")[row],
+                expected_total, 1e-12)
+        << "row " << row;
+    EXPECT_NEAR(columns.at("total_fluid_force_y")[row], expected_total, 1e-12) << "row " << row;
+  }
+
+  const auto run = manifest();
+  EXPECT_EQ(run["mode"], "coupled");
+  EXPECT_EQ(run["status"], "completed");
+  EXPECT_EQ(run["steps"], kSteps);
+  EXPECT_EQ(run["snapshots"], 3);
+  EXPECT_EQ(run["newton"]["steps"], kSteps);
+  EXPECT_EQ(run["fluid"]["particle_count"], fluid.particle_count);
+  EXPECT_TRUE(run["client"].is_null());  // an in-process fluid has no client
+  EXPECT_TRUE(fs::exists(output_ / "snapshots" / "particles_000000000.csv"));
+  EXPECT_TRUE(fs::exists(output_ / "snapshots" / "particles_000000050.csv"));
+  EXPECT_TRUE(fs::exists(output_ / "vtk" / "boundary.pvd"));
+}
+
+TEST_F(SessionLoop, KeepsTheFixedCoupledStepWhateverMethodTheSceneChooses) {
+  scene::Scene scene = static_tank();
+  scene.solver.method = scene::IntegrationMethod::Ida;
+  FakeFluidSide fluid(2, FakeFluidSide::constant({0.0, 0.0}));
+
+  ASSERT_EQ(run_session(scene, options_, fluid), 0);
+
+  const auto run = manifest();
+  EXPECT_EQ(run["model"]["integrator"], "Radau IIA, 3 stages");
+  EXPECT_EQ(run["newton"]["steps"], kSteps);  // one Radau IIA step per coupled step
+}
+
+TEST_F(SessionLoop, AFluidFaultEndsTheRunFailedWithTheFaultRecorded) {
+  scene::Scene scene = static_tank();
+  FakeFluidSide fluid(2, FakeFluidSide::constant({0.0, -0.25}));
+  fluid.fail_at_step = 37;
+
+  EXPECT_EQ(run_session(scene, options_, fluid), 1);
+
+  EXPECT_EQ(fluid.exchanges.size(), 37u);
+  EXPECT_EQ(fluid.finish_calls, 0);
+  ASSERT_EQ(fluid.reported_faults.size(), 1u);
+  EXPECT_NE(fluid.reported_faults[0].find("fails at step 37"), std::string::npos);
+  EXPECT_TRUE(fluid.faults_during_coupled_steps[0]);
+  const auto run = manifest();
+  EXPECT_EQ(run["status"], "failed");
+  EXPECT_NE(run["reason"].get<std::string>().find("fails at step 37"), std::string::npos);
+  EXPECT_EQ(run["steps"], 36);
+  // The structure had done step 37 when the fluid failed: its Newton work is recorded.
+  EXPECT_EQ(run["newton"]["steps"], 37);
+  EXPECT_GE(run["newton"]["iterations"].get<int>(), 37);
+  EXPECT_EQ(sensors().at("time").back(), 37 * kStep);
+}
+
+TEST_F(SessionLoop, AFaultBeforeTheCoupledStepsIsReportedAsSuch) {
+  scene::Scene scene = static_tank();
+  FakeFluidSide fluid(2, FakeFluidSide::constant({0.0, 0.0}));
+  fluid.fail_in_equilibration = true;
+
+  EXPECT_EQ(run_session(scene, options_, fluid), 1);
+
+  EXPECT_TRUE(fluid.exchanges.empty());
+  ASSERT_EQ(fluid.reported_faults.size(), 1u);
+  EXPECT_FALSE(fluid.faults_during_coupled_steps[0]);
+  EXPECT_EQ(manifest()["status"], "failed");
+  EXPECT_EQ(manifest()["steps"], 0);
+}
+
+TEST_F(SessionLoop, NonFiniteFluidForcesStopTheRunAtTheirStep) {
+  scene::Scene scene = static_tank();
+  FakeFluidSide fluid(2, [](const BoundaryMotion& motion) {
+    std::vector<double> forces(motion.positions.size(), 0.0);
+    if (motion.step == 5) forces[1] = std::nan("");
+    return forces;
+  });
+
+  EXPECT_EQ(run_session(scene, options_, fluid), 1);
+
+  EXPECT_EQ(fluid.exchanges.size(), 5u);
+  const auto run = manifest();
+  EXPECT_EQ(run["status"], "failed");
+  EXPECT_NE(run["reason"].get<std::string>().find("fluid forces of step 5 are not finite"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace fsi::coupling
