@@ -260,7 +260,9 @@ int main(int argc, char** argv) {
   try {
     for (const auto& item : overrides)
       parsed_overrides.push_back(fsi::scene::parse_override(item));
-    scene = fsi::scene::build_scene(scene_file, parsed_overrides);
+    scene = fsi::scene::build_scene(
+        scene_file, parsed_overrides,
+        mbd_only ? fsi::scene::SceneMode::MbdOnly : fsi::scene::SceneMode::Coupled);
   } catch (const fsi::Error& error) {
     spdlog::error("{}", error.what());
     return 2;
@@ -273,6 +275,9 @@ int main(int argc, char** argv) {
   const std::vector<fsi::scene::Diagnostic> diagnostics = fsi::scene::physics_checks(scene);
   if (check_only) {
     print_summary(scene);
+    std::printf("%s", fsi::scene::blocks_needed(scene, mbd_only ? fsi::scene::SceneMode::MbdOnly
+                                                                : fsi::scene::SceneMode::Coupled)
+                          .c_str());
     print_diagnostics(scene, diagnostics);
     return 0;
   }
