@@ -135,27 +135,23 @@ void SceneBuilder::placed(const View& element, const std::function<void()>& add)
   }
 }
 
-void SceneBuilder::register_joint(const View& element, NamedJoint joint) {
-  if (!element.has("name")) return;
+bool SceneBuilder::name_is_free(const View& element) {
+  if (!element.has("name")) return false;
   const std::string& name = element.string("name");
-  if (names.joints.count(name) || names.force_elements.count(name)) {
-    problem(element.location("name"), "a second element is named '" + name + "'",
-            "give every joint and force element its own name");
-    return;
-  }
-  names.joints.emplace(name, std::move(joint));
+  if (names.joints.count(name) == 0 && names.force_elements.count(name) == 0) return true;
+  problem(element.location("name"), "a second element is named '" + name + "'",
+          "give every joint and force element its own name");
+  return false;
+}
+
+void SceneBuilder::register_joint(const View& element, NamedJoint joint) {
+  if (name_is_free(element)) names.joints.emplace(element.string("name"), std::move(joint));
 }
 
 void SceneBuilder::register_force_element(const View& element, int index, bool rotational) {
-  if (!element.has("name")) return;
-  const std::string& name = element.string("name");
-  if (names.joints.count(name) || names.force_elements.count(name)) {
-    problem(element.location("name"), "a second element is named '" + name + "'",
-            "give every joint and force element its own name");
-    return;
-  }
-  names.force_elements.emplace(name, index);
-  names.rotational.emplace(name, rotational);
+  if (!name_is_free(element)) return;
+  names.force_elements.emplace(element.string("name"), index);
+  names.rotational.emplace(element.string("name"), rotational);
 }
 
 std::optional<TriangleMesh> SceneBuilder::read_stl(const View& block, std::string_view key) {

@@ -104,6 +104,9 @@ class SceneBuilder {
                                                       int components);
 
  private:
+  // Is the element named, with a name no other joint or spring has? A taken name is a problem.
+  bool name_is_free(const View& element);
+
   std::vector<Problem>& problems_;
   bool skipped_any_ = false;
   std::vector<std::string> skipped_bodies_;  // bodies not built for a value in error
