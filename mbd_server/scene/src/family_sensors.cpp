@@ -8,333 +8,318 @@
 namespace fsi::scene::detail {
 namespace {
 
-// The old declaration helpers, kept for the Sensor block's declaration below.
-ParameterSpec optional(ParameterSpec p) {
-  return p.optional();
+// What a sensor type takes, declared once for planar and spatial scenes: each key required,
+// forbidden or optional, whether it has a 3D form, its units (planar: per unit depth; the
+// rotational unit is that of angle or torque components, empty when it has none).
+enum class Use { Required, Forbidden, Optional };
+
+struct SensorVariant {
+  std::string_view type;
+  SensorType kind;
+  Use body, joint, element, component, point;
+  bool spatial;
+  std::string_view planar_unit, planar_rotational_unit;
+  std::string_view spatial_unit, spatial_torque_unit;
+
+  bool kinematic() const { return kind == SensorType::Position || kind == SensorType::Velocity; }
+};
+
+constexpr Use R = Use::Required, F = Use::Forbidden, O = Use::Optional;
+//                 type, kind, body, joint, element, component, point, 3D, planar units, 3D units
+constexpr SensorVariant kSensorVariants[] = {
+    {"position", SensorType::Position, R, F, F, R, O, true, "m", "rad", "m", ""},
+    {"velocity", SensorType::Velocity, R, F, F, R, O, true, "m/s", "rad/s", "m/s", ""},
+    {"fluid_force", SensorType::FluidForce, R, F, F, R, F, true, "N/m", "N m/m", "N", "N m"},
+    {"constraint_force", SensorType::ConstraintForce, R, F, F, R, F, false, "N/m", "N m/m", "", ""},
+    {"total_fluid_force", SensorType::TotalFluidForce, F, F, F, R, F, true, "N/m", "", "N", ""},
+    {"joint_force", SensorType::JointForce, F, R, F, R, F, true, "N/m", "N m/m", "N", "N m"},
+    {"spring_force", SensorType::SpringForce, F, F, R, F, F, true, "N/m", "N m/m", "N", ""},
+    {"kinetic_energy", SensorType::KineticEnergy, F, F, F, F, F, true, "J/m", "", "J", ""},
+    {"potential_energy", SensorType::PotentialEnergy, F, F, F, F, F, true, "J/m", "", "J", ""},
+};
+
+std::vector<std::string> sensor_types() {
+  std::vector<std::string> types;
+  for (const SensorVariant& variant : kSensorVariants)
+    types.emplace_back(variant.type);
+  return types;
 }
-ParameterSpec choice(ParameterSpec p, std::vector<std::string> choices) {
-  return p.one_of(std::move(choices));
-}
-BlockSpec repeated(BlockSpec b) {
-  return b.as_list();
-}
-BlockSpec block(std::string name, std::string doc, std::vector<ParameterSpec> parameters) {
-  return block_spec(std::move(name), std::move(doc), std::move(parameters));
+
+const SensorVariant& variant_of(const std::string& type) {
+  for (const SensorVariant& variant : kSensorVariants) {
+    if (variant.type == type) return variant;
+  }
+  FSI_ASSERT(false, "sensor type '" + type + "' passed the schema but has no variant");
+  return kSensorVariants[0];
 }
 
 std::vector<BlockSpec> sensor_blocks() {
-  return {repeated(block(
-      "Sensor", "A column of sensors.csv, written every Output.sensor_every_steps steps.",
-      {text("name", "column name"),
-       choice(text("type",
-                   "what is measured (total_fluid_force: on every boundary, walls included; "
-                   "joint_force: what the joint exerts on its body_a (Clamp: body); spring_force: "
-                   "tension, or torque of a RotationalSpringDamper; energies of the whole system, "
-                   "potential = gravity + springs)"),
-              {"position", "velocity", "fluid_force", "constraint_force", "total_fluid_force",
-               "joint_force", "spring_force", "kinetic_energy", "potential_energy"}),
-       optional(text("body",
-                     "name of a RigidBody2D (position, velocity, fluid and constraint "
-                     "forces), or of an AncfBeam2D (fluid_force)")),
-       optional(per_dimension(
-           vector("point", 2, "m",
-                  "position, velocity: a point of the body instead of its centre of mass (body "
-                  "coordinates; [s, eta] on an AncfBeam2D; 3D: [x, y, z], [s, 0, 0] on a cable)"))),
-       optional(text("joint", "joint_force: the name of a joint block")),
-       optional(text("element", "spring_force: the name of a spring block")),
-       optional(choice(text("component",
-                            "x, y, angle (torque for forces); 3D: x, y, z, and torque_x, "
-                            "torque_y, torque_z (about the centre of mass) for fluid_force and "
-                            "joint_force; not for spring_force and energies"),
-                       {"x", "y", "z", "angle", "torque", "torque_x", "torque_y", "torque_z"}))}))};
+  return {
+      block_spec(
+          "Sensor", "A column of sensors.csv, written every Output.sensor_every_steps steps.",
+          {text("name", "column name"),
+           text("type",
+                "what is measured (total_fluid_force: on every boundary, walls included; "
+                "joint_force: what the joint exerts on its body_a (Clamp: body); spring_force: "
+                "tension, or torque of a RotationalSpringDamper; energies of the whole system, "
+                "potential = gravity + springs)")
+               .one_of(sensor_types()),
+           text("body",
+                "name of a RigidBody2D (position, velocity, fluid and constraint forces), or of "
+                "an AncfBeam2D (fluid_force)")
+               .optional(),
+           per_dimension(vector("point", 2, "m",
+                                "position, velocity: a point of the body instead of its centre of "
+                                "mass (body coordinates; [s, eta] on an AncfBeam2D; 3D: [x, y, "
+                                "z], [s, 0, 0] on a cable)"))
+               .optional(),
+           text("joint", "joint_force: the name of a joint block").optional(),
+           text("element", "spring_force: the name of a spring block").optional(),
+           text("component",
+                "x, y, angle (torque for forces); 3D: x, y, z, and torque_x, torque_y, torque_z "
+                "(about the centre of mass) for fluid_force and joint_force; not for spring_force "
+                "and energies")
+               .one_of({"x", "y", "z", "angle", "torque", "torque_x", "torque_y", "torque_z"})
+               .optional()})
+          .as_list()};
 }
 
+// Builds one Sensor block by its variant: one path for planar and spatial scenes, the
+// dimension deciding only the components, units and what a body point is.
 class SensorBuilder {
  public:
-  explicit SensorBuilder(SceneBuilder& builder_) : builder(builder_) {}
+  SensorBuilder(SceneBuilder& builder_, const View& block_)
+      : builder(builder_), s(block_), variant(variant_of(block_.string("type"))) {}
 
-  void build(const View& s);
+  void build();
 
  private:
-  void build_spatial(const View& s, const std::string& type, const std::string& component,
-                     SensorSpec& sensor);
-  void build_planar(const View& s, const std::string& type, const std::string& component,
-                    SensorSpec& sensor);
-  // The joint or spring a sensor names; a problem at its key (and nullptr) when there is none.
-  const NamedJoint* named_joint(const View& s);
-  std::optional<int> named_spring(const View& s, const std::string& block);
-  void problem(const Problem& found) { builder.problem(found.location, found.message, found.fix); }
+  bool keys_fit();
+  bool component_fits();
+  bool body_fits();
+  bool joint_fits();
+  bool spring_fits();
+  std::string unit() const;
+  void problem(const SourceLocation& where, const std::string& message, const std::string& fix) {
+    builder.problem(where, message, fix);
+    complete = false;
+  }
 
   SceneBuilder& builder;
+  const View& s;
+  const SensorVariant& variant;
+  SensorSpec sensor;
+  std::string component;
+  bool complete = true;
 };
 
-const NamedJoint* SensorBuilder::named_joint(const View& s) {
-  const auto found = builder.names.joints.find(s.string("joint"));
-  if (found != builder.names.joints.end()) return &found->second;
-  problem({s.location("joint"), "no joint named '" + s.string("joint") + "'",
-           "give the joint block name = \"" + s.string("joint") + "\""});
-  return nullptr;
-}
-
-std::optional<int> SensorBuilder::named_spring(const View& s, const std::string& block) {
-  const auto found = builder.names.force_elements.find(s.string("element"));
-  if (found != builder.names.force_elements.end() && found->second >= 0) return found->second;
-  problem({s.location("element"), "no spring named '" + s.string("element") + "'",
-           "give the " + block + " name = \"" + s.string("element") + "\""});
-  return std::nullopt;
-}
-
-void SensorBuilder::build(const View& s) {
-  SensorSpec sensor;
+void SensorBuilder::build() {
   sensor.name = s.string("name");
-  const std::string type = s.string("type");
-  const std::string component = s.has("component") ? s.string("component") : std::string();
-  sensor.type = type == "position"           ? SensorType::Position
-                : type == "velocity"         ? SensorType::Velocity
-                : type == "fluid_force"      ? SensorType::FluidForce
-                : type == "constraint_force" ? SensorType::ConstraintForce
-                : type == "joint_force"      ? SensorType::JointForce
-                : type == "spring_force"     ? SensorType::SpringForce
-                : type == "kinetic_energy"   ? SensorType::KineticEnergy
-                : type == "potential_energy" ? SensorType::PotentialEnergy
-                                             : SensorType::TotalFluidForce;
-  if (builder.spatial()) {
-    build_spatial(s, type, component, sensor);
-  } else {
-    build_planar(s, type, component, sensor);
+  sensor.type = variant.kind;
+  const std::string type(variant.type);
+  component = s.has("component") ? s.string("component") : std::string();
+  if (builder.spatial() && !variant.spatial) {
+    return problem(s.location("type"), "a " + type + " sensor has no 3D form yet",
+                   "use joint_force (the force a named joint exerts) or fluid_force");
   }
-}
-
-// A sensor of a 3D scene: components x, y, z of the centre of mass (position, velocity of a
-// RigidBody3D or PointMass) or of a force (fluid_force on any spatial body, joint_force on
-// its body_a, total_fluid_force), or an energy.
-void SensorBuilder::build_spatial(const View& s, const std::string& type,
-                                  const std::string& component, SensorSpec& sensor) {
-  if (sensor.type == SensorType::ConstraintForce) {
-    problem({s.location("type"), "a " + type + " sensor has no 3D form yet",
-             "use joint_force (the force a named joint exerts) or fluid_force"});
-    return;
+  if (!builder.spatial() && component == "z") {
+    return problem(s.location("component"), "component z needs a 3D scene (dimension = 2 here)",
+                   "write x or y, or set dimension = 3");
   }
-  const bool spring = sensor.type == SensorType::SpringForce;
-  const bool energy =
-      sensor.type == SensorType::KineticEnergy || sensor.type == SensorType::PotentialEnergy;
-  const bool on_body = sensor.type == SensorType::Position || sensor.type == SensorType::Velocity ||
-                       sensor.type == SensorType::FluidForce;
-  bool complete = true;
-  auto check_key = [&](const char* key, bool wanted, const std::string& example) {
-    if (wanted && !s.has(key)) {
-      problem({s.location("name"), "sensor '" + sensor.name + "' needs " + key,
-               std::string("add ") + key + " = " + example});
-      complete = false;
-    } else if (!wanted && s.has(key)) {
-      problem({s.location(key), "a " + type + " sensor takes no " + key, "remove it"});
-      complete = false;
-    }
-  };
-  check_key("body", on_body, "\"...\"");
-  check_key("joint", sensor.type == SensorType::JointForce, "\"...\" (a joint's name)");
-  check_key("element", spring, "\"...\" (a SpringDamper3D's name)");
-  check_key("component", !energy && !spring, "\"x\"");
-  const bool kinematic = sensor.type == SensorType::Position || sensor.type == SensorType::Velocity;
-  if (!kinematic && s.has("point")) check_key("point", false, "");
-  if (!complete) return;
-  const bool torque = component.rfind("torque_", 0) == 0;
-  if (!energy && !spring) {
-    const bool takes_torque =
-        sensor.type == SensorType::FluidForce || sensor.type == SensorType::JointForce;
-    if ((component != "x" && component != "y" && component != "z" && !torque) ||
-        (torque && !takes_torque)) {
-      problem({s.location("component"),
-               "a 3D " + type + " sensor has components x, y or z" +
-                   (takes_torque ? " (or torque_x, torque_y, torque_z)" : ""),
-               "write x, y or z (angles of 3D bodies are not sensors yet)"});
-      return;
-    }
-    const char last = component.back();
-    sensor.axis = (last == 'z' ? 2 : last == 'y' ? 1 : 0) + (torque ? 3 : 0);
+  for (const SensorSpec& other : builder.scene.sensors) {
+    if (other.name == sensor.name)
+      problem(s.location("name"), "a second sensor is named '" + sensor.name + "'", "rename it");
   }
-  sensor.unit = sensor.type == SensorType::Position   ? "m"
-                : sensor.type == SensorType::Velocity ? "m/s"
-                : energy                              ? "J"
-                : torque                              ? "N m"
-                                                      : "N";
-  if (on_body) sensor.body = builder.find_body(s, "body");
-  if (kinematic && s.has("point")) {
-    const auto point = builder.dimension_vector(s, "point", 3);
-    if (!point) return;
-    sensor.point = std::array<double, 3>{(*point)[0], (*point)[1], (*point)[2]};
-    try {
-      builder.model.check_spatial_point({sensor.body, {(*point)[0], (*point)[1], (*point)[2]}},
-                                        "sensor '" + sensor.name + "'");
-    } catch (const Error& error) {
-      problem({s.location("point"), error.fault(), error.remedy()});
-      return;
-    }
-  }
-  if (kinematic && !sensor.point && builder.model.is_cable(sensor.body)) {
-    problem({s.location("body"),
-             "a " + type + " sensor reads a centre of mass, and '" + s.string("body") +
-                 "' is an AncfCable3D",
-             "give a centre-line point = [s, 0, 0], or use type = \"fluid_force\""});
-    return;
-  }
-  if (spring) {
-    const std::optional<int> element = named_spring(s, "SpringDamper3D block");
-    if (!element) return;
-    sensor.force_element = *element;
-  }
-  if (sensor.type == SensorType::JointForce) {
-    const NamedJoint* joint = named_joint(s);
-    if (joint == nullptr) return;
-    sensor.body = joint->body;
-    if (sensor.body == mbd::kGround || builder.model.is_cable(sensor.body)) {
-      problem(
-          {s.location("joint"),
-           "joint '" + s.string("joint") + "' has no rigid body or point mass as its first body",
-           "give the joint a RigidBody3D or PointMass as body_a (body of a "
-           "FixedJoint3D)"});
-      return;
-    }
-    sensor.first_row = joint->first_row;
-    sensor.rows = joint->rows;
-  }
-  for (const auto& other : builder.scene.sensors) {
-    if (other.name == sensor.name) {
-      problem({s.location("name"), "a second sensor is named '" + sensor.name + "'", "rename it"});
-      return;
-    }
-  }
+  // A planar sensor's component is judged even when a key is wrong (every mistake at once); a
+  // spatial one's only with the keys right.
+  const bool keys = keys_fit();
+  if (!keys && builder.spatial()) return;
+  if (!component_fits() || !keys) return;
+  sensor.unit = unit();
+  if (!body_fits() || !joint_fits() || !spring_fits() || !complete) return;
   builder.scene.sensors.push_back(sensor);
 }
 
-void SensorBuilder::build_planar(const View& s, const std::string& type,
-                                 const std::string& component, SensorSpec& sensor) {
-  if (component == "z") {
-    problem({s.location("component"), "component z needs a 3D scene (dimension = 2 here)",
-             "write x or y, or set dimension = 3"});
-    return;
-  }
-  sensor.axis = component == "z" ? 2 : component == "y" ? 1 : 0;
-  for (const auto& other : builder.scene.sensors) {
-    if (other.name == sensor.name) {
-      problem({s.location("name"), "a second sensor is named '" + sensor.name + "'", "rename it"});
+// Every key the variant forbids is absent, every key it requires present.
+bool SensorBuilder::keys_fit() {
+  const std::string type(variant.type);
+  auto forbid = [&](const char* key, Use use, const std::string& fix) {
+    if (use == Use::Forbidden && s.has(key))
+      problem(s.location(key), "a " + type + " sensor takes no " + key, fix);
+  };
+  auto need = [&](const char* key, Use use, const std::string& example) {
+    if (use == Use::Required && !s.has(key)) {
+      problem(s.location("name"), "sensor '" + sensor.name + "' needs " + key,
+              std::string("add ") + key + " = " + example);
     }
-  }
-  // Which of body, joint, element and component the type takes.
-  const bool on_body = sensor.type == SensorType::Position || sensor.type == SensorType::Velocity ||
-                       sensor.type == SensorType::FluidForce ||
-                       sensor.type == SensorType::ConstraintForce;
-  const bool energy =
-      sensor.type == SensorType::KineticEnergy || sensor.type == SensorType::PotentialEnergy;
-  const bool has_component = !energy && sensor.type != SensorType::SpringForce;
-  const bool force = sensor.type != SensorType::Position && sensor.type != SensorType::Velocity;
-  bool complete = true;
-  auto forbid = [&](const char* key, const std::string& fix) {
-    if (!s.has(key)) return;
-    problem({s.location(key), "a " + type + " sensor takes no " + key, fix});
-    complete = false;
   };
-  auto need = [&](const char* key, const std::string& example) {
-    if (s.has(key)) return;
-    problem({s.location("name"), "sensor '" + sensor.name + "' needs " + key,
-             std::string("add ") + key + " = " + example});
-    complete = false;
-  };
-  if (!on_body)
-    forbid("body", sensor.type == SensorType::TotalFluidForce
-                       ? "remove body, or use type = \"fluid_force\""
-                       : "remove it");
-  if (sensor.type != SensorType::JointForce) forbid("joint", "remove it");
-  if (sensor.type != SensorType::SpringForce) forbid("element", "remove it");
-  if (!has_component) forbid("component", "remove it");
-  const bool kinematic = sensor.type == SensorType::Position || sensor.type == SensorType::Velocity;
-  if (!kinematic) forbid("point", "remove it (point is for position and velocity sensors)");
-  if (component.rfind("torque_", 0) == 0) {
-    problem({s.location("component"),
-             "torque_x, torque_y and torque_z are components of 3D sensors", "write torque"});
-    complete = false;
+  const bool total = variant.kind == SensorType::TotalFluidForce;
+  const bool planar = !builder.spatial();
+  forbid("body", variant.body,
+         total && planar ? "remove body, or use type = \"fluid_force\"" : "remove it");
+  forbid("joint", variant.joint, "remove it");
+  forbid("element", variant.element, "remove it");
+  forbid("component", variant.component, "remove it");
+  forbid("point", variant.point,
+         planar ? "remove it (point is for position and velocity sensors)" : "remove it");
+  if (planar && component.rfind("torque_", 0) == 0) {
+    problem(s.location("component"), "torque_x, torque_y and torque_z are components of 3D sensors",
+            "write torque");
   }
-  if (has_component) need("component", "\"x\"");
-  if (on_body) need("body", "\"...\"");
-  if (sensor.type == SensorType::JointForce) need("joint", "\"...\" (a joint's name)");
-  if (sensor.type == SensorType::SpringForce) need("element", "\"...\" (a spring's name)");
-  if (has_component && !component.empty()) {
+  need("component", variant.component, "\"x\"");
+  need("body", variant.body, "\"...\"");
+  need("joint", variant.joint, "\"...\" (a joint's name)");
+  need("element", variant.element,
+       planar ? "\"...\" (a spring's name)" : "\"...\" (a SpringDamper3D's name)");
+  return complete;
+}
+
+// The component among the variant's: planar x, y and angle (torque for forces); spatial x, y, z
+// and torque_x, torque_y, torque_z where the variant has a torque unit.
+bool SensorBuilder::component_fits() {
+  if (component.empty() || variant.component == Use::Forbidden) return true;
+  const std::string type(variant.type);
+  const bool spatial_torque = component.rfind("torque_", 0) == 0;
+  const bool force = !variant.kinematic();
+  if (builder.spatial()) {
+    const bool takes_torque = !variant.spatial_torque_unit.empty();
+    if ((component != "x" && component != "y" && component != "z" && !spatial_torque) ||
+        (spatial_torque && !takes_torque)) {
+      problem(s.location("component"),
+              "a 3D " + type + " sensor has components x, y or z" +
+                  (takes_torque ? " (or torque_x, torque_y, torque_z)" : ""),
+              "write x, y or z (angles of 3D bodies are not sensors yet)");
+      return false;
+    }
+  } else {
+    // Reported, and the sensor still read further: its other mistakes come in the same run.
     if (force && component == "angle") {
-      problem({s.location("component"), "a force sensor has components x, y or torque",
-               "write torque"});
+      builder.problem(s.location("component"), "a force sensor has components x, y or torque",
+                      "write torque");
     }
     if (!force && component == "torque") {
-      problem({s.location("component"), "a " + type + " sensor has components x, y or angle",
-               "write angle"});
+      builder.problem(s.location("component"), "a " + type + " sensor has components x, y or angle",
+                      "write angle");
     }
-    if (sensor.type == SensorType::TotalFluidForce && component == "torque") {
-      problem(
-          {s.location("component"), "total_fluid_force has components x and y", "write x or y"});
+    if (force && component == "torque" && variant.planar_rotational_unit.empty()) {
+      builder.problem(s.location("component"), "total_fluid_force has components x and y",
+                      "write x or y");
     }
     sensor.component = coordinate_of(component);
   }
-  if (!complete) return;
-  const bool rotational = sensor.component == mbd::Coordinate::Angle;
-  sensor.unit = sensor.type == SensorType::Position   ? (rotational ? "rad" : "m")
-                : sensor.type == SensorType::Velocity ? (rotational ? "rad/s" : "m/s")
-                : energy                              ? "J/m"
-                                                      : (rotational ? "N m/m" : "N/m");
-  if (on_body) sensor.body = builder.find_body(s, "body");
-  if (kinematic && s.has("point")) {
+  const char last = component.back();
+  sensor.axis = (last == 'z' ? 2 : last == 'y' ? 1 : 0) + (spatial_torque ? 3 : 0);
+  return true;
+}
+
+std::string SensorBuilder::unit() const {
+  if (builder.spatial()) {
+    return std::string(component.rfind("torque_", 0) == 0 ? variant.spatial_torque_unit
+                                                          : variant.spatial_unit);
+  }
+  const bool rotational = !component.empty() && sensor.component == mbd::Coordinate::Angle;
+  return std::string(rotational ? variant.planar_rotational_unit : variant.planar_unit);
+}
+
+// The body a position, velocity or force sensor reads, and its point if one is given.
+bool SensorBuilder::body_fits() {
+  if (variant.body != Use::Required) return true;
+  const std::string type(variant.type);
+  mbd::Model& model = builder.model;
+  sensor.body = builder.find_body(s, "body");
+  const bool rotational = !builder.spatial() && sensor.component == mbd::Coordinate::Angle;
+  if (variant.kinematic() && s.has("point")) {
     if (rotational) {
-      problem({s.location("component"), "a point has components x and y, no angle",
-               "write x or y, or remove point for the body's angle"});
-      return;
+      problem(s.location("component"), "a point has components x and y, no angle",
+              "write x or y, or remove point for the body's angle");
+      return false;
     }
-    const auto point = builder.dimension_vector(s, "point", 2);
-    if (!point) return;
-    sensor.point = std::array<double, 3>{(*point)[0], (*point)[1], 0.0};
+    const auto point = builder.dimension_vector(s, "point", builder.dimension);
+    if (!point) return false;
+    sensor.point =
+        std::array<double, 3>{(*point)[0], (*point)[1], builder.spatial() ? (*point)[2] : 0.0};
+    const std::string user = "sensor '" + sensor.name + "'";
     try {
-      builder.model.check_point({sensor.body, {(*point)[0], (*point)[1]}},
-                                "sensor '" + sensor.name + "'");
+      if (builder.spatial()) {
+        model.check_spatial_point({sensor.body, {(*point)[0], (*point)[1], (*point)[2]}}, user);
+      } else {
+        model.check_point({sensor.body, {(*point)[0], (*point)[1]}}, user);
+      }
     } catch (const Error& error) {
-      problem({s.location("point"), error.fault(), error.remedy()});
-      return;
+      problem(s.location("point"), error.fault(), error.remedy());
+      return false;
     }
-    sensor.axis = sensor.component == mbd::Coordinate::Y ? 1 : 0;
   }
-  if (on_body && builder.model.is_beam(sensor.body) && sensor.type != SensorType::FluidForce &&
+  if (builder.spatial() && variant.kinematic() && !sensor.point && model.is_cable(sensor.body)) {
+    problem(s.location("body"),
+            "a " + type + " sensor reads a centre of mass, and '" + s.string("body") +
+                "' is an AncfCable3D",
+            "give a centre-line point = [s, 0, 0], or use type = \"fluid_force\"");
+    return false;
+  }
+  if (!builder.spatial() && model.is_beam(sensor.body) && sensor.type != SensorType::FluidForce &&
       !sensor.point) {
-    problem({s.location("type"),
-             "a " + type + " sensor reads rigid-body coordinates, and '" + s.string("body") +
-                 "' is an AncfBeam2D",
-             "give a beam point = [s, eta], or use type = \"fluid_force\""});
-    return;
+    problem(s.location("type"),
+            "a " + type + " sensor reads rigid-body coordinates, and '" + s.string("body") +
+                "' is an AncfBeam2D",
+            "give a beam point = [s, eta], or use type = \"fluid_force\"");
+    return false;
   }
-  if (sensor.type == SensorType::JointForce) {
-    const NamedJoint* joint = named_joint(s);
-    if (joint == nullptr) return;
-    sensor.body = joint->body;
-    if (sensor.body != mbd::kGround && builder.model.is_beam(sensor.body)) {
-      problem({s.location("joint"),
-               "joint '" + s.string("joint") +
-                   "' holds an AncfBeam2D as its first body; joint_force reads a "
-                   "rigid body's force and torque",
-               "give the joint a rigid body as body_a, or measure the beam with "
-               "a fluid_force sensor"});
-      return;
-    }
-    sensor.first_row = joint->first_row;
-    sensor.rows = joint->rows;
+  return true;
+}
+
+// The rows of the named joint and the body its reaction is read on.
+bool SensorBuilder::joint_fits() {
+  if (variant.joint != Use::Required) return true;
+  const std::string& name = s.string("joint");
+  const auto found = builder.names.joints.find(name);
+  if (found == builder.names.joints.end()) {
+    problem(s.location("joint"), "no joint named '" + name + "'",
+            "give the joint block name = \"" + name + "\"");
+    return false;
   }
-  if (sensor.type == SensorType::SpringForce) {
-    const std::optional<int> element = named_spring(s, "spring block");
-    if (!element) return;
-    sensor.force_element = *element;
-    if (builder.names.rotational[s.string("element")]) sensor.unit = "N m/m";
+  const NamedJoint& joint = found->second;
+  sensor.body = joint.body;
+  const mbd::Model& model = builder.model;
+  if (builder.spatial() && (sensor.body == mbd::kGround || model.is_cable(sensor.body))) {
+    problem(s.location("joint"),
+            "joint '" + name + "' has no rigid body or point mass as its first body",
+            "give the joint a RigidBody3D or PointMass as body_a (body of a FixedJoint3D)");
+    return false;
   }
-  builder.scene.sensors.push_back(sensor);
+  if (!builder.spatial() && sensor.body != mbd::kGround && model.is_beam(sensor.body)) {
+    problem(s.location("joint"),
+            "joint '" + name +
+                "' holds an AncfBeam2D as its first body; joint_force reads a rigid body's force "
+                "and torque",
+            "give the joint a rigid body as body_a, or measure the beam with a fluid_force "
+            "sensor");
+    return false;
+  }
+  sensor.first_row = joint.first_row;
+  sensor.rows = joint.rows;
+  return true;
+}
+
+// The named spring; a rotational one measures a torque.
+bool SensorBuilder::spring_fits() {
+  if (variant.element != Use::Required) return true;
+  const std::string& name = s.string("element");
+  const auto found = builder.names.force_elements.find(name);
+  if (found == builder.names.force_elements.end() || found->second < 0) {
+    problem(s.location("element"), "no spring named '" + name + "'",
+            "give the " + std::string(builder.spatial() ? "SpringDamper3D block" : "spring block") +
+                " name = \"" + name + "\"");
+    return false;
+  }
+  sensor.force_element = found->second;
+  if (builder.names.rotational[name]) sensor.unit = std::string(variant.planar_rotational_unit);
+  return true;
 }
 
 void build_sensors(SceneBuilder& builder) {
-  SensorBuilder sensors(builder);
   for (const View& s : builder.blocks("Sensor"))
-    builder.guard(s.location(), [&] { sensors.build(s); });
+    builder.guard(s.location(), [&] { SensorBuilder(builder, s).build(); });
 }
 
 }  // namespace
