@@ -94,6 +94,47 @@ std::string joined(const std::vector<std::string>& names) {
   return text;
 }
 
+// The model lists what is wrong with the initial state row by row ("\n  revolute joint 'hinge'
+// (x): redundant ..."); each line becomes a problem at the block that added the row, so that a
+// redundant or unsatisfied joint is found at its scene line.
+std::vector<Problem> at_their_blocks(const Error& error, const mbd::Model& model,
+                                     const detail::SceneBuilder& builder, const std::string& path) {
+  const std::string separator = "\n  ";
+  const std::string& text = error.fault();
+  std::size_t start = text.find(separator);
+  const std::string headline = text.substr(0, start == std::string::npos ? text.size() : start);
+  std::vector<Problem> problems;
+  while (start != std::string::npos) {
+    const std::size_t end = text.find(separator, start + separator.size());
+    const std::string line =
+        text.substr(start + separator.size(),
+                    end == std::string::npos ? std::string::npos : end - start - separator.size());
+    SourceLocation where;
+    where.file = path;
+    for (int row = 0; row < model.constraint_count(); ++row) {
+      const SourceLocation* owner = builder.owner_of_row(row);
+      if (owner != nullptr && line.rfind(model.constraint_description(row) + ":", 0) == 0) {
+        where = *owner;
+        break;
+      }
+    }
+    Problem found;
+    found.location = where;
+    found.message = headline + " " + line;
+    found.fix = error.remedy();
+    problems.push_back(std::move(found));
+    start = end;
+  }
+  if (problems.empty()) {
+    Problem whole;
+    whole.location.file = path;
+    whole.message = headline;
+    whole.fix = error.remedy();
+    problems.push_back(std::move(whole));
+  }
+  return problems;
+}
+
 }  // namespace
 
 const BlockSpec& scene_schema() {
@@ -155,7 +196,9 @@ Scene build_scene(const std::string& path, const std::vector<Override>& override
   try {
     (void)scene.model.initial_state();
   } catch (const Error& error) {
-    throw Error(error.fault(), path, error.remedy());
+    std::vector<Problem> inconsistent = at_their_blocks(error, scene.model, builder, path);
+    sort_by_place(inconsistent, path);
+    throw_if_any(inconsistent, path);
   }
   return scene;
 }

@@ -55,8 +55,11 @@ std::vector<View> SceneBuilder::blocks(std::string_view name) const {
 }
 
 void SceneBuilder::guard(const SourceLocation& element, const std::function<void()>& step) {
+  const int first_row = model.constraint_count();
   try {
     step();
+    const int rows = model.constraint_count() - first_row;
+    if (rows > 0) row_owners_.push_back({element, first_row, rows});
   } catch (const AlreadyReported&) {
     skipped_any_ = true;
   } catch (const Error& error) {
@@ -69,6 +72,15 @@ void SceneBuilder::guard(const SourceLocation& element, const std::function<void
 void SceneBuilder::problem(const SourceLocation& where, const std::string& message,
                            const std::string& fix) {
   problems_.push_back({where, message, fix});
+}
+
+const SourceLocation* SceneBuilder::owner_of_row(int row) const {
+  const RowOwner* owner = nullptr;
+  for (const RowOwner& candidate : row_owners_) {
+    const bool holds = row >= candidate.first_row && row < candidate.first_row + candidate.rows;
+    if (holds && (owner == nullptr || candidate.rows < owner->rows)) owner = &candidate;
+  }
+  return owner == nullptr ? nullptr : &owner->where;
 }
 
 void SceneBuilder::problem(Problem found) {

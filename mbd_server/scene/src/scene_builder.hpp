@@ -77,6 +77,9 @@ class SceneBuilder {
   void guard(const SourceLocation& element, const std::function<void()>& step);
   void problem(const SourceLocation& where, const std::string& message, const std::string& fix);
   void problem(Problem found);
+  // The block whose element added constraint row `row` (the innermost guarded step that did), or
+  // nullptr: the model's messages about a row can then point at the scene's line.
+  const SourceLocation* owner_of_row(int row) const;
   // Has an element been skipped for a value in error (reported already)?
   bool skipped_any() const { return skipped_any_; }
 
@@ -107,7 +110,13 @@ class SceneBuilder {
   // Is the element named, with a name no other joint or spring has? A taken name is a problem.
   bool name_is_free(const View& element);
 
+  struct RowOwner {
+    SourceLocation where;
+    int first_row = 0, rows = 0;
+  };
+
   std::vector<Problem>& problems_;
+  std::vector<RowOwner> row_owners_;
   bool skipped_any_ = false;
   std::vector<std::string> skipped_bodies_;  // bodies not built for a value in error
   bool unnamed_body_skipped_ = false;        // a body whose name is in error: its name is unknown
