@@ -45,28 +45,24 @@ std::vector<BlockSpec> load_blocks() {
 }
 
 void build_planar_loads(SceneBuilder& builder) {
-  for (const View& p : builder.blocks("PointForce")) {
-    builder.guard(p.location(), [&] {
-      mbd::PointForceSpec spec;
-      spec.name = name_of(p);
-      const auto local = p.vector("point");
-      spec.point = {builder.find_body(p, "body"), {local[0], local[1]}};
-      const RuntimeExpression x = expression(p, "force_x", {"t"});
-      const RuntimeExpression y = expression(p, "force_y", {"t"});
-      spec.force = [x, y](double t) { return Eigen::Vector2d(x(t), y(t)); };
-      builder.placed(p, [&] { builder.model.add_point_force(spec); });
-    });
-  }
-  for (const View& t : builder.blocks("Torque")) {
-    builder.guard(t.location(), [&] {
-      mbd::TorqueSpec spec;
-      spec.name = name_of(t);
-      spec.body = builder.find_body(t, "body");
-      const RuntimeExpression torque = expression(t, "torque", {"t"});
-      spec.torque = [torque](double time) { return torque(time); };
-      builder.placed(t, [&] { builder.model.add_torque(spec); });
-    });
-  }
+  builder.each("PointForce", [&](const View& p) {
+    mbd::PointForceSpec spec;
+    spec.name = name_of(p);
+    const auto local = p.vector("point");
+    spec.point = {builder.find_body(p, "body"), {local[0], local[1]}};
+    const RuntimeExpression x = expression(p, "force_x", {"t"});
+    const RuntimeExpression y = expression(p, "force_y", {"t"});
+    spec.force = [x, y](double t) { return Eigen::Vector2d(x(t), y(t)); };
+    builder.placed(p, [&] { builder.model.add_point_force(spec); });
+  });
+  builder.each("Torque", [&](const View& t) {
+    mbd::TorqueSpec spec;
+    spec.name = name_of(t);
+    spec.body = builder.find_body(t, "body");
+    const RuntimeExpression torque = expression(t, "torque", {"t"});
+    spec.torque = [torque](double time) { return torque(time); };
+    builder.placed(t, [&] { builder.model.add_torque(spec); });
+  });
 }
 
 // Three expressions of t named prefix_x, prefix_y, prefix_z.
@@ -79,24 +75,20 @@ std::function<Eigen::Vector3d(double)> vector_of_time(const View& element,
 }
 
 void build_spatial_loads(SceneBuilder& builder) {
-  for (const View& p : builder.blocks("PointForce3D")) {
-    builder.guard(p.location(), [&] {
-      mbd::SpatialPointForceSpec spec;
-      spec.name = name_of(p);
-      spec.point = {builder.find_body(p, "body"), vector3(p, "point")};
-      spec.force = vector_of_time(p, "force");
-      builder.placed(p, [&] { builder.model.add_spatial_point_force(spec); });
-    });
-  }
-  for (const View& p : builder.blocks("Torque3D")) {
-    builder.guard(p.location(), [&] {
-      mbd::SpatialTorqueSpec spec;
-      spec.name = name_of(p);
-      spec.body = builder.find_body(p, "body");
-      spec.torque = vector_of_time(p, "torque");
-      builder.placed(p, [&] { builder.model.add_spatial_torque(spec); });
-    });
-  }
+  builder.each("PointForce3D", [&](const View& p) {
+    mbd::SpatialPointForceSpec spec;
+    spec.name = name_of(p);
+    spec.point = {builder.find_body(p, "body"), vector3(p, "point")};
+    spec.force = vector_of_time(p, "force");
+    builder.placed(p, [&] { builder.model.add_spatial_point_force(spec); });
+  });
+  builder.each("Torque3D", [&](const View& p) {
+    mbd::SpatialTorqueSpec spec;
+    spec.name = name_of(p);
+    spec.body = builder.find_body(p, "body");
+    spec.torque = vector_of_time(p, "torque");
+    builder.placed(p, [&] { builder.model.add_spatial_torque(spec); });
+  });
 }
 
 void build_loads(SceneBuilder& builder) {

@@ -101,114 +101,96 @@ std::vector<BlockSpec> planar_joint_blocks() {
 }
 
 void build_coordinate_constraints(SceneBuilder& builder) {
-  for (const View& c : builder.blocks("CoordinateConstraint")) {
-    builder.guard(c.location(), [&] {
-      const mbd::BodyId body = builder.find_body(c, "body");
-      builder.model.add_coordinate_constraint(body, coordinate_of(c.string("coordinate")),
-                                              optional_number(c, "value"));
-    });
-  }
-  for (const View& c : builder.blocks("VelocityConstraint")) {
-    builder.guard(c.location(), [&] {
-      const mbd::BodyId body = builder.find_body(c, "body");
-      builder.model.add_velocity_constraint(body, coordinate_of(c.string("coordinate")),
-                                            c.number("velocity"));
-    });
-  }
+  builder.each("CoordinateConstraint", [&](const View& c) {
+    const mbd::BodyId body = builder.find_body(c, "body");
+    builder.model.add_coordinate_constraint(body, coordinate_of(c.string("coordinate")),
+                                            optional_number(c, "value"));
+  });
+  builder.each("VelocityConstraint", [&](const View& c) {
+    const mbd::BodyId body = builder.find_body(c, "body");
+    builder.model.add_velocity_constraint(body, coordinate_of(c.string("coordinate")),
+                                          c.number("velocity"));
+  });
 }
 
 void build_beam_clamps(SceneBuilder& builder) {
-  for (const View& c : builder.blocks("BeamClamp")) {
-    builder.guard(c.location(), [&] {
-      const mbd::BodyId beam = builder.find_body(c, "beam");
-      const auto node = static_cast<int>(c.integer("node"));
-      const auto slope =
-          c.string("slope") == "full" ? mbd::BeamClamp::Full : mbd::BeamClamp::Direction;
-      const mbd::BodyId to = c.has("to") ? builder.find_body(c, "to") : mbd::kGround;
-      builder.placed(c, [&] { builder.model.add_beam_clamp(beam, node, slope, to); });
-    });
-  }
+  builder.each("BeamClamp", [&](const View& c) {
+    const mbd::BodyId beam = builder.find_body(c, "beam");
+    const auto node = static_cast<int>(c.integer("node"));
+    const auto slope =
+        c.string("slope") == "full" ? mbd::BeamClamp::Full : mbd::BeamClamp::Direction;
+    const mbd::BodyId to = c.has("to") ? builder.find_body(c, "to") : mbd::kGround;
+    builder.placed(c, [&] { builder.model.add_beam_clamp(beam, node, slope, to); });
+  });
 }
 
 void build_point_joints(SceneBuilder& builder) {
   mbd::Model& model = builder.model;
-  for (const View& j : builder.blocks("RevoluteJoint")) {
-    builder.guard(j.location(), [&] {
-      const auto a = builder.point(j, "a");
-      const auto b = builder.point(j, "b");
-      int row = 0;
-      builder.placed(j, [&] { row = model.add_revolute_joint(a, b, name_of(j)); });
-      builder.register_joint(j, {row, 2, a.body, "revolute joint"});
-    });
-  }
-  for (const View& c : builder.blocks("DistanceConstraint")) {
-    builder.guard(c.location(), [&] {
-      const auto a = builder.point(c, "a");
-      const auto b = builder.point(c, "b");
-      const std::optional<double> length = optional_number(c, "length");
-      int row = 0;
-      builder.placed(c, [&] { row = model.add_distance_constraint(a, b, length, name_of(c)); });
-      builder.register_joint(c, {row, 1, a.body, "distance constraint"});
-    });
-  }
-  for (const View& j : builder.blocks("PrismaticJoint")) {
-    builder.guard(j.location(), [&] {
-      mbd::PrismaticJointSpec spec;
-      spec.name = name_of(j);
-      spec.a = builder.point(j, "a");
-      spec.b = builder.point(j, "b");
-      const auto axis = j.vector("axis");
-      spec.axis = {axis[0], axis[1]};
-      int row = 0;
-      builder.placed(j, [&] { row = model.add_prismatic_joint(spec); });
-      builder.register_joint(j, {row, 2, spec.a.body, "prismatic joint"});
-    });
-  }
-  for (const View& c : builder.blocks("Clamp")) {
-    builder.guard(c.location(), [&] {
-      mbd::ClampSpec spec;
-      spec.name = name_of(c);
-      spec.body = builder.find_body(c, "body");
-      if (c.has("to")) spec.to = builder.find_body(c, "to");
-      int row = 0;
-      builder.placed(c, [&] { row = model.add_clamp(spec); });
-      builder.register_joint(c, {row, 3, spec.body, "clamp"});
-    });
-  }
+  builder.each("RevoluteJoint", [&](const View& j) {
+    const auto a = builder.point(j, "a");
+    const auto b = builder.point(j, "b");
+    int row = 0;
+    builder.placed(j, [&] { row = model.add_revolute_joint(a, b, name_of(j)); });
+    builder.register_joint(j, {row, 2, a.body, "revolute joint"});
+  });
+  builder.each("DistanceConstraint", [&](const View& c) {
+    const auto a = builder.point(c, "a");
+    const auto b = builder.point(c, "b");
+    const std::optional<double> length = optional_number(c, "length");
+    int row = 0;
+    builder.placed(c, [&] { row = model.add_distance_constraint(a, b, length, name_of(c)); });
+    builder.register_joint(c, {row, 1, a.body, "distance constraint"});
+  });
+  builder.each("PrismaticJoint", [&](const View& j) {
+    mbd::PrismaticJointSpec spec;
+    spec.name = name_of(j);
+    spec.a = builder.point(j, "a");
+    spec.b = builder.point(j, "b");
+    const auto axis = j.vector("axis");
+    spec.axis = {axis[0], axis[1]};
+    int row = 0;
+    builder.placed(j, [&] { row = model.add_prismatic_joint(spec); });
+    builder.register_joint(j, {row, 2, spec.a.body, "prismatic joint"});
+  });
+  builder.each("Clamp", [&](const View& c) {
+    mbd::ClampSpec spec;
+    spec.name = name_of(c);
+    spec.body = builder.find_body(c, "body");
+    if (c.has("to")) spec.to = builder.find_body(c, "to");
+    int row = 0;
+    builder.placed(c, [&] { row = model.add_clamp(spec); });
+    builder.register_joint(c, {row, 3, spec.body, "clamp"});
+  });
 }
 
 void build_prescribed_motions(SceneBuilder& builder) {
-  for (const View& p : builder.blocks("PrescribedMotion")) {
-    builder.guard(p.location(), [&] {
-      mbd::PrescribedMotionSpec spec;
-      spec.name = name_of(p);
-      spec.body = builder.find_body(p, "body");
-      spec.coordinate = coordinate_of(p.string("coordinate"));
-      const RuntimeExpression position = expression(p, "position", {"t"});
-      const RuntimeExpression rate = expression(p, "rate", {"t"});
-      spec.position = [position](double time) { return position(time); };
-      spec.rate = [rate](double time) { return rate(time); };
-      spec.check_times.clear();
-      for (int k = 0; k <= 10; ++k)
-        spec.check_times.push_back(builder.end_time * k / 10.0);
-      int row = 0;
-      builder.placed(p, [&] { row = builder.model.add_prescribed_motion(spec); });
-      builder.register_joint(p, {row, 1, spec.body, "prescribed motion"});
+  builder.each("PrescribedMotion", [&](const View& p) {
+    mbd::PrescribedMotionSpec spec;
+    spec.name = name_of(p);
+    spec.body = builder.find_body(p, "body");
+    spec.coordinate = coordinate_of(p.string("coordinate"));
+    const RuntimeExpression position = expression(p, "position", {"t"});
+    const RuntimeExpression rate = expression(p, "rate", {"t"});
+    spec.position = [position](double time) { return position(time); };
+    spec.rate = [rate](double time) { return rate(time); };
+    spec.check_times.clear();
+    for (int k = 0; k <= 10; ++k)
+      spec.check_times.push_back(builder.end_time * k / 10.0);
+    int row = 0;
+    builder.placed(p, [&] { row = builder.model.add_prescribed_motion(spec); });
+    builder.register_joint(p, {row, 1, spec.body, "prescribed motion"});
+  });
+  builder.each("PrescribedVelocity", [&](const View& p) {
+    const mbd::BodyId body = builder.find_body(p, "body");
+    const RuntimeExpression velocity = expression(p, "velocity", {"t"});
+    int row = 0;
+    builder.placed(p, [&] {
+      row =
+          builder.model.add_velocity_constraint(body, coordinate_of(p.string("coordinate")),
+                                                [velocity](double time) { return velocity(time); });
     });
-  }
-  for (const View& p : builder.blocks("PrescribedVelocity")) {
-    builder.guard(p.location(), [&] {
-      const mbd::BodyId body = builder.find_body(p, "body");
-      const RuntimeExpression velocity = expression(p, "velocity", {"t"});
-      int row = 0;
-      builder.placed(p, [&] {
-        row = builder.model.add_velocity_constraint(
-            body, coordinate_of(p.string("coordinate")),
-            [velocity](double time) { return velocity(time); });
-      });
-      builder.register_joint(p, {row, 1, body, "prescribed velocity"});
-    });
-  }
+    builder.register_joint(p, {row, 1, body, "prescribed velocity"});
+  });
 }
 
 // In the order of their rows (a joint_force sensor reads rows by index).

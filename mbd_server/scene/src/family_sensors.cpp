@@ -318,8 +318,7 @@ bool SensorBuilder::spring_fits() {
 }
 
 void build_sensors(SceneBuilder& builder) {
-  for (const View& s : builder.blocks("Sensor"))
-    builder.guard(s.location(), [&] { SensorBuilder(builder, s).build(); });
+  builder.each("Sensor", [&](const View& s) { SensorBuilder(builder, s).build(); });
 }
 
 }  // namespace

@@ -48,56 +48,46 @@ std::vector<BlockSpec> spatial_joint_blocks() {
 
 void build_spatial_joints(SceneBuilder& builder) {
   mbd::Model& model = builder.model;
-  for (const View& c : builder.blocks("CableClamp")) {
-    builder.guard(c.location(), [&] {
-      const mbd::BodyId cable = builder.find_body(c, "cable");
-      const auto node = static_cast<int>(c.integer("node"));
-      builder.placed(c, [&] { model.add_cable_clamp(cable, node); });
-    });
-  }
-  for (const View& j : builder.blocks("SphericalJoint")) {
-    builder.guard(j.location(), [&] {
-      const auto a = builder.point3(j, "a");
-      const auto b = builder.point3(j, "b");
-      int row = 0;
-      builder.placed(j, [&] { row = model.add_spherical_joint(a, b, name_of(j)); });
-      builder.register_joint(j, {row, 3, a.body, "spherical joint"});
-    });
-  }
-  for (const View& j : builder.blocks("RevoluteJoint3D")) {
-    builder.guard(j.location(), [&] {
-      mbd::RevoluteJoint3DSpec spec;
-      spec.name = name_of(j);
-      spec.a = builder.point3(j, "a");
-      spec.b = builder.point3(j, "b");
-      spec.axis = vector3(j, "axis");
-      int row = 0;
-      builder.placed(j, [&] { row = model.add_revolute_joint_3d(spec); });
-      builder.register_joint(j, {row, 5, spec.a.body, "revolute joint"});
-    });
-  }
-  for (const View& j : builder.blocks("FixedJoint3D")) {
-    builder.guard(j.location(), [&] {
-      mbd::FixedJoint3DSpec spec;
-      spec.name = name_of(j);
-      spec.body = builder.find_body(j, "body");
-      if (j.has("to")) spec.to = builder.find_body(j, "to");
-      int row = 0;
-      builder.placed(j, [&] { row = model.add_fixed_joint_3d(spec); });
-      builder.register_joint(j, {row, 6, spec.body, "fixed joint"});
-    });
-  }
-  for (const View& c : builder.blocks("DistanceConstraint3D")) {
-    builder.guard(c.location(), [&] {
-      const auto a = builder.point3(c, "a");
-      const auto b = builder.point3(c, "b");
-      const std::optional<double> length = optional_number(c, "length");
-      int row = 0;
-      builder.placed(
-          c, [&] { row = model.add_spatial_distance_constraint(a, b, length, name_of(c)); });
-      builder.register_joint(c, {row, 1, a.body, "distance constraint"});
-    });
-  }
+  builder.each("CableClamp", [&](const View& c) {
+    const mbd::BodyId cable = builder.find_body(c, "cable");
+    const auto node = static_cast<int>(c.integer("node"));
+    builder.placed(c, [&] { model.add_cable_clamp(cable, node); });
+  });
+  builder.each("SphericalJoint", [&](const View& j) {
+    const auto a = builder.point3(j, "a");
+    const auto b = builder.point3(j, "b");
+    int row = 0;
+    builder.placed(j, [&] { row = model.add_spherical_joint(a, b, name_of(j)); });
+    builder.register_joint(j, {row, 3, a.body, "spherical joint"});
+  });
+  builder.each("RevoluteJoint3D", [&](const View& j) {
+    mbd::RevoluteJoint3DSpec spec;
+    spec.name = name_of(j);
+    spec.a = builder.point3(j, "a");
+    spec.b = builder.point3(j, "b");
+    spec.axis = vector3(j, "axis");
+    int row = 0;
+    builder.placed(j, [&] { row = model.add_revolute_joint_3d(spec); });
+    builder.register_joint(j, {row, 5, spec.a.body, "revolute joint"});
+  });
+  builder.each("FixedJoint3D", [&](const View& j) {
+    mbd::FixedJoint3DSpec spec;
+    spec.name = name_of(j);
+    spec.body = builder.find_body(j, "body");
+    if (j.has("to")) spec.to = builder.find_body(j, "to");
+    int row = 0;
+    builder.placed(j, [&] { row = model.add_fixed_joint_3d(spec); });
+    builder.register_joint(j, {row, 6, spec.body, "fixed joint"});
+  });
+  builder.each("DistanceConstraint3D", [&](const View& c) {
+    const auto a = builder.point3(c, "a");
+    const auto b = builder.point3(c, "b");
+    const std::optional<double> length = optional_number(c, "length");
+    int row = 0;
+    builder.placed(c,
+                   [&] { row = model.add_spatial_distance_constraint(a, b, length, name_of(c)); });
+    builder.register_joint(c, {row, 1, a.body, "distance constraint"});
+  });
 }
 
 }  // namespace

@@ -73,82 +73,72 @@ std::vector<BlockSpec> spring_blocks() {
 
 void build_planar_springs(SceneBuilder& builder) {
   mbd::Model& model = builder.model;
-  for (const View& f : builder.blocks("SpringDamper")) {
-    builder.guard(f.location(), [&] {
-      mbd::SpringDamperSpec spec;
-      spec.a = builder.point(f, "a");
-      spec.b = builder.point(f, "b");
-      spec.stiffness = f.number("stiffness");
-      spec.damping = f.number("damping");
-      spec.rest_length = optional_number(f, "rest_length");
-      builder.placed(f, [&] { model.add_spring_damper(spec); });
-      builder.register_force_element(f, model.force_element_count() - 1, false);
-    });
-  }
-  for (const View& f : builder.blocks("RotationalSpringDamper")) {
-    builder.guard(f.location(), [&] {
-      mbd::RotationalSpringDamperSpec spec;
-      spec.name = name_of(f);
-      spec.a = builder.find_body(f, "body_a");
-      if (f.has("body_b")) spec.b = builder.find_body(f, "body_b");
-      spec.stiffness = f.number("stiffness");
-      spec.damping = f.number("damping");
-      spec.rest_angle = optional_number(f, "rest_angle");
-      int index = 0;
-      builder.placed(f, [&] { index = model.add_rotational_spring_damper(spec); });
-      builder.register_force_element(f, index, true);
-    });
-  }
+  builder.each("SpringDamper", [&](const View& f) {
+    mbd::SpringDamperSpec spec;
+    spec.a = builder.point(f, "a");
+    spec.b = builder.point(f, "b");
+    spec.stiffness = f.number("stiffness");
+    spec.damping = f.number("damping");
+    spec.rest_length = optional_number(f, "rest_length");
+    builder.placed(f, [&] { model.add_spring_damper(spec); });
+    builder.register_force_element(f, model.force_element_count() - 1, false);
+  });
+  builder.each("RotationalSpringDamper", [&](const View& f) {
+    mbd::RotationalSpringDamperSpec spec;
+    spec.name = name_of(f);
+    spec.a = builder.find_body(f, "body_a");
+    if (f.has("body_b")) spec.b = builder.find_body(f, "body_b");
+    spec.stiffness = f.number("stiffness");
+    spec.damping = f.number("damping");
+    spec.rest_angle = optional_number(f, "rest_angle");
+    int index = 0;
+    builder.placed(f, [&] { index = model.add_rotational_spring_damper(spec); });
+    builder.register_force_element(f, index, true);
+  });
 }
 
 void build_planar_actors(SceneBuilder& builder) {
   mbd::Model& model = builder.model;
-  for (const View& f : builder.blocks("NonlinearSpringDamper")) {
-    builder.guard(f.location(), [&] {
-      mbd::NonlinearSpringDamperSpec spec;
-      spec.name = name_of(f);
-      spec.a = builder.point(f, "a");
-      spec.b = builder.point(f, "b");
-      const RuntimeExpression law = expression(f, "tension", {"elongation", "rate"});
-      spec.tension = [law](double elongation, double rate) { return law(elongation, rate); };
-      spec.rest_length = optional_number(f, "rest_length");
-      int index = 0;
-      builder.placed(f, [&] { index = model.add_nonlinear_spring_damper(spec); });
-      builder.register_force_element(f, index, false);
-    });
-  }
-  for (const View& f : builder.blocks("SpringActor")) {
-    builder.guard(f.location(), [&] {
-      mbd::SpringActorSpec spec;
-      spec.name = name_of(f);
-      spec.a = builder.point(f, "a");
-      spec.b = builder.point(f, "b");
-      for (const auto& row : f.matrix("characteristic"))
-        spec.characteristic.emplace_back(row[0], row[1]);
-      spec.damping = f.number("damping");
-      spec.rest_length = optional_number(f, "rest_length");
-      int index = 0;
-      builder.placed(f, [&] { index = model.add_spring_actor(spec); });
-      builder.register_force_element(f, index, false);
-    });
-  }
+  builder.each("NonlinearSpringDamper", [&](const View& f) {
+    mbd::NonlinearSpringDamperSpec spec;
+    spec.name = name_of(f);
+    spec.a = builder.point(f, "a");
+    spec.b = builder.point(f, "b");
+    const RuntimeExpression law = expression(f, "tension", {"elongation", "rate"});
+    spec.tension = [law](double elongation, double rate) { return law(elongation, rate); };
+    spec.rest_length = optional_number(f, "rest_length");
+    int index = 0;
+    builder.placed(f, [&] { index = model.add_nonlinear_spring_damper(spec); });
+    builder.register_force_element(f, index, false);
+  });
+  builder.each("SpringActor", [&](const View& f) {
+    mbd::SpringActorSpec spec;
+    spec.name = name_of(f);
+    spec.a = builder.point(f, "a");
+    spec.b = builder.point(f, "b");
+    for (const auto& row : f.matrix("characteristic"))
+      spec.characteristic.emplace_back(row[0], row[1]);
+    spec.damping = f.number("damping");
+    spec.rest_length = optional_number(f, "rest_length");
+    int index = 0;
+    builder.placed(f, [&] { index = model.add_spring_actor(spec); });
+    builder.register_force_element(f, index, false);
+  });
 }
 
 void build_spatial_springs(SceneBuilder& builder) {
-  for (const View& f : builder.blocks("SpringDamper3D")) {
-    builder.guard(f.location(), [&] {
-      mbd::SpatialSpringDamperSpec spec;
-      spec.name = name_of(f);
-      spec.a = builder.point3(f, "a");
-      spec.b = builder.point3(f, "b");
-      spec.stiffness = f.number("stiffness");
-      spec.damping = f.number("damping");
-      spec.rest_length = optional_number(f, "rest_length");
-      int index = 0;
-      builder.placed(f, [&] { index = builder.model.add_spatial_spring_damper(spec); });
-      builder.register_force_element(f, index, false);
-    });
-  }
+  builder.each("SpringDamper3D", [&](const View& f) {
+    mbd::SpatialSpringDamperSpec spec;
+    spec.name = name_of(f);
+    spec.a = builder.point3(f, "a");
+    spec.b = builder.point3(f, "b");
+    spec.stiffness = f.number("stiffness");
+    spec.damping = f.number("damping");
+    spec.rest_length = optional_number(f, "rest_length");
+    int index = 0;
+    builder.placed(f, [&] { index = builder.model.add_spatial_spring_damper(spec); });
+    builder.register_force_element(f, index, false);
+  });
 }
 
 // In the order of the model's force elements (a spring_force sensor reads one by index).

@@ -54,6 +54,11 @@ std::vector<View> SceneBuilder::blocks(std::string_view name) const {
   return root.blocks(name);
 }
 
+void SceneBuilder::each(std::string_view name, const std::function<void(const View&)>& build) {
+  for (const View& element : blocks(name))
+    guard(element.location(), [&] { build(element); });
+}
+
 void SceneBuilder::guard(const SourceLocation& element, const std::function<void()>& step) {
   const int first_row = model.constraint_count();
   try {

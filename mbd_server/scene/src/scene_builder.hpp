@@ -72,6 +72,8 @@ class SceneBuilder {
   // The blocks of that name that belong to this scene's dimension (the others are refused at
   // their place by the builder).
   std::vector<View> blocks(std::string_view name) const;
+  // Builds every block of that name (of this scene's dimension) by `build`, each inside guard().
+  void each(std::string_view name, const std::function<void(const View&)>& build);
   // Runs one element's construction: a value in error skips it, an fsi::Error becomes a problem
   // at the element (or at the error's own place).
   void guard(const SourceLocation& element, const std::function<void()>& step);
