@@ -8,7 +8,7 @@ import math
 import os
 import subprocess
 
-from fsi_test import ENV, binary, check, cleanup, fail, load_sensors, manifest, work_dir
+from fsi_test import ENV, binary, check, cleanup, example, fail, load_sensors, manifest, work_dir
 
 SCENE = """scene_language = 1
 SolverOptions { end_time = 0.5; Timeint { step_size = 1e-3 } }
@@ -34,6 +34,13 @@ if check_run.returncode != 0:
     fail(f"--check --mbd-only exited {check_run.returncode}:\n{check_run.stderr[-3000:]}")
 check("an --mbd-only run needs: SolverOptions\n" in check_run.stdout,
       "--check --mbd-only says the mode needs SolverOptions only")
+
+# A scene with a fluid, checked for --mbd-only: the fluid is not built, and the fluid's rules of
+# thumb are not judged against an empty fluid (no warnings from zero particle mass and spacing).
+tank = subprocess.run([binary("fsi-server"), example("static_tank", "static_tank_coarse.scene"), "--check",
+                       "--mbd-only"], env=ENV, capture_output=True, text=True, timeout=60)
+check(tank.returncode == 0 and "0 warning(s)" in tank.stdout and "FluidRegion, LIGGGHTS" in tank.stdout,
+      "--check --mbd-only of the static tank: fluid blocks named as not read, no physics warnings")
 
 coupled = subprocess.run([binary("fsi-server"), scene, "--check"], env=ENV, capture_output=True,
                          text=True, timeout=60)

@@ -271,8 +271,10 @@ int main(int argc, char** argv) {
     std::cout << fsi::scene::to_text(scene.parameters);
     return 0;
   }
-  // Warnings only: a scene may break a rule of thumb on purpose.
-  const std::vector<fsi::scene::Diagnostic> diagnostics = fsi::scene::physics_checks(scene);
+  // Warnings only: a scene may break a rule of thumb on purpose. The rules are the fluid's, and an
+  // --mbd-only run builds no fluid.
+  const std::vector<fsi::scene::Diagnostic> diagnostics =
+      mbd_only ? std::vector<fsi::scene::Diagnostic>{} : fsi::scene::physics_checks(scene);
   if (check_only) {
     print_summary(scene);
     std::printf("%s", fsi::scene::blocks_needed(scene, mbd_only ? fsi::scene::SceneMode::MbdOnly
