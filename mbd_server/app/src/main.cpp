@@ -281,7 +281,9 @@ int main(int argc, char** argv) {
   try {
     for (const auto& item : overrides)
       parsed_overrides.push_back(fsi::scene::parse_override(item));
-    scene = fsi::scene::build_scene(scene_file, parsed_overrides);
+    scene = fsi::scene::build_scene(
+        scene_file, parsed_overrides,
+        mbd_only ? fsi::scene::SceneMode::MbdOnly : fsi::scene::SceneMode::Coupled);
   } catch (const fsi::Error& error) {
     spdlog::error("{}", error.what());
     return 2;
@@ -290,14 +292,19 @@ int main(int argc, char** argv) {
     std::cout << fsi::scene::to_text(scene.parameters);
     return 0;
   }
-  // Warnings only: a scene may break a rule of thumb on purpose.
-  std::vector<fsi::scene::Diagnostic> diagnostics = fsi::scene::physics_checks(scene);
+  // Warnings only: a scene may break a rule of thumb on purpose. The rules are the fluid's, and an
+  // --mbd-only run builds no fluid.
+  std::vector<fsi::scene::Diagnostic> diagnostics =
+      mbd_only ? std::vector<fsi::scene::Diagnostic>{} : fsi::scene::physics_checks(scene);
   if (!mbd_only && scene.solver.method != fsi::scene::IntegrationMethod::FixedStep)
     diagnostics.push_back(coupled_step_notice(scene));
   // Not a rule of thumb: what the run will do with the scene's end time.
   const std::vector<fsi::scene::Diagnostic> run_warnings = fsi::scene::end_time_check(scene);
   if (check_only) {
     print_summary(scene);
+    std::printf("%s", fsi::scene::blocks_needed(scene, mbd_only ? fsi::scene::SceneMode::MbdOnly
+                                                                : fsi::scene::SceneMode::Coupled)
+                          .c_str());
     for (const fsi::scene::Diagnostic& warning : run_warnings)
       std::printf("  %s\n", warning.text().c_str());
     print_diagnostics(scene, diagnostics);

@@ -395,6 +395,21 @@ BlockSpec BlockSpec::as_open() const {
   copy.open = true;
   return copy;
 }
+BlockSpec BlockSpec::planar() const {
+  BlockSpec copy = *this;
+  copy.dimension = 2;
+  return copy;
+}
+BlockSpec BlockSpec::spatial() const {
+  BlockSpec copy = *this;
+  copy.dimension = 3;
+  return copy;
+}
+BlockSpec BlockSpec::for_coupled_runs() const {
+  BlockSpec copy = *this;
+  copy.coupled_only = true;
+  return copy;
+}
 
 BlockSpec block_spec(std::string name, std::string doc, std::vector<ParameterSpec> parameters,
                      std::vector<BlockSpec> blocks) {

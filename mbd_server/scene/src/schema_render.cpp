@@ -59,6 +59,8 @@ std::string flags_text(const BlockSpec& spec) {
   std::string text;
   if (spec.required) text += " (required)";
   if (spec.repeated) text += " (element list: may appear several times)";
+  if (spec.dimension != 0) text += " (dimension = " + std::to_string(spec.dimension) + " only)";
+  if (spec.coupled_only) text += " (coupled runs only; --mbd-only does not read it)";
   return text;
 }
 

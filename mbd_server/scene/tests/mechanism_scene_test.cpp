@@ -150,15 +150,31 @@ SpringDamper { name = "pin"; body_a = "arm"; point_b = [1, 1]; stiffness = 1 }
   EXPECT_NE(text.find("a second element is named 'pin'"), std::string::npos) << text;
 }
 
-TEST_F(MechanismScene, RedundantAndContradictoryJointsAreNamed) {
-  const std::string text = problems(
-      R"scene(RigidBody2D { name = "door"; mass = 1; inertia = 1; Mesh { points = [[0, 0], [1, 0]] } }
+// A door clamped, pinned and held off its place: a redundant row and a residual.
+const char* const kOverconstrainedDoor =
+    R"scene(RigidBody2D { name = "door"; mass = 1; inertia = 1; Mesh { points = [[0, 0], [1, 0]] } }
 Clamp { name = "frame"; body = "door" }
 RevoluteJoint { name = "hinge"; body_a = "door" }
 CoordinateConstraint { body = "door"; coordinate = "x"; value = 0.5 }
-)scene");
+)scene";
+
+TEST_F(MechanismScene, RedundantAndContradictoryJointsAreNamed) {
+  const std::string text = problems(kOverconstrainedDoor);
   EXPECT_NE(text.find("revolute joint 'hinge' (x): redundant"), std::string::npos) << text;
   EXPECT_NE(text.find("coordinate constraint on door.x: position residual C = -0.5"),
+            std::string::npos)
+      << text;
+}
+
+// Issue 18: the engine finds a redundant or unsatisfied row; the scene names the block's line.
+TEST_F(MechanismScene, RedundantJointIsAProblemAtItsLine) {
+  const std::string text = problems(kOverconstrainedDoor);
+  EXPECT_NE(text.find("m.scene:5:1: the initial state is inconsistent with the constraints: "
+                      "revolute joint 'hinge' (x): redundant"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("m.scene:6:1: the initial state is inconsistent with the constraints: "
+                      "coordinate constraint on door.x: position residual C = -0.5"),
             std::string::npos)
       << text;
 }

@@ -154,11 +154,21 @@ struct Scene {
   std::optional<mbd::AssemblyReport> assembly;
 };
 
-// The declaration of every scene parameter.
+// The declaration of every scene parameter, block by block in the order of the element families
+// (src/family_registry.cpp).
 const BlockSpec& scene_schema();
+
+// What a scene is built for. A coupled run needs the fluid's blocks (a surface mesh, LIGGGHTS,
+// Coupling); a run of the multibody system alone (`fsi-server --mbd-only`) needs none of them.
+enum class SceneMode { Coupled, MbdOnly };
 
 // Loads, validates (all problems at once) and builds a scene. A scene must state its language
 // version (`scene_language = 1` as its first entry). Throws fsi::Error.
-Scene build_scene(const std::string& path, const std::vector<Override>& overrides = {});
+Scene build_scene(const std::string& path, const std::vector<Override>& overrides = {},
+                  SceneMode mode = SceneMode::Coupled);
+
+// Which blocks a run in `mode` needs of this scene and which of the given ones it does not read,
+// a few lines of text for `fsi-server --check`.
+std::string blocks_needed(const Scene& scene, SceneMode mode);
 
 }  // namespace fsi::scene

@@ -83,13 +83,22 @@ struct BlockSpec {
   // name is within edit distance 2 of a declared one is still an error (a likely typo); the same
   // holds for unknown keys in an open block.
   bool user_blocks_allowed = false;
+  // The scene dimension the block belongs to: 0 both, 2 planar scenes only, 3 spatial scenes
+  // only. The scene builder refuses a block of the other dimension at its place.
+  int dimension = 0;
+  // Read by coupled runs only (the fluid's set-up): a run of the structure alone neither needs
+  // nor reads it, and `required` then does not hold.
+  bool coupled_only = false;
 
   const ParameterSpec* parameter(std::string_view key) const;  // nullptr if not declared
   const BlockSpec* block(std::string_view block_name) const;   // nullptr if not declared
 
-  BlockSpec as_list() const;      // repeated = true
-  BlockSpec as_required() const;  // required = true
-  BlockSpec as_open() const;      // open = true
+  BlockSpec as_list() const;           // repeated = true
+  BlockSpec as_required() const;       // required = true
+  BlockSpec as_open() const;           // open = true
+  BlockSpec planar() const;            // dimension = 2
+  BlockSpec spatial() const;           // dimension = 3
+  BlockSpec for_coupled_runs() const;  // coupled_only = true
 };
 
 BlockSpec block_spec(std::string name, std::string doc, std::vector<ParameterSpec> parameters = {},

@@ -1,10 +1,11 @@
-#include "scene_assembly.hpp"
+#include "family_assembly.hpp"
 
 #include <algorithm>
 #include <sstream>
 #include <string>
 
 #include "fsi/common/error.hpp"
+#include "scene_builder.hpp"
 
 namespace fsi::scene::detail {
 namespace {
@@ -114,6 +115,22 @@ std::optional<AssemblyRequest> assembly_request(const View& root, const mbd::Mod
     return std::nullopt;
   }
   return request;
+}
+
+namespace {
+
+void request_assembly(SceneBuilder& builder) {
+  std::vector<Problem> found;
+  builder.assembly = assembly_request(builder.root, builder.model, found);
+  for (Problem& problem : found)
+    builder.problem(std::move(problem));
+}
+
+}  // namespace
+
+ElementFamily assembly_family() {
+  return {"initial assembly", [] { return std::vector<BlockSpec>{assembly_block_spec()}; },
+          request_assembly};
 }
 
 mbd::AssemblyReport assemble_initial_configuration(mbd::Model& model,

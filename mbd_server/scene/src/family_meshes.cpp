@@ -1,0 +1,131 @@
+// The surface the fluid sees: polyline meshes (2D, on bodies and the ground) and the static
+// ground triangles of STL files (3D). Built after every body, so that the ground's (static)
+// vertices follow the bodies' (dynamic) ones.
+
+#include "scene_builder.hpp"
+
+namespace fsi::scene::detail {
+namespace {
+
+std::vector<BlockSpec> mesh_blocks() {
+  const BlockSpec ground_mesh = block_spec(
+      "Mesh",
+      "2D: surface line segments through the given world points (thesis §4.3); 3D: the "
+      "triangles of an STL file (either orientation: the fix treats both sides alike).",
+      {matrix("points", 2, "m", "2D: polyline vertices, one [x, y] per row").optional(),
+       integer("closed", "1: also join the last point to the first").with_default(0).between(0, 1),
+       text("stl", "3D: ASCII or binary STL file, relative to the scene").optional(),
+       number("scale", "", "3D: the STL coordinates times this are metres")
+           .positive()
+           .with_default(1.0),
+       vector("offset", 3, "m", "3D: added to every scaled STL vertex")
+           .with_default({0.0, 0.0, 0.0})});
+  return {block_spec("Ground",
+                     "Static geometry fixed in space (its meshes are static boundary vertices).",
+                     {}, {ground_mesh.as_list()})
+              .as_list()};
+}
+
+// A 3D ground mesh: the STL's triangles, scaled and shifted, as static vertices.
+void add_ground_surface(SceneBuilder& builder, const View& mesh) {
+  if (mesh.has("points")) {
+    builder.problem(mesh.location("points"),
+                    "a 3D Ground mesh is read from an STL file, not from points",
+                    "write stl = \"file.stl\" (optional scale, offset = [x, y, z])");
+  }
+  if (!mesh.has("stl")) {
+    if (!mesh.has("points")) {
+      builder.problem(mesh.location(), "a 3D Ground mesh needs an STL file",
+                      "add stl = \"file.stl\"");
+    }
+    return;
+  }
+  const std::optional<TriangleMesh> surface = builder.read_stl(mesh, "stl");
+  if (!surface) return;
+  const double scale = mesh.number("scale");
+  const auto offset = mesh.vector("offset");
+  BoundaryMesh& boundary = builder.scene.boundary;
+  const auto first = static_cast<std::uint32_t>(boundary.dynamic_vertex_count +
+                                                boundary.static_positions.size() / 3);
+  for (const Point3& vertex : surface->vertices) {
+    for (std::size_t k = 0; k < 3; ++k)
+      boundary.static_positions.push_back(scale * vertex[k] + offset[k]);
+  }
+  for (const auto& triangle : surface->triangles) {
+    for (std::uint32_t corner : triangle)
+      boundary.triangles.push_back(first + corner);
+  }
+}
+
+// A coupled scene needs something for the fluid to push against; a run of the structure alone
+// does not.
+void require_surface(SceneBuilder& builder) {
+  if (builder.mode != SceneMode::Coupled) return;
+  // 3D: a Ground mesh that gave no triangles has its own problem (no STL, unreadable file).
+  bool surface_given = false;
+  for (const View& ground : builder.root.blocks("Ground"))
+    surface_given = surface_given || (builder.spatial() && ground.has_block("Mesh"));
+  if (builder.scene.boundary.elements().empty() && !builder.skipped_any() && !surface_given) {
+    builder.problem(builder.scene.parameters.location,
+                    "the scene has no surface mesh: the fluid would see no structure",
+                    builder.spatial() ? "add Ground { Mesh { stl = \"file.stl\" } }, or run the "
+                                        "structure alone with --mbd-only"
+                                      : "add Mesh { points = ... } to bodies or Ground, or run "
+                                        "the structure alone with --mbd-only");
+  }
+}
+
+void build_meshes(SceneBuilder& builder) {
+  BoundaryMesh& boundary = builder.scene.boundary;
+  boundary.dynamic_vertex_count = static_cast<std::size_t>(builder.model.marker_count());
+  for (const View& ground : builder.root.blocks("Ground")) {
+    for (const View& mesh : ground.blocks("Mesh")) {
+      builder.guard(mesh.location(), [&] {
+        if (builder.spatial()) {
+          add_ground_surface(builder, mesh);
+        } else {
+          add_polyline_mesh(builder, mesh, mbd::kGround);
+        }
+      });
+    }
+  }
+  boundary.vertex_count = static_cast<std::size_t>(builder.model.marker_count()) +
+                          (builder.spatial() ? boundary.static_positions.size() / 3 : 0);
+  require_surface(builder);
+}
+
+}  // namespace
+
+void add_polyline_mesh(SceneBuilder& builder, const View& mesh, mbd::BodyId body) {
+  if (mesh.has("stl")) {
+    builder.problem(mesh.location("stl"), "STL meshes need a 3D scene (dimension = 2 here)",
+                    "set dimension = 3 at the top of the scene, or give points = [[x, y], ...]");
+    return;
+  }
+  if (!mesh.has("points")) {
+    builder.problem(mesh.location(), "a 2D mesh needs points",
+                    "add points = [[x, y], [x, y], ...]");
+    return;
+  }
+  const auto points = mesh.matrix("points");
+  if (points.size() < 2) {
+    builder.problem(mesh.location("points"), "a mesh needs at least 2 points", "add points");
+    return;
+  }
+  const bool closed = mesh.integer("closed") == 1;
+  mbd::Model& model = builder.model;
+  const auto first = static_cast<std::uint32_t>(model.marker_count());
+  for (const auto& point : points)
+    model.add_marker(body, {point[0], point[1]});
+  const auto count = static_cast<std::uint32_t>(points.size());
+  auto& segments = builder.scene.boundary.segments;
+  for (std::uint32_t k = 0; k + 1 < count; ++k)
+    segments.insert(segments.end(), {first + k, first + k + 1});
+  if (closed && count > 2) segments.insert(segments.end(), {first + count - 1, first});
+}
+
+ElementFamily meshes_family() {
+  return {"meshes", mesh_blocks, build_meshes};
+}
+
+}  // namespace fsi::scene::detail

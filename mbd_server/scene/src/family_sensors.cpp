@@ -1,0 +1,330 @@
+// Sensors: the columns of sensors.csv. A sensor reads a body (position, velocity, fluid and
+// constraint forces), a named joint or spring, or the whole system (energies, total fluid
+// force).
+
+#include "fsi/common/error.hpp"
+#include "scene_builder.hpp"
+
+namespace fsi::scene::detail {
+namespace {
+
+// What a sensor type takes, declared once for planar and spatial scenes: each key required,
+// forbidden or optional, whether it has a 3D form, its units (planar: per unit depth; the
+// rotational unit is that of angle or torque components, empty when it has none).
+enum class Use { Required, Forbidden, Optional };
+
+struct SensorVariant {
+  std::string_view type;
+  SensorType kind;
+  Use body, joint, element, component, point;
+  bool spatial;
+  std::string_view planar_unit, planar_rotational_unit;
+  std::string_view spatial_unit, spatial_torque_unit;
+
+  bool kinematic() const { return kind == SensorType::Position || kind == SensorType::Velocity; }
+};
+
+constexpr Use R = Use::Required, F = Use::Forbidden, O = Use::Optional;
+//                 type, kind, body, joint, element, component, point, 3D, planar units, 3D units
+constexpr SensorVariant kSensorVariants[] = {
+    {"position", SensorType::Position, R, F, F, R, O, true, "m", "rad", "m", ""},
+    {"velocity", SensorType::Velocity, R, F, F, R, O, true, "m/s", "rad/s", "m/s", ""},
+    {"fluid_force", SensorType::FluidForce, R, F, F, R, F, true, "N/m", "N m/m", "N", "N m"},
+    {"constraint_force", SensorType::ConstraintForce, R, F, F, R, F, false, "N/m", "N m/m", "", ""},
+    {"total_fluid_force", SensorType::TotalFluidForce, F, F, F, R, F, true, "N/m", "", "N", ""},
+    {"joint_force", SensorType::JointForce, F, R, F, R, F, true, "N/m", "N m/m", "N", "N m"},
+    {"spring_force", SensorType::SpringForce, F, F, R, F, F, true, "N/m", "N m/m", "N", ""},
+    {"kinetic_energy", SensorType::KineticEnergy, F, F, F, F, F, true, "J/m", "", "J", ""},
+    {"potential_energy", SensorType::PotentialEnergy, F, F, F, F, F, true, "J/m", "", "J", ""},
+};
+
+std::vector<std::string> sensor_types() {
+  std::vector<std::string> types;
+  for (const SensorVariant& variant : kSensorVariants)
+    types.emplace_back(variant.type);
+  return types;
+}
+
+const SensorVariant& variant_of(const std::string& type) {
+  for (const SensorVariant& variant : kSensorVariants) {
+    if (variant.type == type) return variant;
+  }
+  FSI_ASSERT(false, "sensor type '" + type + "' passed the schema but has no variant");
+  return kSensorVariants[0];
+}
+
+std::vector<BlockSpec> sensor_blocks() {
+  return {
+      block_spec(
+          "Sensor", "A column of sensors.csv, written every Output.sensor_every_steps steps.",
+          {text("name", "column name"),
+           text("type",
+                "what is measured (total_fluid_force: on every boundary, walls included; "
+                "joint_force: what the joint exerts on its body_a (Clamp: body); spring_force: "
+                "tension, or torque of a RotationalSpringDamper; energies of the whole system, "
+                "potential = gravity + springs)")
+               .one_of(sensor_types()),
+           text("body",
+                "name of a RigidBody2D (position, velocity, fluid and constraint forces), or of "
+                "an AncfBeam2D (fluid_force)")
+               .optional(),
+           per_dimension(vector("point", 2, "m",
+                                "position, velocity: a point of the body instead of its centre of "
+                                "mass (body coordinates; [s, eta] on an AncfBeam2D; 3D: [x, y, "
+                                "z], [s, 0, 0] on a cable)"))
+               .optional(),
+           text("joint", "joint_force: the name of a joint block").optional(),
+           text("element", "spring_force: the name of a spring block").optional(),
+           text("component",
+                "x, y, angle (torque for forces); 3D: x, y, z, and torque_x, torque_y, torque_z "
+                "(about the centre of mass) for fluid_force and joint_force; not for spring_force "
+                "and energies")
+               .one_of({"x", "y", "z", "angle", "torque", "torque_x", "torque_y", "torque_z"})
+               .optional()})
+          .as_list()};
+}
+
+// Builds one Sensor block by its variant: one path for planar and spatial scenes, the
+// dimension deciding only the components, units and what a body point is.
+class SensorBuilder {
+ public:
+  SensorBuilder(SceneBuilder& builder_, const View& block_)
+      : builder(builder_), s(block_), variant(variant_of(block_.string("type"))) {}
+
+  void build();
+
+ private:
+  bool keys_fit();
+  bool component_fits();
+  bool body_fits();
+  bool joint_fits();
+  bool spring_fits();
+  std::string unit() const;
+  void problem(const SourceLocation& where, const std::string& message, const std::string& fix) {
+    builder.problem(where, message, fix);
+    complete = false;
+  }
+
+  SceneBuilder& builder;
+  const View& s;
+  const SensorVariant& variant;
+  SensorSpec sensor;
+  std::string component;
+  bool complete = true;
+};
+
+void SensorBuilder::build() {
+  sensor.name = s.string("name");
+  sensor.type = variant.kind;
+  const std::string type(variant.type);
+  component = s.has("component") ? s.string("component") : std::string();
+  if (builder.spatial() && !variant.spatial) {
+    return problem(s.location("type"), "a " + type + " sensor has no 3D form yet",
+                   "use joint_force (the force a named joint exerts) or fluid_force");
+  }
+  if (!builder.spatial() && component == "z") {
+    return problem(s.location("component"), "component z needs a 3D scene (dimension = 2 here)",
+                   "write x or y, or set dimension = 3");
+  }
+  for (const SensorSpec& other : builder.scene.sensors) {
+    if (other.name == sensor.name)
+      problem(s.location("name"), "a second sensor is named '" + sensor.name + "'", "rename it");
+  }
+  // A planar sensor's component is judged even when a key is wrong (every mistake at once); a
+  // spatial one's only with the keys right.
+  const bool keys = keys_fit();
+  if (!keys && builder.spatial()) return;
+  if (!component_fits() || !keys) return;
+  sensor.unit = unit();
+  if (!body_fits() || !joint_fits() || !spring_fits() || !complete) return;
+  builder.scene.sensors.push_back(sensor);
+}
+
+// Every key the variant forbids is absent, every key it requires present.
+bool SensorBuilder::keys_fit() {
+  const std::string type(variant.type);
+  auto forbid = [&](const char* key, Use use, const std::string& fix) {
+    if (use == Use::Forbidden && s.has(key))
+      problem(s.location(key), "a " + type + " sensor takes no " + key, fix);
+  };
+  auto need = [&](const char* key, Use use, const std::string& example) {
+    if (use == Use::Required && !s.has(key)) {
+      problem(s.location("name"), "sensor '" + sensor.name + "' needs " + key,
+              std::string("add ") + key + " = " + example);
+    }
+  };
+  const bool total = variant.kind == SensorType::TotalFluidForce;
+  const bool planar = !builder.spatial();
+  forbid("body", variant.body,
+         total && planar ? "remove body, or use type = \"fluid_force\"" : "remove it");
+  forbid("joint", variant.joint, "remove it");
+  forbid("element", variant.element, "remove it");
+  forbid("component", variant.component, "remove it");
+  forbid("point", variant.point,
+         planar ? "remove it (point is for position and velocity sensors)" : "remove it");
+  if (planar && component.rfind("torque_", 0) == 0) {
+    problem(s.location("component"), "torque_x, torque_y and torque_z are components of 3D sensors",
+            "write torque");
+  }
+  need("component", variant.component, "\"x\"");
+  need("body", variant.body, "\"...\"");
+  need("joint", variant.joint, "\"...\" (a joint's name)");
+  need("element", variant.element,
+       planar ? "\"...\" (a spring's name)" : "\"...\" (a SpringDamper3D's name)");
+  return complete;
+}
+
+// The component among the variant's: planar x, y and angle (torque for forces); spatial x, y, z
+// and torque_x, torque_y, torque_z where the variant has a torque unit.
+bool SensorBuilder::component_fits() {
+  if (component.empty() || variant.component == Use::Forbidden) return true;
+  const std::string type(variant.type);
+  const bool spatial_torque = component.rfind("torque_", 0) == 0;
+  const bool force = !variant.kinematic();
+  if (builder.spatial()) {
+    const bool takes_torque = !variant.spatial_torque_unit.empty();
+    if ((component != "x" && component != "y" && component != "z" && !spatial_torque) ||
+        (spatial_torque && !takes_torque)) {
+      problem(s.location("component"),
+              "a 3D " + type + " sensor has components x, y or z" +
+                  (takes_torque ? " (or torque_x, torque_y, torque_z)" : ""),
+              "write x, y or z (angles of 3D bodies are not sensors yet)");
+      return false;
+    }
+  } else {
+    // Reported, and the sensor still read further: its other mistakes come in the same run.
+    if (force && component == "angle") {
+      builder.problem(s.location("component"), "a force sensor has components x, y or torque",
+                      "write torque");
+    }
+    if (!force && component == "torque") {
+      builder.problem(s.location("component"), "a " + type + " sensor has components x, y or angle",
+                      "write angle");
+    }
+    if (force && component == "torque" && variant.planar_rotational_unit.empty()) {
+      builder.problem(s.location("component"), "total_fluid_force has components x and y",
+                      "write x or y");
+    }
+    sensor.component = coordinate_of(component);
+  }
+  const char last = component.back();
+  sensor.axis = (last == 'z' ? 2 : last == 'y' ? 1 : 0) + (spatial_torque ? 3 : 0);
+  return true;
+}
+
+std::string SensorBuilder::unit() const {
+  if (builder.spatial()) {
+    return std::string(component.rfind("torque_", 0) == 0 ? variant.spatial_torque_unit
+                                                          : variant.spatial_unit);
+  }
+  const bool rotational = !component.empty() && sensor.component == mbd::Coordinate::Angle;
+  return std::string(rotational ? variant.planar_rotational_unit : variant.planar_unit);
+}
+
+// The body a position, velocity or force sensor reads, and its point if one is given.
+bool SensorBuilder::body_fits() {
+  if (variant.body != Use::Required) return true;
+  const std::string type(variant.type);
+  mbd::Model& model = builder.model;
+  sensor.body = builder.find_body(s, "body");
+  const bool rotational = !builder.spatial() && sensor.component == mbd::Coordinate::Angle;
+  if (variant.kinematic() && s.has("point")) {
+    if (rotational) {
+      problem(s.location("component"), "a point has components x and y, no angle",
+              "write x or y, or remove point for the body's angle");
+      return false;
+    }
+    const auto point = builder.dimension_vector(s, "point", builder.dimension);
+    if (!point) return false;
+    sensor.point =
+        std::array<double, 3>{(*point)[0], (*point)[1], builder.spatial() ? (*point)[2] : 0.0};
+    const std::string user = "sensor '" + sensor.name + "'";
+    try {
+      if (builder.spatial()) {
+        model.check_spatial_point({sensor.body, {(*point)[0], (*point)[1], (*point)[2]}}, user);
+      } else {
+        model.check_point({sensor.body, {(*point)[0], (*point)[1]}}, user);
+      }
+    } catch (const Error& error) {
+      problem(s.location("point"), error.fault(), error.remedy());
+      return false;
+    }
+  }
+  if (builder.spatial() && variant.kinematic() && !sensor.point && model.is_cable(sensor.body)) {
+    problem(s.location("body"),
+            "a " + type + " sensor reads a centre of mass, and '" + s.string("body") +
+                "' is an AncfCable3D",
+            "give a centre-line point = [s, 0, 0], or use type = \"fluid_force\"");
+    return false;
+  }
+  if (!builder.spatial() && model.is_beam(sensor.body) && sensor.type != SensorType::FluidForce &&
+      !sensor.point) {
+    problem(s.location("type"),
+            "a " + type + " sensor reads rigid-body coordinates, and '" + s.string("body") +
+                "' is an AncfBeam2D",
+            "give a beam point = [s, eta], or use type = \"fluid_force\"");
+    return false;
+  }
+  return true;
+}
+
+// The rows of the named joint and the body its reaction is read on.
+bool SensorBuilder::joint_fits() {
+  if (variant.joint != Use::Required) return true;
+  const std::string& name = s.string("joint");
+  const auto found = builder.names.joints.find(name);
+  if (found == builder.names.joints.end()) {
+    problem(s.location("joint"), "no joint named '" + name + "'",
+            "give the joint block name = \"" + name + "\"");
+    return false;
+  }
+  const NamedJoint& joint = found->second;
+  sensor.body = joint.body;
+  const mbd::Model& model = builder.model;
+  if (builder.spatial() && (sensor.body == mbd::kGround || model.is_cable(sensor.body))) {
+    problem(s.location("joint"),
+            "joint '" + name + "' has no rigid body or point mass as its first body",
+            "give the joint a RigidBody3D or PointMass as body_a (body of a FixedJoint3D)");
+    return false;
+  }
+  if (!builder.spatial() && sensor.body != mbd::kGround && model.is_beam(sensor.body)) {
+    problem(s.location("joint"),
+            "joint '" + name +
+                "' holds an AncfBeam2D as its first body; joint_force reads a rigid body's force "
+                "and torque",
+            "give the joint a rigid body as body_a, or measure the beam with a fluid_force "
+            "sensor");
+    return false;
+  }
+  sensor.first_row = joint.first_row;
+  sensor.rows = joint.rows;
+  return true;
+}
+
+// The named spring; a rotational one measures a torque.
+bool SensorBuilder::spring_fits() {
+  if (variant.element != Use::Required) return true;
+  const std::string& name = s.string("element");
+  const auto found = builder.names.force_elements.find(name);
+  if (found == builder.names.force_elements.end() || found->second < 0) {
+    problem(s.location("element"), "no spring named '" + name + "'",
+            "give the " + std::string(builder.spatial() ? "SpringDamper3D block" : "spring block") +
+                " name = \"" + name + "\"");
+    return false;
+  }
+  sensor.force_element = found->second;
+  if (builder.names.rotational[name]) sensor.unit = std::string(variant.planar_rotational_unit);
+  return true;
+}
+
+void build_sensors(SceneBuilder& builder) {
+  builder.each("Sensor", [&](const View& s) { SensorBuilder(builder, s).build(); });
+}
+
+}  // namespace
+
+ElementFamily sensors_family() {
+  return {"sensors", sensor_blocks, build_sensors};
+}
+
+}  // namespace fsi::scene::detail

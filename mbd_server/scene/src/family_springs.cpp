@@ -1,0 +1,157 @@
+// Springs and actors: force elements between two bodies (or a body and the ground), planar and
+// spatial. A spring registers itself by name for spring_force sensors.
+
+#include "runtime_expression.hpp"
+#include "scene_builder.hpp"
+
+namespace fsi::scene::detail {
+namespace {
+
+std::vector<ParameterSpec> two_points(std::vector<ParameterSpec> more) {
+  return planar_two_points(std::move(more), false);
+}
+
+ParameterSpec rest_length_spec() {
+  return number("rest_length", "m", "l0 (default: the initial distance)").at_least(0.0).optional();
+}
+
+std::vector<BlockSpec> spring_blocks() {
+  return {
+      block_spec(
+          "SpringDamper",
+          "Linear spring-damper between the two points: tension k (l - l0) + c dl/dt.",
+          planar_two_points(
+              {number("stiffness", "N/m", "k (2D: per unit depth)").at_least(0.0),
+               number("damping", "N s/m", "c").at_least(0.0).with_default(0.0), rest_length_spec()},
+              true))
+          .as_list()
+          .planar(),
+      block_spec(
+          "RotationalSpringDamper",
+          "Torque on body_a -k (phi_a - phi_b - phi0) - c (omega_a - omega_b), the opposite on "
+          "body_b (absent: the ground, phi_b = 0).",
+          {element_name_spec(), text("body_a", "name of a RigidBody2D"),
+           text("body_b", "name of a RigidBody2D; absent: the ground").optional(),
+           number("stiffness", "N m/rad", "k (2D: per unit depth)").at_least(0.0),
+           number("damping", "N m s/rad", "c").at_least(0.0).with_default(0.0),
+           number("rest_angle", "rad", "phi0 (default: the initial relative angle)").optional()})
+          .as_list()
+          .planar(),
+      block_spec("NonlinearSpringDamper",
+                 "Spring-damper along the line of the two points with tension = f(elongation, "
+                 "rate), a muParser expression (elongation = l - l0 [m], rate = dl/dt [m/s]).",
+                 two_points({text("tension",
+                                  "tension [N/m] in elongation and rate, e.g. "
+                                  "\"1e4*elongation + 50*rate\""),
+                             rest_length_spec()}))
+          .as_list()
+          .planar(),
+      block_spec(
+          "SpringActor",
+          "Spring actor of thesis §6.5: tension piecewise linear in the elongation through the "
+          "characteristic's [elongation, tension] rows (continued with the end slopes), plus "
+          "damping.",
+          two_points({matrix("characteristic", 2, "m, N/m",
+                             "[elongation, tension] rows, elongations increasing (at least 2)"),
+                      number("damping", "N s/m", "c").at_least(0.0).with_default(0.0),
+                      rest_length_spec()}))
+          .as_list()
+          .planar(),
+      block_spec(
+          "SpringDamper3D",
+          "Linear spring-damper between the two points: tension k (l - l0) + c dl/dt "
+          "(spring_force sensors read it by name).",
+          spatial_two_points({number("stiffness", "N/m", "k").at_least(0.0),
+                              number("damping", "N s/m", "c").at_least(0.0).with_default(0.0),
+                              number("rest_length", "m", "l0 (default: the initial distance)")
+                                  .at_least(0.0)
+                                  .optional()}))
+          .as_list()
+          .spatial(),
+  };
+}
+
+void build_planar_springs(SceneBuilder& builder) {
+  mbd::Model& model = builder.model;
+  builder.each("SpringDamper", [&](const View& f) {
+    mbd::SpringDamperSpec spec;
+    spec.a = builder.point(f, "a");
+    spec.b = builder.point(f, "b");
+    spec.stiffness = f.number("stiffness");
+    spec.damping = f.number("damping");
+    spec.rest_length = optional_number(f, "rest_length");
+    builder.placed(f, [&] { model.add_spring_damper(spec); });
+    builder.register_force_element(f, model.force_element_count() - 1, false);
+  });
+  builder.each("RotationalSpringDamper", [&](const View& f) {
+    mbd::RotationalSpringDamperSpec spec;
+    spec.name = name_of(f);
+    spec.a = builder.find_body(f, "body_a");
+    if (f.has("body_b")) spec.b = builder.find_body(f, "body_b");
+    spec.stiffness = f.number("stiffness");
+    spec.damping = f.number("damping");
+    spec.rest_angle = optional_number(f, "rest_angle");
+    int index = 0;
+    builder.placed(f, [&] { index = model.add_rotational_spring_damper(spec); });
+    builder.register_force_element(f, index, true);
+  });
+}
+
+void build_planar_actors(SceneBuilder& builder) {
+  mbd::Model& model = builder.model;
+  builder.each("NonlinearSpringDamper", [&](const View& f) {
+    mbd::NonlinearSpringDamperSpec spec;
+    spec.name = name_of(f);
+    spec.a = builder.point(f, "a");
+    spec.b = builder.point(f, "b");
+    const RuntimeExpression law = expression(f, "tension", {"elongation", "rate"});
+    spec.tension = [law](double elongation, double rate) { return law(elongation, rate); };
+    spec.rest_length = optional_number(f, "rest_length");
+    int index = 0;
+    builder.placed(f, [&] { index = model.add_nonlinear_spring_damper(spec); });
+    builder.register_force_element(f, index, false);
+  });
+  builder.each("SpringActor", [&](const View& f) {
+    mbd::SpringActorSpec spec;
+    spec.name = name_of(f);
+    spec.a = builder.point(f, "a");
+    spec.b = builder.point(f, "b");
+    for (const auto& row : f.matrix("characteristic"))
+      spec.characteristic.emplace_back(row[0], row[1]);
+    spec.damping = f.number("damping");
+    spec.rest_length = optional_number(f, "rest_length");
+    int index = 0;
+    builder.placed(f, [&] { index = model.add_spring_actor(spec); });
+    builder.register_force_element(f, index, false);
+  });
+}
+
+void build_spatial_springs(SceneBuilder& builder) {
+  builder.each("SpringDamper3D", [&](const View& f) {
+    mbd::SpatialSpringDamperSpec spec;
+    spec.name = name_of(f);
+    spec.a = builder.point3(f, "a");
+    spec.b = builder.point3(f, "b");
+    spec.stiffness = f.number("stiffness");
+    spec.damping = f.number("damping");
+    spec.rest_length = optional_number(f, "rest_length");
+    int index = 0;
+    builder.placed(f, [&] { index = builder.model.add_spatial_spring_damper(spec); });
+    builder.register_force_element(f, index, false);
+  });
+}
+
+// In the order of the model's force elements (a spring_force sensor reads one by index).
+void build_springs(SceneBuilder& builder) {
+  build_planar_springs(builder);
+  build_planar_actors(builder);
+  build_spatial_springs(builder);
+}
+
+}  // namespace
+
+ElementFamily springs_family() {
+  return {"springs and actors", spring_blocks, build_springs};
+}
+
+}  // namespace fsi::scene::detail

@@ -1,0 +1,79 @@
+// Sensors are declared variants with one path for planar and spatial scenes: the keys a type
+// requires and forbids give the same problems in both dimensions, and the units follow the
+// dimension (planar: per unit depth).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "fsi/common/error.hpp"
+#include "fsi/scene/scene.hpp"
+
+namespace fsi::scene {
+namespace {
+
+namespace fs = std::filesystem;
+
+class SensorVariants : public ::testing::TestWithParam<int> {
+ protected:
+  void SetUp() override {
+    folder_ = fs::temp_directory_path() / ("fsi_sensor_variants_" + std::to_string(GetParam()));
+    fs::create_directories(folder_);
+  }
+  void TearDown() override { fs::remove_all(folder_); }
+
+  // A structure-only scene of one body and the given sensors, in the test's dimension.
+  std::string build(const std::string& sensors, Scene* built = nullptr) {
+    const fs::path path = folder_ / "s.scene";
+    const bool spatial = GetParam() == 3;
+    std::ofstream(path) << "scene_language = 1\ndimension = " << GetParam()
+                        << "\nSolverOptions { end_time = 1; Timeint { step_size = 1e-3 } }\n"
+                        << (spatial ? "PointMass { name = \"bob\"; mass = 1 }\n"
+                                    : "RigidBody2D { name = \"bob\"; mass = 1; inertia = 1 }\n")
+                        << sensors;
+    try {
+      Scene scene = build_scene(path.string(), {}, SceneMode::MbdOnly);
+      if (built != nullptr) *built = std::move(scene);
+    } catch (const Error& error) {
+      return error.what();
+    }
+    return "(accepted)";
+  }
+
+  fs::path folder_;
+};
+
+TEST_P(SensorVariants, RequiredAndForbiddenKeysAreTheSameInBothDimensions) {
+  const std::string text = build(
+      "Sensor { name = \"energy\"; type = \"kinetic_energy\"; joint = \"j\" }\n"
+      "Sensor { name = \"reaction\"; type = \"joint_force\"; component = \"x\" }\n"
+      "Sensor { name = \"where\"; type = \"position\"; component = \"x\" }\n");
+  EXPECT_NE(text.find("s.scene:5:52: a kinetic_energy sensor takes no joint; remove it"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("s.scene:6:10: sensor 'reaction' needs joint"), std::string::npos) << text;
+  EXPECT_NE(text.find("s.scene:7:10: sensor 'where' needs body"), std::string::npos) << text;
+}
+
+TEST_P(SensorVariants, UnitsFollowTheDimension) {
+  Scene scene;
+  ASSERT_EQ(build("Sensor { name = \"height\"; type = \"position\"; body = \"bob\"; component = "
+                  "\"y\" }\n"
+                  "Sensor { name = \"push\"; type = \"fluid_force\"; body = \"bob\"; component = "
+                  "\"x\" }\n"
+                  "Sensor { name = \"energy\"; type = \"potential_energy\" }\n",
+                  &scene),
+            "(accepted)");
+  ASSERT_EQ(scene.sensors.size(), 3u);
+  const bool spatial = GetParam() == 3;
+  EXPECT_EQ(scene.sensors[0].unit, "m");
+  EXPECT_EQ(scene.sensors[0].axis, 1);
+  EXPECT_EQ(scene.sensors[1].unit, spatial ? "N" : "N/m");
+  EXPECT_EQ(scene.sensors[2].unit, spatial ? "J" : "J/m");
+}
+
+INSTANTIATE_TEST_SUITE_P(PlanarAndSpatial, SensorVariants, ::testing::Values(2, 3));
+
+}  // namespace
+}  // namespace fsi::scene
