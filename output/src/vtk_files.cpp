@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <numeric>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -50,11 +51,12 @@ void write_points(VtkDocument& document, std::span<const double> positions, int 
 // indices of every cell, one past each cell's last index, and for grids the cell types.
 void write_cells(VtkDocument& document, std::string_view section,
                  std::span<const std::int64_t> connectivity, std::span<const std::int64_t> offsets,
-                 std::span<const std::uint8_t> types = {}) {
+                 std::optional<std::span<const std::uint8_t>> types = std::nullopt) {
   document.open(section);
   document.data_array<std::int64_t>("connectivity", 1, connectivity);
   document.data_array<std::int64_t>("offsets", 1, offsets);
-  if (!types.empty()) document.data_array<std::uint8_t>("types", 1, types);
+  // An unstructured grid has the types array even when it has no cells.
+  if (types) document.data_array<std::uint8_t>("types", 1, *types);
 }
 
 // One vertex cell per point: connectivity i and offset i + 1; the connectivity doubles as the
