@@ -16,12 +16,14 @@ function(fsi_fuzz_instrument target)
   target_link_options(${target} PRIVATE -fsanitize=${FSI_FUZZ_SANITIZERS})
 endfunction()
 
-# fsi_add_fuzzer(NAME SOURCES... LIBS ...): a libFuzzer executable (it brings libFuzzer's main).
+# fsi_add_fuzzer(NAME SOURCES... LIBS ...): a libFuzzer executable (it brings libFuzzer's main),
+# with common/fuzz/fuzz_target.hpp, what every target shares, on its include path.
 add_custom_target(fsi_fuzzers)
 function(fsi_add_fuzzer name)
   cmake_parse_arguments(ARG "" "" "SOURCES;LIBS" ${ARGN})
   add_executable(${name} ${ARG_SOURCES})
   fsi_configure_target(${name})
+  target_include_directories(${name} PRIVATE ${PROJECT_SOURCE_DIR}/common/fuzz)
   target_link_libraries(${name} PRIVATE ${ARG_LIBS})
   target_link_options(${name} PRIVATE -fsanitize=fuzzer)
   add_dependencies(fsi_fuzzers ${name})

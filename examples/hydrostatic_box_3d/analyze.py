@@ -11,36 +11,23 @@ container's weight plus the fluid force on it, relative to the fluid weight (--l
 Exit status 1 if --weight-tolerance is given and |ratio - 1| exceeds it, if particles were lost,
 or if the joint check exceeds --lambda-tolerance.
 """
-import argparse
-import json
-import math
 import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from fsi_results import read_sensors  # noqa: E402 (examples/fsi_results.py)
+from fsi_results import fluid_weight, read_run, weight_check_arguments, write_analysis  # noqa: E402 (examples/fsi_results.py)
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__,
-                                     formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("run_dir")
-    parser.add_argument("--settle-start", type=float,
-                        help="start of the averaging interval [s] (default: half the end time)")
-    parser.add_argument("--weight-tolerance", type=float, help="fail if |F/W - 1| exceeds this")
+    parser = weight_check_arguments(__doc__, None, "default: half the end time")
     parser.add_argument("--lambda-tolerance", type=float, default=1e-9,
                         help="held container: fail if |joint - m g + F| / W exceeds this")
     args = parser.parse_args()
 
-    with open(os.path.join(args.run_dir, "run.json")) as handle:
-        run = json.load(handle)
-    sensors = read_sensors(os.path.join(args.run_dir, "sensors.csv"))
+    run, sensors = read_run(args.run_dir)
     checks = run["checks"]
-    fluid = run["fluid"]
     n = checks["particles_final"]
-    m = fluid["particle_mass"]
-    g = math.sqrt(sum(component * component for component in run["model"]["gravity"]))
-    weight = n * m * g
+    m, g, weight = fluid_weight(run, n)
     time = sensors["time"]
     start = args.settle_start if args.settle_start is not None else 0.5 * run["end_time"]
     settled = [f for t, f in zip(time, sensors["total_fluid_force_z"]) if t >= start]
@@ -55,8 +42,7 @@ def main():
               "weight": weight, "settle_start": start, "samples": len(settled),
               "mean_force_z": -force, "weight_ratio": ratio,
               "wall_time_seconds": run["timings_seconds"]["total"]}
-    with open(os.path.join(args.run_dir, "analysis.json"), "w") as handle:
-        json.dump(result, handle, indent=2)
+    write_analysis(args.run_dir, result)
     print("particles: %d initial, %d final (%d lost)" % (checks["particles_initial"], n, lost))
     print("weight N m g = %d x %.6g kg x %.4g m/s^2 = %.6g N" % (n, m, g, weight))
     print("mean fluid force on the container along z over t >= %.4g s (%d samples): %.6g N"
@@ -68,8 +54,7 @@ def main():
         worst = max(abs(j - container * g + f) for j, f in
                     zip(sensors["mount_force_z"], sensors["fluid_force_z"])) / weight
         result["joint_balance_relative"] = worst
-        with open(os.path.join(args.run_dir, "analysis.json"), "w") as handle:
-            json.dump(result, handle, indent=2)
+        write_analysis(args.run_dir, result)
         print("joint: |mount force - m_container g + fluid force| / (N m g) <= %.2e over %d rows"
               % (worst, len(sensors["mount_force_z"])))
         if worst > args.lambda_tolerance:

@@ -11,14 +11,11 @@ Prints and writes DIR/analysis.json with
     V = (h0 - 2h)(b - 2h) (thesis eq. 6.5-6.6), against N*m/rho0.
 Exit status 1 if a tolerance given on the command line is not met.
 """
-import argparse
-import json
-import math
 import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from fsi_results import read_sensors  # noqa: E402 (examples/fsi_results.py)
+from fsi_results import fluid_weight, read_run, weight_check_arguments, write_analysis  # noqa: E402 (examples/fsi_results.py)
 
 
 def find_block(tree, name):
@@ -29,34 +26,25 @@ def find_block(tree, name):
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("run_dir")
-    parser.add_argument("--settle-start", type=float, default=0.05,
-                        help="start of the averaging interval [s] (default 0.05)")
+    parser = weight_check_arguments(__doc__, 0.05, "default 0.05")
     parser.add_argument("--contact-margin", type=float, default=0.02,
                         help="the interval ends this long before the piston touches [s]")
-    parser.add_argument("--weight-tolerance", type=float, help="fail if |F/W - 1| exceeds this")
     parser.add_argument("--lambda-tolerance", type=float,
                         help="fail if the multiplier-based force differs by more (relative)")
     parser.add_argument("--volume-tolerance", type=float, help="fail if |V/V_exact - 1| exceeds this")
     args = parser.parse_args()
 
-    with open(os.path.join(args.run_dir, "run.json")) as handle:
-        run = json.load(handle)
-    sensors = read_sensors(os.path.join(args.run_dir, "sensors.csv"))
-    fluid = run["fluid"]
-    n = fluid["particle_count"]
-    m = fluid["particle_mass"]
-    rho0 = fluid["density"]
+    run, sensors = read_run(args.run_dir)
+    n = run["fluid"]["particle_count"]
+    m, g, weight = fluid_weight(run, n)
+    rho0 = run["fluid"]["density"]
     gravity = run["model"]["gravity"]
-    g = math.hypot(gravity[0], gravity[1])
     bodies = {body["name"]: body for body in run["model"]["bodies"]}
     bottom_mass = bodies["bottom"]["mass"]
     params = run["parameters_flat"]
     h = params["LIGGGHTS_SPH_parameters.smoothinglength"]
     width = params["Geometry.width"]
     thickness = params["Geometry.thickness"]
-    weight = n * m * g
 
     time = sensors["time"]
     bottom = sensors["bottom_fluid_force_y"]
@@ -125,8 +113,7 @@ def main():
             print("FAIL: a volume tolerance was given but the piston never compressed the fluid")
             failed = True
 
-    with open(os.path.join(args.run_dir, "analysis.json"), "w") as handle:
-        json.dump(result, handle, indent=2)
+    write_analysis(args.run_dir, result)
     return 1 if failed else 0
 
 

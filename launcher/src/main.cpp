@@ -95,8 +95,7 @@ int main(int argc, char** argv) {
       "Runs one coupled simulation on this machine: fsi-server on an OS-chosen loopback "
       "port and `mpirun -np N fsi-client` connected to it. Exits with the server's "
       "status."};
-  app.set_version_flag("--version", std::string(fsi::software_version()) + " (git " +
-                                        std::string(fsi::git_revision()) + ")");
+  app.set_version_flag("--version", fsi::version_text());
   std::string scene;
   int ranks = 1;
   std::string output;

@@ -1,8 +1,14 @@
 #include "fsi/output/vtk_files.hpp"
 
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <numeric>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
 
 #include "fsi/common/error.hpp"
 #include "vtk_document.hpp"
@@ -24,12 +30,45 @@ void check_vectors(std::span<const double> values, std::size_t count, int dimens
                  std::to_string(count) + " items of dimension " + std::to_string(dimension));
 }
 
-// ParaView shows a single file's time from this field (the .pvd carries it for a series).
-void write_time(VtkDocument& document, double time) {
+// ParaView shows a single file's time from this field (the .pvd carries it for a series); the
+// names, where given, label the bodies or lines of the file.
+void write_field_data(VtkDocument& document, double time, std::string_view names_field = {},
+                      const std::vector<std::string>& names = {}) {
   document.open("FieldData");
   const double value[1] = {time};
   document.field_array<double>("TimeValue", value);
+  if (!names_field.empty()) document.field_strings(names_field, names);
   document.close();
+}
+
+void write_points(VtkDocument& document, std::span<const double> positions, int dimension) {
+  document.open("Points");
+  document.data_array<double>("Points", 3, to_three_components(positions, dimension));
+  document.close();
+}
+
+// The cell section ("Cells" of an unstructured grid, "Verts" or "Lines" of poly data): point
+// indices of every cell, one past each cell's last index, and for grids the cell types.
+void write_cells(VtkDocument& document, std::string_view section,
+                 std::span<const std::int64_t> connectivity, std::span<const std::int64_t> offsets,
+                 std::optional<std::span<const std::uint8_t>> types = std::nullopt) {
+  document.open(section);
+  document.data_array<std::int64_t>("connectivity", 1, connectivity);
+  document.data_array<std::int64_t>("offsets", 1, offsets);
+  // An unstructured grid has the types array even when it has no cells.
+  if (types) document.data_array<std::uint8_t>("types", 1, *types);
+}
+
+// One vertex cell per point: connectivity i and offset i + 1; the connectivity doubles as the
+// point's index.
+struct VertexCells {
+  std::vector<std::int64_t> connectivity, offsets;
+};
+VertexCells one_vertex_per_point(std::size_t count) {
+  VertexCells cells{std::vector<std::int64_t>(count), std::vector<std::int64_t>(count)};
+  std::iota(cells.connectivity.begin(), cells.connectivity.end(), std::int64_t{0});
+  std::iota(cells.offsets.begin(), cells.offsets.end(), std::int64_t{1});
+  return cells;
 }
 
 }  // namespace
@@ -42,7 +81,7 @@ std::string encode_particles(const ParticleFrame& frame) {
              "one density and one pressure per particle");
 
   VtkDocument document("UnstructuredGrid");
-  write_time(document, frame.time);
+  write_field_data(document, frame.time);
   document.open("Piece", "NumberOfPoints=\"" + count_text(count) + "\" NumberOfCells=\"" +
                              count_text(count) + "\"");
   std::vector<std::int64_t> ids(frame.ids.begin(), frame.ids.end());
@@ -53,20 +92,10 @@ std::string encode_particles(const ParticleFrame& frame) {
   document.data_array<double>("density", 1, frame.density);
   document.data_array<double>("pressure", 1, frame.pressure);
   document.close();
-  document.open("Points");
-  document.data_array<double>("Points", 3, to_three_components(frame.positions, frame.dimension));
-  document.close();
-  // One VTK_VERTEX per particle: connectivity i, offsets i + 1.
-  std::vector<std::int64_t> connectivity(count), offsets(count);
-  for (std::size_t i = 0; i < count; ++i) {
-    connectivity[i] = static_cast<std::int64_t>(i);
-    offsets[i] = static_cast<std::int64_t>(i + 1);
-  }
+  write_points(document, frame.positions, frame.dimension);
+  const VertexCells cells = one_vertex_per_point(count);
   const std::vector<std::uint8_t> types(count, kVtkVertex);
-  document.open("Cells");
-  document.data_array<std::int64_t>("connectivity", 1, connectivity);
-  document.data_array<std::int64_t>("offsets", 1, offsets);
-  document.data_array<std::uint8_t>("types", 1, types);
+  write_cells(document, "Cells", cells.connectivity, cells.offsets, types);
   return document.finish();
 }
 
@@ -89,7 +118,7 @@ std::string encode_boundary(const BoundaryFrame& frame) {
   const std::size_t element_count = frame.elements.size() / per_element;
 
   VtkDocument document("UnstructuredGrid");
-  write_time(document, frame.time);
+  write_field_data(document, frame.time);
   document.open("Piece", "NumberOfPoints=\"" + count_text(vertex_count) + "\" NumberOfCells=\"" +
                              count_text(element_count) + "\"");
   std::vector<std::uint8_t> dynamic(vertex_count, 0);
@@ -102,19 +131,14 @@ std::string encode_boundary(const BoundaryFrame& frame) {
                               to_three_components(frame.fluid_forces, frame.dimension));
   document.data_array<std::uint8_t>("dynamic", 1, dynamic);
   document.close();
-  document.open("Points");
-  document.data_array<double>("Points", 3, to_three_components(frame.positions, frame.dimension));
-  document.close();
+  write_points(document, frame.positions, frame.dimension);
   std::vector<std::int64_t> connectivity(frame.elements.begin(), frame.elements.end());
   std::vector<std::int64_t> offsets(element_count);
   for (std::size_t e = 0; e < element_count; ++e)
     offsets[e] = static_cast<std::int64_t>((e + 1) * per_element);
   const std::vector<std::uint8_t> types(element_count,
                                         frame.dimension == 2 ? kVtkLine : kVtkTriangle);
-  document.open("Cells");
-  document.data_array<std::int64_t>("connectivity", 1, connectivity);
-  document.data_array<std::int64_t>("offsets", 1, offsets);
-  document.data_array<std::uint8_t>("types", 1, types);
+  write_cells(document, "Cells", connectivity, offsets, types);
   return document.finish();
 }
 
@@ -125,19 +149,11 @@ std::string encode_bodies(const BodyFrame& frame) {
   FSI_ASSERT(frame.angles.size() == count, "one angle per body");
 
   VtkDocument document("PolyData");
-  document.open("FieldData");
-  const double time[1] = {frame.time};
-  document.field_array<double>("TimeValue", time);
-  document.field_strings("body_name", frame.names);
-  document.close();
+  write_field_data(document, frame.time, "body_name", frame.names);
   document.open("Piece", "NumberOfPoints=\"" + count_text(count) + "\" NumberOfVerts=\"" +
                              count_text(count) +
                              "\" NumberOfLines=\"0\" NumberOfStrips=\"0\" NumberOfPolys=\"0\"");
-  std::vector<std::int64_t> index(count), offsets(count);
-  for (std::size_t i = 0; i < count; ++i) {
-    index[i] = static_cast<std::int64_t>(i);
-    offsets[i] = static_cast<std::int64_t>(i + 1);
-  }
+  const VertexCells cells = one_vertex_per_point(count);
   FSI_ASSERT(frame.dimension == 2, "body frames: 2D only so far (axes from the angle)");
   std::vector<double> axis_x(3 * count), axis_y(3 * count), axis_z(3 * count, 0.0);
   for (std::size_t i = 0; i < count; ++i) {
@@ -149,7 +165,7 @@ std::string encode_bodies(const BodyFrame& frame) {
     axis_z[3 * i + 2] = 1.0;
   }
   document.open("PointData", "Vectors=\"velocity\"");
-  document.data_array<std::int64_t>("body_index", 1, index);
+  document.data_array<std::int64_t>("body_index", 1, cells.connectivity);
   document.data_array<double>("angle", 1, frame.angles);
   document.data_array<double>("axis_x", 3, axis_x);
   document.data_array<double>("axis_y", 3, axis_y);
@@ -157,12 +173,8 @@ std::string encode_bodies(const BodyFrame& frame) {
   document.data_array<double>("velocity", 3,
                               to_three_components(frame.velocities, frame.dimension));
   document.close();
-  document.open("Points");
-  document.data_array<double>("Points", 3, to_three_components(frame.positions, frame.dimension));
-  document.close();
-  document.open("Verts");
-  document.data_array<std::int64_t>("connectivity", 1, index);
-  document.data_array<std::int64_t>("offsets", 1, offsets);
+  write_points(document, frame.positions, frame.dimension);
+  write_cells(document, "Verts", cells.connectivity, cells.offsets);
   return document.finish();
 }
 
@@ -177,11 +189,7 @@ std::string encode_centre_lines(const CentreLineFrame& frame) {
   check_vectors(frame.velocities, count, frame.dimension, "centre-line velocities");
 
   VtkDocument document("PolyData");
-  document.open("FieldData");
-  const double time[1] = {frame.time};
-  document.field_array<double>("TimeValue", time);
-  document.field_strings("line_name", frame.names);
-  document.close();
+  write_field_data(document, frame.time, "line_name", frame.names);
   document.open("Piece", "NumberOfPoints=\"" + count_text(count) +
                              "\" NumberOfVerts=\"0\" NumberOfLines=\"" + count_text(line_count) +
                              "\" NumberOfStrips=\"0\" NumberOfPolys=\"0\"");
@@ -198,12 +206,8 @@ std::string encode_centre_lines(const CentreLineFrame& frame) {
   document.data_array<double>("velocity", 3,
                               to_three_components(frame.velocities, frame.dimension));
   document.close();
-  document.open("Points");
-  document.data_array<double>("Points", 3, to_three_components(frame.positions, frame.dimension));
-  document.close();
-  document.open("Lines");
-  document.data_array<std::int64_t>("connectivity", 1, connectivity);
-  document.data_array<std::int64_t>("offsets", 1, offsets);
+  write_points(document, frame.positions, frame.dimension);
+  write_cells(document, "Lines", connectivity, offsets);
   return document.finish();
 }
 

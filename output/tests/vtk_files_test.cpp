@@ -145,6 +145,14 @@ TEST(VtkFiles, EmptyParticleFrameIsValid) {
   EXPECT_EQ(find(parsed, "Points").size_header, 0u);
 }
 
+// A grid without cells still carries all three cell arrays, empty: the cell writer must not take
+// an empty types array for a section that has none.
+TEST(VtkFiles, EmptyParticleFrameKeepsEveryCellArray) {
+  const Parsed parsed = parse(encode_particles(ParticleFrame{}));
+  for (const char* name : {"connectivity", "offsets", "types"})
+    EXPECT_EQ(find(parsed, name).size_header, 0u) << name;
+}
+
 TEST(VtkFiles, BoundaryMesh2DHasLinesAndDynamicFlags) {
   // Vertices 0 and 1 move with a body, vertex 2 is static; segments 0-1 and 1-2.
   const std::vector<double> positions = {0.0, 0.0, 1.0, 0.0, 1.0, 1.0};

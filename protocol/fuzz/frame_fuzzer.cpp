@@ -4,10 +4,12 @@
 // the message decoder of its type, as in Channel::receive. The payload limit is small (64 KiB) so
 // that oversize lengths are exercised against the check that precedes any allocation.
 #include <cstdint>
-#include <cstdlib>
+#include <cstdio>
 #include <cstring>
+#include <string>
 
 #include "decoders.hpp"
+#include "fuzz_target.hpp"
 
 namespace {
 
@@ -21,28 +23,22 @@ std::array<std::size_t, kDecoders.size()> frames_accepted{};
 std::size_t frames_rejected = 0;
 std::size_t payloads_accepted = 0;
 
-void print_reach_at_exit() {
+std::size_t index_of(fsi::protocol::MessageType type) {
+  for (std::size_t i = 0; i < kDecoders.size(); ++i) {
+    if (kDecoders[i].type == type) return i;
+  }
+  fsi::fuzz::finding("decode_frame accepted a frame of " + name(type));
+}
+
+}  // namespace
+
+void fsi::fuzz::print_reach() {
   std::fprintf(stderr, "fuzz-reach: frames rejected=%zu\n", frames_rejected);
   std::fprintf(stderr, "fuzz-reach: payloads accepted=%zu\n", payloads_accepted);
   for (std::size_t i = 0; i < kDecoders.size(); ++i) {
     std::fprintf(stderr, "fuzz-reach: %s frames accepted=%zu\n", name(kDecoders[i].type).c_str(),
                  frames_accepted[i]);
   }
-}
-
-std::size_t index_of(fsi::protocol::MessageType type) {
-  for (std::size_t i = 0; i < kDecoders.size(); ++i) {
-    if (kDecoders[i].type == type) return i;
-  }
-  std::fprintf(stderr, "decode_frame accepted a frame of %s\n", name(type).c_str());
-  std::abort();
-}
-
-}  // namespace
-
-extern "C" int LLVMFuzzerInitialize(int*, char***) {
-  std::atexit(print_reach_at_exit);
-  return 0;
 }
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -57,17 +53,15 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
   const FrameHeader& header = frame.header;
   if (header.payload_length != frame.payload.size() || frame.payload.size() > kMaxPayload) {
-    std::fprintf(stderr, "accepted frame: length field %u, %zu payload bytes\n",
-                 header.payload_length, frame.payload.size());
-    std::abort();
+    fsi::fuzz::finding("accepted frame: length field " + std::to_string(header.payload_length) +
+                       ", " + std::to_string(frame.payload.size()) + " payload bytes");
   }
   // Flags are zero in protocol 1; only Hello and Error of another major may carry others.
   if (header.flags == 0) {
     const auto again = encode_frame(header.type, frame.payload, header.major, header.minor);
     if (again.size() != size || std::memcmp(again.data(), data, size) != 0) {
-      std::fprintf(stderr, "an accepted %s frame of %zu bytes re-encodes differently\n",
-                   name(header.type).c_str(), size);
-      std::abort();
+      fsi::fuzz::finding("an accepted " + name(header.type) + " frame of " + std::to_string(size) +
+                         " bytes re-encodes differently");
     }
   }
   ++frames_accepted[index_of(header.type)];

@@ -3,10 +3,11 @@
 // and then re-encoding the message gives back the same bytes, or throw ProtocolError; anything else
 // (a crash, a sanitizer report, another exception, a mismatch) is a finding.
 #include <cstdint>
-#include <cstdlib>
 #include <cstring>
+#include <string>
 
 #include "decoders.hpp"
+#include "fuzz_target.hpp"
 
 namespace {
 
@@ -14,15 +15,10 @@ using fsi::protocol::fuzz::kDecoders;
 
 std::array<fsi::protocol::fuzz::Reach, kDecoders.size()> reach;
 
-void print_reach_at_exit() {
-  fsi::protocol::fuzz::print_reach(reach);
-}
-
 }  // namespace
 
-extern "C" int LLVMFuzzerInitialize(int*, char***) {
-  std::atexit(print_reach_at_exit);
-  return 0;
+void fsi::fuzz::print_reach() {
+  fsi::protocol::fuzz::print_reach(reach);
 }
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -39,9 +35,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   ++reach[index].accepted;
   if (again.size() != payload.size() ||
       (!again.empty() && std::memcmp(again.data(), payload.data(), again.size()) != 0)) {
-    std::fprintf(stderr, "%s: an accepted payload of %zu bytes re-encodes to %zu other bytes\n",
-                 name(kDecoders[index].type).c_str(), payload.size(), again.size());
-    std::abort();
+    fsi::fuzz::finding(name(kDecoders[index].type) + ": an accepted payload of " +
+                       std::to_string(payload.size()) + " bytes re-encodes to " +
+                       std::to_string(again.size()) + " other bytes");
   }
   return 0;
 }

@@ -48,8 +48,7 @@ int main(int argc, char** argv) {
       "fsi-client: the SPH side of the FSI co-simulation. Run it under MPI "
       "(mpirun -np N fsi-client --server HOST:PORT); rank 0 talks to fsi-server, all "
       "ranks drive LIGGGHTS."};
-  app.set_version_flag("--version", std::string(fsi::software_version()) + " (git " +
-                                        std::string(fsi::git_revision()) + ")");
+  app.set_version_flag("--version", fsi::version_text());
   std::string server;
   double connect_timeout = 60.0;
   fsi::client::ClientOptions options;

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 #include "atom.h"
@@ -15,6 +16,17 @@
 
 namespace fsi::client {
 namespace {
+
+// The fsi::Error that running `script` throws, or nothing when the driver accepts it.
+std::optional<fsi::Error> script_error(LiggghtsDriver& driver, const std::string& script_name,
+                                       const std::string& script) {
+  try {
+    driver.run_script(script_name, script);
+  } catch (const fsi::Error& error) {
+    return error;
+  }
+  return std::nullopt;
+}
 
 std::string read_file(const std::string& path) {
   std::ifstream in(path);
@@ -143,26 +155,19 @@ TEST(LiggghtsDriver, FixLineErrorsNameScriptAndLine) {
   const std::string script =
       "dimension 2\natom_style sph\nboundary f f p\nregion box block 0 1 0 1 -0.1 0.1 units box\n"
       "create_box 1 box\n# comment line\nfix f all fsi/sph k 1 t 0 r0 ${undefined_name} cutoff 1\n";
-  try {
-    driver.run_script("bad.in", script);
-    FAIL() << "undefined variable accepted";
-  } catch (const fsi::Error& error) {
-    EXPECT_EQ(error.location(), "bad.in:7");
-    EXPECT_NE(error.fault().find("undefined_name"), std::string::npos);
-  }
-  try {
-    driver.run_script("bad2.in", "fix f all fsi/sph k 1 t 0 r0 1 cutoff 1 speed 3\n");
-    FAIL() << "unknown keyword accepted";
-  } catch (const fsi::Error& error) {
-    EXPECT_EQ(error.location(), "bad2.in:1");
-    EXPECT_NE(error.fault().find("unknown keyword 'speed'"), std::string::npos);
-  }
-  try {
-    driver.run_script("bad3.in", "fix f nogroup fsi/sph k 1 t 0 r0 1 cutoff 1\n");
-    FAIL() << "unknown group accepted";
-  } catch (const fsi::Error& error) {
-    EXPECT_NE(error.fault().find("group 'nogroup'"), std::string::npos);
-  }
+  const auto undefined_variable = script_error(driver, "bad.in", script);
+  ASSERT_TRUE(undefined_variable) << "undefined variable accepted";
+  EXPECT_EQ(undefined_variable->location(), "bad.in:7");
+  EXPECT_NE(undefined_variable->fault().find("undefined_name"), std::string::npos);
+  const auto unknown_keyword =
+      script_error(driver, "bad2.in", "fix f all fsi/sph k 1 t 0 r0 1 cutoff 1 speed 3\n");
+  ASSERT_TRUE(unknown_keyword) << "unknown keyword accepted";
+  EXPECT_EQ(unknown_keyword->location(), "bad2.in:1");
+  EXPECT_NE(unknown_keyword->fault().find("unknown keyword 'speed'"), std::string::npos);
+  const auto unknown_group =
+      script_error(driver, "bad3.in", "fix f nogroup fsi/sph k 1 t 0 r0 1 cutoff 1\n");
+  ASSERT_TRUE(unknown_group) << "unknown group accepted";
+  EXPECT_NE(unknown_group->fault().find("group 'nogroup'"), std::string::npos);
 }
 
 TEST(LiggghtsDriver, FixWarnsWhenAParticleComesTooCloseToAWall) {

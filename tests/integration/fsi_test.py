@@ -1,8 +1,10 @@
 """Helpers for integration tests that start the real fsi-server and `mpirun fsi-client`."""
+import glob
 import json
 import os
 import shutil
 import signal
+import socket
 import subprocess
 import sys
 import tempfile
@@ -80,6 +82,31 @@ def wait(process, timeout):
         return None
 
 
+def wait_for_exit(process, timeout, still_running):
+    """Waits for a process that a fault should end; a process still running after `timeout` is
+    killed and the test fails with the message `still_running`. Returns (status, seconds waited)."""
+    started = time.time()
+    status = wait(process, timeout)
+    elapsed = time.time() - started
+    if status is None:
+        kill_group(process)
+        fail(still_running)
+    return status, elapsed
+
+
+def start_client_for_fake_server(run_dir, ranks, extra=()):
+    """Starts `mpirun fsi-client` against a socket of the test's own, which plays the server;
+    returns the client process and the accepted connection."""
+    os.makedirs(run_dir)
+    with socket.socket() as listener:
+        listener.bind(("127.0.0.1", 0))
+        listener.listen(1)
+        client = start_client(listener.getsockname()[1], ranks, run_dir, extra)
+        listener.settimeout(30)
+        connection, _ = listener.accept()
+    return client, connection
+
+
 def kill_group(process, sig=signal.SIGKILL):
     try:
         os.killpg(process.pid, sig)
@@ -93,6 +120,34 @@ def read(output, name):
         return ""
     with open(path, errors="replace") as handle:
         return handle.read()
+
+
+def static_tank_variant(directory, scene_name, appended):
+    """The coarse static tank with `appended` added to its scene, written as `scene_name` into
+    `directory` next to copies of the LIGGGHTS scripts and model file it includes."""
+    os.makedirs(directory, exist_ok=True)
+    for path in glob.glob(example("static_tank", "static_tank*.in*")) + [example("static_tank", "static_tank_model.inc")]:
+        shutil.copy(path, directory)
+    with open(example("static_tank", "static_tank_coarse.scene")) as handle:
+        coarse = handle.read()
+    scene = os.path.join(directory, scene_name)
+    with open(scene, "w") as handle:
+        handle.write(coarse + appended)
+    return scene
+
+
+def read_vtk(path, reader_class=None):
+    """A VTK XML file read with VTK's own reader (unstructured grid unless told), failing the test
+    when VTK cannot read it. VTK is imported here so that tests without VTK files need not have it."""
+    import vtk
+    reader = (reader_class or vtk.vtkXMLUnstructuredGridReader)()
+    reader.SetFileName(path)
+    if not reader.CanReadFile(path):
+        fail(f"VTK's {type(reader).__name__} cannot read {path}")
+    reader.Update()
+    if reader.GetErrorCode() != 0:
+        fail(f"VTK's reader reports error {reader.GetErrorCode()} on {path}")
+    return reader.GetOutput()
 
 
 def sensor_rows(output):

@@ -68,59 +68,51 @@ check(result.returncode == 2 and "did you mean 'Geometry.width'" in result.stder
 result = server(scene, "--check", "--set", "SolverOptions.Timeint.step_size=-1")
 check(result.returncode == 2 and "out of range" in result.stderr, "a negative step size is out of range")
 
+def run_with_script(name, script_number, text, ranks, overrides=()):
+    """A coupled run of the coarse tank whose LIGGGHTS script `script_number` is `text`, written as
+    NAME.in1 or NAME.in2; returns both exit statuses, the server's log, and both logs' tails to show
+    on failure (a flake of the bad-fix case was seen once in ~12 runs on 2026-11-22 and could not be
+    reproduced; the logs say which side misbehaved)."""
+    script_path = os.path.join(output, f"{name}.in{script_number}")
+    with open(script_path, "w") as handle:
+        handle.write(text)
+    run_dir = os.path.join(output, name)
+    status, client = run_pair(scene, run_dir, ranks,
+                              [f'LIGGGHTS.script{script_number}="{script_path}"', *overrides], timeout=120)
+    log = read(run_dir, "server.stderr")
+    logs = f"\n--- server ---\n{log[-3000:]}\n--- client ---\n{read(run_dir, 'client.stderr')[-3000:]}"
+    return status, client, log, logs
+
+
 with open(example("static_tank", "static_tank.in1")) as handle:
     script = handle.read()
-bad_fix = os.path.join(output, "bad_fix.in1")
-with open(bad_fix, "w") as handle:
-    handle.write(script.replace("cutoff ${SPH_wall_cutoff}", "cutof ${SPH_wall_cutoff}"))
-run_dir = os.path.join(output, "bad_fix")
-status, client = run_pair(scene, run_dir, 1, [f'LIGGGHTS.script1="{bad_fix}"'], timeout=120)
-log = read(run_dir, "server.stderr")
-# On failure, show both sides' output: a flake of this test was seen once in ~12 runs on
-# 2026-11-22 and could not be reproduced; the logs say which side misbehaved.
-logs = f"\n--- server ---\n{log[-3000:]}\n--- client ---\n{read(run_dir, 'client.stderr')[-3000:]}"
+status, client, log, logs = run_with_script(
+    "bad_fix", 1, script.replace("cutoff ${SPH_wall_cutoff}", "cutof ${SPH_wall_cutoff}"), 1)
 check(status == 1 and client > 0, f"bad fix keyword: server {status}, client {client} (both non-zero)" +
       ("" if status == 1 and client > 0 else logs))
 check("unknown keyword 'cutof'" in log and "bad_fix.in1:" in log,
       "bad fix keyword: reported with script and line" + ("" if "bad_fix.in1:" in log else logs))
 
-bad_liggghts = os.path.join(output, "bad_pair.in1")
-with open(bad_liggghts, "w") as handle:
-    handle.write(script.replace("sph/artVisc/tensCorr spiky2d", "sph/nonsense spiky2d"))
-run_dir = os.path.join(output, "bad_pair")
-status, client = run_pair(scene, run_dir, 2, [f'LIGGGHTS.script1="{bad_liggghts}"'], timeout=120)
-log = read(run_dir, "server.stderr")
-logs = f"\n--- server ---\n{log[-3000:]}\n--- client ---\n{read(run_dir, 'client.stderr')[-3000:]}"
+status, client, log, logs = run_with_script(
+    "bad_pair", 1, script.replace("sph/artVisc/tensCorr spiky2d", "sph/nonsense spiky2d"), 2)
 check(status == 1 and client > 0, f"LIGGGHTS error: server {status}, client {client} (both non-zero)" +
       ("" if status == 1 and client > 0 else logs))
 ok = "Invalid pair style" in log and "bad_pair.in1:" in log
 check(ok, "LIGGGHTS' own error message and the script line reach the server" + ("" if ok else logs))
 # The client runs text that arrives over the network: `shell` is refused (issue 5, safe commands).
 marker = os.path.join(output, "shell_ran")
-bad_shell = os.path.join(output, "bad_shell.in1")
-with open(bad_shell, "w") as handle:
-    handle.write(script + f"\nshell touch {marker}\n")
-run_dir = os.path.join(output, "bad_shell")
-status, client = run_pair(scene, run_dir, 1, [f'LIGGGHTS.script1="{bad_shell}"'], timeout=120)
-log = read(run_dir, "server.stderr")
-logs = f"\n--- server ---\n{log[-3000:]}\n--- client ---\n{read(run_dir, 'client.stderr')[-3000:]}"
+status, client, log, logs = run_with_script("bad_shell", 1, script + f"\nshell touch {marker}\n", 1)
 ok = status == 1 and client > 0 and "command refused: 'shell'" in log and "bad_shell.in1:" in log
 check(ok, "a 'shell' command is refused with script and line, both sides non-zero" + ("" if ok else logs))
 check(not os.path.exists(marker), "the refused shell command did not run")
 
 # A script that leaves LIGGGHTS without particles: the run fails and says so, instead of
 # "completing" with a fluid that weighs nothing.
-no_fluid = os.path.join(output, "no_fluid.in2")
 with open(example("static_tank", "static_tank.in2")) as handle:
     script2 = handle.read()
-with open(no_fluid, "w") as handle:
-    handle.write(script2 + "\ndelete_atoms group all\n")
-run_dir = os.path.join(output, "no_fluid")
-status, client = run_pair(scene, run_dir, 2, [f'LIGGGHTS.script2="{no_fluid}"', "Resolution.equilibration_steps=20"],
-                          timeout=120)
-log = read(run_dir, "server.stderr")
+status, client, log, logs = run_with_script("no_fluid", 2, script2 + "\ndelete_atoms group all\n", 2,
+                                            ["Resolution.equilibration_steps=20"])
 ok = status == 1 and client > 0 and "LIGGGHTS holds no particle after the set-up" in log
-check(ok, "no particle left after the set-up: both sides non-zero, the server says so" +
-      ("" if ok else f"\n--- server ---\n{log[-3000:]}"))
-check(manifest(run_dir)["status"] == "failed", "run.json says failed")
+check(ok, "no particle left after the set-up: both sides non-zero, the server says so" + ("" if ok else logs))
+check(manifest(os.path.join(output, "no_fluid"))["status"] == "failed", "run.json says failed")
 cleanup(output)

@@ -9,7 +9,7 @@ import subprocess
 import time
 
 from fsi_test import (ENV, binary, check, cleanup, example, fail, kill_group, read, sensor_rows, start_client,
-                      start_server, wait, work_dir)
+                      start_server, wait, wait_for_exit, work_dir)
 
 scene = example("static_tank", "static_tank_coarse.scene")
 long_run = ["Resolution.end_time=10", "Resolution.equilibration_steps=100"]
@@ -38,16 +38,26 @@ def start_running_pair(name, server_extra=(), client_extra=()):
     return run_dir, server, client
 
 
+def fault_case(name, fault, survivor, seconds, what_happened, server_extra=(), client_extra=()):
+    """Starts a coupled run `name`, strikes it with `fault(run_dir, server, client)` and waits up to
+    `seconds` for the `survivor` ("server" or "client") to end; afterwards nothing of the pair is
+    left running, stopped or not. Returns (run_dir, the survivor's status, the seconds it took to
+    end, its log)."""
+    run_dir, server, client = start_running_pair(name, server_extra, client_extra)
+    fault(run_dir, server, client)
+    try:
+        status, elapsed = wait_for_exit(server if survivor == "server" else client, seconds,
+                                        f"fsi-{survivor} still runs {seconds} s after {what_happened}")
+    finally:
+        signal_client_ranks(run_dir, signal.SIGKILL)
+        kill_group(client, signal.SIGKILL)
+        kill_group(server, signal.SIGKILL)
+    return run_dir, status, elapsed, read(run_dir, f"{survivor}.stderr")
+
+
 # 1. The client dies mid-run.
-run_dir, server, client = start_running_pair("kill_client")
-kill_group(client)
-started = time.time()
-status = wait(server, 10)
-elapsed = time.time() - started
-log = read(run_dir, "server.stderr")
-if status is None:
-    kill_group(server)
-    fail("fsi-server still runs 10 s after the client was killed")
+run_dir, status, elapsed, log = fault_case("kill_client", lambda run_dir, server, client: kill_group(client),
+                                           "server", 10, "the client was killed")
 check(status > 0, f"server exits non-zero without crashing ({status}) {elapsed:.2f} s after the client was killed")
 check("connection closed by peer" in log, "server says the connection was closed by the client")
 check('"status": "failed"' in read(run_dir, "run.json"), "run.json records the failure")
@@ -69,44 +79,22 @@ check(len(rows) >= 200 and all(b > a for a, b in zip(times, times[1:])),
       f"sensors.csv after kill -9 of the client: {len(rows)} complete rows up to t = {times[-1]:.5f} s")
 
 # 2. The server dies mid-run.
-run_dir, server, client = start_running_pair("kill_server")
-kill_group(server)
-started = time.time()
-status = wait(client, 10)
-elapsed = time.time() - started
-log = read(run_dir, "client.stderr")
-if status is None:
-    kill_group(client)
-    fail("fsi-client still runs 10 s after the server was killed")
+run_dir, status, elapsed, log = fault_case("kill_server", lambda run_dir, server, client: kill_group(server),
+                                           "client", 10, "the server was killed")
 check(status > 0, f"client exits non-zero without crashing ({status}) {elapsed:.2f} s after the server was killed")
 check("connection closed by peer" in log, "client says the connection was closed by the server")
 
 # 2b. A hung client (stopped with SIGSTOP: alive, socket open, silent) ends the server after its
 # --peer-timeout, and a hung server ends the client after the client's --peer-timeout.
-run_dir, server, client = start_running_pair("hang_client", server_extra=["--peer-timeout", "3"])
-signal_client_ranks(run_dir, signal.SIGSTOP)
-started = time.time()
-status = wait(server, 15)
-elapsed = time.time() - started
-signal_client_ranks(run_dir, signal.SIGKILL)
-kill_group(client, signal.SIGKILL)
-log = read(run_dir, "server.stderr")
-if status is None:
-    kill_group(server)
-    fail("fsi-server still runs 15 s after the client stopped answering (--peer-timeout 3)")
+run_dir, status, elapsed, log = fault_case(
+    "hang_client", lambda run_dir, server, client: signal_client_ranks(run_dir, signal.SIGSTOP),
+    "server", 15, "the client stopped answering (--peer-timeout 3)", server_extra=["--peer-timeout", "3"])
 check(status > 0 and elapsed < 10, f"server exits non-zero ({status}) {elapsed:.2f} s after the client hung (timeout 3 s)")
 check("timed out" in log, "the server says it timed out waiting for the client")
 
-run_dir, server, client = start_running_pair("hang_server", client_extra=["--peer-timeout", "3"])
-kill_group(server, signal.SIGSTOP)
-started = time.time()
-status = wait(client, 15)
-elapsed = time.time() - started
-kill_group(server, signal.SIGKILL)
-log = read(run_dir, "client.stderr")
-if status is None:
-    kill_group(client)
-    fail("fsi-client still runs 15 s after the server stopped answering (--peer-timeout 3)")
+run_dir, status, elapsed, log = fault_case(
+    "hang_server", lambda run_dir, server, client: kill_group(server, signal.SIGSTOP),
+    "client", 15, "the server stopped answering (--peer-timeout 3)", client_extra=["--peer-timeout", "3"])
 check(status > 0 and elapsed < 10, f"client exits non-zero ({status}) {elapsed:.2f} s after the server hung (timeout 3 s)")
 check("timed out" in log, "the client says it timed out waiting for the server")
 
@@ -133,11 +121,8 @@ while not os.path.exists(port_file) and time.time() < deadline:
     time.sleep(0.05)
 port = int(open(port_file).read())
 client = start_client(port, 1, run_dir)
-status = wait(client, 10)
+status, _ = wait_for_exit(client, 10, "fsi-client still runs 10 s after meeting a protocol 2.0 server")
 log = read(run_dir, "client.stderr")
-if status is None:
-    kill_group(client)
-    fail("fsi-client still runs 10 s after meeting a protocol 2.0 server")
 check(status > 0, f"client exits non-zero without crashing ({status})")
 check("protocol 2.0" in log and "this side speaks 1." in log, "the client's message names both versions")
 fake_server.wait(timeout=30)

@@ -9,11 +9,9 @@ Error frame. Likewise a fake server that sends half a frame to the real fsi-clie
 import os
 import socket
 import struct
-import subprocess
-import time
 
-from fsi_test import (ENV, binary, check, cleanup, example, fail, kill_group, read, start_client, start_server,
-                      wait, work_dir)
+from fsi_test import (check, cleanup, example, fail, read, start_client_for_fake_server, start_server, wait_for_exit,
+                      work_dir)
 from wire import ERROR, HELLO, MESH, PARTICLES, READY, SETUP, WELCOME, error_of, frame, receive_frame, text
 
 scene = example("static_tank", "static_tank_coarse.scene")
@@ -40,12 +38,7 @@ def server_case(name, send, needle, hang_up=False, answered="MalformedMessage"):
     send(connection)
     if hang_up:
         connection.close()
-    started = time.time()
-    status = wait(server, 20)
-    elapsed = time.time() - started
-    if status is None:
-        kill_group(server)
-        fail(f"{name}: fsi-server still runs 20 s after the fault")
+    status, elapsed = wait_for_exit(server, 20, f"{name}: fsi-server still runs 20 s after the fault")
     log = read(run_dir, "server.stderr")
     check(status != 0 and needle in log,
           f"{name}: server exits {status} after {elapsed:.2f} s, naming the fault: "
@@ -89,24 +82,15 @@ server_case("bad_payload", lambda c: c.sendall(frame(READY, READY_PAYLOAD[:-3]))
 
 # A fake server sends the real client half a Setup frame and goes silent.
 run_dir = os.path.join(output, "client_half_frame")
-os.makedirs(run_dir)
-listener = socket.socket()
-listener.bind(("127.0.0.1", 0))
-listener.listen(1)
-client = start_client(listener.getsockname()[1], 1, run_dir, ["--peer-timeout", str(timeout)])
-listener.settimeout(30)
-connection, _ = listener.accept()
+client, connection = start_client_for_fake_server(run_dir, 1, ["--peer-timeout", str(timeout)])
 if receive_frame(connection)[0] != HELLO:
     fail("the client did not start with Hello")
 connection.sendall(frame(WELCOME, struct.pack("<HI", 1, 0x2) + text("fake-server") + text("run")))
 connection.sendall(frame(SETUP, b"\x02\x00\x00\x00" + b"\x00" * 40)[:30])
-started = time.time()
-status = wait(client, 20)
-elapsed = time.time() - started
-connection.close()
-if status is None:
-    kill_group(client)
-    fail("fsi-client still runs 20 s after receiving half a frame")
+try:
+    status, elapsed = wait_for_exit(client, 20, "fsi-client still runs 20 s after receiving half a frame")
+finally:
+    connection.close()
 log = read(run_dir, "client.stderr")
 check(status != 0 and "timed out after 2 s while waiting for the next message from fsi-server" in log
       and "payload bytes of a Setup frame" in log,

@@ -15,7 +15,7 @@ import numpy
 import vtk
 from vtk.util.numpy_support import vtk_to_numpy
 
-from fsi_test import binary, check, cleanup, example, fail, manifest, work_dir, ENV
+from fsi_test import binary, check, cleanup, example, manifest, read_vtk, work_dir, ENV
 
 output = work_dir("hydrostatic_box_3d")
 run_dir = os.path.join(output, "run")
@@ -74,17 +74,6 @@ print(analysis.stdout, analysis.stderr)
 check(analysis.returncode == 0, "analyze.py: weight within 3 %, no particle lost")
 
 
-def read_grid(path):
-    reader = vtk.vtkXMLUnstructuredGridReader()
-    reader.SetFileName(path)
-    if not reader.CanReadFile(path):
-        fail(f"VTK cannot read {path}")
-    reader.Update()
-    if reader.GetErrorCode() != 0:
-        fail(f"VTK's reader reports error {reader.GetErrorCode()} on {path}")
-    return reader.GetOutput()
-
-
 def last_file(name):
     """The last DataSet of vtk/NAME.pvd."""
     entries = list(ElementTree.parse(os.path.join(vtk_dir, f"{name}.pvd")).getroot().iter("DataSet"))
@@ -93,12 +82,12 @@ def last_file(name):
 
 
 vtk_dir = os.path.join(run_dir, "vtk")
-fluid = read_grid(last_file("fluid"))
+fluid = read_vtk(last_file("fluid"))
 check(fluid.GetNumberOfPoints() == checks["particles_final"], "fluid VTK: one point per particle")
 points = vtk_to_numpy(fluid.GetPoints().GetData())
 check(points[:, 2].min() > 0.0 and points[:, 2].max() < 0.02 and numpy.ptp(points[:, 2]) > 0.005,
       f"fluid VTK: 3D positions inside the box (z {points[:, 2].min():.4f}-{points[:, 2].max():.4f} m)")
-boundary = read_grid(last_file("boundary"))
+boundary = read_vtk(last_file("boundary"))
 check(boundary.GetNumberOfPoints() == 8 and boundary.GetNumberOfCells() == 12,
       f"boundary VTK: 8 points, 12 cells (got {boundary.GetNumberOfPoints()}, {boundary.GetNumberOfCells()})")
 check(all(boundary.GetCellType(c) == vtk.VTK_TRIANGLE for c in range(12)), "boundary VTK: triangles")

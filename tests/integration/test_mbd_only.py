@@ -4,13 +4,12 @@ steps. It must finish by itself (no client is waited for) and write sensors.csv 
 a coupled run. Without fluid the answer is known exactly: the piston follows y = 0.0725 - 0.05 t,
 the held bottom and the driven piston each carry their own weight through the constraint
 (-(constraint force) = gravity, so the constraint force is +m g = +0.981 N/m), fluid forces are 0."""
-import glob
 import math
 import os
-import shutil
 import subprocess
 
-from fsi_test import ENV, binary, check, cleanup, example, fail, load_sensors, manifest, read, work_dir
+from fsi_test import (ENV, binary, check, cleanup, example, fail, load_sensors, manifest, read, static_tank_variant,
+                      work_dir)
 
 STEPS = 1000
 DT = 1e-5
@@ -66,15 +65,10 @@ check("(Lobatto IIIA, 3 stages)" in read(lobatto_dir, "fsi-server.log"), "the lo
 # Bad input: a free body and one Newton iteration allowed cannot converge. The run must stop with
 # exit 1, naming step and time, run.json "failed", and no NaN written.
 bad_dir = os.path.join(output, "bad")
-os.makedirs(bad_dir)
-for path in glob.glob(example("static_tank", "static_tank*.in*")) + [example("static_tank", "static_tank_model.inc")]:
-    shutil.copy(path, bad_dir)
-with open(example("static_tank", "static_tank_coarse.scene")) as handle:
-    coarse = handle.read()
-with open(os.path.join(bad_dir, "free_body.scene"), "w") as handle:
-    handle.write(coarse + '\nRigidBody2D { name = "stone"; mass = 1; inertia = 1; position = [0.2, 0.2] }\n')
+free_body_scene = static_tank_variant(bad_dir, "free_body.scene",
+                                      '\nRigidBody2D { name = "stone"; mass = 1; inertia = 1; position = [0.2, 0.2] }\n')
 bad_run = os.path.join(bad_dir, "run")
-result = subprocess.run([binary("fsi-server"), os.path.join(bad_dir, "free_body.scene"), "--mbd-only",
+result = subprocess.run([binary("fsi-server"), free_body_scene, "--mbd-only",
                          "--output", bad_run, "--set", "Resolution.end_time=1e-4",
                          "--set", "SolverOptions.Newton.max_iterations=1"],
                         env=ENV, capture_output=True, text=True, timeout=60)

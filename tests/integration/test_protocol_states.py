@@ -8,9 +8,8 @@ answered. Every time the real program exits non-zero and says why."""
 import os
 import socket
 import struct
-import time
 
-from fsi_test import (check, cleanup, example, fail, kill_group, read, start_client, start_server, wait,
+from fsi_test import (check, cleanup, example, fail, read, start_client_for_fake_server, start_server, wait_for_exit,
                       work_dir)
 from wire import (ERROR, MESH, PARTICLES, READY, SETUP, STEP, WELCOME, error, error_of, forces, frame, hello,
                   receive_frame, ready, step, welcome)
@@ -28,6 +27,29 @@ def until_setup(connection):
     if kinds != [WELCOME, SETUP, MESH, PARTICLES]:
         fail(f"expected Welcome, Setup, Mesh, Particles from the server, got {kinds}")
     return struct.unpack("<I", received[2][1][4:8])[0]
+
+
+def misbehave_and_check_answer(name, program, process, run_dir, connection, act, expected_code, needle):
+    """Lets the fake peer misbehave with `act`, then checks that the real `program` ("server" or
+    "client") answers with Error `expected_code` (None: does not answer a peer's Error) and exits
+    non-zero with `needle` in its log."""
+    peer = "client" if program == "server" else "server"
+    act(connection)
+    connection.settimeout(timeout + 10)
+    reply = receive_frame(connection, skip_heartbeats=True)
+    try:
+        status, elapsed = wait_for_exit(process, 20, f"{name}: fsi-{program} still runs 20 s after the fault")
+    finally:
+        connection.close()
+    log = read(run_dir, f"{program}.stderr")
+    got = error_of(reply[1]) if reply and reply[0] == ERROR else None
+    if expected_code is None:
+        check(reply is None, f"{name}: the {program} does not answer the {peer}'s Error (got {reply and reply[0]})")
+    else:
+        check(got is not None and got[0] == expected_code and needle in got[1],
+              f"{name}: the {program} answers Error {expected_code} ({got[1][:110] if got else got})")
+    check(status != 0 and needle in log,
+          f"{name}: the {program} exits {status} {elapsed:.1f} s later and its log says '{needle}'")
 
 
 def server_state(name, state, act, expected_code, needle):
@@ -48,22 +70,7 @@ def server_state(name, state, act, expected_code, needle):
             kind = receive_frame(connection, skip_heartbeats=True)
             if not kind or kind[0] != STEP:
                 fail(f"{name}: the server did not send Step 1 after Ready and Forces 0 ({kind})")
-    act(connection)
-    connection.settimeout(timeout + 10)
-    reply = receive_frame(connection, skip_heartbeats=True)
-    status = wait(server, 20)
-    connection.close()
-    if status is None:
-        kill_group(server)
-        fail(f"{name}: fsi-server still runs 20 s after the fault")
-    log = read(run_dir, "server.stderr")
-    got = error_of(reply[1]) if reply and reply[0] == ERROR else None
-    if expected_code is None:
-        check(reply is None, f"{name}: the server does not answer the client's Error (got {reply and reply[0]})")
-    else:
-        check(got is not None and got[0] == expected_code and needle in got[1],
-              f"{name}: the server answers Error {expected_code} ({got[1][:110] if got else got})")
-    check(status != 0 and needle in log, f"{name}: the server exits {status} and its log says '{needle}'")
+    misbehave_and_check_answer(name, "server", server, run_dir, connection, act, expected_code, needle)
 
 
 # In the handshake: the client must begin with Hello.
@@ -93,36 +100,13 @@ server_state("client_error_instead_of_forces", "coupled",
 def client_state(name, act, expected_code, needle):
     """A fake server welcomes a real `mpirun -np 2 fsi-client`, then misbehaves with `act`."""
     run_dir = os.path.join(output, name)
-    os.makedirs(run_dir)
-    listener = socket.socket()
-    listener.bind(("127.0.0.1", 0))
-    listener.listen(1)
-    client = start_client(listener.getsockname()[1], 2, run_dir, ["--peer-timeout", str(timeout)])
-    listener.settimeout(30)
-    connection, _ = listener.accept()
+    client, connection = start_client_for_fake_server(run_dir, 2, ["--peer-timeout", str(timeout)])
     connection.settimeout(timeout + 10)
     first = receive_frame(connection)
     if not first or first[0] != 0x01:
         fail(f"{name}: the client did not start with Hello ({first})")
     connection.sendall(welcome())
-    act(connection)
-    reply = receive_frame(connection, skip_heartbeats=True)
-    started = time.time()
-    status = wait(client, 20)
-    connection.close()
-    listener.close()
-    if status is None:
-        kill_group(client)
-        fail(f"{name}: fsi-client still runs 20 s after the fault")
-    log = read(run_dir, "client.stderr")
-    got = error_of(reply[1]) if reply and reply[0] == ERROR else None
-    if expected_code is None:
-        check(reply is None, f"{name}: the client does not answer the server's Error (got {reply and reply[0]})")
-    else:
-        check(got is not None and got[0] == expected_code and needle in got[1],
-              f"{name}: the client answers Error {expected_code} ({got[1][:110] if got else got})")
-    check(status != 0 and needle in log,
-          f"{name}: the client exits {status} {time.time() - started:.1f} s later and its log says '{needle}'")
+    misbehave_and_check_answer(name, "client", client, run_dir, connection, act, expected_code, needle)
 
 
 # After Welcome the client waits for Setup.

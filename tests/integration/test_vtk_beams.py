@@ -5,30 +5,19 @@ coupled run. vtk/beams.pvd has an entry per particle snapshot at the fluid's tim
 one polyline of 8 segments per element named after the beam, starting exactly at the clamp with
 zero velocity there; and the beam's face mesh in vtk/boundary.pvd lies half a thickness from that
 centre line (the faces and the line are drawn from the same beam coordinates)."""
-import glob
-import math
 import os
-import shutil
 import xml.etree.ElementTree as ElementTree
 
 import numpy
 import vtk
 from vtk.util.numpy_support import vtk_to_numpy
 
-from fsi_test import check, cleanup, example, fail, manifest, read, run_pair, work_dir
+from fsi_test import check, cleanup, fail, manifest, read, read_vtk, run_pair, static_tank_variant, work_dir
 
 ELEMENTS, SAMPLES, THICKNESS, FACE_POINTS = 4, 8, 0.002, 4
 START, LENGTH = (0.0, 0.08), 0.03
 output = work_dir("vtk_beams")
-scene_dir = os.path.join(output, "scene")
-os.makedirs(scene_dir)
-for path in glob.glob(example("static_tank", "static_tank*.in*")) + [example("static_tank", "static_tank_model.inc")]:
-    shutil.copy(path, scene_dir)
-with open(example("static_tank", "static_tank_coarse.scene")) as handle:
-    coarse = handle.read()
-scene = os.path.join(scene_dir, "beam.scene")
-with open(scene, "w") as handle:
-    handle.write(coarse + f"""
+scene = static_tank_variant(os.path.join(output, "scene"), "beam.scene", f"""
 AncfBeam2D {{ name = "cantilever"; start = [{START[0]}, {START[1]}]; end = [{START[0] + LENGTH}, {START[1]}]
              elements = {ELEMENTS}; thickness = {THICKNESS}; face_points_per_element = {FACE_POINTS}
              axial_stiffness = 1e5; bending_stiffness = 0.01; mass_per_length = 2 }}
@@ -49,21 +38,12 @@ def entries(name):
     return [(float(item.get("timestep")), os.path.join(vtk_dir, item.get("file"))) for item in root.iter("DataSet")]
 
 
-def read(path, reader_class):
-    reader = reader_class()
-    reader.SetFileName(path)
-    if not reader.CanReadFile(path):
-        fail(f"VTK's {reader_class.__name__} cannot read {path}")
-    reader.Update()
-    return reader.GetOutput()
-
-
 beams, boundaries = entries("beams"), entries("boundary")
 check(len(beams) == manifest(run_dir)["snapshots"] == 4 and [t for t, _ in beams] == [t for t, _ in boundaries],
       f"beams.pvd has an entry per snapshot at the boundary's times ({[t for t, _ in beams]})")
 sag = []
 for (time, beam_file), (_, boundary_file) in zip(beams, boundaries):
-    lines = read(beam_file, vtk.vtkXMLPolyDataReader)
+    lines = read_vtk(beam_file, vtk.vtkXMLPolyDataReader)
     points = vtk_to_numpy(lines.GetPoints().GetData())[:, :2]
     velocities = vtk_to_numpy(lines.GetPointData().GetArray("velocity"))
     name = lines.GetFieldData().GetAbstractArray("line_name")
@@ -76,7 +56,7 @@ for (time, beam_file), (_, boundary_file) in zip(beams, boundaries):
     check(abs(length / LENGTH - 1) < 1e-3, f"its length is the beam's to {abs(length / LENGTH - 1):.1e}")
     sag.append(START[1] - points[-1][1])
     # The beam's face vertices in boundary.vtu: the dynamic ones above the piston (top at y <= 0.075).
-    grid = read(boundary_file, vtk.vtkXMLUnstructuredGridReader)
+    grid = read_vtk(boundary_file, vtk.vtkXMLUnstructuredGridReader)
     dynamic = vtk_to_numpy(grid.GetPointData().GetArray("dynamic")).astype(bool)
     vertices = vtk_to_numpy(grid.GetPoints().GetData())[:, :2]
     faces = vertices[dynamic & (vertices[:, 1] > 0.077)]

@@ -14,7 +14,7 @@ import numpy
 import vtk
 from vtk.util.numpy_support import vtk_to_numpy
 
-from fsi_test import check, cleanup, example, fail, load_sensors, manifest, read, run_pair, work_dir
+from fsi_test import check, cleanup, example, fail, load_sensors, manifest, read, read_vtk, run_pair, work_dir
 
 SNAPSHOT_EVERY = 250
 STEPS = 1000
@@ -49,17 +49,6 @@ def collection(name):
     root = ElementTree.parse(path).getroot()
     check(root.tag == "VTKFile" and root.get("type") == "Collection", f"{name}.pvd is a VTK collection")
     return [(float(entry.get("timestep")), entry.get("file")) for entry in root.iter("DataSet")]
-
-
-def read_grid(path, reader_class=vtk.vtkXMLUnstructuredGridReader):
-    reader = reader_class()
-    reader.SetFileName(path)
-    if not reader.CanReadFile(path):
-        fail(f"VTK's {reader_class.__name__} cannot read {path}")
-    reader.Update()
-    if reader.GetErrorCode() != 0:
-        fail(f"VTK's reader reports error {reader.GetErrorCode()} on {path}")
-    return reader.GetOutput()
 
 
 def point_array(grid, name):
@@ -97,7 +86,7 @@ for name in ("fluid", "boundary", "bodies"):
             fail(f"{name}.pvd: timestep {timestep} for step {step}, expected {step * time_step}")
 
 for (timestep, file_name), step in zip(collection("fluid"), snapshot_steps):
-    grid = read_grid(os.path.join(vtk_dir, file_name))
+    grid = read_vtk(os.path.join(vtk_dir, file_name))
     where = f"{file_name}"
     check(grid.GetNumberOfPoints() == particle_count,
           f"{where}: {grid.GetNumberOfPoints()} points = particle_count {particle_count} of run.json")
@@ -125,7 +114,7 @@ for (timestep, file_name), step in zip(collection("fluid"), snapshot_steps):
     print(f"ok: {where}: x, y, vx, vy, density, pressure equal the CSV snapshot of step {step}", flush=True)
 
 for (timestep, file_name), step in zip(collection("boundary"), snapshot_steps):
-    grid = read_grid(os.path.join(vtk_dir, file_name))
+    grid = read_vtk(os.path.join(vtk_dir, file_name))
     where = f"{file_name}"
     check(grid.GetNumberOfPoints() == vertex_count, f"{where}: {vertex_count} vertices as in run.json")
     check(grid.GetNumberOfCells() == segment_count and
@@ -147,7 +136,7 @@ for (timestep, file_name), step in zip(collection("boundary"), snapshot_steps):
     check(numpy.any(numpy.abs(velocity[:, 1] + 0.05) < 1e-12), f"{where}: piston vertices move at -0.05 m/s")
 
 for (timestep, file_name), step in zip(collection("bodies"), snapshot_steps):
-    grid = read_grid(os.path.join(vtk_dir, file_name), vtk.vtkXMLPolyDataReader)
+    grid = read_vtk(os.path.join(vtk_dir, file_name), vtk.vtkXMLPolyDataReader)
     names = grid.GetFieldData().GetAbstractArray("body_name")
     body_names = [names.GetValue(k) for k in range(names.GetNumberOfValues())]
     check(body_names == [body["name"] for body in run["model"]["bodies"]], f"{file_name}: body names {body_names}")

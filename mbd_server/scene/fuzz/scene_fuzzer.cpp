@@ -8,7 +8,6 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <cstdlib>
 #include <cstring>
 #include <map>
 #include <string>
@@ -16,6 +15,7 @@
 
 #include "fsi/common/error.hpp"
 #include "fsi/scene/parameter_file.hpp"
+#include "fuzz_target.hpp"
 
 namespace {
 
@@ -27,11 +27,6 @@ constexpr const char* kMainFile = "/fuzz/main.scene";
 std::size_t accepted = 0;
 std::size_t rejected = 0;
 std::size_t with_includes = 0;
-
-void print_reach_at_exit() {
-  std::fprintf(stderr, "fuzz-reach: scenes accepted=%zu rejected=%zu\n", accepted, rejected);
-  std::fprintf(stderr, "fuzz-reach: scenes with-include-files=%zu\n", with_includes);
-}
 
 // Splits the input into the main text and the named files after it.
 std::string split(std::string_view input, std::map<std::string, std::string>& files) {
@@ -100,16 +95,14 @@ bool same(const Block& a, const Block& b) {
 }
 
 [[noreturn]] void finding(const std::string& what, const std::string& text) {
-  std::fprintf(stderr, "scene fuzzer finding: %s\n--- printed text ---\n%s\n", what.c_str(),
-               text.c_str());
-  std::abort();
+  fsi::fuzz::finding("scene fuzzer finding: " + what + "\n--- printed text ---\n" + text);
 }
 
 }  // namespace
 
-extern "C" int LLVMFuzzerInitialize(int*, char***) {
-  std::atexit(print_reach_at_exit);
-  return 0;
+void fsi::fuzz::print_reach() {
+  std::fprintf(stderr, "fuzz-reach: scenes accepted=%zu rejected=%zu\n", accepted, rejected);
+  std::fprintf(stderr, "fuzz-reach: scenes with-include-files=%zu\n", with_includes);
 }
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
