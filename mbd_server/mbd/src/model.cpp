@@ -680,9 +680,21 @@ void Model::add_applied_force_derivatives(double time, const Eigen::VectorXd& q,
   // truncation (~step^2) against cancellation (~eps/step). O(n) force evaluations per element.
   const double step_factor = std::cbrt(std::numeric_limits<double>::epsilon());
   Eigen::VectorXd plus(n), minus(n), shifted_q, shifted_v;
-  auto add_column = [](MatrixSink& sink, int column, const Eigen::VectorXd& values) {
-    for (Eigen::Index i = 0; i < values.size(); ++i) {
-      if (values(i) != 0.0) sink.add(static_cast<int>(i), column, values(i));
+  // Column j of d(force)/d(shifted): `shifted` is q or v and `force_at` evaluates the element's
+  // force with it in place; shifted(j) is restored afterwards.
+  auto add_difference_column = [&](MatrixSink& sink, int j, const Eigen::VectorXd& base,
+                                   Eigen::VectorXd& shifted, const auto& force_at) {
+    const double step = step_factor * std::max(1.0, std::abs(base(j)));
+    plus.setZero();
+    minus.setZero();
+    shifted(j) = base(j) + step;
+    force_at(plus);
+    shifted(j) = base(j) - step;
+    force_at(minus);
+    shifted(j) = base(j);
+    const Eigen::VectorXd column = (plus - minus) / (2.0 * step);
+    for (Eigen::Index i = 0; i < column.size(); ++i) {
+      if (column(i) != 0.0) sink.add(static_cast<int>(i), j, column(i));
     }
   };
   for (const auto& element : data_->force_elements) {
@@ -690,25 +702,12 @@ void Model::add_applied_force_derivatives(double time, const Eigen::VectorXd& q,
     shifted_q = q;
     shifted_v = v;
     for (int j = 0; j < n; ++j) {
-      const double dq = step_factor * std::max(1.0, std::abs(q(j)));
-      plus.setZero();
-      minus.setZero();
-      shifted_q(j) = q(j) + dq;
-      element->add_force(time, shifted_q, v, plus);
-      shifted_q(j) = q(j) - dq;
-      element->add_force(time, shifted_q, v, minus);
-      shifted_q(j) = q(j);
-      add_column(by_position, j, (plus - minus) / (2.0 * dq));
-
-      const double dv = step_factor * std::max(1.0, std::abs(v(j)));
-      plus.setZero();
-      minus.setZero();
-      shifted_v(j) = v(j) + dv;
-      element->add_force(time, q, shifted_v, plus);
-      shifted_v(j) = v(j) - dv;
-      element->add_force(time, q, shifted_v, minus);
-      shifted_v(j) = v(j);
-      add_column(by_velocity, j, (plus - minus) / (2.0 * dv));
+      add_difference_column(by_position, j, q, shifted_q, [&](Eigen::VectorXd& force) {
+        element->add_force(time, shifted_q, v, force);
+      });
+      add_difference_column(by_velocity, j, v, shifted_v, [&](Eigen::VectorXd& force) {
+        element->add_force(time, q, shifted_v, force);
+      });
     }
   }
 }
