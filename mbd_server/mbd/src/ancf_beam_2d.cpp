@@ -294,44 +294,53 @@ Eigen::Vector2d AncfBeam2D::velocity(const ConstVector& q, const ConstVector& v,
   return expand(s.value) * ve + local.y() * quarter_turn() * tangent_map(slope) * (first * ve);
 }
 
-void AncfBeam2D::position_jacobian(const ConstVector& q, const Eigen::Vector2d& local,
-                                   Eigen::Ref<Eigen::MatrixXd> jacobian) const {
+// A body point's place on the centre line: its element, the shape maps S and S' (2 x 8) there and
+// the slope r' = S' q_e.
+struct AncfBeam2D::CentreLinePoint {
+  int element;
+  Matrix28 value;
+  Matrix28 first;
+  Eigen::Vector2d slope;
+
+  // dp/dq_e = S + eta R T(r') S' for the point at distance eta from the centre line.
+  Matrix28 position_jacobian(double eta) const {
+    return value + eta * quarter_turn() * tangent_map(slope) * first;
+  }
+};
+
+AncfBeam2D::CentreLinePoint AncfBeam2D::centre_line_point(const ConstVector& q,
+                                                          double arc_length) const {
   double x = 0.0;
-  const int e = element_of(local.x(), x);
+  const int e = element_of(arc_length, x);
   const Shape s = shape(x, element_length_);
   const Matrix28 first = expand(s.first);
-  const Eigen::Vector2d slope = first * q.segment<8>(4 * e);
+  return {e, expand(s.value), first, first * q.segment<8>(4 * e)};
+}
+
+void AncfBeam2D::position_jacobian(const ConstVector& q, const Eigen::Vector2d& local,
+                                   Eigen::Ref<Eigen::MatrixXd> jacobian) const {
+  const CentreLinePoint point = centre_line_point(q, local.x());
   jacobian.setZero();
-  jacobian.middleCols<8>(4 * e) =
-      expand(s.value) + local.y() * quarter_turn() * tangent_map(slope) * first;
+  jacobian.middleCols<8>(4 * point.element) = point.position_jacobian(local.y());
 }
 
 void AncfBeam2D::add_point_load(const ConstVector& q, const Eigen::Vector2d& local,
                                 const Eigen::Vector2d& force,
                                 Eigen::Ref<Eigen::VectorXd> generalised_force) const {
-  double x = 0.0;
-  const int e = element_of(local.x(), x);
-  const Shape s = shape(x, element_length_);
-  const Matrix28 first = expand(s.first);
-  const Eigen::Vector2d slope = first * q.segment<8>(4 * e);
-  const Matrix28 jacobian =
-      expand(s.value) + local.y() * quarter_turn() * tangent_map(slope) * first;
-  generalised_force.segment<8>(4 * e) += jacobian.transpose() * force;
+  const CentreLinePoint point = centre_line_point(q, local.x());
+  const Matrix28 jacobian = point.position_jacobian(local.y());
+  generalised_force.segment<8>(4 * point.element) += jacobian.transpose() * force;
 }
 
 void AncfBeam2D::velocity_jacobian(const ConstVector& q, const ConstVector& v,
                                    const Eigen::Vector2d& local,
                                    Eigen::Ref<Eigen::MatrixXd> jacobian) const {
   // (dp/dq) v = S v + eta R T(r') (S' v); only T depends on q.
-  double x = 0.0;
-  const int e = element_of(local.x(), x);
-  const Shape s = shape(x, element_length_);
-  const Matrix28 first = expand(s.first);
-  const Eigen::Vector2d slope = first * q.segment<8>(4 * e);
-  const Eigen::Vector2d slope_rate = first * v.segment<8>(4 * e);
+  const CentreLinePoint point = centre_line_point(q, local.x());
+  const Eigen::Vector2d slope_rate = point.first * v.segment<8>(4 * point.element);
   jacobian.setZero();
-  jacobian.middleCols<8>(4 * e) =
-      local.y() * quarter_turn() * tangent_derivative(slope, slope_rate) * first;
+  jacobian.middleCols<8>(4 * point.element) =
+      local.y() * quarter_turn() * tangent_derivative(point.slope, slope_rate) * point.first;
 }
 
 void AncfBeam2D::add_point_load_derivative(const ConstVector& q, const Eigen::Vector2d& local,
@@ -339,14 +348,11 @@ void AncfBeam2D::add_point_load_derivative(const ConstVector& q, const Eigen::Ve
                                            MatrixSink& derivative) const {
   // (dp/dq)^T f = S^T f + eta S'^T T(r') R^T f (T is symmetric); only T depends on q.
   if (local.y() == 0.0) return;
-  double x = 0.0;
-  const int e = element_of(local.x(), x);
-  const Shape s = shape(x, element_length_);
-  const Matrix28 first = expand(s.first);
-  const Eigen::Vector2d slope = first * q.segment<8>(4 * e);
-  const Matrix8 element = local.y() * first.transpose() *
-                          tangent_derivative(slope, quarter_turn().transpose() * force) * first;
-  derivative.add_block(4 * e, 4 * e, element);
+  const CentreLinePoint point = centre_line_point(q, local.x());
+  const Matrix8 element = local.y() * point.first.transpose() *
+                          tangent_derivative(point.slope, quarter_turn().transpose() * force) *
+                          point.first;
+  derivative.add_block(4 * point.element, 4 * point.element, element);
 }
 
 }  // namespace fsi::mbd::detail

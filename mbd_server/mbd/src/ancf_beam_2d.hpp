@@ -74,6 +74,8 @@ class AncfBeam2D final : public Body {
  private:
   // The element holding arc length s and the position within it, x in [0, element length].
   int element_of(double s, double& x) const;
+  struct CentreLinePoint;
+  CentreLinePoint centre_line_point(const ConstVector& q, double arc_length) const;
 
   AncfBeamSpec spec_;
   double length_ = 0.0;
