@@ -16,18 +16,8 @@
 namespace fsi::mbd {
 namespace {
 
+using testing::error_message;
 using testing::rigid;
-
-// The message of the fsi::Error that `action` throws ("" if none).
-template <class Action>
-std::string error_of(Action&& action) {
-  try {
-    action();
-  } catch (const fsi::Error& error) {
-    return error.what();
-  }
-  return "";
-}
 
 bool contains(const std::string& text, const std::string& part) {
   return text.find(part) != std::string::npos;
@@ -38,7 +28,7 @@ TEST(MbdBadModels, RedundantJointIsNamed) {
   const BodyId door = model.add_rigid_body(rigid("door", 1.0, 1.0));
   model.add_clamp({.name = "frame", .body = door, .to = kGround});
   model.add_revolute_joint({door, {0.0, 0.0}}, {kGround, {0.0, 0.0}}, "hinge");
-  const std::string message = error_of([&] { (void)model.initial_state(); });
+  const std::string message = error_message([&] { (void)model.initial_state(); });
   EXPECT_TRUE(contains(message, "revolute joint 'hinge' (x): redundant")) << message;
   EXPECT_TRUE(contains(message, "revolute joint 'hinge' (y): redundant")) << message;
   EXPECT_FALSE(contains(message, "clamp 'frame' (x): redundant")) << message;
@@ -51,7 +41,7 @@ TEST(MbdBadModels, ContradictoryConstraintsAreNamed) {
       {.name = "rail", .a = {kGround, {0.0, 0.0}}, .b = {slider, {0.0, 0.0}}, .axis = {1.0, 0.0}});
   // The rail holds y = 0 and the angle; this row asks for y = 0.5.
   model.add_coordinate_constraint(slider, Coordinate::Y, 0.5);
-  const std::string message = error_of([&] { (void)model.initial_state(); });
+  const std::string message = error_message([&] { (void)model.initial_state(); });
   EXPECT_TRUE(contains(message, "coordinate constraint on slider.y: position residual C = -0.5"))
       << message;
   EXPECT_TRUE(contains(message, "coordinate constraint on slider.y: redundant")) << message;
@@ -59,9 +49,9 @@ TEST(MbdBadModels, ContradictoryConstraintsAreNamed) {
 
 TEST(MbdBadModels, ZeroMassOrInertiaIsNamed) {
   Model model;
-  EXPECT_TRUE(contains(error_of([&] { model.add_rigid_body(rigid("wheel", 0.0, 1.0)); }),
+  EXPECT_TRUE(contains(error_message([&] { model.add_rigid_body(rigid("wheel", 0.0, 1.0)); }),
                        "rigid body 'wheel'"));
-  EXPECT_TRUE(contains(error_of([&] { model.add_rigid_body(rigid("wheel", 1.0, 0.0)); }),
+  EXPECT_TRUE(contains(error_message([&] { model.add_rigid_body(rigid("wheel", 1.0, 0.0)); }),
                        "inertia must be positive"));
   EXPECT_EQ(model.body_count(), 0);
 }
@@ -85,7 +75,7 @@ TEST(MbdBadModels, NonFiniteForceElementIsNamedAndTheStateKept) {
   int steps = 0;
   for (; steps < 100 && message.empty(); ++steps) {
     const State before = state;
-    message = error_of([&] { integrator.step(model, state, 0.01); });
+    message = error_message([&] { integrator.step(model, state, 0.01); }, "");
     if (!message.empty()) {
       EXPECT_EQ(state.q, before.q);
       EXPECT_EQ(state.time, before.time);
@@ -127,7 +117,7 @@ TEST(MbdBadModels, NonConvergentNewtonNamesTheLargestResidual) {
        .rest_length = 0.5});
   State state = model.initial_state();
   RadauIIA integrator(3, NewtonOptions{.relative_tolerance = 1e-12, .max_iterations = 1});
-  const std::string message = error_of([&] { integrator.step(model, state, 0.05); });
+  const std::string message = error_message([&] { integrator.step(model, state, 0.05); });
   std::printf("one Newton iteration: %s\n", message.c_str());
   EXPECT_TRUE(contains(message, "no convergence within the iteration limit")) << message;
   EXPECT_TRUE(contains(message, "largest residual in")) << message;

@@ -15,6 +15,7 @@
 
 #include "body.hpp"
 #include "body_point.hpp"
+#include "error_message.hpp"
 #include "fsi/common/error.hpp"
 #include "fsi/mbd/constraint_element.hpp"
 #include "fsi/mbd/force_element.hpp"
@@ -137,17 +138,6 @@ inline void expect_sparse_model_matrices_equal(const Model& model, const State& 
   EXPECT_LE(difference(dense_derivative, sparse_derivative), 1e-14);
   EXPECT_EQ(Eigen::MatrixXd(model.sparse_mass_matrix()), model.mass_matrix());
   EXPECT_EQ(model.mass_diagonal(), model.mass_matrix().diagonal());
-}
-
-// The message of the fsi::Error that `add` throws, or "accepted" when it throws none.
-template <typename Add>
-std::string error_message(Add&& add) {
-  try {
-    add();
-  } catch (const fsi::Error& error) {
-    return error.what();
-  }
-  return "accepted";
 }
 
 }  // namespace fsi::mbd::testing

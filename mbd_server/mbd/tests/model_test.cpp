@@ -4,6 +4,7 @@
 #include <numbers>
 #include <random>
 
+#include "error_message.hpp"
 #include "fsi/common/error.hpp"
 #include "fsi/mbd/model.hpp"
 #include "fsi/mbd/readouts.hpp"
@@ -11,6 +12,8 @@
 
 namespace fsi::mbd {
 namespace {
+
+using testing::error_message;
 
 RigidBody2DSpec body_spec(const std::string& name, double x = 0.0, double y = 0.0,
                           double angle = 0.0) {
@@ -21,15 +24,6 @@ RigidBody2DSpec body_spec(const std::string& name, double x = 0.0, double y = 0.
   spec.position = {x, y};
   spec.angle = angle;
   return spec;
-}
-
-std::string message_of(const auto& action) {
-  try {
-    action();
-  } catch (const fsi::Error& error) {
-    return error.what();
-  }
-  return "(no fsi::Error thrown)";
 }
 
 // Work of constant world-frame loads, W(q) = sum_k f_k . r_k(q); its gradient is the
@@ -162,7 +156,7 @@ TEST(MbdModel, LoadsOnGroundMarkersAreIgnored) {
   Eigen::VectorXd force;
   model.applied_force(0.0, state.q, state.v, force);
   EXPECT_EQ(force.norm(), 0.0);
-  EXPECT_NE(message_of([&] {
+  EXPECT_NE(error_message([&] {
               model.set_point_loads(std::vector<double>{1.0});
             }).find("one (x, y) pair per marker"),
             std::string::npos);
@@ -200,20 +194,21 @@ TEST(MbdModel, BadBodiesAndReferencesAreNamed) {
   Model model;
   RigidBody2DSpec bad = body_spec("heavy");
   bad.mass = -1.0;
-  EXPECT_NE(message_of([&] { model.add_rigid_body(bad); }).find("rigid body 'heavy'"),
+  EXPECT_NE(error_message([&] { model.add_rigid_body(bad); }).find("rigid body 'heavy'"),
             std::string::npos);
   bad = body_spec("spinner");
   bad.inertia = 0.0;
-  EXPECT_NE(message_of([&] { model.add_rigid_body(bad); }).find("inertia must be positive"),
+  EXPECT_NE(error_message([&] { model.add_rigid_body(bad); }).find("inertia must be positive"),
             std::string::npos);
   bad = body_spec("lost");
   bad.angle = std::nan("");
-  EXPECT_NE(message_of([&] { model.add_rigid_body(bad); }).find("rigid body 'lost'"),
+  EXPECT_NE(error_message([&] { model.add_rigid_body(bad); }).find("rigid body 'lost'"),
             std::string::npos);
   model.add_rigid_body(body_spec("a"));
-  EXPECT_NE(message_of([&] { model.add_rigid_body(body_spec("a")); }).find("second body"),
+  EXPECT_NE(error_message([&] { model.add_rigid_body(body_spec("a")); }).find("second body"),
             std::string::npos);
-  EXPECT_NE(message_of([&] { model.find_body("b"); }).find("known bodies: a"), std::string::npos);
+  EXPECT_NE(error_message([&] { model.find_body("b"); }).find("known bodies: a"),
+            std::string::npos);
   EXPECT_THROW(model.add_marker(3, {0.0, 0.0}), fsi::Error);
   EXPECT_THROW(model.add_coordinate_constraint(1, Coordinate::X), fsi::Error);
   EXPECT_THROW(model.add_velocity_constraint(0, Coordinate::Y, std::nan("")), fsi::Error);
@@ -230,7 +225,7 @@ TEST(MbdModel, EveryInconsistencyOfTheInitialStateIsReportedAtOnce) {
   model.add_coordinate_constraint(b, Coordinate::X);         // holds x but vx = 0.2
   model.add_velocity_constraint(b, Coordinate::Angle, 0.3);  // omega = 0
   model.add_velocity_constraint(b, Coordinate::Y, 0.0);      // y constrained twice
-  const std::string text = message_of([&] { model.initial_state(); });
+  const std::string text = error_message([&] { model.initial_state(); });
   EXPECT_NE(text.find("coordinate constraint on piston.y: position residual C = -1"),
             std::string::npos)
       << text;

@@ -26,21 +26,13 @@
 namespace fsi::mbd {
 namespace {
 
+using testing::error_message;
+
 constexpr double kGravity = 9.81;
 constexpr NewtonOptions kTight{.relative_tolerance = 1e-12, .max_iterations = 20};
 
 Eigen::Matrix3d rotation(double angle, const Eigen::Vector3d& axis) {
   return Eigen::AngleAxisd(angle, axis.normalized()).toRotationMatrix();
-}
-
-template <typename Function>
-std::string error_of(Function&& function) {
-  try {
-    function();
-  } catch (const Error& error) {
-    return error.what();
-  }
-  return "no error";
 }
 
 RigidBody3DSpec top_spec() {
@@ -392,7 +384,7 @@ TEST(MbdSpatialLoads, TorqueAndPointForceHaveExactDerivativesAndSpinUpAsNewtonSa
   EXPECT_NEAR((omega - 3.0 / 4.0 * axis).norm(), 0.0, 1e-10);
   // m x'' = 4 t: y = 4 t^3 / (6 m) at t = 1.
   EXPECT_NEAR(state.q(1), 4.0 / 12.0, 1e-10);
-  EXPECT_NE(error_of([&] {
+  EXPECT_NE(error_message([&] {
               model.add_spatial_torque({"", kGround, nullptr});
             }).find("ground"),
             std::string::npos);
@@ -682,14 +674,14 @@ TEST(MbdSpatialBadInput, InvalidBodiesAndMixturesAreNamed) {
     RigidBody3DSpec spec = top_spec();
     spec.orientation(0, 0) = 1.5;
     Model model;
-    EXPECT_NE(error_of([&] { model.add_rigid_body_3d(spec); }).find("not a rotation matrix"),
+    EXPECT_NE(error_message([&] { model.add_rigid_body_3d(spec); }).find("not a rotation matrix"),
               std::string::npos);
   }
   {
     RigidBody3DSpec spec = top_spec();
     spec.inertia = Eigen::Vector3d(1.0, 1.0, 2.0).asDiagonal();  // a flat disc: E_33 = 0
     Model model;
-    const std::string message = error_of([&] { model.add_rigid_body_3d(spec); });
+    const std::string message = error_message([&] { model.add_rigid_body_3d(spec); });
     EXPECT_NE(message.find("rigid body 'top'"), std::string::npos) << message;
     EXPECT_NE(message.find("less than the sum of the other two"), std::string::npos) << message;
   }
@@ -700,15 +692,17 @@ TEST(MbdSpatialBadInput, InvalidBodiesAndMixturesAreNamed) {
     planar.mass = 1.0;
     planar.inertia = 1.0;
     model.add_rigid_body(planar);
-    const std::string message = error_of([&] { model.add_rigid_body_3d(top_spec()); });
+    const std::string message = error_message([&] { model.add_rigid_body_3d(top_spec()); });
     EXPECT_NE(message.find("not both"), std::string::npos) << message;
   }
   {
     Model model;
     const BodyId mass = model.add_point_mass({"mass", 1.0, {}, {}});
-    const std::string message = error_of([&] { model.add_spatial_marker(mass, {0.1, 0.0, 0.0}); });
+    const std::string message = error_message([&] {
+      model.add_spatial_marker(mass, {0.1, 0.0, 0.0});
+    });
     EXPECT_NE(message.find("point mass 'mass'"), std::string::npos) << message;
-    EXPECT_NE(error_of([&] {
+    EXPECT_NE(error_message([&] {
                 model.add_revolute_joint({mass, {0.0, 0.0}}, {kGround, {0.0, 0.0}});
               }).find("is a spatial body"),
               std::string::npos);
@@ -716,11 +710,13 @@ TEST(MbdSpatialBadInput, InvalidBodiesAndMixturesAreNamed) {
   {
     Model model;
     const BodyId cable = model.add_ancf_cable(steel_cable(2, {1.0, 0.0, 0.0}));
-    const std::string message = error_of([&] { model.add_spatial_marker(cable, {0.5, 0.1, 0.0}); });
+    const std::string message = error_message([&] {
+      model.add_spatial_marker(cable, {0.5, 0.1, 0.0});
+    });
     EXPECT_NE(message.find("off the centre line"), std::string::npos) << message;
     RevoluteJoint3DSpec hinge;
     hinge.a = {cable, Eigen::Vector3d::Zero()};
-    EXPECT_NE(error_of([&] { model.add_revolute_joint_3d(hinge); }).find("not a rigid body"),
+    EXPECT_NE(error_message([&] { model.add_revolute_joint_3d(hinge); }).find("not a rigid body"),
               std::string::npos);
   }
 }
