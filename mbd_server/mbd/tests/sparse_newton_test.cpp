@@ -51,29 +51,32 @@ Difference relative_difference(const Model& model, const State& a, const State& 
               a.q.lpNorm<Eigen::Infinity>() / (h * h)};
 }
 
+// Runs `model` on the dense and on the sparse path and prints how far apart they end, with how
+// far the model moved (a run that stood still would agree trivially); `run_name` names the run.
+Difference dense_sparse_difference(const Model& model, int steps, double h, const char* run_name) {
+  const State dense = run(model, LinearSolver::Dense, steps, h);
+  const State sparse = run(model, LinearSolver::Sparse, steps, h);
+  const Difference d = relative_difference(model, dense, sparse, h);
+  std::printf(
+      "%s: max relative difference sparse - dense: q %.1e, v %.1e, lambda %.1e (%.1e N, floor "
+      "%.1e N; moved up to %.3f)\n",
+      run_name, d.q, d.v, d.lambda, d.lambda_absolute, d.lambda_floor,
+      (dense.q - model.initial_state().q).lpNorm<Eigen::Infinity>());
+  return d;
+}
+
 TEST(MbdSparseNewton, ChainOf20BarsSameAsDenseToRoundOff) {
   const Model chain = reference::rigid_chain(20);  // Newton matrix 3 x (2 x 60 + 40) = 480
-  const State dense = run(chain, LinearSolver::Dense, 20, 1e-3);
-  const State sparse = run(chain, LinearSolver::Sparse, 20, 1e-3);
-  const Difference d = relative_difference(chain, dense, sparse, 1e-3);
-  std::printf(
-      "chain of 20 bars, 20 steps of 1 ms: max relative difference sparse - dense: q %.1e, "
-      "v %.1e, lambda %.1e (%.1e N, floor %.1e N; the bars moved up to %.3f m)\n",
-      d.q, d.v, d.lambda, d.lambda_absolute, d.lambda_floor,
-      (dense.q - chain.initial_state().q).lpNorm<Eigen::Infinity>());
+  const Difference d =
+      dense_sparse_difference(chain, 20, 1e-3, "chain of 20 bars, 20 steps of 1 ms");
   EXPECT_LT(d.q, 1e-13);
   EXPECT_LT(d.v, 1e-11);
 }
 
 TEST(MbdSparseNewton, CarAxisSameAsDenseToRoundOff) {
   const auto problem = reference::car_axis::make();
-  const State dense = run(problem.model, LinearSolver::Dense, 2000, 1e-4);
-  const State sparse = run(problem.model, LinearSolver::Sparse, 2000, 1e-4);
-  const Difference d = relative_difference(problem.model, dense, sparse, 1e-4);
-  std::printf(
-      "car axis, 2000 steps of 1e-4: max relative difference sparse - dense: q %.1e, "
-      "v %.1e, lambda %.1e (%.1e N, floor %.1e N)\n",
-      d.q, d.v, d.lambda, d.lambda_absolute, d.lambda_floor);
+  const Difference d =
+      dense_sparse_difference(problem.model, 2000, 1e-4, "car axis, 2000 steps of 1e-4");
   EXPECT_LT(d.q, 1e-13);
   EXPECT_LT(d.v, 1e-11);
 }
@@ -290,14 +293,7 @@ TEST(MbdSparseAssembly, ModelMatricesEqualTheDenseOnes) {
 
 TEST(MbdSparseAssembly, RadauRunsOfEveryElementAgreeOnBothPaths) {
   const Model model = every_element_model(8);
-  const State dense = run(model, LinearSolver::Dense, 40, 1e-3);
-  const State sparse = run(model, LinearSolver::Sparse, 40, 1e-3);
-  const Difference d = relative_difference(model, dense, sparse, 1e-3);
-  std::printf(
-      "every element, 40 steps of 1 ms: max relative difference sparse - dense: q %.1e, "
-      "v %.1e, lambda %.1e (%.1e N, floor %.1e N; moved up to %.3f m)\n",
-      d.q, d.v, d.lambda, d.lambda_absolute, d.lambda_floor,
-      (dense.q - model.initial_state().q).lpNorm<Eigen::Infinity>());
+  const Difference d = dense_sparse_difference(model, 40, 1e-3, "every element, 40 steps of 1 ms");
   EXPECT_LT(d.q, 1e-12);
   EXPECT_LT(d.v, 1e-10);
 }
