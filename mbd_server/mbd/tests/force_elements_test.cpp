@@ -26,6 +26,18 @@ using testing::rigid;
 
 using Pair = testing::BodyPair;
 
+// A point-to-point force with `law` between each of the pair's sets of ends has exact derivatives.
+void expect_point_to_point_derivatives(const std::string& name, double rest_length,
+                                       const std::shared_ptr<const detail::TensionLaw>& law) {
+  const Pair pair;
+  int index = 0;
+  for (const auto& [a, b] : pair.point_pairs()) {
+    const detail::PointToPointForce force(name, a, b, rest_length, law);
+    testing::expect_exact_force_derivatives(force, 0.0, pair.q, pair.v,
+                                            "ends " + std::to_string(index++));
+  }
+}
+
 TEST(MbdForceElements, RotationalSpringDamperTorqueAndDerivatives) {
   const Pair pair;
   const detail::RotationalSpringDamper spring("torsion", 2, 5, 40.0, 1.5, 0.5);
@@ -41,29 +53,17 @@ TEST(MbdForceElements, RotationalSpringDamperTorqueAndDerivatives) {
 }
 
 TEST(MbdForceElements, NonlinearSpringDamperHasExactDerivatives) {
-  const Pair pair;
   auto law = std::make_shared<detail::UserTension>(
       [](double e, double r) { return 300.0 * e + 4e4 * e * e * e + 15.0 * r + 2.0 * r * r * r; });
-  int index = 0;
-  for (const auto& [a, b] : pair.point_pairs()) {
-    const detail::PointToPointForce spring("cubic", a, b, 0.9, law);
-    testing::expect_exact_force_derivatives(spring, 0.0, pair.q, pair.v,
-                                            "ends " + std::to_string(index++));
-  }
+  expect_point_to_point_derivatives("cubic", 0.9, law);
 }
 
 TEST(MbdForceElements, SpringActorHasExactDerivativesAwayFromItsKinks) {
-  const Pair pair;
   // The ends are 1.030, 1.045 and 1.854 m apart: elongations 0.53, 0.54 and 1.35 m from the rest
   // length 0.5, inside segments, not at a kink.
   auto law = std::make_shared<detail::PiecewiseLinearTension>(
       std::vector<Eigen::Vector2d>{{-1.0, -20.0}, {0.0, 0.0}, {0.1, 0.0}, {1.0, 900.0}}, 7.0);
-  int index = 0;
-  for (const auto& [a, b] : pair.point_pairs()) {
-    const detail::PointToPointForce actor("actor", a, b, 0.5, law);
-    testing::expect_exact_force_derivatives(actor, 0.0, pair.q, pair.v,
-                                            "ends " + std::to_string(index++));
-  }
+  expect_point_to_point_derivatives("actor", 0.5, law);
 }
 
 TEST(MbdForceElements, SpringActorCharacteristicIsPiecewiseLinear) {
