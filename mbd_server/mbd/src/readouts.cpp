@@ -111,6 +111,20 @@ Eigen::Vector2d planar_marker_velocity(const Data& data, const State& state, int
                                        m.local);
 }
 
+// Writes `readout(model, state, k)` of every marker k into `values`, as many components a marker
+// as the model has dimensions.
+template <typename Readout>
+void copy_per_marker(const Model& model, const State& state, std::span<double> values,
+                     const char* too_small, Readout readout) {
+  const Data& data = data_of(model);
+  const std::size_t dimension = data.dimension == 3 ? 3 : 2;
+  FSI_ASSERT(values.size() >= dimension * data.markers.size(), too_small);
+  for (int k = 0; k < model.marker_count(); ++k) {
+    const Eigen::Vector3d value = readout(model, state, k);
+    std::copy(value.data(), value.data() + dimension, values.begin() + dimension * k);
+  }
+}
+
 }  // namespace
 
 double kinetic_energy(const ConstrainedSystem& system, const State& state) {
@@ -230,23 +244,11 @@ Eigen::Vector3d marker_velocity(const Model& model, const State& state, int mark
 }
 
 void marker_positions(const Model& model, const State& state, std::span<double> values) {
-  const Data& data = data_of(model);
-  const std::size_t dimension = data.dimension == 3 ? 3 : 2;
-  FSI_ASSERT(values.size() >= dimension * data.markers.size(), "marker position buffer too small");
-  for (int k = 0; k < model.marker_count(); ++k) {
-    const Eigen::Vector3d r = marker_position(model, state, k);
-    std::copy(r.data(), r.data() + dimension, values.begin() + dimension * k);
-  }
+  copy_per_marker(model, state, values, "marker position buffer too small", marker_position);
 }
 
 void marker_velocities(const Model& model, const State& state, std::span<double> values) {
-  const Data& data = data_of(model);
-  const std::size_t dimension = data.dimension == 3 ? 3 : 2;
-  FSI_ASSERT(values.size() >= dimension * data.markers.size(), "marker velocity buffer too small");
-  for (int k = 0; k < model.marker_count(); ++k) {
-    const Eigen::Vector3d u = marker_velocity(model, state, k);
-    std::copy(u.data(), u.data() + dimension, values.begin() + dimension * k);
-  }
+  copy_per_marker(model, state, values, "marker velocity buffer too small", marker_velocity);
 }
 
 Eigen::Vector3d point_position(const Model& model, const State& state, const BodyPointSpec& point) {
