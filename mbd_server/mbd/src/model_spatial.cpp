@@ -34,6 +34,20 @@ std::pair<Eigen::Vector3d, Eigen::Vector3d> normals(const Eigen::Vector3d& axis)
   return {first, a.cross(first)};
 }
 
+// The spatial body `body` as a Kind (RigidBody3D, AncfCable3D); a body of another kind is a user's
+// mistake, named with `kind_name` and the `add_function` that makes one.
+template <typename Kind, typename ModelData>
+const Kind& spatial_body_of_kind(const ModelData& data, BodyId body, const char* lookup,
+                                 const std::string& kind_name, const std::string& add_function) {
+  const auto& spatial = data.spatial_body(body, lookup);
+  const auto* of_kind = dynamic_cast<const Kind*>(&spatial);
+  if (of_kind == nullptr) {
+    throw Error("'" + spatial.name() + "' is not " + kind_name, "multibody model",
+                "refer to a body added with " + add_function);
+  }
+  return *of_kind;
+}
+
 }  // namespace
 
 BodyId Model::add_rigid_body_3d(const RigidBody3DSpec& spec) {
@@ -305,13 +319,9 @@ int Model::dimension() const {
 }
 
 const RigidBody3DSpec& Model::rigid_body_3d(BodyId body) const {
-  const auto& spatial = data_->spatial_body(body, "a body lookup");
-  const auto* rigid = dynamic_cast<const detail::RigidBody3D*>(&spatial);
-  if (rigid == nullptr) {
-    throw Error("'" + spatial.name() + "' is not a spatial rigid body", "multibody model",
-                "refer to a body added with add_rigid_body_3d");
-  }
-  return rigid->spec();
+  return spatial_body_of_kind<detail::RigidBody3D>(*data_, body, "a body lookup",
+                                                   "a spatial rigid body", "add_rigid_body_3d")
+      .spec();
 }
 
 bool Model::is_cable(BodyId body) const {
@@ -320,13 +330,9 @@ bool Model::is_cable(BodyId body) const {
 }
 
 const AncfCableSpec& Model::cable(BodyId cable) const {
-  const auto& spatial = data_->spatial_body(cable, "a cable lookup");
-  const auto* c = dynamic_cast<const detail::AncfCable3D*>(&spatial);
-  if (c == nullptr) {
-    throw Error("'" + spatial.name() + "' is not an ANCF cable", "multibody model",
-                "refer to a body added with add_ancf_cable");
-  }
-  return c->spec();
+  return spatial_body_of_kind<detail::AncfCable3D>(*data_, cable, "a cable lookup", "an ANCF cable",
+                                                   "add_ancf_cable")
+      .spec();
 }
 
 int Model::cable_node_count(BodyId cable_id) const {
