@@ -1,10 +1,27 @@
 #include <cmath>
 #include <string>
+#include <utility>
 
 #include "fsi/common/error.hpp"
 #include "fsi/mbd/integrator.hpp"
 
 namespace fsi::mbd {
+namespace {
+
+[[noreturn]] void throw_unavailable(const std::string& family, int stages, const char* choices) {
+  throw Error(family + " with " + std::to_string(stages) + " stages is not available",
+              "integrator options", choices);
+}
+
+// Both families collocate with c_s = 1, so b is the last row of a (stiffly accurate).
+ButcherTableau stiffly_accurate(std::string name, ButcherTableau tableau, int order) {
+  tableau.name = std::move(name);
+  tableau.b = tableau.a.row(tableau.a.rows() - 1).transpose();
+  tableau.order = order;
+  return tableau;
+}
+
+}  // namespace
 
 // Radau IIA: collocation at the right Radau points (zeros of d^(s-1)/dx^(s-1) [x^(s-1) (x-1)^s]
 // on [0, 1]), so c_s = 1 and the last row of a equals b (Hairer & Wanner, Solving ODEs II,
@@ -36,13 +53,9 @@ ButcherTableau radau_iia(int stages) {
       break;
     }
     default:
-      throw Error("Radau IIA with " + std::to_string(stages) + " stages is not available",
-                  "integrator options", "choose 1, 2 or 3 stages (orders 1, 3, 5)");
+      throw_unavailable("Radau IIA", stages, "choose 1, 2 or 3 stages (orders 1, 3, 5)");
   }
-  tableau.name = "Radau IIA";
-  tableau.b = tableau.a.row(stages - 1).transpose();
-  tableau.order = 2 * stages - 1;
-  return tableau;
+  return stiffly_accurate("Radau IIA", std::move(tableau), 2 * stages - 1);
 }
 
 // Lobatto IIIA: collocation at the Lobatto points (c_1 = 0, c_s = 1), so the first row of a is
@@ -66,13 +79,9 @@ ButcherTableau lobatto_iiia(int stages) {
       tableau.c << 0.0, 0.5, 1.0;
       break;
     default:
-      throw Error("Lobatto IIIA with " + std::to_string(stages) + " stages is not available",
-                  "integrator options", "choose 2 or 3 stages (orders 2, 4)");
+      throw_unavailable("Lobatto IIIA", stages, "choose 2 or 3 stages (orders 2, 4)");
   }
-  tableau.name = "Lobatto IIIA";
-  tableau.b = tableau.a.row(stages - 1).transpose();
-  tableau.order = 2 * stages - 2;
-  return tableau;
+  return stiffly_accurate("Lobatto IIIA", std::move(tableau), 2 * stages - 2);
 }
 
 ButcherTableau butcher_tableau(TableauFamily family, int stages) {
