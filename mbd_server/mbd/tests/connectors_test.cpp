@@ -168,22 +168,21 @@ TEST(MbdConnectors, ClampToGroundHoldsTheBodyAgainstGravity) {
 TEST(MbdConnectors, InvalidConnectorsAreErrorsNamingThem) {
   Model model;
   const BodyId body = model.add_rigid_body(rigid("slider", 1.0, 1.0));
-  const auto message = [](auto&& add) { return testing::error_message(add); };
-  EXPECT_NE(message([&] {
+  EXPECT_NE(testing::error_message([&] {
               model.add_prismatic_joint(
                   {.name = "rail", .a = {body, {0, 0}}, .b = {body, {1, 0}}, .axis = {1, 0}});
             }).find("prismatic joint 'rail'"),
             std::string::npos);
-  EXPECT_NE(message([&] {
+  EXPECT_NE(testing::error_message([&] {
               model.add_prismatic_joint(
                   {.name = "rail", .a = {kGround, {0, 0}}, .b = {body, {0, 0}}, .axis = {0, 0}});
             }).find("axis"),
             std::string::npos);
-  EXPECT_NE(message([&] {
+  EXPECT_NE(testing::error_message([&] {
               model.add_clamp({.name = "bolt", .body = body, .to = body});
             }).find("clamp 'bolt'"),
             std::string::npos);
-  EXPECT_NE(message([&] {
+  EXPECT_NE(testing::error_message([&] {
               model.add_clamp({.name = "bolt", .body = 5, .to = kGround});
             }).find("clamp 'bolt'"),
             std::string::npos);

@@ -168,26 +168,25 @@ TEST(MbdForceElements, SpringForcesAreMeasuredAndStoreEnergy) {
 TEST(MbdForceElements, InvalidElementsAreErrorsNamingThem) {
   Model model;
   const BodyId body = model.add_rigid_body(rigid("arm", 1.0, 1.0));
-  const auto message = [](auto&& add) { return testing::error_message(add); };
-  EXPECT_NE(message([&] {
+  EXPECT_NE(testing::error_message([&] {
               model.add_rotational_spring_damper(
                   {.name = "coil", .a = body, .b = kGround, .stiffness = -1.0});
             }).find("rotational spring-damper 'coil'"),
             std::string::npos);
-  EXPECT_NE(message([&] {
+  EXPECT_NE(testing::error_message([&] {
               model.add_spring_actor({.name = "stop",
                                       .a = {kGround, {1, 0}},
                                       .b = {body, {0, 0}},
                                       .characteristic = {{0.0, 0.0}, {0.0, 1.0}}});
             }).find("spring actor 'stop'"),
             std::string::npos);
-  EXPECT_NE(message([&] {
+  EXPECT_NE(testing::error_message([&] {
               model.add_nonlinear_spring_damper(
                   {.name = "soft", .a = {kGround, {0, 0}}, .b = {body, {0, 0}}, .tension = {}});
             }).find("nonlinear spring-damper 'soft'"),
             std::string::npos);
   EXPECT_NE(
-      message([&] {
+      testing::error_message([&] {
         model.add_torque({.name = "motor", .body = kGround, .torque = [](double) { return 1.0; }});
       }).find("torque 'motor'"),
       std::string::npos);
