@@ -7,16 +7,12 @@ namespace fsi::mbd::detail {
 
 CoordinateConstraint::CoordinateConstraint(std::string description, int coordinate_index,
                                            double value)
-    : LinearConstraintRow(std::move(description)), index_(coordinate_index), value_(value) {}
+    : SingleCoordinateRow(std::move(description), ConstraintLevel::Position, coordinate_index),
+      value_(value) {}
 
 double CoordinateConstraint::residual(double, const Eigen::VectorXd& q,
                                       const Eigen::VectorXd&) const {
-  return q(index_) - value_;
-}
-
-void CoordinateConstraint::add_jacobian_entries(double, const Eigen::VectorXd&, int row,
-                                                MatrixSink& jacobian) const {
-  jacobian.add(row, index_, 1.0);
+  return q(coordinate_index()) - value_;
 }
 
 LinearCoordinateConstraint::LinearCoordinateConstraint(std::string description,
@@ -43,18 +39,12 @@ void LinearCoordinateConstraint::add_jacobian_entries(double, const Eigen::Vecto
 
 VelocityConstraint::VelocityConstraint(std::string description, int coordinate_index,
                                        double velocity)
-    : LinearConstraintRow(std::move(description), ConstraintLevel::Velocity),
-      index_(coordinate_index),
+    : SingleCoordinateRow(std::move(description), ConstraintLevel::Velocity, coordinate_index),
       velocity_(velocity) {}
 
 double VelocityConstraint::residual(double, const Eigen::VectorXd&,
                                     const Eigen::VectorXd& v) const {
-  return v(index_) - velocity_;
-}
-
-void VelocityConstraint::add_jacobian_entries(double, const Eigen::VectorXd&, int row,
-                                              MatrixSink& jacobian) const {
-  jacobian.add(row, index_, 1.0);
+  return v(coordinate_index()) - velocity_;
 }
 
 namespace {
@@ -70,19 +60,13 @@ double time_derivative(const std::function<double(double)>& f, double time) {
 PrescribedCoordinate::PrescribedCoordinate(std::string description, int coordinate_index,
                                            std::function<double(double)> position,
                                            std::function<double(double)> rate)
-    : ConstraintRow(std::move(description)),
-      index_(coordinate_index),
+    : SingleCoordinateRow(std::move(description), ConstraintLevel::Position, coordinate_index),
       position_(std::move(position)),
       rate_(std::move(rate)) {}
 
 double PrescribedCoordinate::residual(double time, const Eigen::VectorXd& q,
                                       const Eigen::VectorXd&) const {
-  return q(index_) - position_(time);
-}
-
-void PrescribedCoordinate::add_jacobian_entries(double, const Eigen::VectorXd&, int row,
-                                                MatrixSink& jacobian) const {
-  jacobian.add(row, index_, 1.0);
+  return q(coordinate_index()) - position_(time);
 }
 
 double PrescribedCoordinate::acceleration_remainder(double time, const Eigen::VectorXd&,
@@ -92,18 +76,12 @@ double PrescribedCoordinate::acceleration_remainder(double time, const Eigen::Ve
 
 TimeVelocityConstraint::TimeVelocityConstraint(std::string description, int coordinate_index,
                                                std::function<double(double)> velocity)
-    : ConstraintRow(std::move(description), ConstraintLevel::Velocity),
-      index_(coordinate_index),
+    : SingleCoordinateRow(std::move(description), ConstraintLevel::Velocity, coordinate_index),
       velocity_(std::move(velocity)) {}
 
 double TimeVelocityConstraint::residual(double time, const Eigen::VectorXd&,
                                         const Eigen::VectorXd& v) const {
-  return v(index_) - velocity_(time);
-}
-
-void TimeVelocityConstraint::add_jacobian_entries(double, const Eigen::VectorXd&, int row,
-                                                  MatrixSink& jacobian) const {
-  jacobian.add(row, index_, 1.0);
+  return v(coordinate_index()) - velocity_(time);
 }
 
 double TimeVelocityConstraint::acceleration_remainder(double time, const Eigen::VectorXd&,
