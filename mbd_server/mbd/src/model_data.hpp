@@ -108,23 +108,25 @@ struct Model::Data {
                   "multibody model", "refer to a marker that has been added");
     }
   }
-  const detail::RigidBody2D& rigid_body(BodyId body, const std::string& user) const {
+  // The body as a Kind; for a body of another kind `user` is told it needs `kind_name` (`fix`).
+  template <typename Kind>
+  const Kind& body_of_kind(BodyId body, const std::string& user, const char* kind_name,
+                           const char* fix) const {
     check_body(body, user);
-    const auto* rigid = dynamic_cast<const detail::RigidBody2D*>(bodies[body].get());
-    if (rigid == nullptr) {
-      throw Error(user + " needs a planar rigid body but '" + bodies[body]->name() + "' is not one",
-                  "multibody model", "use the coordinates of a RigidBody2D");
+    const auto* of_kind = dynamic_cast<const Kind*>(bodies[body].get());
+    if (of_kind == nullptr) {
+      throw Error(user + " needs " + kind_name + " but '" + bodies[body]->name() + "' is not one",
+                  "multibody model", fix);
     }
-    return *rigid;
+    return *of_kind;
+  }
+  const detail::RigidBody2D& rigid_body(BodyId body, const std::string& user) const {
+    return body_of_kind<detail::RigidBody2D>(body, user, "a planar rigid body",
+                                             "use the coordinates of a RigidBody2D");
   }
   const detail::AncfBeam2D& ancf_beam(BodyId body, const std::string& user) const {
-    check_body(body, user);
-    const auto* beam = dynamic_cast<const detail::AncfBeam2D*>(bodies[body].get());
-    if (beam == nullptr) {
-      throw Error(user + " needs an ANCF beam but '" + bodies[body]->name() + "' is not one",
-                  "multibody model", "refer to a body added with add_ancf_beam");
-    }
-    return *beam;
+    return body_of_kind<detail::AncfBeam2D>(body, user, "an ANCF beam",
+                                            "refer to a body added with add_ancf_beam");
   }
   const detail::AncfBeam2D& beam_node(BodyId body, int node, const std::string& user) const {
     const auto& beam = ancf_beam(body, user);
