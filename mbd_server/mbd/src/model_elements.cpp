@@ -66,6 +66,15 @@ AnglePair angle_pair(const Model& model, BodyId a, BodyId b, const std::string& 
   return angles;
 }
 
+// angle_pair for an element whose end a must be a body (the ground, if any, at end b):
+// `a_is_ground` is the problem and `fix` how to fix it when a is the ground.
+AnglePair body_first_angle_pair(const Model& model, BodyId a, BodyId b, const std::string& user,
+                                const char* a_is_ground, const char* fix) {
+  if (a == kGround) throw Error(a_is_ground, user, fix);
+  require_two_ends(a, b, user);
+  return angle_pair(model, a, b, user);
+}
+
 }  // namespace
 
 int Model::add_prismatic_joint(const PrismaticJointSpec& spec) {
@@ -90,11 +99,9 @@ int Model::add_prismatic_joint(const PrismaticJointSpec& spec) {
 int Model::add_clamp(const ClampSpec& spec) {
   const int first_row = constraint_count();
   const std::string user = element_name("clamp", spec.name, first_row);
-  if (spec.body == kGround) {
-    throw Error("the clamped body is the ground", user, "clamp a body to the ground or a body");
-  }
-  require_two_ends(spec.body, spec.to, user);
-  const AnglePair angles = angle_pair(*this, spec.body, spec.to, user);
+  const AnglePair angles =
+      body_first_angle_pair(*this, spec.body, spec.to, user, "the clamped body is the ground",
+                            "clamp a body to the ground or a body");
   const RigidBody2DSpec& clamped = body(spec.body);
   // The clamped body's centre of mass in the frame of `to` (world frame for the ground).
   Eigen::Vector2d seen_from_to = clamped.position;
@@ -117,11 +124,8 @@ int Model::add_clamp(const ClampSpec& spec) {
 int Model::add_rotational_spring_damper(const RotationalSpringDamperSpec& spec) {
   const int index = force_element_count();
   const std::string user = element_name("rotational spring-damper", spec.name, index);
-  if (spec.a == kGround) {
-    throw Error("body a is the ground", user, "put the ground, if any, at end b");
-  }
-  require_two_ends(spec.a, spec.b, user);
-  const AnglePair angles = angle_pair(*this, spec.a, spec.b, user);
+  const AnglePair angles = body_first_angle_pair(
+      *this, spec.a, spec.b, user, "body a is the ground", "put the ground, if any, at end b");
   const double rest = spec.rest_angle.value_or(angles.initial_difference);
   if (!non_negative(spec.stiffness) || !non_negative(spec.damping) || !std::isfinite(rest)) {
     throw Error("stiffness and damping must be finite and non-negative and the rest angle finite",
