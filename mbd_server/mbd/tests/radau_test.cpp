@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <random>
 
+#include "element_checks.hpp"
 #include "fsi/common/error.hpp"
 #include "fsi/mbd/integrator.hpp"
 #include "fsi/mbd/model.hpp"
@@ -14,14 +15,6 @@ namespace fsi::mbd {
 namespace {
 
 constexpr NewtonOptions kTight{.relative_tolerance = 1e-13, .max_iterations = 20};
-
-RigidBody2DSpec unit_body(const std::string& name) {
-  RigidBody2DSpec spec;
-  spec.name = name;
-  spec.mass = 1.0;
-  spec.inertia = 1.0;
-  return spec;
-}
 
 // Least-squares slope of log(error) over log(step size).
 double fitted_order(const std::vector<double>& steps, const std::vector<double>& errors) {
@@ -43,7 +36,7 @@ double fitted_order(const std::vector<double>& steps, const std::vector<double>&
 // x'' = -x, x(0) = 1: error of (x, v) at t = 1 against (cos 1, -sin 1).
 double oscillator_error(int stages, int steps) {
   Model model;
-  RigidBody2DSpec spec = unit_body("mass");
+  RigidBody2DSpec spec = testing::rigid("mass", 1.0, 1.0);
   spec.position = {1.0, 0.0};
   const BodyId b = model.add_rigid_body(spec);
   model.add_force_element(
@@ -75,7 +68,7 @@ TEST(MbdRadauIIA, FreeFallFollowsTheParabola) {
   const double g = -9.81;
   for (int s = 1; s <= 3; ++s) {
     Model model;
-    RigidBody2DSpec spec = unit_body("stone");
+    RigidBody2DSpec spec = testing::rigid("stone", 1.0, 1.0);
     spec.position = {0.5, 10.0};
     spec.velocity = {1.0, 2.0};
     spec.angular_velocity = 3.0;
@@ -109,9 +102,7 @@ void expect_relative(double actual, double expected, double tolerance, const std
 TEST(MbdRadauIIA, HeldBodyMultipliersBalanceGravityAndPointLoadsAtEveryStep) {
   for (int s = 1; s <= 3; ++s) {
     Model model;
-    RigidBody2DSpec spec = unit_body("bottom");
-    spec.mass = 0.25;
-    spec.inertia = 5e-5;
+    RigidBody2DSpec spec = testing::rigid("bottom", 0.25, 5e-5);
     spec.position = {0.025, 0.0};
     spec.angle = 0.3;
     const BodyId b = model.add_rigid_body(spec);
@@ -170,7 +161,7 @@ class OscillatingLoad final : public ForceElement {
 TEST(MbdRadauIIA, MultipliersBelongToTheEndOfTheStep) {
   for (int s = 1; s <= 3; ++s) {
     Model model;
-    const BodyId b = model.add_rigid_body(unit_body("held"));
+    const BodyId b = model.add_rigid_body(testing::rigid("held", 1.0, 1.0));
     model.add_coordinate_constraint(b, Coordinate::Y);
     const int y = model.coordinate_index(b, Coordinate::Y);
     model.add_force_element(std::make_unique<OscillatingLoad>(y, 3.0, 40.0));
@@ -190,9 +181,7 @@ TEST(MbdRadauIIA, MultipliersBelongToTheEndOfTheStep) {
 TEST(MbdRadauIIA, VelocityConstraintDrivesTheBodyAtThePrescribedVelocity) {
   for (int s = 1; s <= 3; ++s) {
     Model model;
-    RigidBody2DSpec spec = unit_body("piston");
-    spec.mass = 0.1;
-    spec.inertia = 2e-5;
+    RigidBody2DSpec spec = testing::rigid("piston", 0.1, 2e-5);
     spec.position = {0.025, 0.0725};
     spec.velocity = {0.0, -0.05};
     const BodyId b = model.add_rigid_body(spec);
@@ -230,8 +219,7 @@ TEST(MbdRadauIIA, VelocityConstraintDrivesTheBodyAtThePrescribedVelocity) {
 State rotating_body(int stages, int steps, const NewtonOptions& options = kTight,
                     IntegratorStatistics* statistics = nullptr) {
   Model model;
-  RigidBody2DSpec spec = unit_body("rotor");
-  spec.inertia = 0.2;
+  RigidBody2DSpec spec = testing::rigid("rotor", 1.0, 0.2);
   spec.angle = 0.3;
   spec.angular_velocity = 3.0;
   spec.velocity = {0.2, 0.0};
@@ -318,7 +306,7 @@ class SwitchingSpring final : public ForceElement {
 
 TEST(MbdRadauIIA, AMatrixThatStopsContractingIsReplacedWithinTheStep) {
   Model model;
-  RigidBody2DSpec spec = unit_body("mass");
+  RigidBody2DSpec spec = testing::rigid("mass", 1.0, 1.0);
   spec.position = {1.0, 0.0};
   const BodyId b = model.add_rigid_body(spec);
   model.add_force_element(
@@ -336,7 +324,7 @@ TEST(MbdRadauIIA, AMatrixThatStopsContractingIsReplacedWithinTheStep) {
 
 TEST(MbdRadauIIA, StatisticsAccumulateThePerStepCounts) {
   Model model;
-  model.add_rigid_body(unit_body("b"));
+  model.add_rigid_body(testing::rigid("b", 1.0, 1.0));
   model.set_gravity({0.0, -1.0});
   RadauIIA integrator(2);
   State state = model.initial_state();
@@ -367,7 +355,7 @@ std::string failure_of(RadauIIA& integrator, const Model& model, State& state, d
 
 TEST(MbdRadauIIA, NonConvergingNewtonNamesTimeStepSizeAndResidual) {
   Model model;
-  RigidBody2DSpec spec = unit_body("rotor");
+  RigidBody2DSpec spec = testing::rigid("rotor", 1.0, 1.0);
   spec.angular_velocity = 3.0;
   const BodyId b = model.add_rigid_body(spec);
   model.add_marker(b, {1.0, 0.0});
@@ -402,7 +390,7 @@ class NotANumberLater final : public ForceElement {
 
 TEST(MbdRadauIIA, NonFiniteForcesAreAnErrorAtTheirTime) {
   Model model;
-  model.add_rigid_body(unit_body("b"));
+  model.add_rigid_body(testing::rigid("b", 1.0, 1.0));
   model.add_force_element(std::make_unique<NotANumberLater>());
   RadauIIA integrator(3);
   State state = model.initial_state();
@@ -421,7 +409,7 @@ TEST(MbdRadauIIA, InvalidInputIsAUserError) {
   EXPECT_THROW(RadauIIA(3, {.max_iterations = 0}), fsi::Error);
   EXPECT_THROW(RadauIIA(RadauOptions{.stages = 4, .newton = {}}), fsi::Error);
   Model model;
-  model.add_rigid_body(unit_body("b"));
+  model.add_rigid_body(testing::rigid("b", 1.0, 1.0));
   RadauIIA integrator(2);
   State state = model.initial_state();
   EXPECT_NE(failure_of(integrator, model, state, 0.0).find("step size must be positive"),

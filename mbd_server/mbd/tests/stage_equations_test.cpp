@@ -5,6 +5,7 @@
 
 #include <random>
 
+#include "element_checks.hpp"
 #include "fsi/mbd/integrator.hpp"
 #include "fsi/mbd/model.hpp"
 #include "radau_stage_equations.hpp"
@@ -19,10 +20,7 @@ namespace {
 Model rich_model() {
   Model model;
   model.set_gravity({0.5, -9.81});
-  RigidBody2DSpec spec;
-  spec.name = "a";
-  spec.mass = 0.25;
-  spec.inertia = 5e-5;
+  RigidBody2DSpec spec = testing::rigid("a", 0.25, 5e-5);
   spec.position = {0.1, 0.2};
   spec.angle = 0.4;
   spec.velocity = {0.3, 0.0};
@@ -52,10 +50,7 @@ Model rich_model() {
 Model jointed_model() {
   Model model;
   model.set_gravity({0.0, -9.81});
-  RigidBody2DSpec spec;
-  spec.name = "upper";
-  spec.mass = 0.5;
-  spec.inertia = 0.02;
+  RigidBody2DSpec spec = testing::rigid("upper", 0.5, 0.02);
   spec.position = {0.4, -0.3};
   spec.angle = 0.3;
   const BodyId upper = model.add_rigid_body(spec);
