@@ -172,14 +172,8 @@ fsi::scene::Diagnostic coupled_step_notice(const fsi::scene::Scene& scene) {
   return notice;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  CLI::App app{
-      "fsi-server: the multibody side of the FSI co-simulation. Reads a scene, waits for "
-      "fsi-client (mpirun -np N fsi-client --server HOST:PORT) and runs the coupled steps."};
-  app.set_version_flag("--version", std::string(fsi::software_version()) + " (git " +
-                                        std::string(fsi::git_revision()) + ")");
+// Everything the command line says.
+struct CommandLine {
   std::string scene_file;
   std::string output;
   int port = 0;
@@ -187,199 +181,227 @@ int main(int argc, char** argv) {
   std::string listen = "127.0.0.1";
   std::vector<std::string> overrides;
   double accept_timeout = 120.0;
+  double peer_timeout = 300.0;
+  std::string token_file;
+  bool allow_unauthenticated = false;
   bool check_only = false;
   bool mbd_only = false;
   bool print_params = false;
   bool help_params = false;
   std::string parameter_doc;
+  double progress_interval = 10.0;
+  bool no_live = false;
   std::string log_level = "info";
-  app.add_option("scene", scene_file, "Scene parameter file (*.scene); required");
-  app.add_option("--output", output,
+  std::string text;  // as typed, for run.json
+
+  fsi::scene::SceneMode mode() const {
+    return mbd_only ? fsi::scene::SceneMode::MbdOnly : fsi::scene::SceneMode::Coupled;
+  }
+};
+
+void declare_run_options(CLI::App& app, CommandLine& line) {
+  app.add_option("scene", line.scene_file, "Scene parameter file (*.scene); required");
+  app.add_option("--output", line.output,
                  "Output folder of the run (created): sensors.csv, run.json, fsi-server.log, "
                  "snapshots/, vtk/; required for a run");
-  app.add_option("--port", port, "TCP port to listen on (0: the system chooses)")
-      ->capture_default_str()
-      ->check(CLI::Range(0, 65535));
-  app.add_option("--port-file", port_file,
-                 "Write the listening port into this file once listening (default: none)");
-  app.add_option("--listen", listen,
-                 "Address to listen on (default loopback; 0.0.0.0 for all interfaces)")
-      ->capture_default_str();
-  app.add_option("--set", overrides,
+  app.add_option("--set", line.overrides,
                  "Override a scene parameter, KEY=EXPR (repeatable; default: none)");
-  app.add_option("--accept-timeout", accept_timeout, "Seconds to wait for fsi-client to connect")
+  app.add_flag("--check", line.check_only,
+               "Validate the scene (all problems at once) and exit (default: off)");
+  app.add_flag("--mbd-only", line.mbd_only,
+               "Run the scene's multibody part alone, without fsi-client (fluid forces zero); "
+               "writes sensors.csv and run.json into --output (default: off)");
+  app.add_flag("--print-params", line.print_params,
+               "Print the evaluated parameter tree and exit (default: off)");
+  app.add_flag("--help-params", line.help_params,
+               "List every scene parameter and exit (default: off)");
+  app.add_option("--write-parameter-doc", line.parameter_doc,
+                 "Write the parameter reference (markdown) to this file and exit (default: none)");
+  app.add_option("--progress-interval", line.progress_interval,
+                 "Seconds between progress lines in the log (time, percent, steps/s, ETA, fluid "
+                 "health); on a terminal a live status line is updated four times a second too")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
-  double peer_timeout = 300.0;
-  app.add_option("--peer-timeout", peer_timeout,
+  app.add_flag("--no-live", line.no_live,
+               "No live status line on a terminal, progress only as periodic log lines (default: "
+               "off)");
+  app.add_option("--log-level", line.log_level, "trace, debug, info, warn, error")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error"}));
+}
+
+void declare_network_options(CLI::App& app, CommandLine& line) {
+  app.add_option("--port", line.port, "TCP port to listen on (0: the system chooses)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 65535));
+  app.add_option("--port-file", line.port_file,
+                 "Write the listening port into this file once listening (default: none)");
+  app.add_option("--listen", line.listen,
+                 "Address to listen on (default loopback; 0.0.0.0 for all interfaces)")
+      ->capture_default_str();
+  app.add_option("--accept-timeout", line.accept_timeout,
+                 "Seconds to wait for fsi-client to connect")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  app.add_option("--peer-timeout", line.peer_timeout,
                  "Seconds of silence from fsi-client after which the server gives up (a stopped or "
                  "hung client). A computing client sends a heartbeat every second, so long "
                  "steps and the equilibration do not count as silence. At least 2")
       ->capture_default_str()
       ->check(CLI::Range(2.0, 1e9));
-  std::string token_file;
-  app.add_option("--token-file", token_file,
+  app.add_option("--token-file", line.token_file,
                  "Shared token (a file only you can read, e.g. `openssl rand -hex 32 > FILE; chmod "
                  "600 FILE`): fsi-client must prove it holds the same token, and this server "
                  "proves it to the client (HMAC-SHA256 challenge-response; default: none)");
-  bool allow_unauthenticated = false;
-  app.add_flag("--allow-unauthenticated", allow_unauthenticated,
+  app.add_flag("--allow-unauthenticated", line.allow_unauthenticated,
                "Listen on a non-loopback --listen address without --token-file (anyone who "
                "reaches the port can take the client's place; default: off)");
-  app.add_flag("--check", check_only,
-               "Validate the scene (all problems at once) and exit (default: off)");
-  app.add_flag("--mbd-only", mbd_only,
-               "Run the scene's multibody part alone, without fsi-client (fluid forces zero); "
-               "writes sensors.csv and run.json into --output (default: off)");
-  app.add_flag("--print-params", print_params,
-               "Print the evaluated parameter tree and exit (default: off)");
-  app.add_flag("--help-params", help_params, "List every scene parameter and exit (default: off)");
-  app.add_option("--write-parameter-doc", parameter_doc,
-                 "Write the parameter reference (markdown) to this file and exit (default: none)");
-  double progress_interval = 10.0;
-  app.add_option("--progress-interval", progress_interval,
-                 "Seconds between progress lines in the log (time, percent, steps/s, ETA, fluid "
-                 "health); on a terminal a live status line is updated four times a second too")
-      ->capture_default_str()
-      ->check(CLI::PositiveNumber);
-  bool no_live = false;
-  app.add_flag("--no-live", no_live,
-               "No live status line on a terminal, progress only as periodic log lines (default: "
-               "off)");
-  app.add_option("--log-level", log_level, "trace, debug, info, warn, error")
-      ->capture_default_str()
-      ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error"}));
-  CLI11_PARSE(app, argc, argv);
+}
 
-  if (help_params) {
-    std::cout << fsi::scene::render_help(fsi::scene::scene_schema());
-    return 0;
-  }
-  if (!parameter_doc.empty()) {
-    std::ofstream out(parameter_doc);
-    out << "# Scene parameters\n\n<!-- generated by fsi-server --write-parameter-doc; do not edit "
-           "-->\n\n"
-        << "Scene files use the language of thesis §5.6 (blocks, `key = expression`, references to "
-           "earlier "
-           "parameters, `%`/`//` comments, `include`). Blocks not listed here (e.g. `Geometry`) "
-           "are your own "
-           "parameter blocks.\n\n"
-           "A scene states the language version it is written for as its first entry (comments may "
-           "stand above it): `scene_language = 1`. A file for a newer version is refused before "
-           "the rest is read; a scene without the line is an error that names the line to add "
-           "(docs/user-guide.md, \"Scene language versions\").\n"
-        << fsi::scene::render_markdown(fsi::scene::scene_schema());
-    return out ? 0 : 1;
-  }
-  if (scene_file.empty()) {
-    std::fprintf(stderr, "fsi-server: a scene file is required (see --help)\n");
-    return 2;
-  }
-  configure_logging(log_level, "", false);
-  std::vector<fsi::scene::Override> parsed_overrides;
-  fsi::scene::Scene scene;
+int write_parameter_doc(const std::string& path) {
+  std::ofstream out(path);
+  out << "# Scene parameters\n\n<!-- generated by fsi-server --write-parameter-doc; do not edit "
+         "-->\n\n"
+      << "Scene files use the language of thesis §5.6 (blocks, `key = expression`, references to "
+         "earlier "
+         "parameters, `%`/`//` comments, `include`). Blocks not listed here (e.g. `Geometry`) "
+         "are your own "
+         "parameter blocks.\n\n"
+         "A scene states the language version it is written for as its first entry (comments may "
+         "stand above it): `scene_language = 1`. A file for a newer version is refused before "
+         "the rest is read; a scene without the line is an error that names the line to add "
+         "(docs/user-guide.md, \"Scene language versions\").\n"
+      << fsi::scene::render_markdown(fsi::scene::scene_schema());
+  return out ? 0 : 1;
+}
+
+// The scene as the command line modifies it; nullopt when it has problems (logged).
+std::optional<fsi::scene::Scene> load_scene(const CommandLine& line) {
   try {
-    for (const auto& item : overrides)
-      parsed_overrides.push_back(fsi::scene::parse_override(item));
-    scene = fsi::scene::build_scene(
-        scene_file, parsed_overrides,
-        mbd_only ? fsi::scene::SceneMode::MbdOnly : fsi::scene::SceneMode::Coupled);
+    std::vector<fsi::scene::Override> parsed;
+    for (const auto& item : line.overrides)
+      parsed.push_back(fsi::scene::parse_override(item));
+    return fsi::scene::build_scene(line.scene_file, parsed, line.mode());
   } catch (const fsi::Error& error) {
     spdlog::error("{}", error.what());
-    return 2;
+    return std::nullopt;
   }
-  if (print_params) {
-    std::cout << fsi::scene::to_text(scene.parameters);
-    return 0;
-  }
-  // Warnings only: a scene may break a rule of thumb on purpose. The rules are the fluid's, and an
-  // --mbd-only run builds no fluid.
-  std::vector<fsi::scene::Diagnostic> diagnostics =
-      mbd_only ? std::vector<fsi::scene::Diagnostic>{} : fsi::scene::physics_checks(scene);
+}
+
+// What --check prints and a run logs and records: the fluid's rules of thumb (warnings only: a
+// scene may break one on purpose; an --mbd-only run builds no fluid), and what the run will do
+// with the scene's method and end time.
+struct SceneNotes {
+  std::vector<fsi::scene::Diagnostic> diagnostics;
+  std::vector<fsi::scene::Diagnostic> run_warnings;
+};
+
+SceneNotes scene_notes(const fsi::scene::Scene& scene, bool mbd_only) {
+  SceneNotes notes;
+  if (!mbd_only) notes.diagnostics = fsi::scene::physics_checks(scene);
   if (!mbd_only && scene.solver.method != fsi::scene::IntegrationMethod::FixedStep)
-    diagnostics.push_back(coupled_step_notice(scene));
-  // Not a rule of thumb: what the run will do with the scene's end time.
-  const std::vector<fsi::scene::Diagnostic> run_warnings = fsi::scene::end_time_check(scene);
-  if (check_only) {
-    print_summary(scene);
-    std::printf("%s", fsi::scene::blocks_needed(scene, mbd_only ? fsi::scene::SceneMode::MbdOnly
-                                                                : fsi::scene::SceneMode::Coupled)
-                          .c_str());
-    for (const fsi::scene::Diagnostic& warning : run_warnings)
-      std::printf("  %s\n", warning.text().c_str());
-    print_diagnostics(scene, diagnostics);
-    return 0;
-  }
-  if (output.empty()) {
-    spdlog::error("--output is required for a run (a folder for sensors.csv, run.json, snapshots)");
-    return 2;
-  }
-  // Refused before anything else of a run: who may connect is decided up front.
-  std::optional<fsi::protocol::Token> token;
-  if (!token_file.empty()) {
+    notes.diagnostics.push_back(coupled_step_notice(scene));
+  notes.run_warnings = fsi::scene::end_time_check(scene);
+  return notes;
+}
+
+int print_check(const fsi::scene::Scene& scene, const SceneNotes& notes, const CommandLine& line) {
+  print_summary(scene);
+  std::printf("%s", fsi::scene::blocks_needed(scene, line.mode()).c_str());
+  for (const fsi::scene::Diagnostic& warning : notes.run_warnings)
+    std::printf("  %s\n", warning.text().c_str());
+  print_diagnostics(scene, notes.diagnostics);
+  return 0;
+}
+
+// Who may connect is decided before anything else of a run: the token, or loopback, or an
+// explicit --allow-unauthenticated. False: refused (logged).
+bool decide_access(const CommandLine& line, std::optional<fsi::protocol::Token>& token) {
+  if (!line.token_file.empty()) {
     try {
-      token = fsi::protocol::read_token_file(token_file);
+      token = fsi::protocol::read_token_file(line.token_file);
+      return true;
     } catch (const fsi::Error& error) {
       spdlog::error("{}", error.what());
-      return 2;
+      return false;
     }
-  } else if (!fsi::protocol::is_loopback_address(listen)) {
-    if (!allow_unauthenticated) {
-      spdlog::error(
-          "--listen {}: refusing to listen on a non-loopback address without --token-file: "
-          "anyone who reaches the port could connect as fsi-client\n  how to fix: give "
-          "fsi-server and fsi-client the same --token-file (docs/user-guide.md, "
-          "\"Authentication\"), or add --allow-unauthenticated on a network you trust",
-          listen);
-      return 2;
-    }
-    spdlog::warn(
-        "--listen {} without --token-file (--allow-unauthenticated): ANY host that reaches the "
-        "port can connect as fsi-client; use --token-file unless the network is trusted",
-        listen);
   }
-  std::error_code error;
-  std::filesystem::create_directories(output, error);
-  const std::shared_ptr<TerminalSink> terminal = configure_logging(
-      log_level, (std::filesystem::path(output) / "fsi-server.log").string(), !no_live);
-  for (const fsi::scene::Diagnostic& warning : run_warnings)
-    spdlog::warn("{}", warning.text());
-  log_diagnostics(scene, diagnostics);
-  if (scene.assembly) {
-    for (const std::string& line : scene.assembly->lines())
-      spdlog::info("{}", line);
+  if (fsi::protocol::is_loopback_address(line.listen)) return true;
+  if (!line.allow_unauthenticated) {
+    spdlog::error(
+        "--listen {}: refusing to listen on a non-loopback address without --token-file: "
+        "anyone who reaches the port could connect as fsi-client\n  how to fix: give "
+        "fsi-server and fsi-client the same --token-file (docs/user-guide.md, "
+        "\"Authentication\"), or add --allow-unauthenticated on a network you trust",
+        line.listen);
+    return false;
   }
+  spdlog::warn(
+      "--listen {} without --token-file (--allow-unauthenticated): ANY host that reaches the "
+      "port can connect as fsi-client; use --token-file unless the network is trusted",
+      line.listen);
+  return true;
+}
+
+std::chrono::milliseconds milliseconds(double seconds) {
+  return std::chrono::milliseconds(static_cast<long>(seconds * 1000));
+}
+
+fsi::coupling::ServerOptions server_options(const CommandLine& line, const SceneNotes& notes,
+                                            const std::shared_ptr<TerminalSink>& terminal) {
   fsi::coupling::ServerOptions options;
-  options.listen_address = listen;
-  options.port = static_cast<std::uint16_t>(port);
-  options.port_file = port_file;
-  options.token = token;
-  options.output_dir = output;
-  options.accept_timeout = std::chrono::milliseconds(static_cast<long>(accept_timeout * 1000));
-  options.peer_timeout = std::chrono::milliseconds(static_cast<long>(peer_timeout * 1000));
-  options.progress_interval =
-      std::chrono::milliseconds(static_cast<long>(progress_interval * 1000));
+  options.listen_address = line.listen;
+  options.port = static_cast<std::uint16_t>(line.port);
+  options.port_file = line.port_file;
+  options.output_dir = line.output;
+  options.accept_timeout = milliseconds(line.accept_timeout);
+  options.peer_timeout = milliseconds(line.peer_timeout);
+  options.progress_interval = milliseconds(line.progress_interval);
   if (terminal) {
-    options.live_status = [terminal](const std::string& line) { terminal->set_status(line); };
+    options.live_status = [terminal](const std::string& status) { terminal->set_status(status); };
   }
-  for (int i = 0; i < argc; ++i)
-    options.command_line += (i ? " " : "") + std::string(argv[i]);
-  for (const fsi::scene::Diagnostic& warning : run_warnings)
+  options.command_line = line.text;
+  for (const fsi::scene::Diagnostic& warning : notes.run_warnings)
     options.warnings.push_back(warning.text());
-  for (const fsi::scene::Diagnostic& diagnostic : diagnostics) {
+  for (const fsi::scene::Diagnostic& diagnostic : notes.diagnostics) {
     if (diagnostic.severity == fsi::scene::Severity::Warning)
       options.warnings.push_back(diagnostic.text());
   }
-  if (mbd_only && scene.model.coordinate_count() == 0) {
+  return options;
+}
+
+// A run: the output folder and its log, then the coupled session or the structure alone.
+int run(fsi::scene::Scene& scene, const CommandLine& line, const SceneNotes& notes) {
+  if (line.output.empty()) {
+    spdlog::error("--output is required for a run (a folder for sensors.csv, run.json, snapshots)");
+    return 2;
+  }
+  std::optional<fsi::protocol::Token> token;
+  if (!decide_access(line, token)) return 2;
+  std::error_code error;
+  std::filesystem::create_directories(line.output, error);
+  const std::shared_ptr<TerminalSink> terminal = configure_logging(
+      line.log_level, (std::filesystem::path(line.output) / "fsi-server.log").string(),
+      !line.no_live);
+  for (const fsi::scene::Diagnostic& warning : notes.run_warnings)
+    spdlog::warn("{}", warning.text());
+  log_diagnostics(scene, notes.diagnostics);
+  if (scene.assembly) {
+    for (const std::string& text : scene.assembly->lines())
+      spdlog::info("{}", text);
+  }
+  fsi::coupling::ServerOptions options = server_options(line, notes, terminal);
+  options.token = token;
+  if (line.mbd_only && scene.model.coordinate_count() == 0) {
     std::fprintf(stderr,
                  "error: --mbd-only runs the multibody system, and the scene %s has no bodies "
                  "(static ground only)\n  fix: run it coupled (without --mbd-only)\n",
                  scene.file.c_str());
     return 2;
   }
-  if (mbd_only) {
+  if (line.mbd_only) {
     fsi::coupling::MbdOnlyOptions mbd_options;
-    mbd_options.output_dir = output;
+    mbd_options.output_dir = line.output;
     mbd_options.command_line = options.command_line;
     mbd_options.warnings = options.warnings;
     return fsi::coupling::run_mbd_only(scene, mbd_options);
@@ -392,4 +414,39 @@ int main(int argc, char** argv) {
   }
   if (terminal) terminal->set_status("");
   return status;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "fsi-server: the multibody side of the FSI co-simulation. Reads a scene, waits for "
+      "fsi-client (mpirun -np N fsi-client --server HOST:PORT) and runs the coupled steps."};
+  app.set_version_flag("--version", fsi::version_text());
+  CommandLine line;
+  declare_run_options(app, line);
+  declare_network_options(app, line);
+  CLI11_PARSE(app, argc, argv);
+  for (int i = 0; i < argc; ++i)
+    line.text += (i ? " " : "") + std::string(argv[i]);
+
+  if (line.help_params) {
+    std::cout << fsi::scene::render_help(fsi::scene::scene_schema());
+    return 0;
+  }
+  if (!line.parameter_doc.empty()) return write_parameter_doc(line.parameter_doc);
+  if (line.scene_file.empty()) {
+    std::fprintf(stderr, "fsi-server: a scene file is required (see --help)\n");
+    return 2;
+  }
+  configure_logging(line.log_level, "", false);
+  std::optional<fsi::scene::Scene> scene = load_scene(line);
+  if (!scene) return 2;
+  if (line.print_params) {
+    std::cout << fsi::scene::to_text(scene->parameters);
+    return 0;
+  }
+  const SceneNotes notes = scene_notes(*scene, line.mbd_only);
+  if (line.check_only) return print_check(*scene, notes, line);
+  return run(*scene, line, notes);
 }
