@@ -1,6 +1,6 @@
 #pragma once
-// Files the scene tests write: a folder of their own, a closed unit-cube STL surface, and a
-// scene's problems as text.
+// Files the scene tests write: a folder of their own with coupled scenes in it, a closed
+// unit-cube STL surface, and a scene's problems as text.
 
 #include <gtest/gtest.h>
 
@@ -42,6 +42,18 @@ class FolderPerTest : public ::testing::Test {
     std::filesystem::create_directories(file.parent_path());
     std::ofstream(file) << text;
     return file.string();
+  }
+
+  // A coupled scene `name`: the language line, `blocks`, then LIGGGHTS running the folder's
+  // "s.in" (written here) and Coupling { `coupling` }; the file's path.
+  std::filesystem::path write_coupled_scene(
+      const std::string& name, const std::string& blocks,
+      const std::string& coupling = "refinement_resolution = 0.002") const {
+    write("s.in", "# script\n");
+    return write(name, "scene_language = 1\n" + blocks +
+                           "LIGGGHTS { script1 = \"s.in\"; script2 = \"s.in\" }\n"
+                           "Coupling { " +
+                           coupling + " }\n");
   }
 
   std::filesystem::path folder_;
