@@ -193,18 +193,14 @@ void build_prescribed_motions(SceneBuilder& builder) {
   });
 }
 
-// In the order of their rows (a joint_force sensor reads rows by index).
-void build_planar_joints(SceneBuilder& builder) {
-  build_coordinate_constraints(builder);
-  build_beam_clamps(builder);
-  build_point_joints(builder);
-  build_prescribed_motions(builder);
-}
-
 }  // namespace
 
 ElementFamily planar_joints_family() {
-  return {"planar joints", planar_joint_blocks, build_planar_joints};
+  // In the order of their rows (a joint_force sensor reads rows by index).
+  return {"planar joints",
+          planar_joint_blocks,
+          {build_coordinate_constraints, build_beam_clamps, build_point_joints,
+           build_prescribed_motions}};
 }
 
 }  // namespace fsi::scene::detail

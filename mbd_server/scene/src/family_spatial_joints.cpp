@@ -93,7 +93,7 @@ void build_spatial_joints(SceneBuilder& builder) {
 }  // namespace
 
 ElementFamily spatial_joints_family() {
-  return {"spatial joints", spatial_joint_blocks, build_spatial_joints};
+  return {"spatial joints", spatial_joint_blocks, {build_spatial_joints}};
 }
 
 }  // namespace fsi::scene::detail

@@ -141,17 +141,13 @@ void build_spatial_springs(SceneBuilder& builder) {
   });
 }
 
-// In the order of the model's force elements (a spring_force sensor reads one by index).
-void build_springs(SceneBuilder& builder) {
-  build_planar_springs(builder);
-  build_planar_actors(builder);
-  build_spatial_springs(builder);
-}
-
 }  // namespace
 
 ElementFamily springs_family() {
-  return {"springs and actors", spring_blocks, build_springs};
+  // In the order of the model's force elements (a spring_force sensor reads one by index).
+  return {"springs and actors",
+          spring_blocks,
+          {build_planar_springs, build_planar_actors, build_spatial_springs}};
 }
 
 }  // namespace fsi::scene::detail

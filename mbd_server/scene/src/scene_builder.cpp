@@ -44,8 +44,10 @@ void SceneBuilder::build() {
               counterpart_hint(spec.dimension));
     }
   }
-  for (const ElementFamily& family : element_families())
-    family.build(*this);
+  for (const ElementFamily& family : element_families()) {
+    for (const auto build_step : family.build_steps)
+      build_step(*this);
+  }
 }
 
 std::vector<View> SceneBuilder::blocks(std::string_view name) const {

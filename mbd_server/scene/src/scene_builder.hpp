@@ -17,11 +17,11 @@
 
 #include <Eigen/Dense>
 
+#include "family_assembly.hpp"
 #include "fsi/mbd/model.hpp"
 #include "fsi/scene/fluid_region.hpp"
 #include "fsi/scene/scene.hpp"
 #include "fsi/scene/schema.hpp"
-#include "family_assembly.hpp"
 
 namespace fsi::scene::detail {
 
@@ -44,7 +44,9 @@ class SceneBuilder;
 struct ElementFamily {
   std::string_view name;  // "planar joints", for the README and messages of the registry
   std::vector<BlockSpec> (*blocks)();
-  void (*build)(SceneBuilder& builder);
+  // Run in this order: the order of the model's rows and force elements, which sensors read by
+  // index.
+  std::vector<void (*)(SceneBuilder& builder)> build_steps;
 };
 
 // Every family, in build and documentation order.
