@@ -12,6 +12,7 @@
 #include "fsi/common/error.hpp"
 #include "fsi/mbd/integrator.hpp"
 #include "fsi/mbd/model.hpp"
+#include "fsi/test_support/thrown.hpp"
 
 namespace fsi::mbd {
 namespace {
@@ -19,14 +20,8 @@ namespace {
 using testing::rigid;
 
 // The message of the fsi::Error that `action` throws ("" if none).
-template <class Action>
-std::string error_of(Action&& action) {
-  try {
-    action();
-  } catch (const fsi::Error& error) {
-    return error.what();
-  }
-  return "";
+std::string error_of(auto&& action) {
+  return test_support::message_thrown(action);
 }
 
 bool contains(const std::string& text, const std::string& part) {

@@ -19,6 +19,7 @@
 #include "fsi/mbd/constraint_element.hpp"
 #include "fsi/mbd/force_element.hpp"
 #include "fsi/mbd/model.hpp"
+#include "fsi/test_support/thrown.hpp"
 
 namespace fsi::mbd::testing {
 
@@ -140,14 +141,8 @@ inline void expect_sparse_model_matrices_equal(const Model& model, const State& 
 }
 
 // The message of the fsi::Error that `add` throws, or "accepted" when it throws none.
-template <typename Add>
-std::string error_message(Add&& add) {
-  try {
-    add();
-  } catch (const fsi::Error& error) {
-    return error.what();
-  }
-  return "accepted";
+std::string error_message(auto&& add) {
+  return test_support::message_thrown(add, "accepted");
 }
 
 }  // namespace fsi::mbd::testing

@@ -19,6 +19,7 @@
 #include "fsi/mbd/model.hpp"
 #include "fsi/mbd/readouts.hpp"
 #include "fsi/mbd/static_analysis.hpp"
+#include "fsi/test_support/thrown.hpp"
 #include "point_rows.hpp"
 #include "rigid_body_3d.hpp"
 #include "spring_damper.hpp"
@@ -33,14 +34,8 @@ Eigen::Matrix3d rotation(double angle, const Eigen::Vector3d& axis) {
   return Eigen::AngleAxisd(angle, axis.normalized()).toRotationMatrix();
 }
 
-template <typename Function>
-std::string error_of(Function&& function) {
-  try {
-    function();
-  } catch (const Error& error) {
-    return error.what();
-  }
-  return "no error";
+std::string error_of(auto&& function) {
+  return test_support::message_thrown(function, "no error");
 }
 
 RigidBody3DSpec top_spec() {

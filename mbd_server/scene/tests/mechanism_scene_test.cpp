@@ -25,7 +25,7 @@ class MechanismScene : public testing::FolderPerTest {
 
   // The problems of a scene that must not build ("" if it builds).
   std::string problems(const std::string& body) const {
-    return testing::thrown_by([&] { build_scene(write(body)); });
+    return testing::message_thrown([&] { build_scene(write(body)); });
   }
 };
 

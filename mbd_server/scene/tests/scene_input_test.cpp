@@ -31,7 +31,7 @@ class SceneInput : public testing::FolderPerTest {
   }
 
   static std::string error_of(const std::string& file, const std::vector<Override>& overrides) {
-    return testing::thrown_by([&] { build_scene(file, overrides); });
+    return testing::message_thrown([&] { build_scene(file, overrides); });
   }
 };
 

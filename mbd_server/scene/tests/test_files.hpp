@@ -11,18 +11,11 @@
 
 #include "fsi/common/error.hpp"
 #include "fsi/scene/scene.hpp"
+#include "fsi/test_support/thrown.hpp"
 
 namespace fsi::scene::testing {
 
-// The message of the fsi::Error that `call` throws ("" if it throws none).
-std::string thrown_by(auto&& call) {
-  try {
-    call();
-  } catch (const fsi::Error& error) {
-    return error.what();
-  }
-  return "";
-}
+using test_support::message_thrown;
 
 // A fresh folder for each test, named after it, removed afterwards.
 class FolderPerTest : public ::testing::Test {
