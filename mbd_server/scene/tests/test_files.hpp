@@ -17,6 +17,14 @@ namespace fsi::scene::testing {
 
 using test_support::message_thrown;
 
+// Problems or diagnostics one to a line, for a failing expectation to show.
+std::string listing(const auto& reports) {
+  std::string text;
+  for (const auto& report : reports)
+    text += report.text() + "\n";
+  return text;
+}
+
 // A fresh folder for each test, named after it, removed afterwards.
 class FolderPerTest : public ::testing::Test {
  protected:
