@@ -163,6 +163,19 @@ bool SceneBuilder::name_is_free(const View& element) {
   return false;
 }
 
+void SceneBuilder::add_joint(const View& element, const std::function<int()>& add,
+                             NamedJoint joint) {
+  placed(element, [&] { joint.first_row = add(); });
+  register_joint(element, std::move(joint));
+}
+
+void SceneBuilder::add_force_element(const View& element, const std::function<int()>& add,
+                                     bool rotational) {
+  int index = 0;
+  placed(element, [&] { index = add(); });
+  register_force_element(element, index, rotational);
+}
+
 void SceneBuilder::register_joint(const View& element, NamedJoint joint) {
   if (name_is_free(element)) names.joints.emplace(element.string("name"), std::move(joint));
 }
