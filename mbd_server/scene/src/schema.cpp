@@ -7,6 +7,7 @@
 #include <cmath>
 #include <map>
 
+#include "first_named.hpp"
 #include "fsi/common/error.hpp"
 #include "schema_text.hpp"
 
@@ -367,17 +368,11 @@ ParameterSpec matrix(std::string key, std::size_t columns, std::string unit, std
 }
 
 const ParameterSpec* BlockSpec::parameter(std::string_view key) const {
-  for (const ParameterSpec& spec : parameters) {
-    if (spec.key == key) return &spec;
-  }
-  return nullptr;
+  return detail::first_named(parameters, key, &ParameterSpec::key);
 }
 
 const BlockSpec* BlockSpec::block(std::string_view block_name) const {
-  for (const BlockSpec& spec : blocks) {
-    if (spec.name == block_name) return &spec;
-  }
-  return nullptr;
+  return detail::first_named(blocks, block_name, &BlockSpec::name);
 }
 
 namespace {
