@@ -7,6 +7,7 @@
 
 #include "fsi/protocol/frame.hpp"
 #include "fsi/protocol/messages.hpp"
+#include "fsi/test_support/thrown.hpp"
 
 namespace fsi::protocol::test {
 
@@ -18,12 +19,7 @@ inline bool contains(const std::string& text, const std::string& part) {
 // that no expectation matches, so the test fails showing it.
 template <class Error = ProtocolError>
 std::string error_of(auto&& action) {
-  try {
-    action();
-  } catch (const Error& error) {
-    return error.what();
-  }
-  return "(no error: the call returned)";
+  return test_support::message_thrown<Error>(action, "(no error: the call returned)");
 }
 
 inline std::string decode_error(MessageType type, std::span<const std::byte> payload) {

@@ -7,7 +7,6 @@
 #include <filesystem>
 #include <memory>
 
-#include "fsi/common/error.hpp"
 #include "fsi/common/stopwatch.hpp"
 #include "fsi/coupling/output.hpp"
 #include "fsi/coupling/run_manifest.hpp"
@@ -35,12 +34,7 @@ int run_mbd_only(scene::Scene& scene, const MbdOnlyOptions& options) {
   std::unique_ptr<SensorFile> sensors;
   std::unique_ptr<StructureSide> structure;
   try {
-    std::error_code error;
-    fs::create_directories(options.output_dir, error);
-    if (error) {
-      throw Error("cannot create output folder " + options.output_dir + ": " + error.message(),
-                  "--output", "choose a writable folder");
-    }
+    create_run_folder(options.output_dir);
     sensors = std::make_unique<SensorFile>(fs::path(options.output_dir) / "sensors.csv",
                                            "fsi-server --mbd-only sensors of " + scene.file,
                                            scene.sensors);

@@ -2,10 +2,20 @@
 
 #include <cerrno>
 #include <cstring>
+#include <system_error>
 
 #include "fsi/common/error.hpp"
 
 namespace fsi::coupling {
+
+void create_run_folder(const std::string& folder) {
+  std::error_code error;
+  std::filesystem::create_directories(folder, error);
+  if (error) {
+    throw Error("cannot create output folder " + folder + ": " + error.message(), "--output",
+                "choose a writable folder");
+  }
+}
 
 SensorFile::SensorFile(const std::string& path, const std::string& title,
                        const std::vector<std::string>& names, const std::vector<std::string>& units)

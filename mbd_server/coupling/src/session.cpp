@@ -94,12 +94,7 @@ class Session {
 
  private:
   void prepare_output() {
-    std::error_code error;
-    fs::create_directories(options_.output_dir, error);
-    if (error) {
-      throw Error("cannot create output folder " + options_.output_dir + ": " + error.message(),
-                  "--output", "choose a writable folder");
-    }
+    create_run_folder(options_.output_dir);
     sensors_ = std::make_unique<SensorFile>(fs::path(options_.output_dir) / "sensors.csv",
                                             "fsi-server sensors of " + scene_.file, scene_.sensors);
     if (scene_.output.snapshot_every_steps > 0) {

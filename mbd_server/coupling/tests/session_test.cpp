@@ -14,8 +14,10 @@
 #include <vector>
 
 #include "fake_fluid_side.hpp"
+#include "fsi/coupling/output.hpp"
 #include "fsi/coupling/session.hpp"
 #include "fsi/scene/scene.hpp"
+#include "fsi/test_support/thrown.hpp"
 
 namespace fsi::coupling {
 namespace {
@@ -207,6 +209,18 @@ TEST_F(SessionLoop, NonFiniteFluidForcesStopTheRunAtTheirStep) {
   EXPECT_EQ(run["status"], "failed");
   EXPECT_NE(run["reason"].get<std::string>().find("fluid forces of step 5 are not finite"),
             std::string::npos);
+}
+
+// Both run kinds (coupled and --mbd-only) create their folder this way: a folder that cannot be
+// made (here: below a regular file) is an error naming it and the option.
+TEST_F(SessionLoop, ARunFolderThatCannotBeCreatedIsAnErrorNamingIt) {
+  fs::create_directories(output_);
+  std::ofstream(output_ / "a_file") << "not a folder\n";
+  const std::string folder = (output_ / "a_file" / "run").string();
+  const std::string text = test_support::message_thrown([&] { create_run_folder(folder); });
+  EXPECT_NE(text.find("cannot create output folder " + folder), std::string::npos) << text;
+  EXPECT_NE(text.find("--output"), std::string::npos) << text;
+  EXPECT_NE(text.find("choose a writable folder"), std::string::npos) << text;
 }
 
 }  // namespace

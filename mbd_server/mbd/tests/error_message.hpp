@@ -1,9 +1,10 @@
 #pragma once
-// The text of the fsi::Error a test provokes, shared by the tests that read error messages.
+// The text of the fsi::Error a test provokes, shared by the engine's tests that read error
+// messages (over the project-wide test_support::message_thrown).
 
 #include <string>
 
-#include "fsi/common/error.hpp"
+#include "fsi/test_support/thrown.hpp"
 
 namespace fsi::mbd::testing {
 
@@ -11,12 +12,7 @@ namespace fsi::mbd::testing {
 // (a text no expectation matches, so a failing test shows it).
 template <typename Action>
 std::string error_message(Action&& action, std::string when_accepted = "accepted") {
-  try {
-    action();
-  } catch (const fsi::Error& error) {
-    return error.what();
-  }
-  return when_accepted;
+  return test_support::message_thrown(action, when_accepted);
 }
 
 }  // namespace fsi::mbd::testing

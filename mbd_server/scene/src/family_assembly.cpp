@@ -129,8 +129,9 @@ void request_assembly(SceneBuilder& builder) {
 }  // namespace
 
 ElementFamily assembly_family() {
-  return {"initial assembly", [] { return std::vector<BlockSpec>{assembly_block_spec()}; },
-          request_assembly};
+  return {"initial assembly",
+          [] { return std::vector<BlockSpec>{assembly_block_spec()}; },
+          {request_assembly}};
 }
 
 mbd::AssemblyReport assemble_initial_configuration(mbd::Model& model,

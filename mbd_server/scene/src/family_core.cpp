@@ -148,7 +148,7 @@ void build_core(SceneBuilder& builder) {
 }  // namespace
 
 ElementFamily core_family() {
-  return {"solver, output and gravity", core_blocks, build_core};
+  return {"solver, output and gravity", core_blocks, {build_core}};
 }
 
 }  // namespace fsi::scene::detail

@@ -263,7 +263,7 @@ void build_fluid(SceneBuilder& builder) {
 }  // namespace
 
 ElementFamily fluid_family() {
-  return {"fluid set-up", fluid_blocks, build_fluid};
+  return {"fluid set-up", fluid_blocks, {build_fluid}};
 }
 
 }  // namespace fsi::scene::detail

@@ -91,15 +91,10 @@ void build_spatial_loads(SceneBuilder& builder) {
   });
 }
 
-void build_loads(SceneBuilder& builder) {
-  build_planar_loads(builder);
-  build_spatial_loads(builder);
-}
-
 }  // namespace
 
 ElementFamily loads_family() {
-  return {"loads", load_blocks, build_loads};
+  return {"loads", load_blocks, {build_planar_loads, build_spatial_loads}};
 }
 
 }  // namespace fsi::scene::detail

@@ -125,7 +125,7 @@ void add_polyline_mesh(SceneBuilder& builder, const View& mesh, mbd::BodyId body
 }
 
 ElementFamily meshes_family() {
-  return {"meshes", mesh_blocks, build_meshes};
+  return {"meshes", mesh_blocks, {build_meshes}};
 }
 
 }  // namespace fsi::scene::detail

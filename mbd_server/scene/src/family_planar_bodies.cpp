@@ -134,7 +134,7 @@ void build_planar_bodies(SceneBuilder& builder) {
 }  // namespace
 
 ElementFamily planar_bodies_family() {
-  return {"planar bodies", planar_body_blocks, build_planar_bodies};
+  return {"planar bodies", planar_body_blocks, {build_planar_bodies}};
 }
 
 }  // namespace fsi::scene::detail

@@ -129,17 +129,15 @@ void build_point_joints(SceneBuilder& builder) {
   builder.each("RevoluteJoint", [&](const View& j) {
     const auto a = builder.point(j, "a");
     const auto b = builder.point(j, "b");
-    int row = 0;
-    builder.placed(j, [&] { row = model.add_revolute_joint(a, b, name_of(j)); });
-    builder.register_joint(j, {row, 2, a.body, "revolute joint"});
+    builder.add_joint(j, [&] { return model.add_revolute_joint(a, b, name_of(j)); },
+                      {.rows = 2, .body = a.body, .kind = "revolute joint"});
   });
   builder.each("DistanceConstraint", [&](const View& c) {
     const auto a = builder.point(c, "a");
     const auto b = builder.point(c, "b");
     const std::optional<double> length = optional_number(c, "length");
-    int row = 0;
-    builder.placed(c, [&] { row = model.add_distance_constraint(a, b, length, name_of(c)); });
-    builder.register_joint(c, {row, 1, a.body, "distance constraint"});
+    builder.add_joint(c, [&] { return model.add_distance_constraint(a, b, length, name_of(c)); },
+                      {.rows = 1, .body = a.body, .kind = "distance constraint"});
   });
   builder.each("PrismaticJoint", [&](const View& j) {
     mbd::PrismaticJointSpec spec;
@@ -148,18 +146,16 @@ void build_point_joints(SceneBuilder& builder) {
     spec.b = builder.point(j, "b");
     const auto axis = j.vector("axis");
     spec.axis = {axis[0], axis[1]};
-    int row = 0;
-    builder.placed(j, [&] { row = model.add_prismatic_joint(spec); });
-    builder.register_joint(j, {row, 2, spec.a.body, "prismatic joint"});
+    builder.add_joint(j, [&] { return model.add_prismatic_joint(spec); },
+                      {.rows = 2, .body = spec.a.body, .kind = "prismatic joint"});
   });
   builder.each("Clamp", [&](const View& c) {
     mbd::ClampSpec spec;
     spec.name = name_of(c);
     spec.body = builder.find_body(c, "body");
     if (c.has("to")) spec.to = builder.find_body(c, "to");
-    int row = 0;
-    builder.placed(c, [&] { row = model.add_clamp(spec); });
-    builder.register_joint(c, {row, 3, spec.body, "clamp"});
+    builder.add_joint(c, [&] { return model.add_clamp(spec); },
+                      {.rows = 3, .body = spec.body, .kind = "clamp"});
   });
 }
 
@@ -176,35 +172,30 @@ void build_prescribed_motions(SceneBuilder& builder) {
     spec.check_times.clear();
     for (int k = 0; k <= 10; ++k)
       spec.check_times.push_back(builder.end_time * k / 10.0);
-    int row = 0;
-    builder.placed(p, [&] { row = builder.model.add_prescribed_motion(spec); });
-    builder.register_joint(p, {row, 1, spec.body, "prescribed motion"});
+    builder.add_joint(p, [&] { return builder.model.add_prescribed_motion(spec); },
+                      {.rows = 1, .body = spec.body, .kind = "prescribed motion"});
   });
   builder.each("PrescribedVelocity", [&](const View& p) {
     const mbd::BodyId body = builder.find_body(p, "body");
     const RuntimeExpression velocity = expression(p, "velocity", {"t"});
-    int row = 0;
-    builder.placed(p, [&] {
-      row =
-          builder.model.add_velocity_constraint(body, coordinate_of(p.string("coordinate")),
-                                                [velocity](double time) { return velocity(time); });
-    });
-    builder.register_joint(p, {row, 1, body, "prescribed velocity"});
+    builder.add_joint(p,
+                      [&] {
+                        return builder.model.add_velocity_constraint(
+                            body, coordinate_of(p.string("coordinate")),
+                            [velocity](double time) { return velocity(time); });
+                      },
+                      {.rows = 1, .body = body, .kind = "prescribed velocity"});
   });
-}
-
-// In the order of their rows (a joint_force sensor reads rows by index).
-void build_planar_joints(SceneBuilder& builder) {
-  build_coordinate_constraints(builder);
-  build_beam_clamps(builder);
-  build_point_joints(builder);
-  build_prescribed_motions(builder);
 }
 
 }  // namespace
 
 ElementFamily planar_joints_family() {
-  return {"planar joints", planar_joint_blocks, build_planar_joints};
+  // In the order of their rows (a joint_force sensor reads rows by index).
+  return {"planar joints",
+          planar_joint_blocks,
+          {build_coordinate_constraints, build_beam_clamps, build_point_joints,
+           build_prescribed_motions}};
 }
 
 }  // namespace fsi::scene::detail

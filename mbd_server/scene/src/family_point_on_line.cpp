@@ -203,7 +203,7 @@ void build_points_on_lines(SceneBuilder& builder) {
 }  // namespace
 
 ElementFamily point_on_line_family() {
-  return {"point on line (slider)", point_on_line_blocks, build_points_on_lines};
+  return {"point on line (slider)", point_on_line_blocks, {build_points_on_lines}};
 }
 
 }  // namespace fsi::scene::detail

@@ -324,7 +324,7 @@ void build_sensors(SceneBuilder& builder) {
 }  // namespace
 
 ElementFamily sensors_family() {
-  return {"sensors", sensor_blocks, build_sensors};
+  return {"sensors", sensor_blocks, {build_sensors}};
 }
 
 }  // namespace fsi::scene::detail

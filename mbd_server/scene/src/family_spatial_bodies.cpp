@@ -196,7 +196,7 @@ void build_spatial_bodies(SceneBuilder& builder) {
 }  // namespace
 
 ElementFamily spatial_bodies_family() {
-  return {"spatial bodies", spatial_body_blocks, build_spatial_bodies};
+  return {"spatial bodies", spatial_body_blocks, {build_spatial_bodies}};
 }
 
 }  // namespace fsi::scene::detail

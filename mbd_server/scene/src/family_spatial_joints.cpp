@@ -56,9 +56,8 @@ void build_spatial_joints(SceneBuilder& builder) {
   builder.each("SphericalJoint", [&](const View& j) {
     const auto a = builder.point3(j, "a");
     const auto b = builder.point3(j, "b");
-    int row = 0;
-    builder.placed(j, [&] { row = model.add_spherical_joint(a, b, name_of(j)); });
-    builder.register_joint(j, {row, 3, a.body, "spherical joint"});
+    builder.add_joint(j, [&] { return model.add_spherical_joint(a, b, name_of(j)); },
+                      {.rows = 3, .body = a.body, .kind = "spherical joint"});
   });
   builder.each("RevoluteJoint3D", [&](const View& j) {
     mbd::RevoluteJoint3DSpec spec;
@@ -66,34 +65,31 @@ void build_spatial_joints(SceneBuilder& builder) {
     spec.a = builder.point3(j, "a");
     spec.b = builder.point3(j, "b");
     spec.axis = vector3(j, "axis");
-    int row = 0;
-    builder.placed(j, [&] { row = model.add_revolute_joint_3d(spec); });
-    builder.register_joint(j, {row, 5, spec.a.body, "revolute joint"});
+    builder.add_joint(j, [&] { return model.add_revolute_joint_3d(spec); },
+                      {.rows = 5, .body = spec.a.body, .kind = "revolute joint"});
   });
   builder.each("FixedJoint3D", [&](const View& j) {
     mbd::FixedJoint3DSpec spec;
     spec.name = name_of(j);
     spec.body = builder.find_body(j, "body");
     if (j.has("to")) spec.to = builder.find_body(j, "to");
-    int row = 0;
-    builder.placed(j, [&] { row = model.add_fixed_joint_3d(spec); });
-    builder.register_joint(j, {row, 6, spec.body, "fixed joint"});
+    builder.add_joint(j, [&] { return model.add_fixed_joint_3d(spec); },
+                      {.rows = 6, .body = spec.body, .kind = "fixed joint"});
   });
   builder.each("DistanceConstraint3D", [&](const View& c) {
     const auto a = builder.point3(c, "a");
     const auto b = builder.point3(c, "b");
     const std::optional<double> length = optional_number(c, "length");
-    int row = 0;
-    builder.placed(c,
-                   [&] { row = model.add_spatial_distance_constraint(a, b, length, name_of(c)); });
-    builder.register_joint(c, {row, 1, a.body, "distance constraint"});
+    builder.add_joint(
+        c, [&] { return model.add_spatial_distance_constraint(a, b, length, name_of(c)); },
+        {.rows = 1, .body = a.body, .kind = "distance constraint"});
   });
 }
 
 }  // namespace
 
 ElementFamily spatial_joints_family() {
-  return {"spatial joints", spatial_joint_blocks, build_spatial_joints};
+  return {"spatial joints", spatial_joint_blocks, {build_spatial_joints}};
 }
 
 }  // namespace fsi::scene::detail

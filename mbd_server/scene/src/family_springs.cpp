@@ -91,9 +91,8 @@ void build_planar_springs(SceneBuilder& builder) {
     spec.stiffness = f.number("stiffness");
     spec.damping = f.number("damping");
     spec.rest_angle = optional_number(f, "rest_angle");
-    int index = 0;
-    builder.placed(f, [&] { index = model.add_rotational_spring_damper(spec); });
-    builder.register_force_element(f, index, true);
+    builder.add_force_element(
+        f, [&] { return model.add_rotational_spring_damper(spec); }, true);
   });
 }
 
@@ -107,9 +106,8 @@ void build_planar_actors(SceneBuilder& builder) {
     const RuntimeExpression law = expression(f, "tension", {"elongation", "rate"});
     spec.tension = [law](double elongation, double rate) { return law(elongation, rate); };
     spec.rest_length = optional_number(f, "rest_length");
-    int index = 0;
-    builder.placed(f, [&] { index = model.add_nonlinear_spring_damper(spec); });
-    builder.register_force_element(f, index, false);
+    builder.add_force_element(
+        f, [&] { return model.add_nonlinear_spring_damper(spec); }, false);
   });
   builder.each("SpringActor", [&](const View& f) {
     mbd::SpringActorSpec spec;
@@ -120,9 +118,8 @@ void build_planar_actors(SceneBuilder& builder) {
       spec.characteristic.emplace_back(row[0], row[1]);
     spec.damping = f.number("damping");
     spec.rest_length = optional_number(f, "rest_length");
-    int index = 0;
-    builder.placed(f, [&] { index = model.add_spring_actor(spec); });
-    builder.register_force_element(f, index, false);
+    builder.add_force_element(
+        f, [&] { return model.add_spring_actor(spec); }, false);
   });
 }
 
@@ -135,23 +132,18 @@ void build_spatial_springs(SceneBuilder& builder) {
     spec.stiffness = f.number("stiffness");
     spec.damping = f.number("damping");
     spec.rest_length = optional_number(f, "rest_length");
-    int index = 0;
-    builder.placed(f, [&] { index = builder.model.add_spatial_spring_damper(spec); });
-    builder.register_force_element(f, index, false);
+    builder.add_force_element(
+        f, [&] { return builder.model.add_spatial_spring_damper(spec); }, false);
   });
-}
-
-// In the order of the model's force elements (a spring_force sensor reads one by index).
-void build_springs(SceneBuilder& builder) {
-  build_planar_springs(builder);
-  build_planar_actors(builder);
-  build_spatial_springs(builder);
 }
 
 }  // namespace
 
 ElementFamily springs_family() {
-  return {"springs and actors", spring_blocks, build_springs};
+  // In the order of the model's force elements (a spring_force sensor reads one by index).
+  return {"springs and actors",
+          spring_blocks,
+          {build_planar_springs, build_planar_actors, build_spatial_springs}};
 }
 
 }  // namespace fsi::scene::detail

@@ -8,6 +8,7 @@
 #include <optional>
 #include <utility>
 
+#include "first_named.hpp"
 #include "fsi/common/error.hpp"
 #include "raw_tree.hpp"
 
@@ -240,10 +241,7 @@ std::vector<const Block*> Block::children(std::string_view child_name) const {
 }
 
 const Block* Block::child(std::string_view child_name) const {
-  for (const Block& block : blocks) {
-    if (block.name == child_name) return &block;
-  }
-  return nullptr;
+  return detail::first_named(blocks, child_name, &Block::name);
 }
 
 const Block* Block::lookup_block(std::string_view path) const {

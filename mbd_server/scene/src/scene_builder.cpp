@@ -44,8 +44,10 @@ void SceneBuilder::build() {
               counterpart_hint(spec.dimension));
     }
   }
-  for (const ElementFamily& family : element_families())
-    family.build(*this);
+  for (const ElementFamily& family : element_families()) {
+    for (const auto build_step : family.build_steps)
+      build_step(*this);
+  }
 }
 
 std::vector<View> SceneBuilder::blocks(std::string_view name) const {
@@ -159,6 +161,19 @@ bool SceneBuilder::name_is_free(const View& element) {
   problem(element.location("name"), "a second element is named '" + name + "'",
           "give every joint and force element its own name");
   return false;
+}
+
+void SceneBuilder::add_joint(const View& element, const std::function<int()>& add,
+                             NamedJoint joint) {
+  placed(element, [&] { joint.first_row = add(); });
+  register_joint(element, std::move(joint));
+}
+
+void SceneBuilder::add_force_element(const View& element, const std::function<int()>& add,
+                                     bool rotational) {
+  int index = 0;
+  placed(element, [&] { index = add(); });
+  register_force_element(element, index, rotational);
 }
 
 void SceneBuilder::register_joint(const View& element, NamedJoint joint) {

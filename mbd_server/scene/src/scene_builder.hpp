@@ -17,11 +17,11 @@
 
 #include <Eigen/Dense>
 
+#include "family_assembly.hpp"
 #include "fsi/mbd/model.hpp"
 #include "fsi/scene/fluid_region.hpp"
 #include "fsi/scene/scene.hpp"
 #include "fsi/scene/schema.hpp"
-#include "family_assembly.hpp"
 
 namespace fsi::scene::detail {
 
@@ -44,7 +44,9 @@ class SceneBuilder;
 struct ElementFamily {
   std::string_view name;  // "planar joints", for the README and messages of the registry
   std::vector<BlockSpec> (*blocks)();
-  void (*build)(SceneBuilder& builder);
+  // Run in this order: the order of the model's rows and force elements, which sensors read by
+  // index.
+  std::vector<void (*)(SceneBuilder& builder)> build_steps;
 };
 
 // Every family, in build and documentation order.
@@ -104,6 +106,10 @@ class SceneBuilder {
   // A joint or force element a sensor may name; a second use of the name is a problem.
   void register_joint(const View& element, NamedJoint joint);
   void register_force_element(const View& element, int index, bool rotational);
+  // placed(add) and register what it added: `add` returns the first row of the joint (the
+  // joint's first_row is filled in) or the index of the force element.
+  void add_joint(const View& element, const std::function<int()>& add, NamedJoint joint);
+  void add_force_element(const View& element, const std::function<int()>& add, bool rotational);
 
   // A file named at `where`: relative to the folder of the scene file that names it (an
   // included file's own), or to the top-level scene's for a --set; unless absolute.

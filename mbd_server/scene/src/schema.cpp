@@ -7,6 +7,7 @@
 #include <cmath>
 #include <map>
 
+#include "first_named.hpp"
 #include "fsi/common/error.hpp"
 #include "schema_text.hpp"
 
@@ -367,48 +368,42 @@ ParameterSpec matrix(std::string key, std::size_t columns, std::string unit, std
 }
 
 const ParameterSpec* BlockSpec::parameter(std::string_view key) const {
-  for (const ParameterSpec& spec : parameters) {
-    if (spec.key == key) return &spec;
-  }
-  return nullptr;
+  return detail::first_named(parameters, key, &ParameterSpec::key);
 }
 
 const BlockSpec* BlockSpec::block(std::string_view block_name) const {
-  for (const BlockSpec& spec : blocks) {
-    if (spec.name == block_name) return &spec;
-  }
-  return nullptr;
+  return detail::first_named(blocks, block_name, &BlockSpec::name);
 }
 
-BlockSpec BlockSpec::as_list() const {
-  BlockSpec copy = *this;
-  copy.repeated = true;
+namespace {
+
+// A copy of `spec` with one field changed: what every BlockSpec modifier returns.
+template <class Field>
+BlockSpec changed(const BlockSpec& spec, Field BlockSpec::*field, Field value) {
+  BlockSpec copy = spec;
+  copy.*field = value;
   return copy;
+}
+
+}  // namespace
+
+BlockSpec BlockSpec::as_list() const {
+  return changed(*this, &BlockSpec::repeated, true);
 }
 BlockSpec BlockSpec::as_required() const {
-  BlockSpec copy = *this;
-  copy.required = true;
-  return copy;
+  return changed(*this, &BlockSpec::required, true);
 }
 BlockSpec BlockSpec::as_open() const {
-  BlockSpec copy = *this;
-  copy.open = true;
-  return copy;
+  return changed(*this, &BlockSpec::open, true);
 }
 BlockSpec BlockSpec::planar() const {
-  BlockSpec copy = *this;
-  copy.dimension = 2;
-  return copy;
+  return changed(*this, &BlockSpec::dimension, 2);
 }
 BlockSpec BlockSpec::spatial() const {
-  BlockSpec copy = *this;
-  copy.dimension = 3;
-  return copy;
+  return changed(*this, &BlockSpec::dimension, 3);
 }
 BlockSpec BlockSpec::for_coupled_runs() const {
-  BlockSpec copy = *this;
-  copy.coupled_only = true;
-  return copy;
+  return changed(*this, &BlockSpec::coupled_only, true);
 }
 
 BlockSpec block_spec(std::string name, std::string doc, std::vector<ParameterSpec> parameters,

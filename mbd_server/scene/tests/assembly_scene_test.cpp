@@ -4,10 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <fstream>
 #include <string>
 
-#include "fsi/common/error.hpp"
 #include "fsi/mbd/integrator.hpp"
 #include "fsi/mbd/readouts.hpp"
 #include "fsi/scene/scene.hpp"
@@ -16,28 +14,12 @@
 namespace fsi::scene {
 namespace {
 
-namespace fs = std::filesystem;
-
-class AssemblyScene : public ::testing::Test {
+class AssemblyScene : public testing::FolderPerTest {
  protected:
-  void SetUp() override {
-    folder_ = fs::temp_directory_path() /
-              ("fsi_assembly_scene_" +
-               std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::create_directories(folder_);
-    std::ofstream(folder_ / "s.in") << "# script\n";
-  }
-  void TearDown() override { fs::remove_all(folder_); }
-
-  fs::path write(const std::string& assembly, double rocker_length = 0.5) {
-    const fs::path path = folder_ / "four_bar.scene";
-    std::ofstream(path) << "scene_language = 1\n"
-                           "SolverOptions { end_time = 0.1; Timeint { step_size = 1e-3 } }\n"
-                        << assembly << "\n"
-                        << four_bar(rocker_length)
-                        << "LIGGGHTS { script1 = \"s.in\"; script2 = \"s.in\" }\n"
-                           "Coupling { refinement_resolution = 0.002 }\n";
-    return path;
+  std::filesystem::path write(const std::string& assembly, double rocker_length = 0.5) const {
+    return write_coupled_scene("four_bar.scene",
+                               "SolverOptions { end_time = 0.1; Timeint { step_size = 1e-3 } }\n" +
+                                   assembly + "\n" + four_bar(rocker_length));
   }
 
   // Ground pivots (0, 0) and (1, 0), crank and rocker upright (0.5 m), coupler across at
@@ -61,8 +43,6 @@ RevoluteJoint { name = "O2"; body_a = "rocker"; point_a = [0, -)" +
            half_rocker + R"(]; point_b = [1, 0] }
 )";
   }
-
-  fs::path folder_;
 };
 
 TEST_F(AssemblyScene, WithoutTheBlockTheTurnedLinksAreRefused) {

@@ -27,7 +27,7 @@ LatticeOptions lattice(double d, double displacement = 0.0, std::uint64_t seed =
   return options;
 }
 
-using testing::thrown_by;
+using testing::message_thrown;
 
 TEST(FluidRegion, ARectangularPolygonFillsLikeTheBox) {
   const Polygon rectangle{{{0, 0}, {1, 0}, {1, 0.5}, {0, 0.5}}, {}};
@@ -54,7 +54,7 @@ TEST(FluidRegion, A3DBoxFillsLikeItsStlSurface) {
   EXPECT_EQ(box.size(), 3u * 10u * 5u * 3u);
   EXPECT_EQ(fill_closed_surface(surface, lattice(0.1)), box);
   EXPECT_DOUBLE_EQ(box[2], 0.05);
-  EXPECT_NE(thrown_by([] {
+  EXPECT_NE(message_thrown([] {
               fill_box_3d({0, 0, 0}, {1, 1, 0.05}, lattice(0.1));
             }).find("holds no lattice point"),
             std::string::npos);
@@ -127,19 +127,21 @@ TEST(FluidRegion, BadPolygonsAreExplained) {
           .find("hole 0: vertex 1 lies outside the polygon"),
       std::string::npos);
   const Polygon square{{{0, 0}, {1, 0}, {1, 1}, {0, 1}}, {}};
-  EXPECT_NE(thrown_by([&] { fill_polygon(square, lattice(0.0)); }).find("spacing must be positive"),
-            std::string::npos);
-  EXPECT_NE(thrown_by([&] { fill_polygon(square, lattice(0.1, 0.6)); }).find("[0, 0.5]"),
-            std::string::npos);
   EXPECT_NE(
-      thrown_by([&] { fill_polygon(square, lattice(1e-5), 1000); }).find("increase the spacing"),
+      message_thrown([&] { fill_polygon(square, lattice(0.0)); }).find("spacing must be positive"),
       std::string::npos);
+  EXPECT_NE(message_thrown([&] { fill_polygon(square, lattice(0.1, 0.6)); }).find("[0, 0.5]"),
+            std::string::npos);
+  EXPECT_NE(message_thrown([&] {
+              fill_polygon(square, lattice(1e-5), 1000);
+            }).find("increase the spacing"),
+            std::string::npos);
 }
 
 TEST(FluidRegion, AHoleCrossingTheOutlineIsNamedAsSuch) {
   // A hole poking out of the unit square through its right edge (vertex 1 outside).
   const Polygon poking{{{0, 0}, {1, 0}, {1, 1}, {0, 1}}, {{{0.5, 0.5}, {1.5, 0.5}, {0.5, 0.7}}}};
-  const std::string poking_error = thrown_by([&] { fill_polygon(poking, lattice(0.1)); });
+  const std::string poking_error = message_thrown([&] { fill_polygon(poking, lattice(0.1)); });
   EXPECT_NE(poking_error.find("hole 0: vertex 1 lies outside the polygon (the hole's edge 0-1 "
                               "crosses the polygon's edge 1-2)"),
             std::string::npos)
@@ -153,12 +155,12 @@ TEST(FluidRegion, AHoleCrossingTheOutlineIsNamedAsSuch) {
   const Polygon across{{{0, 0}, {1, 0}, {1, 0.4}, {0.4, 0.4}, {0.4, 1}, {0, 1}},
                        {{{0.2, 0.2}, {0.8, 0.2}, {0.8, 0.3}, {0.3, 0.8}, {0.2, 0.8}}}};
   EXPECT_EQ(polygon_problem(across), "hole 0: the hole's edge 2-3 crosses the polygon's edge 2-3");
-  const std::string across_error = thrown_by([&] { fill_polygon(across, lattice(0.1)); });
+  const std::string across_error = message_thrown([&] { fill_polygon(across, lattice(0.1)); });
   EXPECT_NE(across_error.find("a hole must lie inside the polygon"), std::string::npos)
       << across_error;
   // A polygon that crosses itself is still told to order its vertices.
   const Polygon bow_tie{{{0, 0}, {2, 2}, {2, 0}, {0, 1}}, {}};
-  EXPECT_NE(thrown_by([&] { fill_polygon(bow_tie, lattice(0.1)); }).find("in order"),
+  EXPECT_NE(message_thrown([&] { fill_polygon(bow_tie, lattice(0.1)); }).find("in order"),
             std::string::npos);
 }
 
@@ -272,7 +274,7 @@ TEST(FluidRegion, BadStlFilesAreExplained) {
   open.pop_back();
   const TriangleMesh holed = parse_stl(ascii_stl(open), "open.stl");
   EXPECT_NE(closed_surface_problem(holed).find("belongs to one triangle only"), std::string::npos);
-  EXPECT_NE(thrown_by([&] {
+  EXPECT_NE(message_thrown([&] {
               fill_closed_surface(holed, lattice(0.1));
             }).find("does not enclose a volume"),
             std::string::npos);
@@ -284,19 +286,20 @@ TEST(FluidRegion, BadStlFilesAreExplained) {
 
   std::string truncated = binary_stl(cube());
   truncated.resize(truncated.size() - 10);
-  EXPECT_NE(thrown_by([&] { parse_stl(truncated, "t.stl"); }).find("this file has"),
+  EXPECT_NE(message_thrown([&] { parse_stl(truncated, "t.stl"); }).find("this file has"),
             std::string::npos);
   std::string text = ascii_stl(cube());
   text.replace(text.find("vertex 0 0 0"), 12, "vertex 0 0 x");
-  const std::string message = thrown_by([&] { parse_stl(text, "bad.stl"); });
+  const std::string message = message_thrown([&] { parse_stl(text, "bad.stl"); });
   EXPECT_NE(message.find("bad.stl:4"), std::string::npos) << message;
   EXPECT_NE(message.find("a vertex needs three numbers"), std::string::npos) << message;
-  EXPECT_NE(thrown_by([&] {
+  EXPECT_NE(message_thrown([&] {
               parse_stl("solid x\n facet normal 0 0 1\n", "e.stl");
             }).find("without 'endsolid'"),
             std::string::npos);
-  EXPECT_NE(thrown_by([&] { read_stl("/nonexistent/x.stl"); }).find("cannot read the STL file"),
-            std::string::npos);
+  EXPECT_NE(
+      message_thrown([&] { read_stl("/nonexistent/x.stl"); }).find("cannot read the STL file"),
+      std::string::npos);
 }
 
 }  // namespace

@@ -5,52 +5,28 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 #include <string>
 
-#include "fsi/common/error.hpp"
 #include "fsi/mbd/integrator.hpp"
 #include "fsi/scene/scene.hpp"
+#include "test_files.hpp"
 
 namespace fsi::scene {
 namespace {
 
-namespace fs = std::filesystem;
-
 // A scene file of `body` plus what every scene needs, in a fresh folder.
-class MechanismScene : public ::testing::Test {
+class MechanismScene : public testing::FolderPerTest {
  protected:
-  void SetUp() override {
-    folder_ = fs::temp_directory_path() /
-              ("fsi_mechanism_scene_" +
-               std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::create_directories(folder_);
-    std::ofstream(folder_ / "s.in") << "# script\n";
-  }
-  void TearDown() override { fs::remove_all(folder_); }
-
-  std::string write(const std::string& body) {
-    const fs::path path = folder_ / "m.scene";
-    std::ofstream(path) << "scene_language = 1\n"
-                           "SolverOptions { end_time = 1; Timeint { step_size = 1e-3 } }\n"
-                        << body
-                        << "LIGGGHTS { script1 = \"s.in\"; script2 = \"s.in\" }\n"
-                           "Coupling { refinement_resolution = 0.002 }\n";
-    return path.string();
+  std::string write(const std::string& body) const {
+    return write_coupled_scene(
+               "m.scene", "SolverOptions { end_time = 1; Timeint { step_size = 1e-3 } }\n" + body)
+        .string();
   }
 
   // The problems of a scene that must not build ("" if it builds).
-  std::string problems(const std::string& body) {
-    try {
-      build_scene(write(body));
-    } catch (const fsi::Error& error) {
-      return error.what();
-    }
-    return "";
+  std::string problems(const std::string& body) const {
+    return testing::message_thrown([&] { build_scene(write(body)); });
   }
-
-  fs::path folder_;
 };
 
 const char* const kMechanism = R"scene(Gravity { acceleration = [0, -9.81] }

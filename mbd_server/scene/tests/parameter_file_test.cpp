@@ -15,7 +15,7 @@
 namespace fsi::scene {
 namespace {
 
-using testing::thrown_by;
+using testing::message_thrown;
 
 namespace fs = std::filesystem;
 
@@ -50,7 +50,7 @@ Block parse(const std::string& text, const std::vector<Override>& overrides = {}
 
 // The message of the fsi::Error that parsing throws ("" if it does not throw).
 std::string error_of(const std::string& text, const std::vector<Override>& overrides = {}) {
-  return thrown_by([&] { parse(text, overrides); });
+  return message_thrown([&] { parse(text, overrides); });
 }
 
 #define EXPECT_CONTAINS(haystack, needle) \
@@ -307,17 +307,17 @@ TEST(ParameterFile, SyntaxErrorsStopAtTheFirstWithItsLocation) {
 TEST(ParameterFile, IncludeErrorsNameTheIncludingLine) {
   TempFolder folder;
   const std::string missing = folder.write("missing.scene", "a = 1\n  include \"nothere.scene\"\n");
-  const std::string missing_include = thrown_by([&] { load_parameter_file(missing); });
+  const std::string missing_include = message_thrown([&] { load_parameter_file(missing); });
   EXPECT_CONTAINS(missing_include, "missing.scene:2:3: cannot read the included file");
   EXPECT_CONTAINS(missing_include, "nothere.scene");
   folder.write("a.scene", "x = 1\ninclude \"b.scene\"\n");
   folder.write("b.scene", "include \"a.scene\"\n");
-  const std::string include_cycle =
-      thrown_by([&] { load_parameter_file(folder.write("loop.scene", "include \"a.scene\"\n")); });
+  const std::string include_cycle = message_thrown(
+      [&] { load_parameter_file(folder.write("loop.scene", "include \"a.scene\"\n")); });
   EXPECT_CONTAINS(include_cycle, "b.scene:1:1");
   EXPECT_CONTAINS(include_cycle, "include cycle: a.scene -> b.scene -> a.scene");
   folder.write("broken.scene", "ok = 1\nbad = [1\n");
-  const std::string broken_include = thrown_by(
+  const std::string broken_include = message_thrown(
       [&] { load_parameter_file(folder.write("top.scene", "\n\ninclude \"broken.scene\"\n")); });
   EXPECT_CONTAINS(broken_include, "broken.scene:2:7 (included from ");
   EXPECT_CONTAINS(broken_include, "top.scene:3:1)");
@@ -330,14 +330,14 @@ TEST(ParameterFile, IncludesAndScenesMustBeRegularFiles) {
   TempFolder folder;
   folder.write("data/x.scene", "x = 1\n");
   const std::string main = folder.write("main.scene", "a = 1\ninclude \"data\"\n");
-  const std::string folder_include = thrown_by([&] { load_parameter_file(main); });
+  const std::string folder_include = message_thrown([&] { load_parameter_file(main); });
   EXPECT_CONTAINS(folder_include, "main.scene:2:1: cannot read the included file");
   EXPECT_CONTAINS(folder_include, "not a folder or a device");
   const std::string device_include =
-      thrown_by([&] { parse_parameter_text("include \"/dev/null\"\n", "t.scene"); });
+      message_thrown([&] { parse_parameter_text("include \"/dev/null\"\n", "t.scene"); });
   EXPECT_CONTAINS(device_include, "t.scene:1:1: cannot read the included file '/dev/null'");
   const std::string data_folder = fs::path(main).parent_path() / "data";
-  const std::string folder_scene = thrown_by([&] { load_parameter_file(data_folder); });
+  const std::string folder_scene = message_thrown([&] { load_parameter_file(data_folder); });
   EXPECT_CONTAINS(folder_scene, "cannot read the scene file '" + data_folder + "'");
 }
 
@@ -352,12 +352,12 @@ TEST(ParameterFile, InMemoryIncludesReadNothingElse) {
                                           "/scenes/main.scene", {}, files);
   EXPECT_DOUBLE_EQ(number_at(root, "w"), 2 * 9.81);
   for (const std::string outside : {"/etc/hostname", "../etc/hostname", "sub/../../etc/hostname"}) {
-    const std::string read_outside = thrown_by([&] {
+    const std::string read_outside = message_thrown([&] {
       parse_parameter_text("include \"" + outside + "\"\n", "/scenes/main.scene", {}, files);
     });
     EXPECT_CONTAINS(read_outside, "/scenes/main.scene:1:1: cannot read the included file");
   }
-  const std::string memory_cycle = thrown_by(
+  const std::string memory_cycle = message_thrown(
       [&] { parse_parameter_text("include \"loop.inc\"\n", "/scenes/main.scene", {}, files); });
   EXPECT_CONTAINS(memory_cycle, "include cycle: loop.inc -> loop.inc");
 }
@@ -525,7 +525,7 @@ TEST(ParameterFile, AnIncludedFileMayStateItsVersionToo) {
   EXPECT_EQ(root.language_version, 1L);
   EXPECT_EQ(root.language_version_location.line, 1);
   EXPECT_EQ(number_at(root, "c"), 3.0);
-  const std::string newer_include = thrown_by([&] {
+  const std::string newer_include = message_thrown([&] {
     load_parameter_file(folder.write("bad.scene", "scene_language = 1\ninclude \"new.inc\"\n"));
   });
   EXPECT_CONTAINS(newer_include, "new.inc:1:18");

@@ -13,6 +13,8 @@
 namespace fsi::scene {
 namespace {
 
+using testing::listing;
+
 #define EXPECT_CONTAINS(haystack, needle) \
   EXPECT_NE(std::string(haystack).find(needle), std::string::npos) << (haystack)
 
@@ -26,13 +28,6 @@ std::vector<Diagnostic> of(const std::vector<Diagnostic>& diagnostics, std::stri
     if (diagnostic.check == check && diagnostic.severity == severity) found.push_back(diagnostic);
   }
   return found;
-}
-
-std::string listing(const std::vector<Diagnostic>& diagnostics) {
-  std::string text;
-  for (const Diagnostic& diagnostic : diagnostics)
-    text += diagnostic.text() + "\n";
-  return text;
 }
 
 // The one warning of `check` on the coarse tank with `overrides`.

@@ -4,39 +4,26 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 #include <string>
 
 #include "fsi/common/error.hpp"
 #include "fsi/mbd/integrator.hpp"
 #include "fsi/scene/scene.hpp"
+#include "test_files.hpp"
 
 namespace fsi::scene {
 namespace {
 
-namespace fs = std::filesystem;
-
-class PointOnLineScene : public ::testing::Test {
+class PointOnLineScene : public testing::FolderPerTest {
  protected:
-  void SetUp() override {
-    folder_ = fs::temp_directory_path() /
-              ("fsi_point_on_line_" +
-               std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::create_directories(folder_);
-  }
-  void TearDown() override { fs::remove_all(folder_); }
-
   // A structure-only scene: no mesh, LIGGGHTS or Coupling needed.
-  Scene build(const std::string& body) {
-    const fs::path path = folder_ / "slider.scene";
-    std::ofstream(path) << "scene_language = 1\n"
-                           "SolverOptions { end_time = 0.5; Timeint { step_size = 1e-3 } }\n"
-                        << body;
-    return build_scene(path.string(), {}, SceneMode::MbdOnly);
+  Scene build(const std::string& body) const {
+    return build_scene(write("slider.scene",
+                             "scene_language = 1\n"
+                             "SolverOptions { end_time = 0.5; Timeint { step_size = 1e-3 } }\n" +
+                                 body),
+                       {}, SceneMode::MbdOnly);
   }
-
-  fs::path folder_;
 };
 
 // Line on a turned carrier, point on a turned bead: every term of the row is non-zero.

@@ -24,16 +24,14 @@ class SceneInput : public testing::FolderPerTest {
   std::string minimal_scene(const std::string& solver =
                                 "end_time = 1; Timeint { step_size = "
                                 "1e-5 }") const {
-    write("s.in", "# script\n");
-    return write("m.scene", "scene_language = 1\nSolverOptions { " + solver +
-                                " }\n"
-                                "Ground { Mesh { points = [[0, 0], [1, 0]] } }\n"
-                                "LIGGGHTS { script1 = \"s.in\"; script2 = \"s.in\" }\n"
-                                "Coupling { refinement_resolution = 0.002 }\n");
+    return write_coupled_scene("m.scene", "SolverOptions { " + solver +
+                                              " }\n"
+                                              "Ground { Mesh { points = [[0, 0], [1, 0]] } }\n")
+        .string();
   }
 
   static std::string error_of(const std::string& file, const std::vector<Override>& overrides) {
-    return testing::thrown_by([&] { build_scene(file, overrides); });
+    return testing::message_thrown([&] { build_scene(file, overrides); });
   }
 };
 

@@ -182,12 +182,7 @@ Coupling { refinement_resolution = 0.002 }
 )";
   auto error_of = [&](const std::string& text) {
     std::ofstream(folder / "v.scene") << text;
-    try {
-      build_scene((folder / "v.scene").string());
-    } catch (const fsi::Error& error) {
-      return std::string(error.what());
-    }
-    return std::string();
+    return testing::message_thrown([&] { build_scene((folder / "v.scene").string()); });
   };
   EXPECT_EQ(error_of("% a comment first is fine\nscene_language = 1\n" + body), "");
   const std::string missing = error_of(body);

@@ -4,9 +4,12 @@
 
 #include "fsi/common/error.hpp"
 #include "fsi/scene/schema.hpp"
+#include "test_files.hpp"
 
 namespace fsi::scene {
 namespace {
+
+using testing::listing;
 
 #define EXPECT_CONTAINS(haystack, needle) \
   EXPECT_NE(std::string(haystack).find(needle), std::string::npos) << (haystack)
@@ -48,13 +51,6 @@ BlockSpec test_spec() {
   BlockSpec root = block_spec("", "a scene", {}, {solver, body, sph, gravity});
   root.user_blocks_allowed = true;
   return root;
-}
-
-std::string listing(const std::vector<Problem>& problems) {
-  std::string text;
-  for (const Problem& problem : problems)
-    text += problem.text() + "\n";
-  return text;
 }
 
 std::vector<Problem> problems_of(const std::string& text) {

@@ -5,11 +5,9 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <numbers>
 #include <string>
 
-#include "fsi/common/error.hpp"
 #include "fsi/mbd/integrator.hpp"
 #include "fsi/mbd/readouts.hpp"
 #include "fsi/scene/scene.hpp"
@@ -18,33 +16,21 @@
 namespace fsi::scene {
 namespace {
 
-namespace fs = std::filesystem;
-
-class SpatialScene : public ::testing::Test {
+class SpatialScene : public testing::FolderPerTest {
  protected:
   void SetUp() override {
-    folder_ = fs::temp_directory_path() /
-              ("fsi_spatial_scene_" +
-               std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::create_directories(folder_);
-    std::ofstream(folder_ / "s.in") << "# script\n";
-    std::ofstream(folder_ / "box.stl") << testing::unit_box_stl();
-  }
-  void TearDown() override { fs::remove_all(folder_); }
-
-  fs::path write(const std::string& body, int dimension = 3,
-                 const std::string& coupling = "refinement_resolution = 0.002") {
-    const fs::path path = folder_ / "m.scene";
-    std::ofstream(path) << "scene_language = 1\ndimension = " << dimension
-                        << "\nSolverOptions { end_time = 1; Timeint { step_size = 1e-3 } }\n"
-                        << body
-                        << "LIGGGHTS { script1 = \"s.in\"; script2 = \"s.in\" }\n"
-                           "Coupling { "
-                        << coupling << " }\n";
-    return path;
+    FolderPerTest::SetUp();
+    FolderPerTest::write("box.stl", testing::unit_box_stl());
   }
 
-  fs::path folder_;
+  std::filesystem::path write(const std::string& body, int dimension = 3,
+                              const std::string& coupling = "refinement_resolution = 0.002") const {
+    return write_coupled_scene(
+        "m.scene",
+        "dimension = " + std::to_string(dimension) +
+            "\nSolverOptions { end_time = 1; Timeint { step_size = 1e-3 } }\n" + body,
+        coupling);
+  }
 };
 
 const char* const kEveryBlock = R"scene(Gravity { acceleration = [0, 0, -9.81] }

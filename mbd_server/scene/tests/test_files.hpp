@@ -1,6 +1,6 @@
 #pragma once
-// Files the scene tests write: a folder of their own, a closed unit-cube STL surface, and a
-// scene's problems as text.
+// Files the scene tests write: a folder of their own with coupled scenes in it, a closed
+// unit-cube STL surface, and a scene's problems as text.
 
 #include <gtest/gtest.h>
 
@@ -11,17 +11,18 @@
 
 #include "fsi/common/error.hpp"
 #include "fsi/scene/scene.hpp"
+#include "fsi/test_support/thrown.hpp"
 
 namespace fsi::scene::testing {
 
-// The message of the fsi::Error that `call` throws ("" if it throws none).
-std::string thrown_by(auto&& call) {
-  try {
-    call();
-  } catch (const fsi::Error& error) {
-    return error.what();
-  }
-  return "";
+using test_support::message_thrown;
+
+// Problems or diagnostics one to a line, for a failing expectation to show.
+std::string listing(const auto& reports) {
+  std::string text;
+  for (const auto& report : reports)
+    text += report.text() + "\n";
+  return text;
 }
 
 // A fresh folder for each test, named after it, removed afterwards.
@@ -42,6 +43,18 @@ class FolderPerTest : public ::testing::Test {
     std::filesystem::create_directories(file.parent_path());
     std::ofstream(file) << text;
     return file.string();
+  }
+
+  // A coupled scene `name`: the language line, `blocks`, then LIGGGHTS running the folder's
+  // "s.in" (written here) and Coupling { `coupling` }; the file's path.
+  std::filesystem::path write_coupled_scene(
+      const std::string& name, const std::string& blocks,
+      const std::string& coupling = "refinement_resolution = 0.002") const {
+    write("s.in", "# script\n");
+    return write(name, "scene_language = 1\n" + blocks +
+                           "LIGGGHTS { script1 = \"s.in\"; script2 = \"s.in\" }\n"
+                           "Coupling { " +
+                           coupling + " }\n");
   }
 
   std::filesystem::path folder_;

@@ -8,8 +8,8 @@
 #include <sstream>
 #include <string>
 
-#include "fsi/common/error.hpp"
 #include "fsi/scene/parameter_file.hpp"
+#include "fsi/test_support/thrown.hpp"
 
 namespace fsi::scene {
 namespace {
@@ -33,12 +33,7 @@ double number_at(const Block& root, const std::string& path) {
 }
 
 std::string error_of(const std::string& text) {
-  try {
-    parse_parameter_text(text, "thesis.par");
-  } catch (const fsi::Error& error) {
-    return error.what();
-  }
-  return "";
+  return test_support::message_thrown([&] { parse_parameter_text(text, "thesis.par"); });
 }
 
 // Replaces the one occurrence of `from` in `text` (fails the test if it is not there once).

@@ -12,6 +12,10 @@
 
 namespace fsi::coupling {
 
+// Creates the run folder `folder` (and its parents) given by --output; an fsi::Error saying so if
+// it cannot.
+void create_run_folder(const std::string& folder);
+
 class SensorFile {
  public:
   // names/units exclude the time column.
