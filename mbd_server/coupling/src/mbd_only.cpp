@@ -30,7 +30,7 @@ int run_mbd_only(scene::Scene& scene, const MbdOnlyOptions& options) {
   run.command_line = options.command_line;
   run.warnings = options.warnings;
   const double dt = scene.solver.step_size;
-  const auto steps = static_cast<std::uint64_t>(std::llround(scene.solver.end_time / dt));
+  const std::uint64_t steps = scene.solver.step_count();
   std::unique_ptr<SensorFile> sensors;
   std::unique_ptr<StructureSide> structure;
   try {

@@ -213,7 +213,7 @@ class Session {
     coupling_ = true;
     timings_.coupled.start();
     const double dt = scene_.solver.step_size;
-    const auto steps = static_cast<std::uint64_t>(std::llround(scene_.solver.end_time / dt));
+    const std::uint64_t steps = scene_.solver.step_count();
     spdlog::info("coupled phase: {} steps of {:.3g} s to t = {:.6g} s", steps, dt,
                  static_cast<double>(steps) * dt);
     coupled_begin_ = std::chrono::steady_clock::now();

@@ -845,7 +845,7 @@ std::vector<Diagnostic> end_time_check(const Scene& scene) {
   const double step = scene.solver.step_size;
   const double quotient = end_time / step;
   // What the session and --mbd-only do with it.
-  const double steps = std::round(quotient);
+  const auto steps = static_cast<double>(scene.solver.step_count());
   if (std::abs(steps * step - end_time) <= kTolerance * end_time) return {};
   auto exact = [](double value) {
     char text[32];

@@ -1,3 +1,4 @@
+#include <cmath>
 #include <cstdio>
 #include <string>
 
@@ -29,6 +30,10 @@ std::string SolverSettings::integrator_description(bool coupled) const {
       return "SUNDIALS IDA (BDF orders 1-5, " + tolerances(*this) + ")";
   }
   return tableau;
+}
+
+std::uint64_t SolverSettings::step_count() const {
+  return static_cast<std::uint64_t>(std::llround(end_time / step_size));
 }
 
 }  // namespace fsi::scene

@@ -46,6 +46,9 @@ struct SolverSettings {
   // when so; "adaptive ..." and "SUNDIALS IDA ..." with their tolerances); valid before any
   // integrator exists. `coupled`: what a coupled run integrates with (always the fixed step).
   std::string integrator_description(bool coupled = false) const;
+  // The steps a run takes: round(end_time / step_size), for the coupled loop, --mbd-only and
+  // the --check warning when the step does not divide end_time.
+  std::uint64_t step_count() const;
 };
 
 struct OutputSettings {
