@@ -307,23 +307,32 @@ TEST(MbdContact, CubeDroppedOnGroundComesToRest) {
 }
 
 TEST(MbdContact, DeepVertexIsNotPushedOutOfTheWrongSide) {
-  // A vertex 2 mm behind a thin ground segment with a 1 mm depth limit has passed through it:
-  // no force (the crossing check of the run reports such cases).
+  // A sloping thin ground line (so that no bounding box cuts the test short) and the block's
+  // bottom parallel to it: 0.5 mm deep it is pushed out along the normal, 2 mm deep with a 1 mm
+  // depth limit its vertices have passed the line and feel nothing (the crossing check of a run
+  // reports such cases when the meshes have no contact).
   Model model;
   const BodyId body = model.add_rigid_body(testing::rigid("block", 1.0, 0.01));
   ContactSpec contact;
   contact.first = rectangle("block", body, 0.2, 0.1);
-  contact.second = floor_line();
+  contact.second.name = "slope";
+  contact.second.vertices = {{-2.0, -0.2, 0.0}, {2.0, 0.2, 0.0}};
+  contact.second.elements = {0, 1};
   contact.stiffness = 1e4;
   contact.depth_limit = 1e-3;
   model.add_contact(contact);
-  Eigen::VectorXd force = Eigen::VectorXd::Zero(3);
-  model.force_element(0).add_force(0.0, Eigen::Vector3d(0.0, 0.05 - 0.002, 0.0),
-                                   Eigen::Vector3d::Zero(), force);
-  EXPECT_EQ(force.norm(), 0.0);
-  model.force_element(0).add_force(0.0, Eigen::Vector3d(0.0, 0.05 - 0.0005, 0.0),
-                                   Eigen::Vector3d::Zero(), force);
-  EXPECT_NEAR(force(1), 2 * 1e4 * 0.0005, 1e-9);
+  const double slope = std::atan(0.1);
+  const Eigen::Vector2d normal(-std::sin(slope), std::cos(slope));
+  auto force_at_depth = [&](double depth) {
+    const Eigen::Vector2d centre = (0.05 - depth) * normal;
+    Eigen::VectorXd force = Eigen::VectorXd::Zero(3);
+    model.force_element(0).add_force(0.0, Eigen::Vector3d(centre.x(), centre.y(), slope),
+                                     Eigen::Vector3d::Zero(), force);
+    return force;
+  };
+  const Eigen::VectorXd shallow = force_at_depth(0.0005);
+  EXPECT_NEAR(shallow.head<2>().dot(normal), 2 * 1e4 * 0.0005, 1e-9);
+  EXPECT_EQ(force_at_depth(0.002).norm(), 0.0);
 }
 
 TEST(MbdContact, BadSpecsAreNamed) {
