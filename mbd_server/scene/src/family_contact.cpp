@@ -102,8 +102,7 @@ std::map<mbd::BodyId, BodySurface> surfaces_by_body(const Scene& scene) {
       high = high.cwiseMax(vertex);
     }
     const Eigen::Vector3d extent = high - low;
-    surface.smallest_extent =
-        corners == 2 ? std::min(extent.x(), extent.y()) : extent.minCoeff();
+    surface.smallest_extent = corners == 2 ? std::min(extent.x(), extent.y()) : extent.minCoeff();
   }
   return surfaces;
 }
