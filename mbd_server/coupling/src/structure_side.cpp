@@ -1,5 +1,7 @@
 #include "fsi/coupling/structure_side.hpp"
 
+#include <spdlog/spdlog.h>
+
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -53,7 +55,14 @@ StructureSide::StructureSide(scene::Scene& scene, scene::IntegrationMethod metho
     : scene_(scene),
       method_(method),
       state_(scene.model.initial_state()),
-      integrator_(scene.solver.integrator_options()) {
+      integrator_(scene.solver.integrator_options()),
+      crossing_(scene, state_) {
+  for (const std::string& pair : crossing_.excluded_pairs()) {
+    spdlog::info(
+        "mesh crossing check: the meshes of {} touch or cross at t = 0 and are not "
+        "watched (a Contact block between them would act)",
+        pair);
+  }
   const scene::SolverSettings& solver = scene.solver;
   if (method == scene::IntegrationMethod::AdaptiveRadau) {
     adaptive_ = std::make_unique<mbd::AdaptiveRadau>(
@@ -128,6 +137,13 @@ void StructureSide::advance(std::uint64_t step, double step_size) {
     }
   }
   state_.time = static_cast<double>(step) * step_size;
+  try {
+    crossing_.check(state_);
+  } catch (const Error& crossing) {
+    throw Error(crossing.fault(),
+                step_and_time(step, state_.time) + ", " + std::string(crossing.location()),
+                crossing.remedy());
+  }
 }
 
 BoundaryMotion StructureSide::boundary_motion(std::uint64_t step, double step_size) const {

@@ -17,6 +17,7 @@
 #include "fsi/mbd/adaptive_radau.hpp"
 #include "fsi/mbd/ida.hpp"
 #include "fsi/mbd/integrator.hpp"
+#include "fsi/scene/mesh_crossing.hpp"
 #include "fsi/scene/scene.hpp"
 
 namespace fsi::coupling {
@@ -29,7 +30,8 @@ class StructureSide {
   // Integrates from t(step - 1) to t(step) = step * step_size (the clock does not drift over
   // many steps); an error-controlled method takes the steps its tolerances need in between. Throws
   // fsi::Error naming the step and time when Newton fails or the state becomes non-finite; the
-  // state is then the last good one.
+  // state is then the last good one. Also throws when two meshes without contact between them
+  // cross (scene::CrossingWatch; the pairs touching at the start are logged and not watched).
   void advance(std::uint64_t step, double step_size);
 
   // The dynamic vertices at the current state, for the fluid.
@@ -72,6 +74,7 @@ class StructureSide {
   std::unique_ptr<mbd::AdaptiveRadau> adaptive_;
   std::unique_ptr<mbd::IdaIntegrator> ida_;
   std::vector<double> loads_;
+  scene::CrossingWatch crossing_;
 };
 
 }  // namespace fsi::coupling

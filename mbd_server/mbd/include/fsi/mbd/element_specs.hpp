@@ -279,4 +279,40 @@ struct SpatialTorqueSpec {
   std::function<Eigen::Vector3d(double time)> torque;  // [N m]
 };
 
+// One side of a contact: the surface mesh of one body (or of the ground) as contact sees it.
+// Vertices are body-fixed local coordinates (planar: x, y with z ignored; a beam: s, eta; the
+// ground: world positions); elements are 2 (planar segments) or 3 (spatial triangles) vertex
+// indices each. Which side is outside (docs/theory.md, "Contact between structures"): a closed
+// outline (every vertex starts one segment and ends one; every edge of a triangle shared by
+// another, traversed the other way) is oriented by its signed area or volume, so either winding
+// works; an open planar polyline acts to the LEFT of its direction of travel (a tank drawn
+// counter-clockwise around the space it holds: down the left wall, along the floor, up the right
+// wall), an open triangle surface to the side of its right-hand-rule normal.
+struct ContactSurfaceSpec {
+  std::string name;  // in messages ("box", "ground")
+  BodyId body = kGround;
+  std::vector<Eigen::Vector3d> vertices;
+  std::vector<int> elements;
+};
+
+// Penalty contact between two surfaces, both ways (the vertices of each against the elements of
+// the other). A vertex that lies behind an element by 0 < delta <= depth_limit and projects onto
+// it feels f_n = max(0, stiffness delta + c(delta) d(delta)/dt) along the element's outward normal
+// (the element with the smallest delta when several qualify), c = damping, ramped in linearly
+// over the first damping_onset_depth of delta (0: from first touch), and regularised Coulomb
+// friction f_t = -mu f_n tanh(|u_t| / regularisation_speed) u_t / |u_t| (u_t the tangential
+// relative velocity); the element's vertices take the reaction by the projection's barycentric
+// weights. Planar models: per unit depth, like every planar force.
+struct ContactSpec {
+  std::string name;  // default "contact <k>"
+  ContactSurfaceSpec first;
+  ContactSurfaceSpec second;
+  double stiffness = 0.0;              // [N/m] per vertex in contact
+  double damping = 0.0;                // [N s/m] per vertex in contact
+  double friction_coefficient = 0.0;   // mu
+  double regularisation_speed = 1e-3;  // [m/s], > 0 when mu > 0
+  double depth_limit = 0.0;            // [m], > 0: deeper vertices have passed the element
+  double damping_onset_depth = 0.0;    // [m], in [0, depth_limit)
+};
+
 }  // namespace fsi::mbd

@@ -155,6 +155,12 @@ class Model final : public ConstrainedSystem {
   // Throws for negative or non-finite values; the points must never coincide.
   int add_spatial_spring_damper(const SpatialSpringDamperSpec& spec);
   int add_spatial_torque(const SpatialTorqueSpec& spec);
+  // Penalty contact between two surface meshes (ContactSpec; planar or spatial after the model's
+  // dimension). Throws fsi::Error naming the contact for unknown bodies, cables (their tube
+  // vertices are not material points), both surfaces on the same body, empty surfaces, element
+  // indices out of range, degenerate elements, and negative, non-finite or missing values.
+  // Returns the index among the force elements.
+  int add_contact(const ContactSpec& spec);
 
   // Any body: its name, kind ("rigid_body_2d", "ancf_beam", "rigid_body_3d", "point_mass",
   // "ancf_cable") and total mass [kg] (2D: per unit depth).

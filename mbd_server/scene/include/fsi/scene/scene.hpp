@@ -155,6 +155,9 @@ struct Scene {
   // What the Assembly block's initial assembly did (absent without the block); the model's
   // initial configuration is then the assembled one.
   std::optional<mbd::AssemblyReport> assembly;
+  // The pairs of bodies (mbd::kGround for the ground) whose meshes have a Contact block between
+  // them; the run's crossing check (mesh_crossing.hpp) watches the other pairs.
+  std::vector<std::pair<mbd::BodyId, mbd::BodyId>> contact_pairs;
 };
 
 // The declaration of every scene parameter, block by block in the order of the element families
