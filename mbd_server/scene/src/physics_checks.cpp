@@ -147,7 +147,7 @@ struct FsiFixLine {
   std::string refusal;                                   // otherwise: why not
 };
 
-std::optional<FsiFixLine> fsi_fix_line(const LiggghtsSetup& liggghts) {
+std::optional<FsiFixLine> fsi_fix_line(const LiggghtsSetup& liggghts, int dimension) {
   std::optional<FsiFixLine> fix;
   for (const auto* script : {&liggghts.script1_text, &liggghts.script2_text}) {
     const std::string& name =
@@ -168,7 +168,7 @@ std::optional<FsiFixLine> fsi_fix_line(const LiggghtsSetup& liggghts) {
     substituted.push_back(*word);
   }
   try {
-    fix->arguments = contact::parse_fix_fsi_sph_arguments(substituted);
+    fix->arguments = contact::parse_fix_fsi_sph_arguments(substituted, dimension);
   } catch (const std::invalid_argument& refused) {
     // The parser's first line says what is wrong; the usage text after it belongs to --help.
     std::string reason = refused.what();
@@ -194,7 +194,9 @@ double wall_value(const contact::ForceLaw& law, std::string_view keyword) {
 class Inputs {
  public:
   explicit Inputs(const Scene& scene)
-      : scene_(scene), root_(scene.parameters), fix_(fsi_fix_line(scene.liggghts)) {}
+      : scene_(scene),
+        root_(scene.parameters),
+        fix_(fsi_fix_line(scene.liggghts, scene.dimension)) {}
 
   const std::optional<FsiFixLine>& fix_line() const { return fix_; }
 
@@ -242,6 +244,10 @@ class Inputs {
         return Quantity{value, fix_->location};
       }
       return std::nullopt;
+    }
+    // The true-shape wall derives k, r0 and cutoff from `spacing` and `pressure`.
+    if (fix_->arguments && fix_->arguments->uses_true_shape && keyword != "t") {
+      return Quantity{wall_value(fix_->arguments->law, keyword), fix_->location};
     }
     add_missing("fix fsi/sph at " + at + " has no " + std::string(keyword));
     return std::nullopt;
