@@ -85,7 +85,7 @@ const std::vector<Keyword>& keywords() {
          if (!(a.true_shape.spacing > 0.0)) reject(key, v, "a positive length");
        }},
       {"pressure", "number > 0",
-       "true-shape wall: reference pressure at which the first layer rests at 0.8 d (e.g. rho0 g "
+       "true-shape wall: reference pressure at which the first layer rests at 0.75 d (e.g. rho0 g "
        "H / 2 for a column of height H)",
        "none",
        [](auto& a, const auto& key, const auto& v) {

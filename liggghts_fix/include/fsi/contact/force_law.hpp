@@ -69,11 +69,11 @@ double rest_distance(const ForceLaw& law, double pressure, double spacing, int d
 // at kTrueShapeRestFraction * d under the reference pressure, with r_c = kTrueShapeCutoffFraction
 // * d. A lattice of spacing d whose first layer rests there fills the volume up to the mesh: the
 // fluid sees the body's true outline (measured, docs/validation.md, "True shape").
-inline constexpr double kTrueShapeRestFraction = 0.8;
-inline constexpr double kTrueShapeCutoffFraction = 1.2;
+inline constexpr double kTrueShapeRestFraction = 0.75;
+inline constexpr double kTrueShapeCutoffFraction = 1.125;
 struct TrueShape {
   double spacing = 0.0;   // d [m]: the particle lattice constant
-  double pressure = 0.0;  // p_ref [Pa]: the pressure at which the first layer rests at 0.8 d
+  double pressure = 0.0;  // p_ref [Pa]: the pressure at which the first layer rests at 0.75 d
 };
 // Fills k, r_0 and r_c of `law` (its viscous part is kept); throws std::invalid_argument for a
 // non-positive spacing or pressure.
