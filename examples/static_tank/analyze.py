@@ -8,7 +8,9 @@ Prints and writes DIR/analysis.json with
     bottom's constraints (minus the bottom's own weight) against the summed vertex forces, at
     every step;
   - volume consistency: the effective fluid volume from the onset of compression by the piston,
-    V = (h0 - 2h)(b - 2h) (thesis eq. 6.5-6.6), against N*m/rho0.
+    V = (h0 - 2h)(b - 2h) (thesis eq. 6.5-6.6), against N*m/rho0; with --true-shape (the
+    true-shape wall, static_tank_true_shape*.scene) V = h0 b, without the thesis' correction.
+    Both figures are printed either way.
 Exit status 1 if a tolerance given on the command line is not met.
 """
 import os
@@ -32,6 +34,8 @@ def main():
     parser.add_argument("--lambda-tolerance", type=float,
                         help="fail if the multiplier-based force differs by more (relative)")
     parser.add_argument("--volume-tolerance", type=float, help="fail if |V/V_exact - 1| exceeds this")
+    parser.add_argument("--true-shape", action="store_true",
+                        help="judge V = h0 b (the true-shape wall) instead of (h0 - 2h)(b - 2h)")
     args = parser.parse_args()
 
     run, sensors = read_run(args.run_dir)
@@ -96,14 +100,19 @@ def main():
     if t_contact is not None:
         piston_bottom = piston_y[contact_index] - 0.5 * thickness
         h0 = piston_bottom - 0.5 * thickness  # bottom surface of the fluid at y = thickness/2
-        volume = (h0 - 2 * h) * (width - 2 * h)
+        thesis_volume = (h0 - 2 * h) * (width - 2 * h)
+        true_volume = h0 * width
+        volume = true_volume if args.true_shape else thesis_volume
         exact_volume = n * m / rho0
         result.update({"contact_time": t_contact, "filling_height_h0": h0,
                        "effective_volume": volume, "exact_volume": exact_volume,
-                       "volume_ratio": volume / exact_volume})
+                       "volume_ratio": volume / exact_volume,
+                       "volume_ratio_thesis_correction": thesis_volume / exact_volume,
+                       "volume_ratio_without_correction": true_volume / exact_volume})
         print(f"onset of compression t_c = {t_contact:.5f} s, filling height h0 = {h0:.6g} m, "
-              f"V = (h0-2h)(b-2h) = {volume:.6g} m^2, N m/rho0 = {exact_volume:.6g} m^2, "
-              f"ratio {volume / exact_volume:.5f}")
+              f"N m/rho0 = {exact_volume:.6g} m^2: V = (h0-2h)(b-2h) = {thesis_volume:.6g} m^2, ratio "
+              f"{thesis_volume / exact_volume:.5f}; V = h0 b = {true_volume:.6g} m^2, ratio "
+              f"{true_volume / exact_volume:.5f}; judged: {'h0 b' if args.true_shape else '(h0-2h)(b-2h)'}")
         if args.volume_tolerance is not None and abs(volume / exact_volume - 1) > args.volume_tolerance:
             print(f"FAIL: volume ratio outside 1 +- {args.volume_tolerance}")
             failed = True

@@ -12,6 +12,9 @@
 namespace fsi::contact {
 namespace {
 
+// The default of k, r0 and cutoff: required, unless the true-shape keywords derive them.
+constexpr const char* kFromSpacing = "required, or derived from spacing and pressure";
+
 using Apply =
     std::function<void(FixFsiSphArguments&, const std::string& keyword, const std::string& value)>;
 
@@ -58,20 +61,37 @@ const std::vector<Keyword>& keywords() {
   static const std::vector<Keyword> table{
       {"k", "number >= 0",
        "repulsion scale: force density at zero distance (thesis law; 2D: N/m^2 per unit depth)",
-       nullptr,
+       kFromSpacing,
        [](auto& a, const auto& key, const auto& v) { a.law.repulsion_scale = number(key, v); }},
       {"t", "number >= 0", "viscous (wall friction) scale; thesis eq. (6.4): t ~ nu rho / h",
        nullptr,
        [](auto& a, const auto& key, const auto& v) { a.law.viscous_scale = number(key, v); }},
       {"r0", "0 < r0 <= cutoff",
        "equilibrium distance of the repulsion; r0 < cutoff adds adhesion between r0 and cutoff",
-       nullptr,
+       kFromSpacing,
        [](auto& a, const auto& key, const auto& v) {
          a.law.equilibrium_distance = number(key, v);
        }},
       {"cutoff", "number > 0",
-       "range r_c = 2h of the repulsion (and of the viscous term by default)", nullptr,
+       "range r_c = 2h of the repulsion (and of the viscous term by default)", kFromSpacing,
        [](auto& a, const auto& key, const auto& v) { a.law.cutoff = number(key, v); }},
+      {"spacing", "number > 0",
+       "true-shape wall: the particle lattice constant d; with `pressure`, sets k, r0 and cutoff "
+       "so "
+       "that the fluid sees the mesh's true outline (instead of k, r0, cutoff)",
+       "none",
+       [](auto& a, const auto& key, const auto& v) {
+         a.true_shape.spacing = number(key, v);
+         if (!(a.true_shape.spacing > 0.0)) reject(key, v, "a positive length");
+       }},
+      {"pressure", "number > 0",
+       "true-shape wall: reference pressure at which the first layer rests at 0.75 d (e.g. rho0 g "
+       "H / 2 for a column of height H)",
+       "none",
+       [](auto& a, const auto& key, const auto& v) {
+         a.true_shape.pressure = number(key, v);
+         if (!(a.true_shape.pressure > 0.0)) reject(key, v, "a positive pressure");
+       }},
       {"cutoff_visc", "number > 0", "range of the viscous term when it differs from cutoff",
        "cutoff",
        [](auto& a, const auto& key, const auto& v) {
@@ -132,7 +152,8 @@ const std::vector<Keyword>& keywords() {
 }  // namespace
 
 std::string fix_fsi_sph_usage() {
-  std::string text = "fix ID group fsi/sph k K t T r0 R0 cutoff RC [keyword value ...]\n";
+  std::string text =
+      "fix ID group fsi/sph t T (k K r0 R0 cutoff RC | spacing D pressure P) [keyword value ...]\n";
   for (const Keyword& keyword : keywords()) {
     std::string line = "  " + std::string(keyword.name);
     line.resize(14, ' ');
@@ -152,7 +173,7 @@ std::string fix_fsi_sph_keyword_table_markdown() {
   return text;
 }
 
-FixFsiSphArguments parse_fix_fsi_sph_arguments(std::span<const std::string> words) {
+FixFsiSphArguments parse_fix_fsi_sph_arguments(std::span<const std::string> words, int dimension) {
   FixFsiSphArguments result;
   if (words.size() % 2 != 0) {
     throw std::invalid_argument("fix fsi/sph: keyword '" + words.back() +
@@ -173,6 +194,36 @@ FixFsiSphArguments parse_fix_fsi_sph_arguments(std::span<const std::string> word
                                   "' is given twice; keep one of them");
     }
     keyword->apply(result, name, words[i + 1]);
+  }
+  const bool true_shape = seen.contains("spacing") || seen.contains("pressure");
+  result.uses_true_shape = true_shape;
+  if (true_shape) {
+    if (!seen.contains("spacing") || !seen.contains("pressure")) {
+      throw std::invalid_argument(
+          "fix fsi/sph: the true-shape wall needs both 'spacing' (the lattice constant d) and "
+          "'pressure' (e.g. rho0 g H / 2); add the missing one");
+    }
+    for (const char* derived : {"k", "r0", "cutoff", "law"}) {
+      if (seen.contains(derived)) {
+        throw std::invalid_argument(std::string("fix fsi/sph: '") + derived +
+                                    "' is derived from 'spacing' and 'pressure' (true-shape "
+                                    "wall); remove it, or remove 'spacing' and 'pressure'");
+      }
+    }
+    try {
+      apply_true_shape(result.law, result.true_shape, dimension);
+    } catch (const std::invalid_argument& bad) {
+      throw std::invalid_argument(std::string("fix fsi/sph: ") + bad.what());
+    }
+  } else {
+    for (const char* required : {"k", "r0", "cutoff"}) {
+      if (!seen.contains(required)) {
+        throw std::invalid_argument(std::string("fix fsi/sph: missing keyword '") + required +
+                                    "' (or give 'spacing' and 'pressure' for the true-shape "
+                                    "wall); usage:\n" +
+                                    fix_fsi_sph_usage());
+      }
+    }
   }
   for (const Keyword& keyword : keywords()) {
     if (!keyword.fallback && !seen.contains(keyword.name)) {

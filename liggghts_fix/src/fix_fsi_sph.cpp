@@ -190,7 +190,8 @@ void add_fix_fsi_sph(LAMMPS_NS::LAMMPS& lammps, std::span<const std::string> wor
     throw std::invalid_argument("not a 'fix ID group fsi/sph ...' command");
   }
   if (!boundary) throw std::invalid_argument("fix fsi/sph: no coupling boundary attached");
-  const FixFsiSphArguments arguments = parse_fix_fsi_sph_arguments(words.subspan(4));
+  const FixFsiSphArguments arguments =
+      parse_fix_fsi_sph_arguments(words.subspan(4), lammps.domain->dimension);
   ContactSettings settings;
   settings.law = arguments.law;
   settings.gauss_points = arguments.gauss_points;

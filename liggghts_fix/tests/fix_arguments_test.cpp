@@ -13,7 +13,7 @@ namespace {
 
 std::string error_of(const std::vector<std::string>& words) {
   try {
-    parse_fix_fsi_sph_arguments(words);
+    parse_fix_fsi_sph_arguments(words, 2);
   } catch (const std::invalid_argument& error) {
     return error.what();
   }
@@ -23,7 +23,7 @@ std::string error_of(const std::vector<std::string>& words) {
 TEST(FixArguments, ParsesAllKeywords) {
   const std::vector<std::string> words{"k",     "17500", "t", "0.8",    "r0",    "0.002", "cutoff",
                                        "0.003", "gauss", "4", "kernel", "spiky", "law",   "thesis"};
-  const auto parsed = parse_fix_fsi_sph_arguments(words);
+  const auto parsed = parse_fix_fsi_sph_arguments(words, 2);
   EXPECT_EQ(parsed.law.repulsion_scale, 17500.0);
   EXPECT_EQ(parsed.law.viscous_scale, 0.8);
   EXPECT_EQ(parsed.law.equilibrium_distance, 0.002);
@@ -33,7 +33,7 @@ TEST(FixArguments, ParsesAllKeywords) {
 
 TEST(FixArguments, DefaultsToThreeGaussPoints) {
   const auto parsed = parse_fix_fsi_sph_arguments(
-      std::vector<std::string>{"k", "1", "t", "0", "r0", "1", "cutoff", "1"});
+      std::vector<std::string>{"k", "1", "t", "0", "r0", "1", "cutoff", "1"}, 2);
   EXPECT_EQ(parsed.gauss_points, 3);
 }
 
@@ -70,10 +70,12 @@ TEST(FixArguments, ErrorsNameTheProblem) {
 }
 
 TEST(FixArguments, ParsesLawKernelAndCutoffs) {
-  const auto parsed = parse_fix_fsi_sph_arguments(std::vector<std::string>{
-      "k",           "1",   "t",        "2",  "r0",   "0.5", "cutoff", "1",
-      "law",         "lj",  "p1",       "12", "p2",   "6",   "kernel", "cubic",
-      "cutoff_visc", "1.5", "triangle", "3",  "warn", "0.25"});
+  const auto parsed = parse_fix_fsi_sph_arguments(
+      std::vector<std::string>{"k",        "1", "t",      "2",     "r0",          "0.5",
+                               "cutoff",   "1", "law",    "lj",    "p1",          "12",
+                               "p2",       "6", "kernel", "cubic", "cutoff_visc", "1.5",
+                               "triangle", "3", "warn",   "0.25"},
+      2);
   EXPECT_EQ(parsed.law.repulsion_law, RepulsionLaw::LennardJones);
   EXPECT_EQ(parsed.law.lj_p1, 12);
   EXPECT_EQ(parsed.law.lj_p2, 6);
@@ -103,6 +105,43 @@ TEST(FixArguments, DocumentationEmbedsTheGeneratedKeywordTable) {
   EXPECT_NE(text.str().find(fix_fsi_sph_keyword_table_markdown()), std::string::npos)
       << "docs/fix_fsi_sph.md is out of date; paste this table into its Syntax section:\n"
       << fix_fsi_sph_keyword_table_markdown();
+}
+
+}  // namespace
+}  // namespace fsi::contact
+
+namespace fsi::contact {
+namespace {
+
+TEST(FixArguments, TrueShapeDerivesTheRepulsionFromSpacingAndPressure) {
+  const auto parsed = parse_fix_fsi_sph_arguments(
+      std::vector<std::string>{"t", "0.5", "spacing", "0.002", "pressure", "490"}, 2);
+  EXPECT_TRUE(parsed.uses_true_shape);
+  EXPECT_DOUBLE_EQ(parsed.law.cutoff, kTrueShapeCutoffFraction * 0.002);
+  EXPECT_NEAR(rest_distance(parsed.law, 490.0, 0.002, 2), kTrueShapeRestFraction * 0.002, 1e-12);
+  const auto parsed3d = parse_fix_fsi_sph_arguments(
+      std::vector<std::string>{"t", "0.5", "spacing", "0.002", "pressure", "490"}, 3);
+  EXPECT_NE(parsed3d.law.repulsion_scale, parsed.law.repulsion_scale);
+}
+
+TEST(FixArguments, TrueShapeRefusesMixingWithExplicitRepulsion) {
+  auto error = [](std::vector<std::string> words) {
+    try {
+      parse_fix_fsi_sph_arguments(words, 2);
+    } catch (const std::invalid_argument& bad) {
+      return std::string(bad.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(error({"t", "1", "spacing", "0.002", "pressure", "490", "k", "100"})
+                .find("'k' is derived from 'spacing' and 'pressure'"),
+            std::string::npos);
+  EXPECT_NE(error({"t", "1", "spacing", "0.002"}).find("needs both 'spacing'"), std::string::npos);
+  EXPECT_NE(error({"t", "1", "pressure", "490"}).find("needs both 'spacing'"), std::string::npos);
+  EXPECT_NE(error({"t", "1", "spacing", "0", "pressure", "490"}).find("'spacing' needs a positive"),
+            std::string::npos);
+  EXPECT_NE(error({"t", "1", "k", "1", "r0", "1"}).find("missing keyword 'cutoff'"),
+            std::string::npos);
 }
 
 }  // namespace

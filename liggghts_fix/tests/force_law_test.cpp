@@ -2,8 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include "contact_test_support.hpp"
+
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 
 namespace fsi::contact {
@@ -176,6 +179,87 @@ TEST(ForceLaw, NonFiniteDistancesGiveNoForce) {
   const ForceLaw law = thesis_law(1.0);
   EXPECT_EQ(law.repulsion(std::nan("")), 0.0);
   EXPECT_EQ(law.viscous_weight(std::nan("")), 0.0);
+}
+
+}  // namespace
+}  // namespace fsi::contact
+
+namespace fsi::contact {
+namespace {
+
+ForceLaw repulsive_law(double k, double cutoff) {
+  ForceLaw law;
+  law.repulsion_scale = k;
+  law.cutoff = cutoff;
+  law.equilibrium_distance = cutoff;
+  return law;
+}
+
+TEST(FlatWall, ThreeDimensionalForceMatchesClosedForm) {
+  // r0 = r_c: f = k (1 - r/r_c)^4, so F(z) = 2 pi z k r_c (1 - z/r_c)^5 / 5.
+  const ForceLaw law = repulsive_law(1000.0, 0.003);
+  for (double z : {0.0003, 0.001, 0.002, 0.0029}) {
+    const double expected =
+        2.0 * std::numbers::pi * z * 1000.0 * 0.003 * std::pow(1.0 - z / 0.003, 5) / 5.0;
+    EXPECT_NEAR(flat_wall_force(law, z, 3), expected, 1e-11 * std::abs(expected)) << "z = " << z;
+  }
+  EXPECT_EQ(flat_wall_force(law, 0.003, 3), 0.0);
+}
+
+TEST(FlatWall, TwoDimensionalForceMatchesTheWallIntegral) {
+  // The same line integral the 2D contact accuracy is measured against (Gauss-Kronrod).
+  for (const ForceLaw& law :
+       {repulsive_law(17500.0, 0.0038), test_support::adhesive_law(0.0038, 0.0)}) {
+    for (double z : {0.0002, 0.001, 0.0019, 0.003}) {
+      const double exact = test_support::exact_wall_repulsion(law, z, 15, 1e-14);
+      EXPECT_NEAR(flat_wall_force(law, z, 2), exact, 1e-10 * std::abs(exact) + 1e-14)
+          << "z = " << z << ", r0 = " << law.equilibrium_distance;
+    }
+  }
+}
+
+TEST(FlatWall, RestDistanceBalancesThePressureOnALatticeCell) {
+  const double d = 0.002;
+  const ForceLaw law = repulsive_law(17500.0, 3.8 * d);
+  for (int dimension : {2, 3}) {
+    for (double pressure : {100.0, 490.0, 2000.0}) {
+      const double z = rest_distance(law, pressure, d, dimension);
+      const double load = pressure * (dimension == 3 ? d * d : d);
+      EXPECT_GT(z, 0.0);
+      EXPECT_NEAR(flat_wall_force(law, z, dimension), load, 1e-9 * load)
+          << dimension << "D, p = " << pressure;
+    }
+  }
+  // The same law rests the first layer at 2.5 d under 490 Pa in 2D (measured in a coupled run:
+  // 2.47-2.62 d, docs/validation.md, "True shape").
+  EXPECT_NEAR(rest_distance(law, 490.0, d, 2) / d, 2.50, 0.01);
+  // More pressure, closer; a pressure the wall cannot hold at any distance: 0.
+  EXPECT_LT(rest_distance(law, 2000.0, d, 2), rest_distance(law, 100.0, d, 2));
+  EXPECT_EQ(rest_distance(law, 1e12, d, 2), 0.0);
+}
+
+TEST(TrueShape, FirstLayerRestsAtItsFractionOfTheSpacingAtTheReferencePressure) {
+  for (int dimension : {2, 3}) {
+    for (double d : {0.001, 0.002, 0.05}) {
+      ForceLaw law;
+      law.viscous_scale = 3.0;
+      apply_true_shape(law, TrueShape{d, 490.0}, dimension);
+      EXPECT_EQ(law.viscous_scale, 3.0);
+      EXPECT_EQ(law.repulsion_law, RepulsionLaw::Thesis);
+      EXPECT_DOUBLE_EQ(law.cutoff, kTrueShapeCutoffFraction * d);
+      EXPECT_DOUBLE_EQ(law.equilibrium_distance, law.cutoff);
+      EXPECT_NEAR(rest_distance(law, 490.0, d, dimension) / d, kTrueShapeRestFraction, 1e-9)
+          << dimension << "D, d = " << d;
+      EXPECT_NO_THROW(law.validate());
+    }
+  }
+}
+
+TEST(TrueShape, RefusesMissingSpacingOrPressure) {
+  ForceLaw law;
+  EXPECT_THROW(apply_true_shape(law, TrueShape{0.0, 490.0}, 2), std::invalid_argument);
+  EXPECT_THROW(apply_true_shape(law, TrueShape{0.002, -1.0}, 2), std::invalid_argument);
+  EXPECT_THROW(apply_true_shape(law, TrueShape{0.002, 490.0}, 4), std::invalid_argument);
 }
 
 }  // namespace

@@ -26,6 +26,11 @@ constexpr double kContactStepFraction = 0.1;  // dt <= sqrt(m / k_eff) / 10
 constexpr double kSoundToFlowSpeed = 10.0;
 constexpr double kRepulsionLow = 2.0;
 constexpr double kRepulsionHigh = 20.0;
+// The true-shape wall: a reference pressure below this fraction of rho0 g H is far from the
+// column's pressures.
+constexpr double kTrueShapeReferenceLow = 0.05;
+// ... and a particle that starts closer than this fraction of d to a mesh is inside it.
+constexpr double kTrueShapeStartFraction = 0.45;
 constexpr double kNeighboursLow = 30.0;
 constexpr double kNeighboursHigh = 100.0;
 constexpr double kWallViscosityFactor = 3.0;
@@ -147,7 +152,7 @@ struct FsiFixLine {
   std::string refusal;                                   // otherwise: why not
 };
 
-std::optional<FsiFixLine> fsi_fix_line(const LiggghtsSetup& liggghts) {
+std::optional<FsiFixLine> fsi_fix_line(const LiggghtsSetup& liggghts, int dimension) {
   std::optional<FsiFixLine> fix;
   for (const auto* script : {&liggghts.script1_text, &liggghts.script2_text}) {
     const std::string& name =
@@ -168,7 +173,7 @@ std::optional<FsiFixLine> fsi_fix_line(const LiggghtsSetup& liggghts) {
     substituted.push_back(*word);
   }
   try {
-    fix->arguments = contact::parse_fix_fsi_sph_arguments(substituted);
+    fix->arguments = contact::parse_fix_fsi_sph_arguments(substituted, dimension);
   } catch (const std::invalid_argument& refused) {
     // The parser's first line says what is wrong; the usage text after it belongs to --help.
     std::string reason = refused.what();
@@ -194,7 +199,9 @@ double wall_value(const contact::ForceLaw& law, std::string_view keyword) {
 class Inputs {
  public:
   explicit Inputs(const Scene& scene)
-      : scene_(scene), root_(scene.parameters), fix_(fsi_fix_line(scene.liggghts)) {}
+      : scene_(scene),
+        root_(scene.parameters),
+        fix_(fsi_fix_line(scene.liggghts, scene.dimension)) {}
 
   const std::optional<FsiFixLine>& fix_line() const { return fix_; }
 
@@ -242,6 +249,10 @@ class Inputs {
         return Quantity{value, fix_->location};
       }
       return std::nullopt;
+    }
+    // The true-shape wall derives k, r0 and cutoff from `spacing` and `pressure`.
+    if (fix_->arguments && fix_->arguments->uses_true_shape && keyword != "t") {
+      return Quantity{wall_value(fix_->arguments->law, keyword), fix_->location};
     }
     add_missing("fix fsi/sph at " + at + " has no " + std::string(keyword));
     return std::nullopt;
@@ -396,6 +407,40 @@ void check_acoustic_time_step(const Scene& scene, Report& report) {
 
 // --- 2. time step against the stiffness of the wall contact ----------------------------------
 
+// The true-shape wall holds its first layer near 0.7 d, far from the law's steep core: the
+// stiffness a particle feels is that of the integrated wall force at its rest distance, -dF/dz,
+// stiffest under the column's deepest pressure.
+void check_true_shape_time_step(const Scene& scene, Inputs& in, Report& report) {
+  constexpr std::string_view kCheck = "contact_time_step";
+  const auto& arguments = *in.fix_line()->arguments;
+  const Quantity dt = in.time_step();
+  const auto m = in.particle_mass();
+  const auto rho = in.density();
+  const auto g = in.gravity();
+  const auto height = g ? in.fluid_height(*g) : std::nullopt;
+  if (!in.complete()) return report.skip(kCheck, "true-shape contact time-step", in.missing());
+  const double d = arguments.true_shape.spacing;
+  const double deepest =
+      std::max(rho->value * g->magnitude * height->value, arguments.true_shape.pressure);
+  const double rest = contact::rest_distance(arguments.law, deepest, d, scene.dimension);
+  const double step = 1e-4 * d;
+  const double stiffness = (contact::flat_wall_force(arguments.law, rest - step, scene.dimension) -
+                            contact::flat_wall_force(arguments.law, rest + step, scene.dimension)) /
+                           (2.0 * step);
+  if (!(stiffness > 0.0)) return;
+  const double time_scale = std::sqrt(m->value / stiffness);
+  const double limit = kContactStepFraction * time_scale;
+  if (!above(dt.value, limit)) return;
+  report.warn(kCheck, dt.location,
+              "time step dt = " + number(dt.value) + " s is " + number(dt.value / time_scale) +
+                  " sqrt(m/k_eff), above 1/10 of the wall-contact time scale sqrt(m/k_eff) = " +
+                  number(time_scale) + " s (particle mass m = " + number(m->value) +
+                  " kg/m; k_eff = -dF/dz = " + number(stiffness) +
+                  " N/m^2 of the true-shape wall at the first layer's rest distance " +
+                  number(rest / d) + " d under the deepest pressure " + number(deepest) + " Pa)",
+              "use SolverOptions.Timeint.step_size <= " + number(limit) + " s");
+}
+
 void check_contact_time_step(const Scene& scene, Report& report) {
   constexpr std::string_view kCheck = "contact_time_step";
   constexpr std::string_view kTitle = "contact time-step";
@@ -411,6 +456,9 @@ void check_contact_time_step(const Scene& scene, Report& report) {
     in.add_missing("fix fsi/sph uses law " +
                    std::string(contact::name(fix->arguments->law.repulsion_law)) +
                    ", the estimate covers the thesis law only");
+  }
+  if (in.fix_line() && in.fix_line()->arguments && in.fix_line()->arguments->uses_true_shape) {
+    return check_true_shape_time_step(scene, in, report);
   }
   const Quantity dt = in.time_step();
   const auto m = in.particle_mass();
@@ -530,10 +578,45 @@ void check_speed_of_sound(const Scene& scene, Report& report) {
 
 // --- 4. repulsion scale against the hydrostatic pressure -------------------------------------
 
+// The true-shape wall (fix fsi/sph spacing/pressure) has no k to judge by the thesis' rule: it
+// rests the first layer at kTrueShapeRestFraction d under its reference pressure, closer under
+// more. Judge where the layer rests over the column's hydrostatic pressures instead.
+void check_true_shape_wall(const Scene& scene, Inputs& in, Report& report) {
+  constexpr std::string_view kCheck = "wall_repulsion";
+  const auto& arguments = *in.fix_line()->arguments;
+  const auto rho = in.density();
+  const auto g = in.gravity();
+  const auto height = g ? in.fluid_height(*g) : std::nullopt;
+  if (g && !(g->magnitude > 0.0)) in.add_missing("gravity is zero (no hydrostatic pressure)");
+  if (!in.complete()) return report.skip(kCheck, "true-shape wall", in.missing());
+  const double d = arguments.true_shape.spacing;
+  const double reference = arguments.true_shape.pressure;
+  const double deepest = rho->value * g->magnitude * height->value;
+  const double bottom_rest = contact::rest_distance(arguments.law, deepest, d, scene.dimension) / d;
+  const double top_rest =
+      contact::rest_distance(arguments.law, rho->value * g->magnitude * d, d, scene.dimension) / d;
+  if (!above(reference, deepest) && !below(reference, kTrueShapeReferenceLow * deepest)) return;
+  report.warn(kCheck, in.fix_line()->location,
+              "the true-shape wall's reference pressure " + number(reference) + " Pa is " +
+                  number(reference / deepest) + " rho0 g H (H = " + number(height->value) +
+                  " m, rho0 g H = " + number(deepest) + " Pa): the first particle layer rests at " +
+                  number(bottom_rest) + " d at the bottom and " + number(top_rest) +
+                  " d one spacing below the free surface, instead of " +
+                  number(contact::kTrueShapeRestFraction) +
+                  " d where the pressure is "
+                  "the reference (docs/theory.md, \"The true shape\")",
+              "set the fix's pressure to the hydrostatic pressure where the forces matter most, "
+              "e.g. rho0 g H / 2 = " +
+                  number(0.5 * deepest) + " Pa");
+}
+
 void check_wall_repulsion(const Scene& scene, Report& report) {
   constexpr std::string_view kCheck = "wall_repulsion";
   constexpr std::string_view kTitle = "wall-repulsion";
   Inputs in(scene);
+  if (in.fix_line() && in.fix_line()->arguments && in.fix_line()->arguments->uses_true_shape) {
+    return check_true_shape_wall(scene, in, report);
+  }
   const auto k = in.wall("k", "SPH_wall_rep");
   const auto rho = in.density();
   const auto g = in.gravity();
@@ -692,6 +775,46 @@ std::optional<FluidOutline> fluid_outline(const Scene& scene, const Inputs& in) 
   return outline;
 }
 
+// With the true-shape wall the region is the water itself and may touch the meshes; its lattice
+// points sit at cell centres, d/2 from the region's edge. A particle closer than that to a mesh
+// starts inside the structure or in its wall.
+void check_true_shape_start(const Scene& scene, const Inputs& in, Report& report) {
+  constexpr std::string_view kCheck = "fluid_overlap";
+  const double d = scene.fluid.spacing;
+  const auto& xy = scene.fluid.positions;
+  for (const WorldMesh& mesh : world_meshes(scene)) {
+    const std::size_t count = mesh.points.size();
+    if (count < 2) continue;
+    const std::size_t segments = mesh.closed && count > 2 ? count : count - 1;
+    double closest = std::numeric_limits<double>::infinity();
+    Point closest_particle = Point::Zero();
+    for (std::size_t p = 0; p + 1 < xy.size(); p += 2) {
+      const Point particle(xy[p], xy[p + 1]);
+      for (std::size_t i = 0; i < segments; ++i) {
+        const Point a = mesh.points[i];
+        const Point b = mesh.points[(i + 1) % count];
+        const Point ab = b - a;
+        const double along = ab.squaredNorm() > 0.0
+                                 ? std::clamp((particle - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0)
+                                 : 0.0;
+        const double distance = (particle - (a + along * ab)).norm();
+        if (distance < closest) {
+          closest = distance;
+          closest_particle = particle;
+        }
+      }
+    }
+    if (!below(closest, kTrueShapeStartFraction * d)) continue;
+    report.warn(kCheck, in.where("FluidRegion.spacing"),
+                "a particle at " + point_text(closest_particle) + " starts " + number(closest / d) +
+                    " d from the mesh of " + mesh.owner +
+                    " (true-shape wall: the lattice's cell centres lie d/2 inside the water's "
+                    "outline): it starts inside the structure or its wall",
+                "draw the FluidRegion (and its Hole blocks) along the water's true outline, so "
+                "that it touches the meshes but does not cross them");
+  }
+}
+
 void check_fluid_overlap(const Scene& scene, Report& report) {
   constexpr std::string_view kCheck = "fluid_overlap";
   Inputs in(scene);
@@ -702,6 +825,9 @@ void check_fluid_overlap(const Scene& scene, Report& report) {
   if (scene.dimension == 3) {
     return report.skip(kCheck, "fluid-overlap",
                        {"a 3D scene (the fluid-to-mesh distance check is 2D only)"});
+  }
+  if (in.fix_line() && in.fix_line()->arguments && in.fix_line()->arguments->uses_true_shape) {
+    return check_true_shape_start(scene, in, report);
   }
   const std::optional<FluidOutline> fluid = fluid_outline(scene, in);
   if (!fluid) return;

@@ -490,3 +490,60 @@ TEST_F(SmallScene, SpeedOfSoundIsCabOrUnknown) {
 
 }  // namespace
 }  // namespace fsi::scene
+
+namespace fsi::scene {
+namespace {
+
+const std::string kTrueShapeBlock = FSI_EXAMPLES_DIR "/immersed_block/immersed_block_coarse.scene";
+const std::string kTrueShapeTank =
+    FSI_EXAMPLES_DIR "/static_tank/static_tank_true_shape_coarse.scene";
+
+TEST(PhysicsChecks, TrueShapeExamplesPassEveryCheck) {
+  for (const std::string& path : {kTrueShapeBlock, kTrueShapeTank}) {
+    const std::vector<Diagnostic> diagnostics = physics_checks(build_scene(path, {}));
+    EXPECT_TRUE(of(diagnostics, "wall_repulsion").empty()) << path << listing(diagnostics);
+    EXPECT_TRUE(of(diagnostics, "contact_time_step").empty()) << path << listing(diagnostics);
+    EXPECT_TRUE(of(diagnostics, "fluid_overlap").empty()) << path << listing(diagnostics);
+    // The derived k, r0 and cutoff are read: no check is skipped for want of them.
+    EXPECT_TRUE(of(diagnostics, "contact_time_step", Severity::Info).empty())
+        << listing(diagnostics);
+  }
+}
+
+TEST(PhysicsChecks, TrueShapeReferencePressureAboveTheColumnIsNamed) {
+  // rho0 g H = 1000 * 9.81 * 0.07 = 687 Pa: a reference of 5000 Pa is 7.3 rho0 g H.
+  const std::vector<Diagnostic> found =
+      of(physics_checks(
+             build_scene(kTrueShapeBlock, {{"LIGGGHTS_SPH_parameters.SPH_wall_pressure", "5000"}})),
+         "wall_repulsion");
+  ASSERT_EQ(found.size(), 1u) << listing(found);
+  EXPECT_CONTAINS(found[0].message, "reference pressure 5000 Pa is 7.28 rho0 g H");
+  EXPECT_CONTAINS(found[0].message, "the first particle layer rests at");
+  EXPECT_CONTAINS(found[0].location.text(), "immersed_block.in1:");
+  EXPECT_CONTAINS(found[0].fix, "rho0 g H / 2 = 343 Pa");
+}
+
+TEST(PhysicsChecks, TrueShapeParticlesStartingInsideABodyAreNamed) {
+  // A hole 2 mm smaller than the block all round: the lattice reaches into the block.
+  const std::vector<Diagnostic> found =
+      of(physics_checks(build_scene(kTrueShapeBlock, {{"Geometry.side", "0.024"},
+                                                      {"FluidRegion.Hole[0].points",
+                                                       "[[0.02, 0.027], [0.04, 0.027], [0.04, "
+                                                       "0.043], [0.02, 0.043]]"}})),
+         "fluid_overlap");
+  ASSERT_FALSE(found.empty());
+  EXPECT_CONTAINS(found[0].message, "d from the mesh of body 'block'");
+  EXPECT_CONTAINS(found[0].fix, "along the water's true outline");
+}
+
+TEST(PhysicsChecks, TrueShapeContactTimeStepUsesTheStiffnessAtRest) {
+  const std::vector<Diagnostic> found =
+      of(physics_checks(build_scene(kTrueShapeBlock, {{"SolverOptions.Timeint.step_size", "2e-4"},
+                                                      {"SolverOptions.end_time", "0.4"}})),
+         "contact_time_step");
+  ASSERT_EQ(found.size(), 1u) << listing(found);
+  EXPECT_CONTAINS(found[0].message, "of the true-shape wall at the first layer's rest distance");
+}
+
+}  // namespace
+}  // namespace fsi::scene

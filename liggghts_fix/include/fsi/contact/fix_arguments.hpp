@@ -15,11 +15,15 @@ struct FixFsiSphArguments {
   int gauss_points = 3;         // 2D: Gauss–Legendre points per (sub-)segment, 1..5
   int triangle_points = 7;      // 3D: symmetric triangle rule, 1, 3 or 7 points
   double warn_fraction = 0.25;  // penetration warning below warn_fraction * r0
+  // `spacing`/`pressure` given: k, r0 and cutoff of `law` were derived from them.
+  bool uses_true_shape = false;
+  TrueShape true_shape;
 };
 
-// words: everything after the style name, with LIGGGHTS variables already substituted.
+// words: everything after the style name, with LIGGGHTS variables already substituted;
+// dimension: 2 or 3, that of the LIGGGHTS run (the true-shape wall's k depends on it).
 // Throws std::invalid_argument naming the keyword and the admissible values.
-FixFsiSphArguments parse_fix_fsi_sph_arguments(std::span<const std::string> words);
+FixFsiSphArguments parse_fix_fsi_sph_arguments(std::span<const std::string> words, int dimension);
 
 // The keywords with their meaning, for error messages (`--help`) and documentation.
 std::string fix_fsi_sph_usage();

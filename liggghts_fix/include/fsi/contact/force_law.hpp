@@ -54,6 +54,31 @@ struct ForceLaw {
   double steepest_repulsion_slope() const;
 };
 
+// The wall as the fluid's lattice sees it (docs/theory.md, "The true shape"). A particle in the
+// first layer at distance z from a flat wall feels the wall's force integrated over the whole
+// plane (2D: over a line), F(z); it rests where F equals the pressure p on the area it stands for
+// (2D: p d per unit depth, 3D: p d^2).
+//   2D: F(z) = 2 int_0^sqrt(r_c^2 - z^2) f(sqrt(z^2 + s^2)) z / sqrt(z^2 + s^2) ds
+//   3D: F(z) = 2 pi z int_z^r_c f(r) dr
+double flat_wall_force(const ForceLaw& law, double distance, int dimension);
+// The z at which F(z) = p d^(dimension-1), searched from the cut-off inwards (the outermost
+// rest point); 0 when the wall cannot hold the pressure at any distance.
+double rest_distance(const ForceLaw& law, double pressure, double spacing, int dimension);
+
+// The true-shape wall: the thesis law (r_0 = r_c, no adhesion) whose first particle layer rests
+// at kTrueShapeRestFraction * d under the reference pressure, with r_c = kTrueShapeCutoffFraction
+// * d. A lattice of spacing d whose first layer rests there fills the volume up to the mesh: the
+// fluid sees the body's true outline (measured, docs/validation.md, "True shape").
+inline constexpr double kTrueShapeRestFraction = 0.75;
+inline constexpr double kTrueShapeCutoffFraction = 1.125;
+struct TrueShape {
+  double spacing = 0.0;   // d [m]: the particle lattice constant
+  double pressure = 0.0;  // p_ref [Pa]: the pressure at which the first layer rests at 0.75 d
+};
+// Fills k, r_0 and r_c of `law` (its viscous part is kept); throws std::invalid_argument for a
+// non-positive spacing or pressure.
+void apply_true_shape(ForceLaw& law, const TrueShape& shape, int dimension);
+
 std::string describe(const ForceLaw& law);
 const char* name(RepulsionLaw law);
 const char* name(ViscousKernel kernel);
