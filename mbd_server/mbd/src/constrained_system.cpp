@@ -1,6 +1,39 @@
 #include "fsi/mbd/constrained_system.hpp"
 
+#include <cmath>
+#include <limits>
+
 namespace fsi::mbd {
+
+double ConstrainedSystem::release_time(int) const {
+  return std::numeric_limits<double>::infinity();
+}
+
+bool ConstrainedSystem::holds_over(int row, double start, double end) const {
+  return 0.5 * (start + end) < release_time(row);
+}
+
+bool ConstrainedSystem::holds_at(int row, double time) const {
+  return time <= release_time(row);
+}
+
+std::vector<bool> ConstrainedSystem::released_rows(double start, double end) const {
+  std::vector<bool> released(static_cast<std::size_t>(constraint_count()));
+  for (int k = 0; k < constraint_count(); ++k)
+    released[static_cast<std::size_t>(k)] = !holds_over(k, start, end);
+  return released;
+}
+
+std::optional<double> ConstrainedSystem::release_within(double start, double end) const {
+  const double margin = 1e-9 * std::abs(end - start);
+  std::optional<double> earliest;
+  for (int k = 0; k < constraint_count(); ++k) {
+    const double release = release_time(k);
+    if (release > start + margin && release < end - margin && (!earliest || release < *earliest))
+      earliest = release;
+  }
+  return earliest;
+}
 
 void ConstrainedSystem::applied_force_derivatives(double time, const Eigen::VectorXd& q,
                                                   const Eigen::VectorXd& v,

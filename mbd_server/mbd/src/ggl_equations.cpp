@@ -3,20 +3,29 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "fsi/common/error.hpp"
 
 namespace fsi::mbd::detail {
 
-void GglEquations::bind(const ConstrainedSystem& system) {
+void GglEquations::bind(const ConstrainedSystem& system, std::vector<bool> released) {
   system_ = &system;
   n_ = system.coordinate_count();
   m_ = system.constraint_count();
+  released_ = std::move(released);
+  released_.resize(static_cast<std::size_t>(m_), false);
   position_rows_.clear();
   for (int k = 0; k < m_; ++k) {
     if (system.constraint_level(k) == ConstraintLevel::Position) position_rows_.push_back(k);
   }
   p_ = static_cast<int>(position_rows_.size());
+}
+
+void GglEquations::drop_released_rows(Eigen::MatrixXd& matrix) const {
+  for (int k = 0; k < m_; ++k) {
+    if (released_[k]) matrix.row(k).setZero();
+  }
 }
 
 void GglEquations::residual(double time, const Eigen::VectorXd& y, const Eigen::VectorXd& yp,
@@ -28,6 +37,7 @@ void GglEquations::residual(double time, const Eigen::VectorXd& y, const Eigen::
   v_ = y.segment(v_offset(), n_);
   system.applied_force(time, q_, v_, force_);
   system.constraint_jacobian(time, q_, g_);
+  drop_released_rows(g_);
   system.constraint_residual(time, q_, v_, constraint_);
   system.constraint_rate(time, q_, v_, rate_);
   residual.resize(size());
@@ -42,6 +52,12 @@ void GglEquations::residual(double time, const Eigen::VectorXd& y, const Eigen::
   for (int r = 0; r < p_; ++r)
     residual(mu_offset() + r) = constraint_(position_rows_[r]);
   residual.segment(lambda_offset(), m_) = rate_;
+  for (int r = 0; r < p_; ++r) {
+    if (released_[position_rows_[r]]) residual(mu_offset() + r) = y(mu_offset() + r);
+  }
+  for (int k = 0; k < m_; ++k) {
+    if (released_[k]) residual(lambda_offset() + k) = y(lambda_offset() + k);
+  }
 }
 
 void GglEquations::jacobian(double time, double cj, const Eigen::VectorXd& y,
@@ -56,7 +72,11 @@ void GglEquations::jacobian(double time, double cj, const Eigen::VectorXd& y,
   mu_full_.setZero(m_);
   for (int r = 0; r < p_; ++r)
     mu_full_(position_rows_[r]) = y(mu_offset() + r);
+  for (int k = 0; k < m_; ++k) {
+    if (released_[k]) lambda_(k) = mu_full_(k) = 0.0;
+  }
   system.constraint_jacobian(time, q_, g_);
+  drop_released_rows(g_);
   system.applied_force_derivatives(time, q_, v_, by_position_, by_velocity_);
   jacobian.setZero();
 
@@ -78,6 +98,13 @@ void GglEquations::jacobian(double time, double cj, const Eigen::VectorXd& y,
     jacobian.block(mo + r, qo, 1, n_) = g_.row(position_rows_[r]);
   // velocity level: d(G v + C_t)/dq for position rows, G for all rows
   jacobian.block(lo, vo, m_, n_) = g_;
+  // Released rows: lambda_k = 0 and mu = 0 (their G rows are zero above).
+  for (int k = 0; k < m_; ++k) {
+    if (released_[k]) jacobian(lo + k, lo + k) = 1.0;
+  }
+  for (int r = 0; r < p_; ++r) {
+    if (released_[position_rows_[r]]) jacobian(mo + r, mo + r) = 1.0;
+  }
   if (p_ == 0) return;
   const double dt =
       std::cbrt(std::numeric_limits<double>::epsilon()) * std::max(1.0, std::abs(time));
@@ -86,6 +113,7 @@ void GglEquations::jacobian(double time, double cj, const Eigen::VectorXd& y,
   Eigen::VectorXd unit = Eigen::VectorXd::Zero(m_);
   for (int r = 0; r < p_; ++r) {
     const int k = position_rows_[r];
+    if (released_[k]) continue;
     unit(k) = 1.0;
     system.constraint_force_derivative(time, q_, unit, hessian_);
     unit(k) = 0.0;
@@ -99,6 +127,7 @@ bool GglEquations::consistent_vectors(const State& state, Eigen::VectorXd& y, Ei
   const ConstrainedSystem& system = *system_;
   system.applied_force(state.time, state.q, state.v, force_);
   system.constraint_jacobian(state.time, state.q, g_);
+  drop_released_rows(g_);
   Eigen::VectorXd remainder;
   system.constraint_acceleration_remainder(state.time, state.q, state.v, remainder);
   Eigen::MatrixXd augmented = Eigen::MatrixXd::Zero(n_ + m_, n_ + m_);
@@ -108,6 +137,11 @@ bool GglEquations::consistent_vectors(const State& state, Eigen::VectorXd& y, Ei
   Eigen::VectorXd right(n_ + m_);
   right.head(n_) = force_;
   right.tail(m_) = -remainder;
+  for (int k = 0; k < m_; ++k) {
+    if (!released_[k]) continue;
+    augmented(n_ + k, n_ + k) = 1.0;  // lambda_k = 0
+    right(n_ + k) = 0.0;
+  }
   const Eigen::FullPivLU<Eigen::MatrixXd> lu(augmented);
   if (!lu.isInvertible()) return false;
   const Eigen::VectorXd solution = lu.solve(right);

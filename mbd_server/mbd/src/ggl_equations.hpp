@@ -24,6 +24,11 @@
 // through add_force_derivative with a unit multiplier); d(C_t)/dq = dG/dt is taken by a central
 // difference of G in time (exact for G linear in t; it only affects Newton's convergence rate).
 // Velocity-level rows have G independent of q (constraint_element.hpp), so d(G v - g)/dq = 0.
+//
+// A row released over the bound interval (ConstrainedSystem::release_time) has the residual
+// lambda_k (and mu of a position row) instead of its constraint and no G row: the size stays,
+// the multipliers are zero. The driver never integrates across a release (it stops there and
+// binds again).
 
 #include <Eigen/Dense>
 
@@ -36,8 +41,10 @@ namespace fsi::mbd::detail {
 
 class GglEquations {
  public:
-  // Binds the model (sizes, which rows are on position level).
-  void bind(const ConstrainedSystem& system);
+  // Binds the model (sizes, which rows are on position level) and the rows released over the
+  // interval to be integrated (one flag per row; empty: none).
+  void bind(const ConstrainedSystem& system, std::vector<bool> released = {});
+  const std::vector<bool>& released() const { return released_; }
 
   int size() const { return 2 * n_ + m_ + p_; }
   int coordinates() const { return n_; }
@@ -70,6 +77,9 @@ class GglEquations {
   const ConstrainedSystem* system_ = nullptr;
   int n_ = 0, m_ = 0, p_ = 0;
   std::vector<int> position_rows_;  // constraint index of each mu
+  std::vector<bool> released_;
+  // Zeroes the released rows of g_ (and of the derivative rows in `matrix`, if given).
+  void drop_released_rows(Eigen::MatrixXd& matrix) const;
   // Scratch.
   Eigen::VectorXd q_, v_, lambda_, mu_full_, force_, constraint_, rate_;
   Eigen::MatrixXd g_, g_plus_, g_minus_, by_position_, by_velocity_, derivative_, hessian_;

@@ -14,7 +14,9 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "fsi/common/error.hpp"
@@ -166,10 +168,11 @@ struct IdaIntegrator::Impl {
                 "IDA integrator", "check the options and the model");
   }
 
-  // Builds IDA from a consistent restart at `state`.
-  void start(const ConstrainedSystem& candidate, const State& state) {
+  // Builds IDA from a consistent restart at `state`, with the rows released over the interval
+  // to be integrated.
+  void start(const ConstrainedSystem& candidate, const State& state, std::vector<bool> released) {
     free_solver();
-    equations.bind(candidate);
+    equations.bind(candidate, std::move(released));
     const sunindextype size = equations.size();
     y = N_VNew_Serial(size, context);
     yp = N_VNew_Serial(size, context);
@@ -265,7 +268,6 @@ IdaIntegrator::IdaIntegrator(IdaIntegrator&&) noexcept = default;
 IdaIntegrator& IdaIntegrator::operator=(IdaIntegrator&&) noexcept = default;
 
 void IdaIntegrator::advance(const ConstrainedSystem& system, State& state, double end_time) {
-  Impl& w = *impl_;
   if (!(end_time > state.time) || !std::isfinite(end_time)) {
     char text[128];
     std::snprintf(text, sizeof text, "end time %.9g s is not after the state's time %.9g s",
@@ -277,7 +279,25 @@ void IdaIntegrator::advance(const ConstrainedSystem& system, State& state, doubl
     throw Error("the state does not match the model", "IDA integrator",
                 "start from Model::initial_state() of this model");
   }
-  if (!w.continues(system, state)) w.start(system, state);
+  // BDF's history does not survive a multiplier that drops to zero: IDA stops at every release
+  // and restarts there with the row's equation lambda = 0.
+  const State before = state;
+  try {
+    while (const std::optional<double> release = system.release_within(state.time, end_time))
+      advance_without_release(system, state, *release);
+    advance_without_release(system, state, end_time);
+  } catch (const Error&) {
+    state = before;
+    throw;
+  }
+}
+
+void IdaIntegrator::advance_without_release(const ConstrainedSystem& system, State& state,
+                                            double end_time) {
+  Impl& w = *impl_;
+  std::vector<bool> released = system.released_rows(state.time, end_time);
+  if (!w.continues(system, state) || w.equations.released() != released)
+    w.start(system, state, std::move(released));
   w.last_message.clear();
   w.bad_residual.clear();
   w.check(IDASetStopTime(w.ida, end_time), "IDASetStopTime");

@@ -269,6 +269,32 @@ int Model::add_constraint_element(std::unique_ptr<ConstraintElement> element) {
   return constraint_count() - 1;
 }
 
+void Model::set_release_time(int row, double time) {
+  if (row < 0 || row >= constraint_count()) {
+    throw Error("release of constraint row " + std::to_string(row) + ", but the model has " +
+                    std::to_string(constraint_count()) + " rows",
+                "multibody model", "release a row that has been added");
+  }
+  // Before the start the row would never have held: the initial state would then have to satisfy
+  // a constraint that does not exist, so a negative time is refused rather than guessed at.
+  if (!(time >= 0.0)) {
+    throw Error("release time " + detail::number_text(time) + " s is negative or not a number",
+                data_->constraints[row]->description(),
+                "give a release time >= 0 s (0: held at the start only, released at once)");
+  }
+  if (data_->release_times.size() <= static_cast<std::size_t>(row))
+    data_->release_times.resize(static_cast<std::size_t>(row) + 1,
+                                std::numeric_limits<double>::infinity());
+  data_->release_times[static_cast<std::size_t>(row)] = time;
+}
+
+double Model::release_time(int row) const {
+  FSI_ASSERT(row >= 0 && row < constraint_count(), "constraint row out of range");
+  const auto index = static_cast<std::size_t>(row);
+  return index < data_->release_times.size() ? data_->release_times[index]
+                                             : std::numeric_limits<double>::infinity();
+}
+
 void Model::add_spring_damper(const SpringDamperSpec& spec) {
   const std::string user = "spring-damper " + std::to_string(data_->force_elements.size());
   const detail::BodyPoint first = data_->point(spec.a, user);

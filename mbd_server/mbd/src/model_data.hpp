@@ -79,6 +79,9 @@ struct Model::Data {
   int coordinates = 0;
   std::vector<detail::Marker> markers;
   std::vector<std::unique_ptr<ConstraintElement>> constraints;
+  // Release time of each row that has one (Model::set_release_time); rows beyond the end hold
+  // for ever.
+  std::vector<double> release_times;
   std::vector<std::unique_ptr<ForceElement>> force_elements;
   Eigen::Vector2d gravity = Eigen::Vector2d::Zero();
   Eigen::Vector3d spatial_gravity = Eigen::Vector3d::Zero();

@@ -81,6 +81,7 @@ struct RadauIIA::Workspace {
   const ConstrainedSystem* factorised_system = nullptr;
   int factorised_size = -1;
   double factorised_step_size = 0.0;
+  std::vector<bool> factorised_released;  // a release changes the Newton matrix's rows
   int steps_with_factorisation = 0;
   double last_contraction = 0.0;
   const ConstrainedSystem* current_system = nullptr;
@@ -122,7 +123,7 @@ struct RadauIIA::Workspace {
     current_system = &system;
     current_step_size = h;
     if (factorised_system != &system || factorised_size != equations.size() ||
-        factorised_step_size != h) {
+        factorised_step_size != h || factorised_released != equations.released()) {
       factorised = false;
     }
   }
@@ -150,6 +151,7 @@ struct RadauIIA::Workspace {
     factorised_system = current_system;
     factorised_size = equations.size();
     factorised_step_size = current_step_size;
+    factorised_released = equations.released();
     steps_with_factorisation = 0;
   }
 
@@ -308,6 +310,35 @@ RadauIIA::RadauIIA(RadauIIA&&) noexcept = default;
 RadauIIA& RadauIIA::operator=(RadauIIA&&) noexcept = default;
 
 StepStatistics RadauIIA::step(const ConstrainedSystem& system, State& state, double step_size) {
+  // A release inside the step ends a part of it there: the stages of one part then see one set
+  // of rows, and the released row's multiplier drops to zero exactly at its release time (the
+  // point loads stay those of the whole step, thesis Fig. 4.10). The parts land on the caller's
+  // end time exactly.
+  const double end = state.time + step_size;
+  std::optional<double> release = system.release_within(state.time, end);
+  // Without a release the step is taken as given: the same h keeps the Newton matrix.
+  if (!release) return step_without_release(system, state, step_size);
+  StepStatistics total;
+  while (release) {
+    const StepStatistics part = step_without_release(system, state, *release - state.time);
+    state.time = *release;
+    total.newton_iterations += part.newton_iterations;
+    total.jacobian_evaluations += part.jacobian_evaluations;
+    total.factorisations += part.factorisations;
+    total.retries += part.retries;
+    release = system.release_within(state.time, end);
+  }
+  const StepStatistics last = step_without_release(system, state, end - state.time);
+  state.time = end;
+  total.newton_iterations += last.newton_iterations;
+  total.jacobian_evaluations += last.jacobian_evaluations;
+  total.factorisations += last.factorisations;
+  total.retries += last.retries;
+  return total;
+}
+
+StepStatistics RadauIIA::step_without_release(const ConstrainedSystem& system, State& state,
+                                              double step_size) {
   Workspace& w = *work_;
   StepStatistics stats;
   w.initialise(system, state, step_size);

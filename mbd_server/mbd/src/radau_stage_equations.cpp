@@ -32,6 +32,7 @@ void RadauStageEquations::begin_step(const ConstrainedSystem& system, const Stat
   position_level_.resize(m_);
   for (int k = 0; k < m_; ++k)
     position_level_[k] = system.constraint_level(k) == ConstraintLevel::Position;
+  released_ = system.released_rows(start.time, start.time + step_size);
   stage_force_.assign(stages_, Eigen::VectorXd::Zero(n_));
   if (sparse_) {
     stage_constraint_jacobian_.clear();
@@ -48,6 +49,30 @@ void RadauStageEquations::predict(Eigen::VectorXd& unknowns) const {
     unknowns.segment(z_offset(i), n_) = c_(i) * start_.v;
     unknowns.segment(v_offset(i), n_) = start_.v;
     unknowns.segment(l_offset(i), m_) = step_size_ * start_.lambda;
+    for (int k = 0; k < m_; ++k) {
+      if (released_[k]) unknowns(l_offset(i) + k) = 0.0;
+    }
+  }
+}
+
+bool RadauStageEquations::any_released() const {
+  return std::find(released_.begin(), released_.end(), true) != released_.end();
+}
+
+void RadauStageEquations::drop_released(Eigen::MatrixXd& jacobian) const {
+  for (int k = 0; k < m_; ++k) {
+    if (released_[k]) jacobian.row(k).setZero();
+  }
+}
+
+void RadauStageEquations::drop_released(Eigen::SparseMatrix<double>& jacobian) const {
+  if (!any_released()) return;
+  jacobian.prune([this](Eigen::Index row, Eigen::Index, double) { return !released_[row]; });
+}
+
+void RadauStageEquations::drop_released(Eigen::VectorXd& multipliers) const {
+  for (int k = 0; k < m_; ++k) {
+    if (released_[k]) multipliers(k) = 0.0;
   }
 }
 
@@ -73,8 +98,10 @@ void RadauStageEquations::residual(const Eigen::VectorXd& unknowns, Eigen::Vecto
     system.applied_force(stage_time(j), q_, v_, stage_force_[j]);
     if (sparse_) {
       system.constraint_jacobian(stage_time(j), q_, stage_sparse_constraint_jacobian_[j]);
+      drop_released(stage_sparse_constraint_jacobian_[j]);
     } else {
       system.constraint_jacobian(stage_time(j), q_, stage_constraint_jacobian_[j]);
+      drop_released(stage_constraint_jacobian_[j]);
     }
   }
   residual.resize(size());
@@ -99,24 +126,35 @@ void RadauStageEquations::residual(const Eigen::VectorXd& unknowns, Eigen::Vecto
                                                          unknowns.segment(l_offset(j), m_));
       }
     }
-    if (i == 0 && first_stage_is_start_) {
-      residual.segment(l_offset(0), m_) = unknowns.segment(l_offset(0), m_) - h * start_.lambda;
-      continue;
-    }
-    q_ = position(unknowns, i);
-    v_ = velocity(unknowns, i);
-    if (index2_) {
-      // G V + dC/dt for position rows, G V - g for velocity rows: all on velocity level.
-      system.constraint_rate(stage_time(i), q_, v_, rate_);
-      residual.segment(l_offset(i), m_) = rate_;
-      continue;
-    }
-    system.constraint_residual(stage_time(i), q_, v_, constraint_);
+    constraint_rows_residual(unknowns, i, residual);
+  }
+}
+
+void RadauStageEquations::constraint_rows_residual(const Eigen::VectorXd& unknowns, int stage,
+                                                   Eigen::VectorXd& residual) {
+  const ConstrainedSystem& system = *system_;
+  const double h = step_size_;
+  auto rows = residual.segment(l_offset(stage), m_);
+  if (stage == 0 && first_stage_is_start_) {
+    rows = unknowns.segment(l_offset(0), m_) - h * start_.lambda;
+  } else if (index2_) {
+    // G V + dC/dt for position rows, G V - g for velocity rows: all on velocity level.
+    q_ = position(unknowns, stage);
+    v_ = velocity(unknowns, stage);
+    system.constraint_rate(stage_time(stage), q_, v_, rate_);
+    rows = rate_;
+  } else {
+    q_ = position(unknowns, stage);
+    v_ = velocity(unknowns, stage);
+    system.constraint_residual(stage_time(stage), q_, v_, constraint_);
     for (int k = 0; k < m_; ++k) {
-      residual(l_offset(i) + k) = position_level_[k] ? constraint_(k) / h : constraint_(k);
-      if (position_level_[k])
+      rows(k) = position_level_[k] ? constraint_(k) / h : constraint_(k);
+      if (position_level_[k] && !released_[k])
         position_residual_ = std::max(position_residual_, std::abs(constraint_(k)));
     }
+  }
+  for (int k = 0; k < m_; ++k) {
+    if (released_[k]) rows(k) = unknowns(l_offset(stage) + k);
   }
 }
 
@@ -139,7 +177,9 @@ void RadauStageEquations::jacobian(const Eigen::VectorXd& unknowns, Eigen::Matri
         by_position_.cwiseAbs() * q_.cwiseAbs() + by_velocity_.cwiseAbs() * v_.cwiseAbs(),
         by_position_.diagonal(), by_velocity_.diagonal());
     system.constraint_jacobian(t, q_, stage_constraint_jacobian_[j]);
+    drop_released(stage_constraint_jacobian_[j]);
     lambda_ = unknowns.segment(l_offset(j), m_);
+    drop_released(lambda_);
     // d/dZ_j (G(Q_j)^T L_j) = h * [d(G^T mu)/dq at mu = L_j].
     system.constraint_force_derivative(t, q_, lambda_, constraint_force_derivative_);
     const Eigen::MatrixXd& g = stage_constraint_jacobian_[j];
@@ -155,20 +195,23 @@ void RadauStageEquations::jacobian(const Eigen::VectorXd& unknowns, Eigen::Matri
     jacobian.block(v_offset(j), v_offset(j), n_, n_) += mass;
     if (j == 0 && first_stage_is_start_) {
       jacobian.block(l_offset(0), l_offset(0), m_, m_).setIdentity();
-      continue;
-    }
-    if (index2_) {
+    } else if (index2_) {
       // d(G V)/dV = G; d(G(Q) V)/dZ = h d(G v)/dq at v = V_j.
       jacobian.block(l_offset(j), v_offset(j), m_, n_) = g;
       velocity_derivative_.setZero(m_, n_);
       DenseMatrixSink sink(velocity_derivative_);
       system.add_constraint_velocity_derivative(t, q_, v_, sink);
+      drop_released(velocity_derivative_);
       jacobian.block(l_offset(j), z_offset(j), m_, n_) = h * velocity_derivative_;
-      continue;
+    } else {
+      for (int k = 0; k < m_; ++k) {
+        const int column = position_level_[k] ? z_offset(j) : v_offset(j);
+        jacobian.block(l_offset(j) + k, column, 1, n_) = g.row(k);
+      }
     }
+    // A released row is L_jk = 0: its G row is dropped above, leaving the unit entry.
     for (int k = 0; k < m_; ++k) {
-      const int column = position_level_[k] ? z_offset(j) : v_offset(j);
-      jacobian.block(l_offset(j) + k, column, 1, n_) = g.row(k);
+      if (released_[k]) jacobian(l_offset(j) + k, l_offset(j) + k) = 1.0;
     }
   }
 }
@@ -209,7 +252,9 @@ void RadauStageEquations::jacobian(const Eigen::VectorXd& unknowns,
     add_force_rounding(rounding, sparse_by_position_.diagonal(), sparse_by_velocity_.diagonal());
     Eigen::SparseMatrix<double>& g = stage_sparse_constraint_jacobian_[j];
     system.constraint_jacobian(t, q_, g);
+    drop_released(g);
     lambda_ = unknowns.segment(l_offset(j), m_);
+    drop_released(lambda_);
     system.constraint_force_derivative(t, q_, lambda_, sparse_constraint_force_derivative_);
     for (int i = 0; i < stages_; ++i) {
       const double a = a_(i, j);
@@ -238,6 +283,10 @@ void RadauStageEquations::jacobian(const Eigen::VectorXd& unknowns,
         triplets_.emplace_back(l_offset(0) + k, l_offset(0) + k, 1.0);
       continue;
     }
+    // A released row is L_jk = 0 (g has no entries in its row any more).
+    for (int k = 0; k < m_; ++k) {
+      if (released_[k]) triplets_.emplace_back(l_offset(j) + k, l_offset(j) + k, 1.0);
+    }
     if (index2_) {
       for (int c = 0; c < n_; ++c) {
         for (Iterator it(g, c); it; ++it)
@@ -245,9 +294,11 @@ void RadauStageEquations::jacobian(const Eigen::VectorXd& unknowns,
       }
       TripletSink velocity_derivative;
       system.add_constraint_velocity_derivative(t, q_, v_, velocity_derivative);
-      for (const auto& entry : velocity_derivative.triplets())
+      for (const auto& entry : velocity_derivative.triplets()) {
+        if (released_[entry.row()]) continue;
         triplets_.emplace_back(l_offset(j) + entry.row(), z_offset(j) + entry.col(),
                                h * entry.value());
+      }
       continue;
     }
     for (int c = 0; c < n_; ++c) {

@@ -25,6 +25,10 @@
 // constraint rows would repeat G Z_1 = 0 and leave L_1 undetermined (singular Newton matrix).
 // They are replaced by L_1 - h lambda_n = 0: the first stage takes the multipliers of the step
 // start, and the constraints are enforced at the stages 2..s (docs/theory.md).
+//
+// Released rows (ConstrainedSystem::release_time): a row released over the step has the
+// equation L_i = 0 at every stage instead of its constraint, and no G row, so the unknowns keep
+// their number and the multiplier is exactly zero; the Newton matrix row is the unit row.
 
 #include <Eigen/Dense>
 #include <Eigen/SparseCore>
@@ -52,6 +56,8 @@ class RadauStageEquations {
   void set_constraint_form(ConstraintForm form) { index2_ = form == ConstraintForm::Index2; }
   bool sparse() const { return sparse_; }
 
+  // The rows released over the bound step (one flag per row).
+  const std::vector<bool>& released() const { return released_; }
   int stages() const { return stages_; }
   int size() const { return stages_ * block_; }
 
@@ -90,8 +96,17 @@ class RadauStageEquations {
   int v_offset(int stage) const { return stage * block_ + n_; }
   int l_offset(int stage) const { return stage * block_ + 2 * n_; }
   double stage_time(int stage) const { return start_.time + c_(stage) * step_size_; }
+  // The constraint rows of stage `stage` (released rows: L = 0).
+  void constraint_rows_residual(const Eigen::VectorXd& unknowns, int stage,
+                                Eigen::VectorXd& residual);
   // force_rounding_ and force_velocity_rounding_ from the per-coordinate rounding of F and the
   // diagonals of dF/dq, dF/dv of one stage (see increment_norm).
+  // Removes the released rows from a stage's G (a released joint's G may not even be defined,
+  // e.g. a rod whose ends meet), and their multipliers from `multipliers`.
+  void drop_released(Eigen::MatrixXd& jacobian) const;
+  void drop_released(Eigen::SparseMatrix<double>& jacobian) const;
+  void drop_released(Eigen::VectorXd& multipliers) const;
+  bool any_released() const;
   void add_force_rounding(const Eigen::VectorXd& rounding,
                           const Eigen::VectorXd& by_position_diagonal,
                           const Eigen::VectorXd& by_velocity_diagonal);
@@ -107,6 +122,7 @@ class RadauStageEquations {
   int m_ = 0;
   int block_ = 0;
   std::vector<bool> position_level_;
+  std::vector<bool> released_;
   double position_residual_ = 0.0;  // max |C(Q_i)| of position rows in the last residual() call
   // Sizes whose rounding the stiff forces carry (last jacobian() call, see increment_norm).
   double force_rounding_ = 0.0;

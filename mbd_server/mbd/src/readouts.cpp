@@ -142,7 +142,7 @@ double position_constraint_drift(const ConstrainedSystem& system, const State& s
   system.constraint_residual(state.time, state.q, state.v, residual);
   double drift = 0.0;
   for (int k = 0; k < system.constraint_count(); ++k) {
-    if (system.constraint_level(k) == ConstraintLevel::Position)
+    if (system.constraint_level(k) == ConstraintLevel::Position && system.holds_at(k, state.time))
       drift = std::max(drift, std::abs(residual(k)));
   }
   return drift;
@@ -152,8 +152,9 @@ double velocity_constraint_drift(const ConstrainedSystem& system, const State& s
   Eigen::VectorXd rate;
   system.constraint_rate(state.time, state.q, state.v, rate);
   double drift = 0.0;
-  for (int k = 0; k < system.constraint_count(); ++k)
-    drift = std::max(drift, std::abs(rate(k)));
+  for (int k = 0; k < system.constraint_count(); ++k) {
+    if (system.holds_at(k, state.time)) drift = std::max(drift, std::abs(rate(k)));
+  }
   return drift;
 }
 

@@ -68,75 +68,105 @@ Model jointed_model() {
   return model;
 }
 
-TEST(MbdRadauStageEquations, NewtonMatrixMatchesDifferencesOfTheResidual) {
-  std::mt19937 rng(11);
+// For every tableau and both constraint forms, at a coupled and a plain step size: the Newton
+// matrix against central differences of the residual, and the sparse assembly against the dense.
+void expect_newton_matrix_matches_differences(const Model& model, const State& start,
+                                              std::mt19937& rng) {
   std::uniform_real_distribution<double> u(-1.0, 1.0);
-  const Model rich = rich_model();
-  const Model jointed = jointed_model();
-  State rich_start = rich.initial_state();
-  rich_start.time = 0.125;
-  State jointed_start;  // not consistent: the Newton matrix does not care
-  jointed_start.time = 0.5;
-  jointed_start.q = Eigen::VectorXd::NullaryExpr(6, [&] { return u(rng); });
-  jointed_start.v = Eigen::VectorXd::NullaryExpr(6, [&] { return u(rng); });
-  jointed_start.lambda = Eigen::VectorXd::NullaryExpr(3, [&] { return 5.0 * u(rng); });
   const std::pair<TableauFamily, int> tableaux[] = {{TableauFamily::RadauIIA, 1},
                                                     {TableauFamily::RadauIIA, 2},
                                                     {TableauFamily::RadauIIA, 3},
                                                     {TableauFamily::LobattoIIIA, 2},
                                                     {TableauFamily::LobattoIIIA, 3}};
-  for (const Model* model_in_test : {&rich, &jointed}) {
-    const Model& model = *model_in_test;
-    const State& start = model_in_test == &rich ? rich_start : jointed_start;
-    for (const auto& [family, s] : tableaux) {
-      for (const auto& [form, h] :
-           {std::pair{ConstraintForm::Index3, 1e-2}, std::pair{ConstraintForm::Index3, 5e-6},
-            std::pair{ConstraintForm::Index2, 1e-2}, std::pair{ConstraintForm::Index2, 5e-6}}) {
-        detail::RadauStageEquations equations(butcher_tableau(family, s));
-        equations.set_constraint_form(form);
-        equations.begin_step(model, start, h);
-        Eigen::VectorXd x;
-        equations.predict(x);
-        for (int k = 0; k < x.size(); ++k)
-          x(k) += 0.1 * u(rng) * (1.0 + std::abs(x(k)));  // away from the prediction
-        Eigen::MatrixXd jacobian;
-        equations.jacobian(x, jacobian);
-        Eigen::VectorXd plus, minus;
-        double worst = 0.0;
-        const int n = model.coordinate_count();
-        const int block = 2 * n + model.constraint_count();
-        for (int j = 0; j < x.size(); ++j) {
-          // Z moves the positions by h Z: perturb it by what moves Q by 1e-7 (1 + |q|), or the
-          // rounding of q_n + h Z (~1e-17 / h) swamps the difference quotient.
-          const bool is_z = j % block < n;
-          const double step =
-              is_z ? 1e-7 * (1.0 + start.q.lpNorm<Eigen::Infinity>()) / h + 1e-6 * std::abs(x(j))
-                   : 1e-6 * (1.0 + std::abs(x(j)));
-          Eigen::VectorXd probe = x;
-          probe(j) += step;
-          equations.residual(probe, plus);
-          probe(j) -= 2.0 * step;
-          equations.residual(probe, minus);
-          const Eigen::VectorXd difference = (plus - minus) / (2.0 * step);
-          worst = std::max(worst, (jacobian.col(j) - difference).lpNorm<Eigen::Infinity>() /
-                                      (1.0 + difference.lpNorm<Eigen::Infinity>()));
-        }
-        EXPECT_LT(worst, 1e-7) << butcher_tableau(family, s).name << " " << s
-                               << " stages, h = " << h << ", model with "
-                               << model.constraint_count() << " constraints, index "
-                               << (form == ConstraintForm::Index2 ? 2 : 3);
-        // The sparse assembly of the same form gives the same matrix.
-        detail::RadauStageEquations sparse(butcher_tableau(family, s));
-        sparse.set_constraint_form(form);
-        sparse.set_sparse(true);
-        sparse.begin_step(model, start, h);
-        Eigen::SparseMatrix<double> sparse_jacobian;
-        sparse.jacobian(x, sparse_jacobian);
-        EXPECT_LE((Eigen::MatrixXd(sparse_jacobian) - jacobian).lpNorm<Eigen::Infinity>(),
-                  1e-12 * (1.0 + jacobian.lpNorm<Eigen::Infinity>()));
+  for (const auto& [family, s] : tableaux) {
+    for (const auto& [form, h] :
+         {std::pair{ConstraintForm::Index3, 1e-2}, std::pair{ConstraintForm::Index3, 5e-6},
+          std::pair{ConstraintForm::Index2, 1e-2}, std::pair{ConstraintForm::Index2, 5e-6}}) {
+      detail::RadauStageEquations equations(butcher_tableau(family, s));
+      equations.set_constraint_form(form);
+      equations.begin_step(model, start, h);
+      Eigen::VectorXd x;
+      equations.predict(x);
+      for (int k = 0; k < x.size(); ++k)
+        x(k) += 0.1 * u(rng) * (1.0 + std::abs(x(k)));  // away from the prediction
+      Eigen::MatrixXd jacobian;
+      equations.jacobian(x, jacobian);
+      Eigen::VectorXd plus, minus;
+      double worst = 0.0;
+      const int n = model.coordinate_count();
+      const int block = 2 * n + model.constraint_count();
+      for (int j = 0; j < x.size(); ++j) {
+        // Z moves the positions by h Z: perturb it by what moves Q by 1e-7 (1 + |q|), or the
+        // rounding of q_n + h Z (~1e-17 / h) swamps the difference quotient.
+        const bool is_z = j % block < n;
+        const double step =
+            is_z ? 1e-7 * (1.0 + start.q.lpNorm<Eigen::Infinity>()) / h + 1e-6 * std::abs(x(j))
+                 : 1e-6 * (1.0 + std::abs(x(j)));
+        Eigen::VectorXd probe = x;
+        probe(j) += step;
+        equations.residual(probe, plus);
+        probe(j) -= 2.0 * step;
+        equations.residual(probe, minus);
+        const Eigen::VectorXd difference = (plus - minus) / (2.0 * step);
+        worst = std::max(worst, (jacobian.col(j) - difference).lpNorm<Eigen::Infinity>() /
+                                    (1.0 + difference.lpNorm<Eigen::Infinity>()));
       }
+      EXPECT_LT(worst, 1e-7) << butcher_tableau(family, s).name << " " << s << " stages, h = " << h
+                             << ", model with " << model.constraint_count()
+                             << " constraints, index " << (form == ConstraintForm::Index2 ? 2 : 3);
+      // The sparse assembly of the same form gives the same matrix.
+      detail::RadauStageEquations sparse(butcher_tableau(family, s));
+      sparse.set_constraint_form(form);
+      sparse.set_sparse(true);
+      sparse.begin_step(model, start, h);
+      Eigen::SparseMatrix<double> sparse_jacobian;
+      sparse.jacobian(x, sparse_jacobian);
+      EXPECT_LE((Eigen::MatrixXd(sparse_jacobian) - jacobian).lpNorm<Eigen::Infinity>(),
+                1e-12 * (1.0 + jacobian.lpNorm<Eigen::Infinity>()));
     }
   }
+}
+
+// The jointed model's state away from any solution (the Newton matrix does not care).
+State inconsistent_jointed_start(std::mt19937& rng) {
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  State start;
+  start.time = 0.5;
+  start.q = Eigen::VectorXd::NullaryExpr(6, [&] { return u(rng); });
+  start.v = Eigen::VectorXd::NullaryExpr(6, [&] { return u(rng); });
+  start.lambda = Eigen::VectorXd::NullaryExpr(3, [&] { return 5.0 * u(rng); });
+  return start;
+}
+
+TEST(MbdRadauStageEquations, NewtonMatrixMatchesDifferencesOfTheResidual) {
+  std::mt19937 rng(11);
+  const Model rich = rich_model();
+  const Model jointed = jointed_model();
+  State rich_start = rich.initial_state();
+  rich_start.time = 0.125;
+  const State jointed_start = inconsistent_jointed_start(rng);
+  expect_newton_matrix_matches_differences(rich, rich_start, rng);
+  expect_newton_matrix_matches_differences(jointed, jointed_start, rng);
+}
+
+// Released rows (L = 0, no G row) in every form: a held coordinate and a velocity row of the
+// rich model, the revolute joint of the jointed one (its d(G^T lambda)/dq must go with it).
+TEST(MbdRadauStageEquations, NewtonMatrixWithReleasedRowsMatchesDifferencesOfTheResidual) {
+  std::mt19937 rng(12);
+  Model rich = rich_model();
+  rich.set_release_time(0, 0.1);  // b.x
+  rich.set_release_time(2, 0.1);  // b's velocity row
+  Model jointed = jointed_model();
+  jointed.set_release_time(1, 0.2);  // the revolute joint's two rows
+  jointed.set_release_time(2, 0.2);
+  State rich_start = rich.initial_state();
+  rich_start.time = 0.125;
+  const State jointed_start = inconsistent_jointed_start(rng);
+  detail::RadauStageEquations probe(butcher_tableau(TableauFamily::RadauIIA, 3));
+  probe.begin_step(jointed, jointed_start, 1e-2);
+  EXPECT_EQ(probe.released(), (std::vector<bool>{false, true, true}));
+  expect_newton_matrix_matches_differences(rich, rich_start, rng);
+  expect_newton_matrix_matches_differences(jointed, jointed_start, rng);
 }
 
 double condition_number(const Eigen::MatrixXd& matrix) {

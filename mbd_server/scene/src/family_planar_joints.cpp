@@ -19,7 +19,7 @@ std::vector<BlockSpec> planar_joint_blocks() {
   const ParameterSpec body_name = text("body", "name of a RigidBody2D");
   const ParameterSpec coordinate =
       text("coordinate", "body coordinate").one_of({"x", "y", "angle"});
-  return {
+  return releasable({
       block_spec(
           "CoordinateConstraint",
           "Holds a body coordinate at a value (position level; force from a Lagrange multiplier).",
@@ -97,7 +97,7 @@ std::vector<BlockSpec> planar_joint_blocks() {
                   text("velocity", "velocity [m/s or rad/s] in t, e.g. \"0.1*t\"")})
           .as_list()
           .planar(),
-  };
+  });
 }
 
 void build_coordinate_constraints(SceneBuilder& builder) {

@@ -135,22 +135,23 @@ class PointOnLineRow final : public mbd::ConstraintElement {
 };
 
 std::vector<BlockSpec> point_on_line_blocks() {
-  return {block_spec("PointOnLine",
-                     "A slider: point_b stays on the line through point_a along axis (body_a's "
-                     "frame; the world's when body_a is absent), rotation free. 1 row, lambda the "
-                     "normal force; a joint_force sensor reads the force on body_b (on body_a "
-                     "when body_b is the ground).",
-                     {element_name_spec(),
-                      text("body_a", "name of a RigidBody2D; absent: the ground").optional(),
-                      vector("point_a", 2, "m", "point on the line: body_a coordinates or world")
-                          .with_default({0.0, 0.0}),
-                      text("body_b", "name of a RigidBody2D; absent: the ground").optional(),
-                      vector("point_b", 2, "m", "the sliding point: body_b coordinates or world")
-                          .with_default({0.0, 0.0}),
-                      vector("axis", 2, "", "line direction, body_a's frame (world without body_a)")
-                          .with_default({1.0, 0.0})})
-              .as_list()
-              .planar()};
+  return {releasable(
+      block_spec("PointOnLine",
+                 "A slider: point_b stays on the line through point_a along axis (body_a's "
+                 "frame; the world's when body_a is absent), rotation free. 1 row, lambda the "
+                 "normal force; a joint_force sensor reads the force on body_b (on body_a "
+                 "when body_b is the ground).",
+                 {element_name_spec(),
+                  text("body_a", "name of a RigidBody2D; absent: the ground").optional(),
+                  vector("point_a", 2, "m", "point on the line: body_a coordinates or world")
+                      .with_default({0.0, 0.0}),
+                  text("body_b", "name of a RigidBody2D; absent: the ground").optional(),
+                  vector("point_b", 2, "m", "the sliding point: body_b coordinates or world")
+                      .with_default({0.0, 0.0}),
+                  vector("axis", 2, "", "line direction, body_a's frame (world without body_a)")
+                      .with_default({1.0, 0.0})})
+          .as_list()
+          .planar())};
 }
 
 RigidPoint rigid_point(SceneBuilder& builder, const View& element, const std::string& side) {
@@ -196,8 +197,7 @@ void build_point_on_line(SceneBuilder& builder, const View& slider) {
 }
 
 void build_points_on_lines(SceneBuilder& builder) {
-  for (const View& slider : builder.blocks("PointOnLine"))
-    builder.guard(slider.location(), [&] { build_point_on_line(builder, slider); });
+  builder.each("PointOnLine", [&](const View& slider) { build_point_on_line(builder, slider); });
 }
 
 }  // namespace

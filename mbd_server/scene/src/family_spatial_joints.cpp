@@ -7,7 +7,7 @@ namespace fsi::scene::detail {
 namespace {
 
 std::vector<BlockSpec> spatial_joint_blocks() {
-  return {
+  return releasable({
       block_spec(
           "CableClamp",
           "Clamps a node of an AncfCable3D to the ground at its initial position and slope "
@@ -43,7 +43,7 @@ std::vector<BlockSpec> spatial_joint_blocks() {
               {number("length", "m", "default: the initial distance").above(0.0).optional()}))
           .as_list()
           .spatial(),
-  };
+  });
 }
 
 void build_spatial_joints(SceneBuilder& builder) {

@@ -1,6 +1,7 @@
 #include "scene_builder.hpp"
 
 #include <algorithm>
+#include <utility>
 
 #include "fsi/common/error.hpp"
 #include "runtime_expression.hpp"
@@ -57,8 +58,18 @@ std::vector<View> SceneBuilder::blocks(std::string_view name) const {
 }
 
 void SceneBuilder::each(std::string_view name, const std::function<void(const View&)>& build) {
-  for (const View& element : blocks(name))
-    guard(element.location(), [&] { build(element); });
+  for (const View& element : blocks(name)) {
+    guard(element.location(), [&] {
+      const int first_row = model.constraint_count();
+      build(element);
+      if (!element.has("release_time")) return;
+      const double release = element.number("release_time");
+      placed(element, [&] {
+        for (int row = first_row; row < model.constraint_count(); ++row)
+          model.set_release_time(row, release);
+      });
+    });
+  }
 }
 
 void SceneBuilder::guard(const SourceLocation& element, const std::function<void()>& step) {
@@ -281,6 +292,22 @@ std::vector<ParameterSpec> spatial_two_points(std::vector<ParameterSpec> more) {
 Eigen::Vector3d vector3(const View& element, std::string_view key) {
   const auto v = element.vector(key);
   return {v[0], v[1], v[2]};
+}
+
+BlockSpec releasable(BlockSpec constraint_block) {
+  constraint_block.parameters.push_back(
+      number("release_time", "s",
+             "the constraint holds until this time and is removed from then on: its multipliers "
+             "are zero, its joint_force and constraint_force sensors read 0 (absent: never)")
+          .at_least(0.0)
+          .optional());
+  return constraint_block;
+}
+
+std::vector<BlockSpec> releasable(std::vector<BlockSpec> constraint_blocks) {
+  for (BlockSpec& block : constraint_blocks)
+    block = releasable(std::move(block));
+  return constraint_blocks;
 }
 
 ParameterSpec element_name_spec() {

@@ -75,7 +75,8 @@ class SceneBuilder {
   // The blocks of that name that belong to this scene's dimension (the others are refused at
   // their place by the builder).
   std::vector<View> blocks(std::string_view name) const;
-  // Builds every block of that name (of this scene's dimension) by `build`, each inside guard().
+  // Builds every block of that name (of this scene's dimension) by `build`, each inside guard();
+  // a block's `release_time` (releasable()) then releases the constraint rows it added.
   void each(std::string_view name, const std::function<void(const View&)>& build);
   // Runs one element's construction: a value in error skips it, an fsi::Error becomes a problem
   // at the element (or at the error's own place).
@@ -139,6 +140,10 @@ class SceneBuilder {
 // Helpers the families share.
 // The optional `name` of an element block, the same declaration everywhere.
 ParameterSpec element_name_spec();
+// A constraint block with the key `release_time`, declared once for every constraint family:
+// its rows hold until then and are removed from then on (mbd::Model::set_release_time).
+BlockSpec releasable(BlockSpec constraint_block);
+std::vector<BlockSpec> releasable(std::vector<BlockSpec> constraint_blocks);
 std::string name_of(const View& element);  // "" when unnamed
 std::optional<double> optional_number(const View& element, std::string_view key);
 // The coordinate a scene names: "x", "y", or the angle ("angle", or "torque" for forces).

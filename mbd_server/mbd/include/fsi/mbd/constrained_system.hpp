@@ -17,8 +17,10 @@
 #include <Eigen/Dense>
 #include <Eigen/SparseCore>
 
+#include <optional>
 #include <span>
 #include <string>
+#include <vector>
 
 #include "fsi/mbd/constraint_element.hpp"
 #include "fsi/mbd/matrix_sink.hpp"
@@ -93,6 +95,27 @@ class ConstrainedSystem {
   virtual void add_constraint_velocity_derivative(double time, const Eigen::VectorXd& q,
                                                   const Eigen::VectorXd& v,
                                                   MatrixSink& derivative) const = 0;
+
+  // --- release: a row holds until its release time and is removed from then on ---
+  // The time from which row `row` no longer acts (+infinity, the default: it always holds).
+  // A released row's equation becomes lambda = 0, so the system keeps its size m for every
+  // integrator and the multiplier (the constraint force a sensor reads) is zero from then on.
+  virtual double release_time(int row) const;
+  // Does the row hold over the step [start, end]? The integrators never step across a release
+  // (release_within), so a row holds over all of a step or over none of it; the step's midpoint
+  // decides, which is robust against the rounding of accumulated step times. A row releasing at
+  // t_r therefore holds over the step ending at t_r (its multiplier there is the holding force)
+  // and is released over the step starting at t_r.
+  bool holds_over(int row, double start, double end) const;
+  // Does the row hold at the instant `time` (time <= release time)? For readouts of a state.
+  bool holds_at(int row, double time) const;
+  // The rows released over the step [start, end], one flag per row.
+  std::vector<bool> released_rows(double start, double end) const;
+  // The earliest release time strictly inside (start, end), farther than a relative 1e-9 of the
+  // step from both ends, or nullopt: where an integrator must end a step. A release closer to an
+  // end than that is taken at that end (the row holds over a step ending within rounding of its
+  // release time and is released from there).
+  std::optional<double> release_within(double start, double end) const;
 
   // --- point loads: the values the caller set for this step (held over its stages) ---
   virtual std::span<const double> point_loads() const = 0;

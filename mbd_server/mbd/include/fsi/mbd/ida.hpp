@@ -50,6 +50,8 @@ class IdaIntegrator {
   // multipliers and accelerations made consistent ([M G^T; G 0] [a; lambda] = [F; -remainder]).
   // Throws fsi::Error naming the time reached and IDA's reason on failure; `state` is then left
   // unchanged.
+  // A constraint row released before end_time (ConstrainedSystem::release_within) stops IDA at
+  // its release time, from where it restarts with the row's multiplier zero.
   void advance(const ConstrainedSystem& system, State& state, double end_time);
 
   // Forgets the history: the next advance() restarts.
@@ -60,6 +62,7 @@ class IdaIntegrator {
   IdaStatistics statistics() const;
 
  private:
+  void advance_without_release(const ConstrainedSystem& system, State& state, double end_time);
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

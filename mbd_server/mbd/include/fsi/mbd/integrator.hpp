@@ -99,6 +99,8 @@ class RadauIIA {
   // Advances `state` from state.time by `step_size`. The model's point loads are held constant
   // over the step (thesis Fig. 4.10). Throws fsi::Error naming time, step size and residual if
   // Newton does not converge; `state` is then left unchanged.
+  // A constraint row released inside the step (ConstrainedSystem::release_within) splits it at
+  // the release time; the returned statistics sum the parts.
   StepStatistics step(const ConstrainedSystem& system, State& state, double step_size);
 
   // Drops the kept factorisation; needed only after changing the model's structure in place.
@@ -109,6 +111,8 @@ class RadauIIA {
   const IntegratorStatistics& statistics() const;
 
  private:
+  StepStatistics step_without_release(const ConstrainedSystem& system, State& state,
+                                      double step_size);
   struct Workspace;
   std::unique_ptr<Workspace> work_;
 };

@@ -102,6 +102,11 @@ class Model final : public ConstrainedSystem {
                               const std::string& name = {});
   // A user's constraint row (e.g. a prescribed time-dependent motion); returns its index.
   int add_constraint_element(std::unique_ptr<ConstraintElement> element);
+  // Releases constraint row `row` at `time` [s] (>= 0): it holds until then and is removed from
+  // then on, its multiplier zero (ConstrainedSystem::release_time). Throws fsi::Error for a row
+  // that does not exist or a time that is negative or not a number.
+  void set_release_time(int row, double time);
+  double release_time(int row) const override;
   // Throws fsi::Error for negative stiffness or damping or a negative rest length; the points
   // must never coincide (the direction of the force is undefined there).
   void add_spring_damper(const SpringDamperSpec& spec);

@@ -36,9 +36,10 @@ struct Wrench {
 double kinetic_energy(const ConstrainedSystem& system, const State& state);
 // -G^T lambda, the generalised force of all constraints on the bodies (size n).
 Eigen::VectorXd generalised_constraint_force(const ConstrainedSystem& system, const State& state);
-// Largest |C| over position-level rows.
+// Largest |C| over the position-level rows that hold at state.time (released rows are free).
 double position_constraint_drift(const ConstrainedSystem& system, const State& state);
-// Largest velocity-level residual: |G v - g| of velocity rows and |G v + C_t| of position rows.
+// Largest velocity-level residual of the rows that hold at state.time: |G v - g| of velocity
+// rows and |G v + C_t| of position rows.
 double velocity_constraint_drift(const ConstrainedSystem& system, const State& state);
 
 // --- energies of a model ---
