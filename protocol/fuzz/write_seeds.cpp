@@ -76,7 +76,7 @@ Settling seed(std::type_identity<Settling>) {
   return {{0.0, -9.81, 0.0}, 0.13, kAutomaticDragRate};
 }
 ReleaseState seed(std::type_identity<ReleaseState>) {
-  return {483.3, 0.13, 20.0, 16.9, 1.5e-7, 10.7};
+  return {54.6, 0.13, 16.9, 1.5e-7, 10.7};
 }
 Step seed(std::type_identity<Step>) {
   return {7, 7e-5, 1e-5, {1.0, -0.0, kInf, -kInf}, {kNaN, kSubnormal, -kSubnormal, 0.0}};

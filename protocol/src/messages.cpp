@@ -114,7 +114,6 @@ void layout(auto& io, MessageOf<Settling> auto& m) {
 void layout(auto& io, MessageOf<ReleaseState> auto& m) {
   io.scalar("drag_rate", m.drag_rate);
   io.scalar("column_height", m.column_height);
-  io.scalar("speed_of_sound", m.speed_of_sound);
   io.scalar("fluid_mass", m.fluid_mass);
   io.scalar("kinetic_energy", m.kinetic_energy);
   io.scalar("potential_energy", m.potential_energy);
@@ -630,7 +629,6 @@ void check(const Reader& in, const Settling& m) {
 void check(const Reader& in, const ReleaseState& m) {
   check_not_negative_finite(in, "drag_rate", m.drag_rate);
   check_not_negative_finite(in, "column_height", m.column_height);
-  check_not_negative_finite(in, "speed_of_sound", m.speed_of_sound);
   check_not_negative_finite(in, "fluid_mass", m.fluid_mass);
   check_not_negative_finite(in, "kinetic_energy", m.kinetic_energy);
   check_not_negative_finite(in, "potential_energy", m.potential_energy);

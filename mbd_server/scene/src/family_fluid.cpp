@@ -60,7 +60,13 @@ std::vector<BlockSpec> fluid_blocks() {
                   text("script2", "script run after the equilibration (e.g. the real viscosity)"),
                   integer("equilibration_steps", "LIGGGHTS-only steps with the structure at rest")
                       .at_least(0)
-                      .with_default(0)})
+                      .with_default(0),
+                  number("settling_drag", "1/s",
+                         "velocity drag on the fluid during the equilibration, removed before "
+                         "script 2; 0 = none; absent: 2 pi sqrt(g/H), at most 0.1/dt "
+                         "(docs/theory.md, \"Settling the fluid\")")
+                      .at_least(0.0)
+                      .optional()})
           .as_required()
           .for_coupled_runs(),
       block_spec("LIGGGHTS_SPH_parameters",
@@ -177,6 +183,8 @@ void build_fluid_region(SceneBuilder& builder, const View& region) {
     builder.problem({where, error.fault(), error.remedy()});
     return;
   }
+  fluid.column_height =
+      lattice_column_height(fluid.positions, dimension, fluid.spacing, builder.scene.gravity);
   fluid.velocities.clear();
   fluid.velocities.reserve(fluid.positions.size());
   for (std::size_t i = 0; i < fluid.count(); ++i)
@@ -219,6 +227,9 @@ void build_liggghts(SceneBuilder& builder) {
   });
   builder.guard(liggghts.location(), [&] {
     setup.equilibration_steps = static_cast<std::uint64_t>(liggghts.integer("equilibration_steps"));
+  });
+  builder.guard(liggghts.location(), [&] {
+    if (liggghts.has("settling_drag")) setup.settling_drag = liggghts.number("settling_drag");
   });
   const Block* sph = builder.scene.parameters.child("LIGGGHTS_SPH_parameters");
   if (sph == nullptr) return;

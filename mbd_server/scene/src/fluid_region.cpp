@@ -380,6 +380,23 @@ double lattice_particle_mass(double density, double spacing, int dimension) {
   return density * std::pow(spacing, dimension);
 }
 
+double lattice_column_height(const std::vector<double>& positions, int dimension, double spacing,
+                             const std::array<double, 3>& gravity) {
+  const double magnitude = std::hypot(gravity[0], gravity[1], gravity[2]);
+  const std::size_t count = positions.size() / static_cast<std::size_t>(dimension);
+  if (count == 0 || !(magnitude > 0.0)) return 0.0;
+  double lowest = std::numeric_limits<double>::infinity();
+  double highest = -lowest;
+  for (std::size_t i = 0; i < count; ++i) {
+    double height = 0.0;
+    for (int k = 0; k < dimension; ++k)
+      height -= gravity[k] / magnitude * positions[i * dimension + k];
+    lowest = std::min(lowest, height);
+    highest = std::max(highest, height);
+  }
+  return highest - lowest + spacing;
+}
+
 bool inside(const Polygon& polygon, const Point2& point) {
   bool odd = crosses_odd(polygon.outer, point);
   for (const auto& hole : polygon.holes) {

@@ -29,6 +29,22 @@ LatticeOptions lattice(double d, double displacement = 0.0, std::uint64_t seed =
 
 using testing::message_thrown;
 
+TEST(FluidRegion, TheColumnHeightIsTheExtentAlongGravityPlusOneSpacing) {
+  const double d = 0.01;
+  LatticeOptions options;
+  options.spacing = d;
+  // 0.2 m wide, 0.13 m high: 13 rows, whose centres span 12 d.
+  const std::vector<double> box = fill_box({0.0, 0.0}, {0.2, 0.13}, options);
+  EXPECT_NEAR(lattice_column_height(box, 2, d, {0.0, -9.81, 0.0}), 0.13, 1e-12);
+  // Gravity along x sees the width; its sign does not matter.
+  EXPECT_NEAR(lattice_column_height(box, 2, d, {3.0, 0.0, 0.0}), 0.2, 1e-12);
+  // 3D with gravity along -z.
+  const std::vector<double> cube = fill_box_3d({0, 0, 0}, {0.05, 0.05, 0.07}, options);
+  EXPECT_NEAR(lattice_column_height(cube, 3, d, {0.0, 0.0, -9.81}), 0.07, 1e-12);
+  EXPECT_EQ(lattice_column_height(box, 2, d, {0.0, 0.0, 0.0}), 0.0);
+  EXPECT_EQ(lattice_column_height({}, 2, d, {0.0, -9.81, 0.0}), 0.0);
+}
+
 TEST(FluidRegion, ARectangularPolygonFillsLikeTheBox) {
   const Polygon rectangle{{{0, 0}, {1, 0}, {1, 0.5}, {0, 0.5}}, {}};
   const auto polygon = fill_polygon(rectangle, lattice(0.1));

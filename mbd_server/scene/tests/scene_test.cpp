@@ -58,6 +58,24 @@ TEST(Scene, OverridesReachTheBuiltScene) {
   EXPECT_EQ(scene.model.body(scene.model.find_body("piston")).mass, 0.2);
 }
 
+TEST(Scene, TheWaterColumnKnowsItsHeightAndTheSettlingDragIsTheScenes) {
+  const Scene automatic = build_scene(FSI_EXAMPLES_DIR "/water_column/water_column.scene");
+  // 61 lattice rows of d = h/1.9 in the 0.13 m high region: H is their extent plus one d.
+  EXPECT_NEAR(automatic.fluid.column_height, 61 * 0.004 / 1.9, 1e-12);
+  EXPECT_FALSE(automatic.liggghts.settling_drag);  // absent: fsi-client derives it
+  const Scene off = build_scene(FSI_EXAMPLES_DIR "/water_column/water_column.scene",
+                                {{"LIGGGHTS.settling_drag", "0"}});
+  ASSERT_TRUE(off.liggghts.settling_drag);
+  EXPECT_EQ(*off.liggghts.settling_drag, 0.0);
+  try {
+    build_scene(FSI_EXAMPLES_DIR "/water_column/water_column.scene",
+                {{"LIGGGHTS.settling_drag", "-1"}});
+    FAIL() << "a negative drag accepted";
+  } catch (const fsi::Error& error) {
+    EXPECT_NE(std::string(error.what()).find("settling_drag"), std::string::npos) << error.what();
+  }
+}
+
 TEST(Scene, ReportsAllProblemsWithLocations) {
   const fs::path folder = fs::temp_directory_path() / "fsi_scene_build_test";
   fs::create_directories(folder);

@@ -176,7 +176,7 @@ struct Settling {  // server -> client, after Particles
   std::array<double, 3> gravity{};  // the scene's gravity [m/s^2] (2D: z = 0)
   double column_height = 0.0;       // H [m] of the server's fluid region; 0: measure the particles
   // [1/s]: 0 no drag, > 0 this rate, kAutomaticDragRate (any negative value): derived by the
-  // client from H, the speed of sound and the time step.
+  // client from H, |g| and the time step.
   double drag_rate = kAutomaticDragRate;
   bool operator==(const Settling&) const = default;
 };
@@ -196,7 +196,6 @@ struct ReleaseState {  // client -> server, right after Ready
   static constexpr MessageType kType = MessageType::ReleaseState;
   double drag_rate = 0.0;         // the settling drag applied [1/s] (0: none)
   double column_height = 0.0;     // H the drag was derived from [m]
-  double speed_of_sound = 0.0;    // c the drag was derived from [m/s] (0: not needed)
   double fluid_mass = 0.0;        // sum of the particle masses [kg; 2D kg/m]
   double kinetic_energy = 0.0;    // sum of m v^2 / 2 [J; 2D J/m]
   double potential_energy = 0.0;  // sum of m |g| (height above the lowest particle) [J; 2D J/m]

@@ -33,6 +33,12 @@ struct LatticeOptions {
 // Particle mass rho0 d^dimension (2D: per unit depth).
 double lattice_particle_mass(double density, double spacing, int dimension);
 
+// Height of a lattice's column along -gravity: highest minus lowest point plus one spacing (each
+// point stands for a cell of size d), the H of a box region filled to its top. 0 without points
+// or without gravity. `positions` holds `dimension` values per point.
+double lattice_column_height(const std::vector<double>& positions, int dimension, double spacing,
+                             const std::array<double, 3>& gravity);
+
 // ---- 2D ----
 
 // A simple polygon (no two edges cross) and holes inside it; either orientation.
