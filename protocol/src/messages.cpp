@@ -109,6 +109,7 @@ void layout(auto& io, MessageOf<Settling> auto& m) {
     io.scalar("gravity", component);
   io.scalar("column_height", m.column_height);
   io.scalar("drag_rate", m.drag_rate);
+  io.array("initial_densities", m.initial_densities);
 }
 
 void layout(auto& io, MessageOf<ReleaseState> auto& m) {
@@ -624,6 +625,8 @@ void check(const Reader& in, const Settling& m) {
     check_finite(in, "gravity", component);
   check_not_negative_finite(in, "column_height", m.column_height);
   check_finite(in, "drag_rate", m.drag_rate);
+  for (const double density : m.initial_densities)
+    check_positive_finite(in, "initial_densities", density);
 }
 
 void check(const Reader& in, const ReleaseState& m) {

@@ -46,7 +46,7 @@ Ready sample_ready() {
   return {13892, "LIGGGHTS-PUBLIC 3.8.0", 1.5, 30.25};
 }
 Settling sample_settling() {
-  return {{0.0, -9.81, 0.5}, 0.13, 250.0};
+  return {{0.0, -9.81, 0.5}, 0.13, 250.0, {1000.5, 1000.25, 1000.0}};
 }
 ReleaseState sample_release_state() {
   return {54.625, 0.13, 16.875, 1.5e-7, 10.75};
@@ -136,7 +136,7 @@ TEST(ProtocolMessages, PayloadSizesFollowTheSpecTables) {
   EXPECT_EQ(encode(AuthResponse{}).size(), 64u);
   EXPECT_EQ(encode(AuthProof{}).size(), 32u);
   EXPECT_EQ(encode(Heartbeat{}).size(), 0u);
-  EXPECT_EQ(encode(sample_settling()).size(), 3u * 8 + 8 + 8);
+  EXPECT_EQ(encode(sample_settling()).size(), 3u * 8 + 8 + 8 + (8 + 3 * 8));
   EXPECT_EQ(encode(sample_release_state()).size(), 5u * 8);
 }
 
@@ -470,6 +470,10 @@ TEST(ProtocolMessages, SettlingAndReleaseStateContentIsChecked) {
   settling = sample_settling();
   settling.drag_rate = Limits::quiet_NaN();
   EXPECT_NE(decode_error(settling).find("'drag_rate' is nan"), std::string::npos);
+  settling = sample_settling();
+  settling.initial_densities[1] = 0.0;
+  EXPECT_NE(decode_error(settling).find("'initial_densities' is 0; it must be positive"),
+            std::string::npos);
 
   ReleaseState release = sample_release_state();
   release.kinetic_energy = -1e-9;

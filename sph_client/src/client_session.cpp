@@ -297,6 +297,7 @@ class ClientSession {
     particles.density = data.particles.density;
     particles.positions = data.particles.positions;
     particles.velocities = data.particles.velocities;
+    if (data.settling) particles.densities = data.settling->initial_densities;
     const bool have_particles = !particles.positions.empty();
     bool inserted = false;
     driver_->run_script(data.setup.script1_name, data.setup.script1_text, [&] {

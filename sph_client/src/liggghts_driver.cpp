@@ -214,6 +214,11 @@ void LiggghtsDriver::insert_particles(const ParticleBlock& particles) {
                 "LIGGGHTS script 1", "create_box with enough atom types");
   }
   const std::size_t count = particles.positions.size() / static_cast<std::size_t>(dimension);
+  if (!particles.densities.empty() && particles.densities.size() != count) {
+    throw Error("the server sent " + std::to_string(particles.densities.size()) +
+                    " initial densities for " + std::to_string(count) + " particles",
+                "particle insertion", "use matching fsi-server and fsi-client releases");
+  }
   // A particle outside the box would silently be dropped: refuse the whole set instead.
   for (std::size_t i = 0; i < count; ++i) {
     for (int k = 0; k < dimension; ++k) {
@@ -249,7 +254,9 @@ void LiggghtsDriver::insert_particles(const ParticleBlock& particles) {
     const int n = atom.nlocal - 1;
     for (int k = 0; k < dimension; ++k)
       atom.v[n][k] = particles.velocities[i * dimension + k];
-    if (atom.rho) atom.rho[n] = particles.density;
+    if (atom.rho) {
+      atom.rho[n] = particles.densities.empty() ? particles.density : particles.densities[i];
+    }
     for (int j = 0; j < lammps_->modify->nfix; ++j) {
       LAMMPS_NS::Fix* fix = lammps_->modify->fix[j];
       if (fix->create_attribute) {

@@ -36,6 +36,7 @@ struct ParticleBlock {
   int atom_type = 1;
   double mass = 0.0;
   double density = 0.0;
+  std::vector<double> densities;   // one per particle (a hydrostatic start); empty: all density
   std::vector<double> positions;   // dimension per particle
   std::vector<double> velocities;  // dimension per particle
 };

@@ -106,11 +106,13 @@ void TcpFluidSide::set_up(const scene::Scene& scene, const std::vector<double>& 
     settling.gravity = scene.gravity;
     settling.column_height = scene.fluid.column_height;
     settling.drag_rate = scene.liggghts.settling_drag.value_or(protocol::kAutomaticDragRate);
+    settling.initial_densities = scene.fluid.densities;
     channel_->send(settling);
   } else {
     spdlog::warn(
-        "fsi-client speaks protocol {}: the fluid settles without the drag and is not checked "
-        "at release (use an fsi-client of protocol 1.2 or later)",
+        "fsi-client speaks protocol {}: the fluid settles without the drag, starts at rho0 "
+        "everywhere (no hydrostatic start) and is not checked at release (use an fsi-client of "
+        "protocol 1.2 or later)",
         protocol::version_text(channel_->peer_major(), channel_->peer_minor()));
   }
 }

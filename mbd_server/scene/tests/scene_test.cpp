@@ -76,6 +76,31 @@ TEST(Scene, TheWaterColumnKnowsItsHeightAndTheSettlingDragIsTheScenes) {
   }
 }
 
+TEST(Scene, AHydrostaticRegionGivesEveryParticleItsDensity) {
+  const Scene plain = build_scene(FSI_EXAMPLES_DIR "/water_column/water_column.scene");
+  EXPECT_TRUE(plain.fluid.densities.empty());
+  const Scene hydrostatic =
+      build_scene(FSI_EXAMPLES_DIR "/water_column/water_column.scene",
+                  {{"FluidRegion.hydrostatic", "1"}, {"FluidRegion.speed_of_sound", "20"}});
+  ASSERT_EQ(hydrostatic.fluid.densities.size(), hydrostatic.fluid.count());
+  double lowest_density = 1e9, highest_density = 0.0;
+  for (const double density : hydrostatic.fluid.densities) {
+    lowest_density = std::min(lowest_density, density);
+    highest_density = std::max(highest_density, density);
+  }
+  // rho0 g H / (rho0 c^2) = 9.81 * 0.128 / 400 = 0.3 %: the bottom is that much denser.
+  EXPECT_GT(lowest_density, 1000.0);
+  EXPECT_NEAR(highest_density / 1000.0 - 1.0, 9.81 * 0.128 / 400.0, 2e-4);
+  try {
+    build_scene(FSI_EXAMPLES_DIR "/water_column/water_column.scene",
+                {{"FluidRegion.hydrostatic", "1"}});
+    FAIL() << "a hydrostatic region without speed of sound accepted";
+  } catch (const fsi::Error& error) {
+    EXPECT_NE(std::string(error.what()).find("needs the speed of sound"), std::string::npos)
+        << error.what();
+  }
+}
+
 TEST(Scene, ReportsAllProblemsWithLocations) {
   const fs::path folder = fs::temp_directory_path() / "fsi_scene_build_test";
   fs::create_directories(folder);

@@ -178,6 +178,9 @@ struct Settling {  // server -> client, after Particles
   // [1/s]: 0 no drag, > 0 this rate, kAutomaticDragRate (any negative value): derived by the
   // client from H, |g| and the time step.
   double drag_rate = kAutomaticDragRate;
+  // The initial density of every particle of Particles, in its order (a hydrostatic start); empty:
+  // all start at Particles::density.
+  std::vector<double> initial_densities;
   bool operator==(const Settling&) const = default;
 };
 

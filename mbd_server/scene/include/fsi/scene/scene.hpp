@@ -92,7 +92,9 @@ struct FluidParticles {
   double mass = 0.0;  // per particle (2D: per unit depth)
   double density = 0.0;
   double spacing = 0.0;
-  double column_height = 0.0;     // H along gravity (lattice_column_height); 0 without gravity
+  double column_height = 0.0;  // H along gravity (lattice_column_height); 0 without gravity
+  // One initial density per particle (FluidRegion.hydrostatic = 1); empty: all start at density.
+  std::vector<double> densities;
   std::vector<double> positions;  // dimension values per particle (x, y or x, y, z)
   std::vector<double> velocities;
   std::size_t count() const { return positions.size() / static_cast<std::size_t>(dimension); }
