@@ -614,8 +614,14 @@ void check(const Reader& in, const Mesh& m) {
 
 void check(const Reader& in, const Particles& m) {
   check_dimension(in, m.dimension);
-  check_positive_finite(in, "mass", m.mass);
-  check_positive_finite(in, "density", m.density);
+  // No particles (the scripts create the fluid): mass and density describe nothing and may be 0.
+  if (m.positions.empty()) {
+    check_not_negative_finite(in, "mass", m.mass);
+    check_not_negative_finite(in, "density", m.density);
+  } else {
+    check_positive_finite(in, "mass", m.mass);
+    check_positive_finite(in, "density", m.density);
+  }
   check_multiple(in, "positions", m.positions.size(), m.dimension);
   check_count(in, "velocities", m.velocities.size(), m.positions.size(), "one per position value");
 }

@@ -436,6 +436,11 @@ TEST(ProtocolMessages, OtherContentIsChecked) {
   Particles particles = sample_particles();
   particles.mass = -1;
   EXPECT_NE(decode_error(particles).find("'mass' is -1"), std::string::npos);
+  // Without particles (a script creates the fluid) mass and density may be 0, not negative.
+  Particles none{2, 1, 0.0, 0.0, {}, {}};
+  EXPECT_EQ(std::get<Particles>(decode(MessageType::Particles, encode(none))), none);
+  none.density = -1;
+  EXPECT_NE(decode_error(none).find("'density' is -1"), std::string::npos);
   particles = sample_particles();
   particles.velocities.pop_back();
   EXPECT_NE(decode_error(particles).find("'velocities' has 3 values, expected 4"),
