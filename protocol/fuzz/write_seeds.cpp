@@ -72,6 +72,12 @@ Particles seed(std::type_identity<Particles>) {
 Ready seed(std::type_identity<Ready>) {
   return {1200, "LIGGGHTS 3.8.0", 0.5, 12.25};
 }
+Settling seed(std::type_identity<Settling>) {
+  return {{0.0, -9.81, 0.0}, 0.13, kAutomaticDragRate, {1001.25, 1000.5}};
+}
+ReleaseState seed(std::type_identity<ReleaseState>) {
+  return {54.6, 0.13, 16.9, 1.5e-7, 10.7};
+}
 Step seed(std::type_identity<Step>) {
   return {7, 7e-5, 1e-5, {1.0, -0.0, kInf, -kInf}, {kNaN, kSubnormal, -kSubnormal, 0.0}};
 }

@@ -176,8 +176,8 @@ ServerHandshakeResult accept_client(Channel& channel, const ServerHandshake& han
            "use matching fsi-server and fsi-client releases");
   }
   result.agreed_minor = version.agreed_minor;
-  const std::uint32_t offered =
-      kCapabilityHeartbeat | (handshake.token ? kCapabilityAuthentication : 0u);
+  const std::uint32_t offered = kCapabilityHeartbeat | handshake.session_capabilities |
+                                (handshake.token ? kCapabilityAuthentication : 0u);
   result.capabilities = result.hello.capabilities & offered;
 
   if (handshake.token) {
@@ -219,7 +219,8 @@ ServerHandshakeResult accept_client(Channel& channel, const ServerHandshake& han
 
 ClientHandshakeResult open_session(Channel& channel, const ClientHandshake& handshake) {
   Hello hello = handshake.hello;
-  hello.capabilities = kCapabilityHeartbeat | (handshake.token ? kCapabilityAuthentication : 0u);
+  hello.capabilities = kCapabilityHeartbeat | handshake.session_capabilities |
+                       (handshake.token ? kCapabilityAuthentication : 0u);
   channel.send(hello);
   const std::string server = "fsi-server at " + channel.peer_description();
   Message answer = channel.receive_message(handshake.timeout, "the server's answer to Hello");

@@ -104,6 +104,22 @@ void layout(auto& io, MessageOf<Ready> auto& m) {
   io.scalar("seconds_equilibration", m.seconds_equilibration);
 }
 
+void layout(auto& io, MessageOf<Settling> auto& m) {
+  for (auto& component : m.gravity)
+    io.scalar("gravity", component);
+  io.scalar("column_height", m.column_height);
+  io.scalar("drag_rate", m.drag_rate);
+  io.array("initial_densities", m.initial_densities);
+}
+
+void layout(auto& io, MessageOf<ReleaseState> auto& m) {
+  io.scalar("drag_rate", m.drag_rate);
+  io.scalar("column_height", m.column_height);
+  io.scalar("fluid_mass", m.fluid_mass);
+  io.scalar("kinetic_energy", m.kinetic_energy);
+  io.scalar("potential_energy", m.potential_energy);
+}
+
 void layout(auto& io, MessageOf<Step> auto& m) {
   io.scalar("step", m.step);
   io.scalar("time", m.time);
@@ -503,6 +519,22 @@ void check_positive_finite(const Reader& in, const char* field, double value) {
   }
 }
 
+void check_not_negative_finite(const Reader& in, const char* field, double value) {
+  if (!(value >= 0.0) || !std::isfinite(value)) {
+    char text[64];
+    std::snprintf(text, sizeof text, "%.17g", value);
+    in.fail(field, std::string("is ") + text + "; it must be zero or positive, and finite");
+  }
+}
+
+void check_finite(const Reader& in, const char* field, double value) {
+  if (!std::isfinite(value)) {
+    char text[64];
+    std::snprintf(text, sizeof text, "%.17g", value);
+    in.fail(field, std::string("is ") + text + "; it must be finite");
+  }
+}
+
 void check_count(const Reader& in, const char* field, std::size_t actual, std::size_t expected,
                  const std::string& because) {
   if (actual != expected) {
@@ -582,10 +614,33 @@ void check(const Reader& in, const Mesh& m) {
 
 void check(const Reader& in, const Particles& m) {
   check_dimension(in, m.dimension);
-  check_positive_finite(in, "mass", m.mass);
-  check_positive_finite(in, "density", m.density);
+  // No particles (the scripts create the fluid): mass and density describe nothing and may be 0.
+  if (m.positions.empty()) {
+    check_not_negative_finite(in, "mass", m.mass);
+    check_not_negative_finite(in, "density", m.density);
+  } else {
+    check_positive_finite(in, "mass", m.mass);
+    check_positive_finite(in, "density", m.density);
+  }
   check_multiple(in, "positions", m.positions.size(), m.dimension);
   check_count(in, "velocities", m.velocities.size(), m.positions.size(), "one per position value");
+}
+
+void check(const Reader& in, const Settling& m) {
+  for (const double component : m.gravity)
+    check_finite(in, "gravity", component);
+  check_not_negative_finite(in, "column_height", m.column_height);
+  check_finite(in, "drag_rate", m.drag_rate);
+  for (const double density : m.initial_densities)
+    check_positive_finite(in, "initial_densities", density);
+}
+
+void check(const Reader& in, const ReleaseState& m) {
+  check_not_negative_finite(in, "drag_rate", m.drag_rate);
+  check_not_negative_finite(in, "column_height", m.column_height);
+  check_not_negative_finite(in, "fluid_mass", m.fluid_mass);
+  check_not_negative_finite(in, "kinetic_energy", m.kinetic_energy);
+  check_not_negative_finite(in, "potential_energy", m.potential_energy);
 }
 
 void check(const Reader& in, const Step& m) {

@@ -143,27 +143,32 @@ ChannelOptions quick_close() {
 
 // The client's opening against the listener's port, in the background: "ok <capabilities> <run
 // name>" or the error it ended with.
-std::future<std::string> client_opening(std::uint16_t port, std::optional<Token> token) {
-  return std::async(std::launch::async, [port, token = std::move(token)]() -> std::string {
-    Channel channel = Channel::connect("127.0.0.1", port, 5s, quick_close());
-    ClientHandshake handshake;
-    handshake.token = token;
-    handshake.hello = Hello{"test", "host", 1, 0};
-    handshake.timeout = 5s;
-    try {
-      const auto result = open_session(channel, handshake);
-      channel.close();
-      return "ok " + std::to_string(result.capabilities) + " " + result.welcome.run_name;
-    } catch (const fsi::Error& error) {
-      return error.what();
-    }
-  });
+std::future<std::string> client_opening(std::uint16_t port, std::optional<Token> token,
+                                        std::uint32_t session_capabilities = kNoCapabilities) {
+  return std::async(
+      std::launch::async, [port, token = std::move(token), session_capabilities]() -> std::string {
+        Channel channel = Channel::connect("127.0.0.1", port, 5s, quick_close());
+        ClientHandshake handshake;
+        handshake.token = token;
+        handshake.hello = Hello{"test", "host", 1, 0};
+        handshake.timeout = 5s;
+        handshake.session_capabilities = session_capabilities;
+        try {
+          const auto result = open_session(channel, handshake);
+          channel.close();
+          return "ok " + std::to_string(result.capabilities) + " " + result.welcome.run_name;
+        } catch (const fsi::Error& error) {
+          return error.what();
+        }
+      });
 }
 
 // Runs both openings over loopback, each side with its own optional token.
-Outcome handshake(std::optional<Token> server_token, std::optional<Token> client_token) {
+Outcome handshake(std::optional<Token> server_token, std::optional<Token> client_token,
+                  std::uint32_t server_session = kNoCapabilities,
+                  std::uint32_t client_session = kNoCapabilities) {
   Listener listener("127.0.0.1", 0, quick_close());
-  auto client = client_opening(listener.port(), std::move(client_token));
+  auto client = client_opening(listener.port(), std::move(client_token), client_session);
   Outcome outcome;
   Channel channel = listener.accept(5s);
   ServerHandshake handshake;
@@ -171,6 +176,7 @@ Outcome handshake(std::optional<Token> server_token, std::optional<Token> client
   handshake.software_version = "test";
   handshake.run_name = "run";
   handshake.timeout = 5s;
+  handshake.session_capabilities = server_session;
   try {
     const auto result = accept_client(channel, handshake);
     outcome.server = "ok " + std::to_string(result.capabilities);
@@ -201,6 +207,23 @@ TEST(ProtocolAuthHandshake, NoTokenOnEitherSideAgreesOnHeartbeatOnly) {
   EXPECT_TRUE(contains(outcome.server, "ok " + std::to_string(kCapabilityHeartbeat)))
       << outcome.server;
   EXPECT_EQ(outcome.client, "ok " + std::to_string(kCapabilityHeartbeat) + " run");
+}
+
+TEST(ProtocolAuthHandshake, SessionCapabilitiesAreAgreedOnlyWhenBothSidesOfferThem) {
+  const std::string with_settling = std::to_string(kCapabilityHeartbeat | kCapabilitySettling);
+  const Outcome both =
+      handshake(std::nullopt, std::nullopt, kCapabilitySettling, kCapabilitySettling);
+  EXPECT_TRUE(contains(both.server, "ok " + with_settling)) << both.server;
+  EXPECT_EQ(both.client, "ok " + with_settling + " run");
+  // A peer of protocol 1.1 knows no settling: the other side then does without it.
+  const std::string heartbeat_only = std::to_string(kCapabilityHeartbeat);
+  const Outcome old_client = handshake(std::nullopt, std::nullopt, kCapabilitySettling);
+  EXPECT_TRUE(contains(old_client.server, "ok " + heartbeat_only)) << old_client.server;
+  EXPECT_EQ(old_client.client, "ok " + heartbeat_only + " run");
+  const Outcome old_server =
+      handshake(std::nullopt, std::nullopt, kNoCapabilities, kCapabilitySettling);
+  EXPECT_TRUE(contains(old_server.server, "ok " + heartbeat_only)) << old_server.server;
+  EXPECT_EQ(old_server.client, "ok " + heartbeat_only + " run");
 }
 
 TEST(ProtocolAuthHandshake, WrongClientTokenIsRefusedByTheServer) {

@@ -45,6 +45,12 @@ Particles sample_particles() {
 Ready sample_ready() {
   return {13892, "LIGGGHTS-PUBLIC 3.8.0", 1.5, 30.25};
 }
+Settling sample_settling() {
+  return {{0.0, -9.81, 0.5}, 0.13, 250.0, {1000.5, 1000.25, 1000.0}};
+}
+ReleaseState sample_release_state() {
+  return {54.625, 0.13, 16.875, 1.5e-7, 10.75};
+}
 Step sample_step() {
   return {7, 0.125, 5e-6, {1, 2, 3, 4}, {-1, -2, -3, -4}};
 }
@@ -84,6 +90,8 @@ std::vector<Message> all_samples() {
           sample_mesh(),
           sample_particles(),
           sample_ready(),
+          sample_settling(),
+          sample_release_state(),
           sample_step(),
           sample_forces(),
           sample_snapshot_request(),
@@ -128,6 +136,8 @@ TEST(ProtocolMessages, PayloadSizesFollowTheSpecTables) {
   EXPECT_EQ(encode(AuthResponse{}).size(), 64u);
   EXPECT_EQ(encode(AuthProof{}).size(), 32u);
   EXPECT_EQ(encode(Heartbeat{}).size(), 0u);
+  EXPECT_EQ(encode(sample_settling()).size(), 3u * 8 + 8 + 8 + (8 + 3 * 8));
+  EXPECT_EQ(encode(sample_release_state()).size(), 5u * 8);
 }
 
 std::vector<double> awkward_doubles() {
@@ -426,6 +436,11 @@ TEST(ProtocolMessages, OtherContentIsChecked) {
   Particles particles = sample_particles();
   particles.mass = -1;
   EXPECT_NE(decode_error(particles).find("'mass' is -1"), std::string::npos);
+  // Without particles (a script creates the fluid) mass and density may be 0, not negative.
+  Particles none{2, 1, 0.0, 0.0, {}, {}};
+  EXPECT_EQ(std::get<Particles>(decode(MessageType::Particles, encode(none))), none);
+  none.density = -1;
+  EXPECT_NE(decode_error(none).find("'density' is -1"), std::string::npos);
   particles = sample_particles();
   particles.velocities.pop_back();
   EXPECT_NE(decode_error(particles).find("'velocities' has 3 values, expected 4"),
@@ -445,6 +460,37 @@ TEST(ProtocolMessages, OtherContentIsChecked) {
   snapshot = sample_snapshot();
   snapshot.pressure.push_back(1);
   EXPECT_NE(decode_error(snapshot).find("'pressure' has 3 values, expected 2"), std::string::npos);
+}
+
+TEST(ProtocolMessages, SettlingAndReleaseStateContentIsChecked) {
+  Settling settling = sample_settling();
+  settling.drag_rate = kAutomaticDragRate;
+  EXPECT_EQ(std::get<Settling>(decode(MessageType::Settling, encode(settling))), settling);
+  settling.gravity[1] = Limits::infinity();
+  EXPECT_NE(decode_error(settling).find("'gravity' is inf; it must be finite"), std::string::npos);
+  settling = sample_settling();
+  settling.column_height = -0.1;
+  EXPECT_NE(decode_error(settling).find("'column_height' is -0.10000000000000001"),
+            std::string::npos);
+  settling = sample_settling();
+  settling.drag_rate = Limits::quiet_NaN();
+  EXPECT_NE(decode_error(settling).find("'drag_rate' is nan"), std::string::npos);
+  settling = sample_settling();
+  settling.initial_densities[1] = 0.0;
+  EXPECT_NE(decode_error(settling).find("'initial_densities' is 0; it must be positive"),
+            std::string::npos);
+
+  ReleaseState release = sample_release_state();
+  release.kinetic_energy = -1e-9;
+  EXPECT_NE(decode_error(release).find("'kinetic_energy' is -1.0000000000000001e-09; it must be "
+                                       "zero or positive, and finite"),
+            std::string::npos);
+  release = sample_release_state();
+  release.fluid_mass = Limits::infinity();
+  EXPECT_NE(decode_error(release).find("'fluid_mass' is inf"), std::string::npos);
+  release = sample_release_state();
+  release.drag_rate = -1;
+  EXPECT_NE(decode_error(release).find("'drag_rate' is -1"), std::string::npos);
 }
 
 TEST(ProtocolMessages, UnknownErrorCodesAndEmptyValuesDecode) {

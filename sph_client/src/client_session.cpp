@@ -22,6 +22,7 @@
 #include "fsi/protocol/channel.hpp"
 #include "fsi/protocol/messages.hpp"
 #include "liggghts_driver.hpp"
+#include "settling.hpp"
 
 namespace fsi::client {
 namespace {
@@ -33,6 +34,7 @@ struct SetupData {
   protocol::Setup setup;
   protocol::Mesh mesh;
   protocol::Particles particles;
+  std::optional<protocol::Settling> settling;  // protocol 1.2, when both sides agreed
 };
 
 // State the exit handler needs when LIGGGHTS ends the process with exit(1) (Error::all).
@@ -124,6 +126,8 @@ class ClientSession {
 
   int run() {
     if (mpi_.root()) connect();
+    // Every rank must know which optional messages of the set-up follow.
+    MPI_Bcast(&capabilities_, 1, MPI_UINT32_T, 0, mpi_.communicator());
     const SetupData data = receive_setup();
     // From here until Ready, rank 0 tells the server it is busy (set-up and equilibration).
     setup_busy_ = busy();
@@ -165,6 +169,7 @@ class ClientSession {
     handshake.hello.host = host_name();
     handshake.hello.mpi_ranks = static_cast<std::uint32_t>(mpi_.size());
     handshake.timeout = options_.connect_timeout;
+    handshake.session_capabilities = protocol::kCapabilitySettling;
     const protocol::ClientHandshakeResult opened = protocol::open_session(*channel_, handshake);
     capabilities_ = opened.capabilities;
     heartbeat_ = std::make_unique<protocol::HeartbeatSender>(
@@ -246,6 +251,9 @@ class ClientSession {
     data.setup = expect_message<protocol::Setup>("set-up");
     data.mesh = expect_message<protocol::Mesh>("set-up (mesh)");
     data.particles = expect_message<protocol::Particles>("set-up (particles)");
+    if ((capabilities_ & protocol::kCapabilitySettling) != 0) {
+      data.settling = expect_message<protocol::Settling>("set-up (settling)");
+    }
     if ((data.setup.dimension != 2 && data.setup.dimension != 3) ||
         data.mesh.dimension != data.setup.dimension ||
         data.particles.dimension != data.setup.dimension) {
@@ -289,6 +297,7 @@ class ClientSession {
     particles.density = data.particles.density;
     particles.positions = data.particles.positions;
     particles.velocities = data.particles.velocities;
+    if (data.settling) particles.densities = data.settling->initial_densities;
     const bool have_particles = !particles.positions.empty();
     bool inserted = false;
     driver_->run_script(data.setup.script1_name, data.setup.script1_text, [&] {
@@ -317,9 +326,14 @@ class ClientSession {
 
     Stopwatch equilibration_watch;
     equilibration_watch.start();
+    const AppliedDrag drag =
+        data.settling ? settling_drag(*data.settling, data.setup) : AppliedDrag{};
+    if (drag.rate > 0.0) driver_->add_velocity_drag(drag.rate);
     if (data.setup.equilibration_steps > 0) {
       driver_->run_with_setup(data.setup.equilibration_steps);
     }
+    // The drag belongs to the equilibration only: the coupled run starts without it.
+    if (drag.rate > 0.0) driver_->remove_velocity_drag();
     driver_->run_script(data.setup.script2_name, data.setup.script2_text);
     // The coupled phase starts from the structure's initial velocities; a run with set-up makes
     // script 2's changes effective and evaluates the wall forces f(0).
@@ -331,6 +345,8 @@ class ClientSession {
     dimension_ = static_cast<int>(data.setup.dimension);
 
     const std::uint64_t count = driver_->particle_count();
+    std::optional<FluidEnergies> energies;
+    if (data.settling) energies = driver_->fluid_energies(data.settling->gravity);
     setup_busy_ = {};
     // Every rank: how the fluid is spread (rank 0 only by default; --log-all-ranks for all).
     spdlog::info("ready: {} of {} particles on this rank; set-up {:.2f} s, equilibration {:.2f} s",
@@ -342,8 +358,57 @@ class ClientSession {
       ready.seconds_setup = seconds_setup;
       ready.seconds_equilibration = seconds_equilibration;
       channel_->send(ready);
+      if (energies) {
+        protocol::ReleaseState release;
+        release.drag_rate = drag.rate;
+        release.column_height = drag.column_height;
+        release.fluid_mass = energies->mass;
+        release.kinetic_energy = energies->kinetic;
+        release.potential_energy = energies->potential;
+        channel_->send(release);
+      }
     }
     send_forces(0, 0.0, 0.0);
+  }
+
+  struct AppliedDrag {
+    double rate = 0.0;           // [1/s]
+    double column_height = 0.0;  // [m]
+  };
+
+  // The scene's choice of settling drag, made concrete (collective: all ranks call it).
+  AppliedDrag settling_drag(const protocol::Settling& settling, const protocol::Setup& setup) {
+    AppliedDrag drag;
+    drag.column_height = settling.column_height;
+    if (!(drag.column_height > 0.0)) {
+      // The script made the particles: their extent along gravity plus one spacing, as the
+      // server measures a lattice it generates.
+      const FluidExtent extent = driver_->fluid_extent(settling.gravity);
+      const double spacing =
+          extent.mean_density > 0.0
+              ? std::pow(extent.mean_mass / extent.mean_density, 1.0 / dimension_)
+              : 0.0;
+      drag.column_height = extent.count > 0 ? extent.height + spacing : 0.0;
+    }
+    if (setup.equilibration_steps == 0) return drag;
+    if (settling.drag_rate >= 0.0) {
+      drag.rate = settling.drag_rate;
+      if (mpi_.root()) spdlog::info("settling drag {:.6g} 1/s (from the scene)", drag.rate);
+      return drag;
+    }
+    const double gravity =
+        std::hypot(settling.gravity[0], settling.gravity[1], settling.gravity[2]);
+    const SettlingDrag automatic =
+        automatic_settling_drag(drag.column_height, gravity, setup.time_step);
+    drag.rate = automatic.rate;
+    if (mpi_.root()) {
+      spdlog::info(
+          "settling drag {:.6g} 1/s: critical damping 2 pi sqrt(g/H) of a column of H = {:.6g} m "
+          "under g = {:.6g} m/s^2{}",
+          drag.rate, drag.column_height, gravity,
+          automatic.limited_by_time_step ? ", bounded by the time step (0.1/dt)" : "");
+    }
+    return drag;
   }
 
   // Sums this rank's vertex forces and diagnostics over all ranks; rank 0 sends them.

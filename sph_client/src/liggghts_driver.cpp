@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <limits>
 #include <numeric>
 #include <stdexcept>
 
@@ -213,6 +214,11 @@ void LiggghtsDriver::insert_particles(const ParticleBlock& particles) {
                 "LIGGGHTS script 1", "create_box with enough atom types");
   }
   const std::size_t count = particles.positions.size() / static_cast<std::size_t>(dimension);
+  if (!particles.densities.empty() && particles.densities.size() != count) {
+    throw Error("the server sent " + std::to_string(particles.densities.size()) +
+                    " initial densities for " + std::to_string(count) + " particles",
+                "particle insertion", "use matching fsi-server and fsi-client releases");
+  }
   // A particle outside the box would silently be dropped: refuse the whole set instead.
   for (std::size_t i = 0; i < count; ++i) {
     for (int k = 0; k < dimension; ++k) {
@@ -248,7 +254,9 @@ void LiggghtsDriver::insert_particles(const ParticleBlock& particles) {
     const int n = atom.nlocal - 1;
     for (int k = 0; k < dimension; ++k)
       atom.v[n][k] = particles.velocities[i * dimension + k];
-    if (atom.rho) atom.rho[n] = particles.density;
+    if (atom.rho) {
+      atom.rho[n] = particles.densities.empty() ? particles.density : particles.densities[i];
+    }
     for (int j = 0; j < lammps_->modify->nfix; ++j) {
       LAMMPS_NS::Fix* fix = lammps_->modify->fix[j];
       if (fix->create_attribute) {
@@ -290,6 +298,104 @@ void LiggghtsDriver::run_with_setup(std::uint64_t steps) {
 
 void LiggghtsDriver::step() {
   command("run 1 pre no post no");
+}
+
+namespace {
+
+constexpr const char* kDragFixId = "fsi_settling_drag";
+
+// Unit vector along -g (up), or zero without gravity.
+std::array<double, 3> upward(const std::array<double, 3>& gravity) {
+  const double magnitude = std::hypot(gravity[0], gravity[1], gravity[2]);
+  if (!(magnitude > 0.0)) return {0.0, 0.0, 0.0};
+  return {-gravity[0] / magnitude, -gravity[1] / magnitude, -gravity[2] / magnitude};
+}
+
+double mass_of(const LAMMPS_NS::Atom& atom, int i) {
+  return atom.rmass ? atom.rmass[i] : atom.mass[atom.type[i]];
+}
+
+}  // namespace
+
+FluidExtent LiggghtsDriver::fluid_extent(const std::array<double, 3>& gravity) const {
+  const auto& atom = *lammps_->atom;
+  const std::array<double, 3> up = upward(gravity);
+  double bounds[2] = {std::numeric_limits<double>::infinity(),
+                      std::numeric_limits<double>::infinity()};   // lowest, -highest
+  double sums[3] = {static_cast<double>(atom.nlocal), 0.0, 0.0};  // count, mass, density
+  for (int i = 0; i < atom.nlocal; ++i) {
+    const double height = up[0] * atom.x[i][0] + up[1] * atom.x[i][1] + up[2] * atom.x[i][2];
+    bounds[0] = std::min(bounds[0], height);
+    bounds[1] = std::min(bounds[1], -height);
+    sums[1] += mass_of(atom, i);
+    sums[2] += atom.rho ? atom.rho[i] : 0.0;
+  }
+  double global_bounds[2], global_sums[3];
+  MPI_Allreduce(bounds, global_bounds, 2, MPI_DOUBLE, MPI_MIN, communicator_);
+  MPI_Allreduce(sums, global_sums, 3, MPI_DOUBLE, MPI_SUM, communicator_);
+  FluidExtent extent;
+  extent.count = static_cast<std::uint64_t>(std::llround(global_sums[0]));
+  if (extent.count == 0) return extent;
+  extent.height = -global_bounds[1] - global_bounds[0];
+  extent.mean_mass = global_sums[1] / global_sums[0];
+  extent.mean_density = global_sums[2] / global_sums[0];
+  return extent;
+}
+
+FluidEnergies LiggghtsDriver::fluid_energies(const std::array<double, 3>& gravity) const {
+  const auto& atom = *lammps_->atom;
+  const std::array<double, 3> up = upward(gravity);
+  const double g = std::hypot(gravity[0], gravity[1], gravity[2]);
+  double lowest = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < atom.nlocal; ++i)
+    lowest = std::min(lowest, up[0] * atom.x[i][0] + up[1] * atom.x[i][1] + up[2] * atom.x[i][2]);
+  double global_lowest = 0.0;
+  MPI_Allreduce(&lowest, &global_lowest, 1, MPI_DOUBLE, MPI_MIN, communicator_);
+  double sums[3] = {0.0, 0.0, 0.0};  // mass, kinetic, potential
+  for (int i = 0; i < atom.nlocal; ++i) {
+    const double m = mass_of(atom, i);
+    const double* v = atom.v[i];
+    const double height =
+        up[0] * atom.x[i][0] + up[1] * atom.x[i][1] + up[2] * atom.x[i][2] - global_lowest;
+    sums[0] += m;
+    sums[1] += 0.5 * m * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    sums[2] += m * g * height;
+  }
+  double totals[3];
+  MPI_Allreduce(sums, totals, 3, MPI_DOUBLE, MPI_SUM, communicator_);
+  return {totals[0], totals[1], totals[2]};
+}
+
+void LiggghtsDriver::add_velocity_drag(double rate) {
+  // fix viscous applies -gamma v; gamma = rate m_type makes the same rate for every type.
+  const auto& atom = *lammps_->atom;
+  std::vector<double> type_mass(static_cast<std::size_t>(atom.ntypes) + 1, 0.0);
+  if (atom.rmass) {
+    // Per-particle masses: each type's mean.
+    std::vector<double> sums(2 * type_mass.size(), 0.0);
+    for (int i = 0; i < atom.nlocal; ++i) {
+      sums[2 * atom.type[i]] += atom.rmass[i];
+      sums[2 * atom.type[i] + 1] += 1.0;
+    }
+    std::vector<double> totals(sums.size());
+    MPI_Allreduce(sums.data(), totals.data(), static_cast<int>(sums.size()), MPI_DOUBLE, MPI_SUM,
+                  communicator_);
+    for (std::size_t t = 1; t < type_mass.size(); ++t)
+      type_mass[t] = totals[2 * t + 1] > 0.0 ? totals[2 * t] / totals[2 * t + 1] : 0.0;
+  } else {
+    for (int t = 1; t <= atom.ntypes; ++t)
+      type_mass[t] = atom.mass_setflag[t] ? atom.mass[t] : 0.0;
+  }
+  std::string line = std::string("fix ") + kDragFixId + " all viscous " + format_double(rate);
+  for (int t = 1; t <= atom.ntypes; ++t)
+    line += " scale " + std::to_string(t) + " " + format_double(type_mass[t]);
+  position_ = {"settling drag of the equilibration (fsi-client)", 0, line};
+  command(line);
+}
+
+void LiggghtsDriver::remove_velocity_drag() {
+  position_ = {"settling drag of the equilibration (fsi-client)", 0, "unfix"};
+  command(std::string("unfix ") + kDragFixId);
 }
 
 std::uint64_t LiggghtsDriver::particle_count() const {

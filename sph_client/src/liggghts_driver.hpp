@@ -6,6 +6,7 @@
 
 #include <mpi.h>
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -35,8 +36,24 @@ struct ParticleBlock {
   int atom_type = 1;
   double mass = 0.0;
   double density = 0.0;
+  std::vector<double> densities;   // one per particle (a hydrostatic start); empty: all density
   std::vector<double> positions;   // dimension per particle
   std::vector<double> velocities;  // dimension per particle
+};
+
+// The fluid's mass and energies, summed over all particles and ranks (2D: per unit depth).
+struct FluidEnergies {
+  double mass = 0.0;
+  double kinetic = 0.0;    // sum of m v^2 / 2
+  double potential = 0.0;  // sum of m |g| (height above the lowest particle), heights along -g
+};
+
+// The particles' extent and mean properties, over all ranks.
+struct FluidExtent {
+  std::uint64_t count = 0;
+  double height = 0.0;  // highest minus lowest particle along -g (0 without gravity)
+  double mean_mass = 0.0;
+  double mean_density = 0.0;
 };
 
 struct Snapshot {
@@ -79,6 +96,13 @@ class LiggghtsDriver {
   void run_with_setup(std::uint64_t steps);
   // The coupled step: one LIGGGHTS step without set-up.
   void step();
+
+  FluidExtent fluid_extent(const std::array<double, 3>& gravity) const;
+  FluidEnergies fluid_energies(const std::array<double, 3>& gravity) const;
+  // A velocity drag -rate m v on every particle (LIGGGHTS fix viscous, scaled by each type's
+  // mass), until remove_velocity_drag(); takes effect at the next run with set-up.
+  void add_velocity_drag(double rate);
+  void remove_velocity_drag();
 
   std::uint64_t particle_count() const;
   // Particles owned by this rank.

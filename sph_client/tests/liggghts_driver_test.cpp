@@ -12,6 +12,7 @@
 
 #include "atom.h"
 #include "fsi/common/error.hpp"
+#include "modify.h"
 #include "update.h"
 
 namespace fsi::client {
@@ -145,6 +146,52 @@ TEST(LiggghtsDriver, ScriptTwoViscosityTakesEffectAfterSetupRun) {
   for (std::size_t i = 0; i < unchanged.size(); ++i)
     difference += std::abs(unchanged[i] - changed[i]);
   EXPECT_GT(difference, 1e-9);
+}
+
+TEST(LiggghtsDriver, FluidEnergiesAndExtentSumEveryParticle) {
+  Tank tank;
+  const std::array<double, 3> gravity{0.0, -9.81, 0.0};
+  const std::size_t count = tank.particles.positions.size() / 2;
+  double lowest = 1.0, highest = -1.0;
+  for (std::size_t i = 0; i < count; ++i) {
+    lowest = std::min(lowest, tank.particles.positions[2 * i + 1]);
+    highest = std::max(highest, tank.particles.positions[2 * i + 1]);
+  }
+  double potential = 0.0;
+  for (std::size_t i = 0; i < count; ++i)
+    potential += tank.particles.mass * 9.81 * (tank.particles.positions[2 * i + 1] - lowest);
+  const FluidEnergies at_rest = tank.driver.fluid_energies(gravity);
+  EXPECT_NEAR(at_rest.mass, count * tank.particles.mass, 1e-12 * at_rest.mass);
+  EXPECT_EQ(at_rest.kinetic, 0.0);
+  EXPECT_NEAR(at_rest.potential, potential, 1e-12 * potential);
+  const FluidExtent extent = tank.driver.fluid_extent(gravity);
+  EXPECT_EQ(extent.count, count);
+  EXPECT_NEAR(extent.height, highest - lowest, 1e-15);
+  EXPECT_NEAR(extent.mean_mass, tank.particles.mass, 1e-15);
+  EXPECT_NEAR(extent.mean_density, 1000.0, 1e-9);
+  for (int i = 0; i < 20; ++i)
+    tank.driver.step();
+  EXPECT_GT(tank.driver.fluid_energies(gravity).kinetic, 0.0) << "the fluid falls onto the floor";
+}
+
+TEST(LiggghtsDriver, TheSettlingDragDampsTheFluidUntilItIsRemoved) {
+  const std::array<double, 3> gravity{0.0, -9.81, 0.0};
+  auto kinetic_after_settling = [&](double rate) {
+    Tank tank;
+    if (rate > 0.0) tank.driver.add_velocity_drag(rate);
+    tank.driver.run_with_setup(300);
+    const double kinetic = tank.driver.fluid_energies(gravity).kinetic;
+    if (rate > 0.0) {
+      EXPECT_GE(tank.driver.lammps().modify->find_fix("fsi_settling_drag"), 0);
+      tank.driver.remove_velocity_drag();
+    }
+    EXPECT_LT(tank.driver.lammps().modify->find_fix("fsi_settling_drag"), 0);
+    return kinetic;
+  };
+  const double free = kinetic_after_settling(0.0);
+  // lambda dt = 0.05: the drag takes 5 % of every velocity per step.
+  const double damped = kinetic_after_settling(5000.0);
+  EXPECT_LT(damped, 0.1 * free) << "free " << free << ", damped " << damped;
 }
 
 TEST(LiggghtsDriver, FixLineErrorsNameScriptAndLine) {

@@ -1,9 +1,9 @@
-"""One reader for run.json (format_version 2) of every run mode: checks that the manifest has the
+"""One reader for run.json (format_version 3) of every run mode: checks that the manifest has the
 one shape fsi-server writes for coupled and --mbd-only runs, and returns it as a dict."""
 import json
 import os
 
-FORMAT_VERSION = 2
+FORMAT_VERSION = 3
 
 # Every key of the shape, with the keys of its objects; None marks a leaf.
 SHAPE = {
@@ -27,6 +27,7 @@ SHAPE = {
         "max_particle_speed_at_snapshots", "speed_of_sound",
         "max_particle_speed_over_speed_of_sound_at_snapshots", "position_constraint_drift",
         "velocity_constraint_drift")},
+    "release": None,
     "warnings": None, "status": None, "reason": None,
 }
 # Present in a coupled run, null in an --mbd-only run.

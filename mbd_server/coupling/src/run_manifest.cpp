@@ -150,6 +150,21 @@ json checks_entry(const RunRecord& record) {
   return checks;
 }
 
+json release_entry(const std::optional<ReleaseCheck>& release) {
+  if (!release) return nullptr;
+  return {{"settling_drag", release->settling_drag},
+          {"column_height", release->column_height},
+          {"fluid_mass", release->fluid_mass},
+          {"weight", release->weight},
+          {"carried_by_structure", release->carried},
+          {"weight_fraction", optional_number(release->weight_fraction)},
+          {"kinetic_energy", release->kinetic_energy},
+          {"potential_energy", release->potential_energy},
+          {"kinetic_over_potential", optional_number(release->kinetic_over_potential)},
+          {"at_rest", release->at_rest},
+          {"warning", release->warning.empty() ? json(nullptr) : json(release->warning)}};
+}
+
 }  // namespace
 
 void write_run_manifest(const fs::path& output_dir, const scene::Scene& scene,
@@ -181,6 +196,7 @@ void write_run_manifest(const fs::path& output_dir, const scene::Scene& scene,
                         {"jacobian_evaluations", record.newton.jacobian_evaluations},
                         {"factorisations", record.newton.factorisations}};
   manifest["checks"] = checks_entry(record);
+  manifest["release"] = release_entry(record.release);
   manifest["warnings"] = record.warnings;
   manifest["status"] = record.status;
   manifest["reason"] = record.reason.empty() ? json(nullptr) : json(record.reason);

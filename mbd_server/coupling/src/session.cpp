@@ -15,6 +15,7 @@
 #include "fsi/common/stopwatch.hpp"
 #include "fsi/coupling/output.hpp"
 #include "fsi/coupling/progress.hpp"
+#include "fsi/coupling/release_check.hpp"
 #include "fsi/coupling/run_manifest.hpp"
 #include "fsi/coupling/structure_side.hpp"
 #include "fsi/coupling/tcp_fluid_side.hpp"
@@ -124,6 +125,7 @@ class Session {
     FluidReady ready = fluid_.equilibrate();
     take_ready(ready);
     take_forces(ready.initial_forces, 0);
+    if (ready.release) judge_release(*ready.release, ready.initial_forces.diagnostics);
     timings_.setup.stop();
     write_initial_output();
   }
@@ -164,6 +166,26 @@ class Session {
           "particles)",
           ready.particle_count, scene_.fluid.count());
     }
+  }
+
+  // The water must be at rest when the bodies are released: weighed against the fluid's force on
+  // every mesh at t = 0.
+  void judge_release(const protocol::ReleaseState& release,
+                     const protocol::ForceDiagnostics& initial) {
+    const ReleaseCheck check =
+        check_release(release, initial.force_on_structure, scene_.gravity,
+                      scene_.liggghts.equilibration_steps, scene_.liggghts.settling_drag);
+    spdlog::info(
+        "fluid at release: settling drag {:.4g} 1/s (H = {:.4g} m); the structure carries {} of "
+        "the fluid's weight {:.6g} {}; kinetic / potential energy {}",
+        check.settling_drag, check.column_height,
+        check.weight_fraction ? fmt::format("{:.2f} %", 100.0 * *check.weight_fraction)
+                              : std::string("-"),
+        check.weight, scene_.dimension == 3 ? "N" : "N/m",
+        check.kinetic_over_potential ? fmt::format("{:.3e}", *check.kinetic_over_potential)
+                                     : std::string("-"));
+    if (!check.at_rest) spdlog::warn("{}", check.warning);
+    release_ = check;
   }
 
   // The fluid forces on the dynamic vertices become point loads held over the next step; the
@@ -337,6 +359,9 @@ class Session {
     run.mode = RunMode::Coupled;
     run.command_line = options_.command_line;
     run.warnings = options_.warnings;
+    // The release warning stays in run.json's "release" entry: "warnings" lists the scene's
+    // physics checks, which tools compare from run to run.
+    run.release = release_;
     run.status = status_;
     run.reason = reason_;
     run.steps = steps_done_;
@@ -368,6 +393,7 @@ class Session {
   std::unique_ptr<StructureSide> structure_;
   std::array<double, 3> total_fluid_force_{};
   Timings timings_;
+  std::optional<ReleaseCheck> release_;  // absent: the fluid side did not report it
   FluidWatch watch_;
   bool coupling_ = false;  // the set-up is done, the coupled steps have begun
   std::uint64_t steps_done_ = 0;

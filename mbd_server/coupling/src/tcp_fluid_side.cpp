@@ -51,6 +51,7 @@ void TcpFluidSide::connect() {
   handshake.software_version = std::string(fsi::software_version());
   handshake.run_name = fs::path(options_.output_dir).filename().string();
   handshake.timeout = options_.handshake_timeout;
+  handshake.session_capabilities = protocol::kCapabilitySettling;
   const protocol::ServerHandshakeResult opened = protocol::accept_client(*channel_, handshake);
   const protocol::Hello& hello = opened.hello;
   client_ = hello;
@@ -99,6 +100,21 @@ void TcpFluidSide::set_up(const scene::Scene& scene, const std::vector<double>& 
   particles.positions = scene.fluid.positions;
   particles.velocities = scene.fluid.velocities;
   channel_->send(particles);
+
+  if (settling_agreed()) {
+    protocol::Settling settling;
+    settling.gravity = scene.gravity;
+    settling.column_height = scene.fluid.column_height;
+    settling.drag_rate = scene.liggghts.settling_drag.value_or(protocol::kAutomaticDragRate);
+    settling.initial_densities = scene.fluid.densities;
+    channel_->send(settling);
+  } else {
+    spdlog::warn(
+        "fsi-client speaks protocol {}: the fluid settles without the drag, starts at rho0 "
+        "everywhere (no hydrostatic start) and is not checked at release (use an fsi-client of "
+        "protocol 1.2 or later)",
+        protocol::version_text(channel_->peer_major(), channel_->peer_minor()));
+  }
 }
 
 FluidReady TcpFluidSide::equilibrate() {
@@ -112,6 +128,8 @@ FluidReady TcpFluidSide::equilibrate() {
   result.liggghts_version = ready.liggghts_version;
   result.seconds_setup = ready.seconds_setup;
   result.seconds_equilibration = ready.seconds_equilibration;
+  if (settling_agreed())
+    result.release = channel_->expect<protocol::ReleaseState>(options_.peer_timeout);
   result.initial_forces = expect_forces(0);
   return result;
 }

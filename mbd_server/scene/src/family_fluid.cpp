@@ -44,7 +44,21 @@ BlockSpec fluid_region_spec() {
            .between(0.0, 0.5)
            .with_default(0.0),
        integer("seed", "random generator seed").with_default(1),
-       integer("atom_type", "LIGGGHTS atom type of the particles").at_least(1).with_default(1)},
+       integer("atom_type", "LIGGGHTS atom type of the particles").at_least(1).with_default(1),
+       integer("hydrostatic",
+               "1: each particle starts at the Tait density of the hydrostatic pressure rho0 g "
+               "(top - y), free surface at the region's top (needs speed_of_sound); 0: all at "
+               "density")
+           .between(0, 1)
+           .with_default(0),
+       number("speed_of_sound", "m/s",
+              "hydrostatic: c of the Tait equation, B = rho0 c^2 / gamma (as script 1's fix "
+              "sph/pressure)")
+           .positive()
+           .optional(),
+       number("tait_exponent", "", "hydrostatic: gamma of the Tait equation")
+           .positive()
+           .with_default(7.0)},
       {block_spec("Hole", "polygon: a region left empty, inside the polygon (even-odd rule)",
                   {matrix("points", 2, "m", "hole vertices in order")})
            .as_list()});
@@ -60,7 +74,13 @@ std::vector<BlockSpec> fluid_blocks() {
                   text("script2", "script run after the equilibration (e.g. the real viscosity)"),
                   integer("equilibration_steps", "LIGGGHTS-only steps with the structure at rest")
                       .at_least(0)
-                      .with_default(0)})
+                      .with_default(0),
+                  number("settling_drag", "1/s",
+                         "velocity drag on the fluid during the equilibration, removed before "
+                         "script 2; 0 = none; absent: 2 pi sqrt(g/H), at most 0.1/dt "
+                         "(docs/theory.md, \"Settling the fluid\")")
+                      .at_least(0.0)
+                      .optional()})
           .as_required()
           .for_coupled_runs(),
       block_spec("LIGGGHTS_SPH_parameters",
@@ -177,6 +197,24 @@ void build_fluid_region(SceneBuilder& builder, const View& region) {
     builder.problem({where, error.fault(), error.remedy()});
     return;
   }
+  fluid.column_height =
+      lattice_column_height(fluid.positions, dimension, fluid.spacing, builder.scene.gravity);
+  fluid.densities.clear();
+  if (region.integer("hydrostatic") == 1) {
+    if (!region.has("speed_of_sound")) {
+      builder.problem({region.location("hydrostatic"),
+                       "a hydrostatic fluid region needs the speed of sound of its Tait equation",
+                       "add speed_of_sound = ... to FluidRegion (the c of script 1's fix "
+                       "sph/pressure, e.g. LIGGGHTS_SPH_parameters.cAB)"});
+      return;
+    }
+    TaitEquation tait;
+    tait.rest_density = fluid.density;
+    tait.speed_of_sound = region.number("speed_of_sound");
+    tait.exponent = region.number("tait_exponent");
+    fluid.densities = hydrostatic_densities(fluid.positions, dimension, fluid.spacing,
+                                            builder.scene.gravity, tait);
+  }
   fluid.velocities.clear();
   fluid.velocities.reserve(fluid.positions.size());
   for (std::size_t i = 0; i < fluid.count(); ++i)
@@ -219,6 +257,9 @@ void build_liggghts(SceneBuilder& builder) {
   });
   builder.guard(liggghts.location(), [&] {
     setup.equilibration_steps = static_cast<std::uint64_t>(liggghts.integer("equilibration_steps"));
+  });
+  builder.guard(liggghts.location(), [&] {
+    if (liggghts.has("settling_drag")) setup.settling_drag = liggghts.number("settling_drag");
   });
   const Block* sph = builder.scene.parameters.child("LIGGGHTS_SPH_parameters");
   if (sph == nullptr) return;

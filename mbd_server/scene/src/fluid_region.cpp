@@ -380,6 +380,48 @@ double lattice_particle_mass(double density, double spacing, int dimension) {
   return density * std::pow(spacing, dimension);
 }
 
+double lattice_column_height(const std::vector<double>& positions, int dimension, double spacing,
+                             const std::array<double, 3>& gravity) {
+  const double magnitude = std::hypot(gravity[0], gravity[1], gravity[2]);
+  const std::size_t count = positions.size() / static_cast<std::size_t>(dimension);
+  if (count == 0 || !(magnitude > 0.0)) return 0.0;
+  double lowest = std::numeric_limits<double>::infinity();
+  double highest = -lowest;
+  for (std::size_t i = 0; i < count; ++i) {
+    double height = 0.0;
+    for (int k = 0; k < dimension; ++k)
+      height -= gravity[k] / magnitude * positions[i * dimension + k];
+    lowest = std::min(lowest, height);
+    highest = std::max(highest, height);
+  }
+  return highest - lowest + spacing;
+}
+
+double TaitEquation::density_at(double pressure) const {
+  return rest_density * std::pow(1.0 + pressure / stiffness(), 1.0 / exponent);
+}
+
+std::vector<double> hydrostatic_densities(const std::vector<double>& positions, int dimension,
+                                          double spacing, const std::array<double, 3>& gravity,
+                                          const TaitEquation& tait) {
+  const double magnitude = std::hypot(gravity[0], gravity[1], gravity[2]);
+  const std::size_t count = positions.size() / static_cast<std::size_t>(dimension);
+  auto height = [&](std::size_t i) {
+    double z = 0.0;
+    for (int k = 0; k < dimension; ++k)
+      z -= (magnitude > 0.0 ? gravity[k] / magnitude : 0.0) * positions[i * dimension + k];
+    return z;
+  };
+  double top = -std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < count; ++i)
+    top = std::max(top, height(i));
+  top += 0.5 * spacing;
+  std::vector<double> densities(count);
+  for (std::size_t i = 0; i < count; ++i)
+    densities[i] = tait.density_at(tait.rest_density * magnitude * (top - height(i)));
+  return densities;
+}
+
 bool inside(const Polygon& polygon, const Point2& point) {
   bool odd = crosses_odd(polygon.outer, point);
   for (const auto& hole : polygon.holes) {

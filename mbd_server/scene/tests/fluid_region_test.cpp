@@ -29,6 +29,49 @@ LatticeOptions lattice(double d, double displacement = 0.0, std::uint64_t seed =
 
 using testing::message_thrown;
 
+TEST(FluidRegion, TheColumnHeightIsTheExtentAlongGravityPlusOneSpacing) {
+  const double d = 0.01;
+  LatticeOptions options;
+  options.spacing = d;
+  // 0.2 m wide, 0.13 m high: 13 rows, whose centres span 12 d.
+  const std::vector<double> box = fill_box({0.0, 0.0}, {0.2, 0.13}, options);
+  EXPECT_NEAR(lattice_column_height(box, 2, d, {0.0, -9.81, 0.0}), 0.13, 1e-12);
+  // Gravity along x sees the width; its sign does not matter.
+  EXPECT_NEAR(lattice_column_height(box, 2, d, {3.0, 0.0, 0.0}), 0.2, 1e-12);
+  // 3D with gravity along -z.
+  const std::vector<double> cube = fill_box_3d({0, 0, 0}, {0.05, 0.05, 0.07}, options);
+  EXPECT_NEAR(lattice_column_height(cube, 3, d, {0.0, 0.0, -9.81}), 0.07, 1e-12);
+  EXPECT_EQ(lattice_column_height(box, 2, d, {0.0, 0.0, 0.0}), 0.0);
+  EXPECT_EQ(lattice_column_height({}, 2, d, {0.0, -9.81, 0.0}), 0.0);
+}
+
+TEST(FluidRegion, HydrostaticDensitiesFollowTheTaitEquationBelowTheTop) {
+  const double d = 0.01;
+  LatticeOptions options;
+  options.spacing = d;
+  // 13 rows under g = 10: the top row's centre is d/2 below the surface, the bottom row's 12.5 d.
+  const std::vector<double> column = fill_box({0.0, 0.0}, {0.02, 0.13}, options);
+  TaitEquation tait;
+  tait.rest_density = 1000.0;
+  tait.speed_of_sound = 20.0;
+  const std::vector<double> densities =
+      hydrostatic_densities(column, 2, d, {0.0, -10.0, 0.0}, tait);
+  ASSERT_EQ(densities.size(), column.size() / 2);
+  const double stiffness = 1000.0 * 20.0 * 20.0 / 7.0;
+  EXPECT_DOUBLE_EQ(tait.stiffness(), stiffness);
+  for (std::size_t i = 0; i < densities.size(); ++i) {
+    const double depth = 0.13 - column[2 * i + 1];
+    const double pressure = 1000.0 * 10.0 * depth;
+    // The Tait law of LIGGGHTS' fix sph/pressure gives back the hydrostatic pressure.
+    EXPECT_NEAR(stiffness * (std::pow(densities[i] / 1000.0, 7.0) - 1.0), pressure,
+                1e-9 * stiffness)
+        << i;
+  }
+  // About rho0 (1 + rho0 g H / (gamma B))... at the bottom: 1000 * (1 + 1250/57142.86)^(1/7).
+  EXPECT_NEAR(densities.front(), 1000.0 * std::pow(1.0 + 1250.0 / stiffness, 1.0 / 7.0), 1e-9);
+  EXPECT_NEAR(densities.back(), 1000.0 * std::pow(1.0 + 50.0 / stiffness, 1.0 / 7.0), 1e-9);
+}
+
 TEST(FluidRegion, ARectangularPolygonFillsLikeTheBox) {
   const Polygon rectangle{{{0, 0}, {1, 0}, {1, 0.5}, {0, 0.5}}, {}};
   const auto polygon = fill_polygon(rectangle, lattice(0.1));

@@ -58,6 +58,49 @@ TEST(Scene, OverridesReachTheBuiltScene) {
   EXPECT_EQ(scene.model.body(scene.model.find_body("piston")).mass, 0.2);
 }
 
+TEST(Scene, TheWaterColumnKnowsItsHeightAndTheSettlingDragIsTheScenes) {
+  const Scene automatic = build_scene(FSI_EXAMPLES_DIR "/water_column/water_column.scene");
+  // 61 lattice rows of d = h/1.9 in the 0.13 m high region: H is their extent plus one d.
+  EXPECT_NEAR(automatic.fluid.column_height, 61 * 0.004 / 1.9, 1e-12);
+  EXPECT_FALSE(automatic.liggghts.settling_drag);  // absent: fsi-client derives it
+  const Scene off = build_scene(FSI_EXAMPLES_DIR "/water_column/water_column.scene",
+                                {{"LIGGGHTS.settling_drag", "0"}});
+  ASSERT_TRUE(off.liggghts.settling_drag);
+  EXPECT_EQ(*off.liggghts.settling_drag, 0.0);
+  try {
+    build_scene(FSI_EXAMPLES_DIR "/water_column/water_column.scene",
+                {{"LIGGGHTS.settling_drag", "-1"}});
+    FAIL() << "a negative drag accepted";
+  } catch (const fsi::Error& error) {
+    EXPECT_NE(std::string(error.what()).find("settling_drag"), std::string::npos) << error.what();
+  }
+}
+
+TEST(Scene, AHydrostaticRegionGivesEveryParticleItsDensity) {
+  const Scene plain = build_scene(FSI_EXAMPLES_DIR "/water_column/water_column.scene");
+  EXPECT_TRUE(plain.fluid.densities.empty());
+  const Scene hydrostatic =
+      build_scene(FSI_EXAMPLES_DIR "/water_column/water_column.scene",
+                  {{"FluidRegion.hydrostatic", "1"}, {"FluidRegion.speed_of_sound", "20"}});
+  ASSERT_EQ(hydrostatic.fluid.densities.size(), hydrostatic.fluid.count());
+  double lowest_density = 1e9, highest_density = 0.0;
+  for (const double density : hydrostatic.fluid.densities) {
+    lowest_density = std::min(lowest_density, density);
+    highest_density = std::max(highest_density, density);
+  }
+  // rho0 g H / (rho0 c^2) = 9.81 * 0.128 / 400 = 0.3 %: the bottom is that much denser.
+  EXPECT_GT(lowest_density, 1000.0);
+  EXPECT_NEAR(highest_density / 1000.0 - 1.0, 9.81 * 0.128 / 400.0, 2e-4);
+  try {
+    build_scene(FSI_EXAMPLES_DIR "/water_column/water_column.scene",
+                {{"FluidRegion.hydrostatic", "1"}});
+    FAIL() << "a hydrostatic region without speed of sound accepted";
+  } catch (const fsi::Error& error) {
+    EXPECT_NE(std::string(error.what()).find("needs the speed of sound"), std::string::npos)
+        << error.what();
+  }
+}
+
 TEST(Scene, ReportsAllProblemsWithLocations) {
   const fs::path folder = fs::temp_directory_path() / "fsi_scene_build_test";
   fs::create_directories(folder);

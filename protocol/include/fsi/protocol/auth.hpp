@@ -57,12 +57,15 @@ AuthBytes server_tag(const Token& token, const AuthBytes& client_nonce,
                      const AuthBytes& server_nonce);
 
 // The server's opening: receives Hello, checks the version, authenticates when it has a token,
-// sends Welcome. Capabilities offered: heartbeat, and authentication when a token is given.
+// sends Welcome. Capabilities offered: heartbeat, the session's, and authentication when a token
+// is given.
 struct ServerHandshake {
   std::optional<Token> token;
   std::string software_version;  // goes into Welcome
   std::string run_name;          // goes into Welcome
   Milliseconds timeout{30000};   // for each message of the client
+  // Bits of the session that follows, which the caller implements (kCapabilitySettling).
+  std::uint32_t session_capabilities = kNoCapabilities;
 };
 struct ServerHandshakeResult {
   Hello hello;
@@ -77,6 +80,8 @@ struct ClientHandshake {
   std::optional<Token> token;
   Hello hello;  // capabilities are filled in
   Milliseconds timeout{30000};
+  // Bits of the session that follows, which the caller implements (kCapabilitySettling).
+  std::uint32_t session_capabilities = kNoCapabilities;
 };
 struct ClientHandshakeResult {
   Welcome welcome;

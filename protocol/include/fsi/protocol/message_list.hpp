@@ -19,6 +19,8 @@
   X(Mesh, Mesh, 0x11)                       \
   X(Particles, Particles, 0x12)             \
   X(Ready, Ready, 0x13)                     \
+  X(Settling, Settling, 0x14)               \
+  X(ReleaseState, ReleaseState, 0x15)       \
   X(Step, Step, 0x20)                       \
   X(Forces, Forces, 0x21)                   \
   X(SnapshotRequest, SnapshotRequest, 0x30) \

@@ -1,5 +1,5 @@
 #pragma once
-// The messages of protocol 1.0; docs/protocol.md gives the byte layout of each. encode() makes a
+// The messages of protocol 1.2; docs/protocol.md gives the byte layout of each. encode() makes a
 // payload; decode() checks every count against the bytes that remain before allocating, checks
 // the content for consistency, and throws ProtocolError naming the message, the field and the
 // byte offset.
@@ -26,6 +26,9 @@ inline constexpr std::uint32_t kNoCapabilities = 0;
 inline constexpr std::uint32_t kCapabilityAuthentication = 1u << 0;
 // 1.1: the sender understands Heartbeat frames (the peer may send them while it computes).
 inline constexpr std::uint32_t kCapabilityHeartbeat = 1u << 1;
+// 1.2: the sender takes part in the settling of the fluid and the check at release (Settling,
+// ReleaseState).
+inline constexpr std::uint32_t kCapabilitySettling = 1u << 2;
 
 // The codes of an Error message (docs/protocol.md §7) as X(enumerator, value); AuthenticationFailed
 // came with 1.1.
@@ -165,6 +168,22 @@ struct Particles {  // server -> client: the fluid particles to create
   bool operator==(const Particles&) const = default;
 };
 
+// 1.2, capability kCapabilitySettling: how the fluid settles during the equilibration (a velocity
+// drag, removed before script 2; docs/theory.md, "Settling the fluid").
+inline constexpr double kAutomaticDragRate = -1.0;
+struct Settling {  // server -> client, after Particles
+  static constexpr MessageType kType = MessageType::Settling;
+  std::array<double, 3> gravity{};  // the scene's gravity [m/s^2] (2D: z = 0)
+  double column_height = 0.0;       // H [m] of the server's fluid region; 0: measure the particles
+  // [1/s]: 0 no drag, > 0 this rate, kAutomaticDragRate (any negative value): derived by the
+  // client from H, |g| and the time step.
+  double drag_rate = kAutomaticDragRate;
+  // The initial density of every particle of Particles, in its order (a hydrostatic start); empty:
+  // all start at Particles::density.
+  std::vector<double> initial_densities;
+  bool operator==(const Settling&) const = default;
+};
+
 struct Ready {  // client -> server, after script 1, insertion, equilibration and script 2
   static constexpr MessageType kType = MessageType::Ready;
   std::uint64_t particle_count = 0;
@@ -172,6 +191,18 @@ struct Ready {  // client -> server, after script 1, insertion, equilibration an
   double seconds_setup = 0.0;
   double seconds_equilibration = 0.0;
   bool operator==(const Ready&) const = default;
+};
+
+// 1.2, capability kCapabilitySettling: the fluid as the structure is released (after script 2 and
+// its run with set-up), for the server's check that the water is at rest.
+struct ReleaseState {  // client -> server, right after Ready
+  static constexpr MessageType kType = MessageType::ReleaseState;
+  double drag_rate = 0.0;         // the settling drag applied [1/s] (0: none)
+  double column_height = 0.0;     // H the drag was derived from [m]
+  double fluid_mass = 0.0;        // sum of the particle masses [kg; 2D kg/m]
+  double kinetic_energy = 0.0;    // sum of m v^2 / 2 [J; 2D J/m]
+  double potential_energy = 0.0;  // sum of m |g| (height above the lowest particle) [J; 2D J/m]
+  bool operator==(const ReleaseState&) const = default;
 };
 
 struct Step {  // server -> client: the dynamic vertices at the end of the step

@@ -41,6 +41,9 @@ struct FluidReady {
   double seconds_setup = 0.0;
   double seconds_equilibration = 0.0;
   FluidForces initial_forces;
+  // The fluid at release, for the check that it is at rest; absent when the fluid side does not
+  // take part in the settling (a client of protocol 1.1).
+  std::optional<protocol::ReleaseState> release;
 };
 
 // Who computed the fluid, for run.json; a fluid side without a remote peer has none.

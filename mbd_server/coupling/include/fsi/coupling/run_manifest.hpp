@@ -11,14 +11,15 @@
 #include <vector>
 
 #include "fsi/coupling/fluid_side.hpp"
+#include "fsi/coupling/release_check.hpp"
 #include "fsi/mbd/integrator.hpp"
 #include "fsi/scene/scene.hpp"
 
 namespace fsi::coupling {
 
 // Version 2: one shape for every mode ("mode", gravity with `dimension` components, bodies as a
-// list, null for what a mode does not have).
-inline constexpr int kRunManifestFormatVersion = 2;
+// list, null for what a mode does not have). Version 3: "release", the fluid at release.
+inline constexpr int kRunManifestFormatVersion = 3;
 
 enum class RunMode { Coupled, MbdOnly };
 
@@ -60,6 +61,8 @@ struct RunRecord {
   std::optional<double> position_constraint_drift;
   std::optional<double> velocity_constraint_drift;
   std::optional<FluidRecord> fluid;  // coupled runs only
+  // Coupled runs whose client reported the fluid at release (protocol 1.2).
+  std::optional<ReleaseCheck> release;
 };
 
 // Writes DIR/run.json. Throws fsi::Error if it cannot.

@@ -34,6 +34,7 @@ class TcpFluidSide final : public FluidSide {
  private:
   void connect();
   FluidForces expect_forces(std::uint64_t step);
+  bool settling_agreed() const { return (capabilities_ & protocol::kCapabilitySettling) != 0; }
 
   ServerOptions options_;
   std::unique_ptr<protocol::Channel> channel_;

@@ -33,6 +33,30 @@ struct LatticeOptions {
 // Particle mass rho0 d^dimension (2D: per unit depth).
 double lattice_particle_mass(double density, double spacing, int dimension);
 
+// Height of a lattice's column along -gravity: highest minus lowest point plus one spacing (each
+// point stands for a cell of size d), the H of a box region filled to its top. 0 without points
+// or without gravity. `positions` holds `dimension` values per point.
+double lattice_column_height(const std::vector<double>& positions, int dimension, double spacing,
+                             const std::array<double, 3>& gravity);
+
+// The weakly compressible fluid's Tait equation p = B ((rho/rho0)^gamma - 1), B = rho0 c^2 / gamma
+// (the law of LIGGGHTS' fix sph/pressure Tait).
+struct TaitEquation {
+  double rest_density = 0.0;    // rho0 [kg/m^3]
+  double speed_of_sound = 0.0;  // c [m/s]
+  double exponent = 7.0;        // gamma
+  double stiffness() const { return rest_density * speed_of_sound * speed_of_sound / exponent; }
+  // rho at pressure p (the inverse of the law).
+  double density_at(double pressure) const;
+};
+
+// One density per lattice point: the Tait density of the hydrostatic pressure rho0 |g| (top - z),
+// z the height along -g and top the lattice's top (highest point plus d/2): the free surface at
+// the top of the region.
+std::vector<double> hydrostatic_densities(const std::vector<double>& positions, int dimension,
+                                          double spacing, const std::array<double, 3>& gravity,
+                                          const TaitEquation& tait);
+
 // ---- 2D ----
 
 // A simple polygon (no two edges cross) and holes inside it; either orientation.

@@ -92,6 +92,9 @@ struct FluidParticles {
   double mass = 0.0;  // per particle (2D: per unit depth)
   double density = 0.0;
   double spacing = 0.0;
+  double column_height = 0.0;  // H along gravity (lattice_column_height); 0 without gravity
+  // One initial density per particle (FluidRegion.hydrostatic = 1); empty: all start at density.
+  std::vector<double> densities;
   std::vector<double> positions;  // dimension values per particle (x, y or x, y, z)
   std::vector<double> velocities;
   std::size_t count() const { return positions.size() / static_cast<std::size_t>(dimension); }
@@ -102,6 +105,9 @@ struct LiggghtsSetup {
   std::string script1_name, script1_text;
   std::string script2_name, script2_text;
   std::uint64_t equilibration_steps = 0;
+  // The drag rate [1/s] of the equilibration's settling (docs/theory.md, "Settling the fluid"):
+  // absent = derived by fsi-client from H, |g| and dt; 0 = none.
+  std::optional<double> settling_drag;
 };
 
 // TotalFluidForce: the force of the fluid on every boundary, static walls included (no body).

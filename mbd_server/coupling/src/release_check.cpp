@@ -1,0 +1,62 @@
+#include "fsi/coupling/release_check.hpp"
+
+#include <spdlog/fmt/fmt.h>
+
+#include <cmath>
+
+namespace fsi::coupling {
+ReleaseCheck check_release(const protocol::ReleaseState& release,
+                           const std::array<double, 3>& force_on_structure,
+                           const std::array<double, 3>& gravity, std::uint64_t equilibration_steps,
+                           std::optional<double> scene_settling_drag) {
+  ReleaseCheck check;
+  check.settling_drag = release.drag_rate;
+  check.column_height = release.column_height;
+  check.fluid_mass = release.fluid_mass;
+  check.kinetic_energy = release.kinetic_energy;
+  check.potential_energy = release.potential_energy;
+  const double g = std::hypot(gravity[0], gravity[1], gravity[2]);
+  check.weight = release.fluid_mass * g;
+  if (g > 0.0) {
+    for (int k = 0; k < 3; ++k)
+      check.carried += force_on_structure[k] * gravity[k] / g;
+  }
+  if (check.weight > 0.0) check.weight_fraction = check.carried / check.weight;
+  if (release.potential_energy > 0.0) {
+    check.kinetic_over_potential = release.kinetic_energy / release.potential_energy;
+  }
+
+  std::string problems;
+  if (check.weight_fraction && (*check.weight_fraction < kRestWeightFractionLow ||
+                                *check.weight_fraction > kRestWeightFractionHigh)) {
+    problems += "the structure carries " + fmt::format("{:.1f}", 100.0 * *check.weight_fraction) +
+                " % of the fluid's weight (99 to 101 % at rest)";
+  }
+  if (check.kinetic_over_potential && *check.kinetic_over_potential > kRestKineticOverPotential) {
+    if (!problems.empty()) problems += ", and ";
+    problems += "its kinetic energy is " + fmt::format("{:.2e}", *check.kinetic_over_potential) +
+                " of its potential energy above the lowest particle (at most " +
+                fmt::format("{:.0e}", kRestKineticOverPotential) + " at rest)";
+  }
+  if (problems.empty()) return check;
+  check.at_rest = false;
+  const std::string steps = std::to_string(equilibration_steps);
+  std::string drag;
+  if (!scene_settling_drag) {
+    drag = "the automatic settling drag of " + fmt::format("{:.4g}", release.drag_rate) +
+           " 1/s did not suffice in that time";
+  } else if (*scene_settling_drag == 0.0) {
+    drag =
+        "LIGGGHTS { settling_drag = 0 } turns the settling drag off: remove it to get the "
+        "automatic one";
+  } else {
+    drag = "LIGGGHTS { settling_drag = " + fmt::format("{:.4g}", *scene_settling_drag) +
+           " } may be far from critical: remove it to get the automatic one";
+  }
+  check.warning = "the fluid is not at rest when the bodies are released: " + problems +
+                  ". Give it more time (LIGGGHTS { equilibration_steps }, now " + steps + "); " +
+                  drag + " (docs/user-guide.md, \"Equilibration\")";
+  return check;
+}
+
+}  // namespace fsi::coupling

@@ -1,0 +1,85 @@
+// The check that the water is at rest when the bodies are released.
+#include "fsi/coupling/release_check.hpp"
+
+#include <gtest/gtest.h>
+
+namespace fsi::coupling {
+namespace {
+
+// A 2D column of 16.9 kg/m under g = 9.81 m/s^2 (weight 165.789 N/m), settled with 54.6 1/s.
+protocol::ReleaseState settled_column() {
+  protocol::ReleaseState release;
+  release.drag_rate = 54.6;
+  release.column_height = 0.13;
+  release.fluid_mass = 16.9;
+  release.kinetic_energy = 1e-6;
+  release.potential_energy = 10.7;
+  return release;
+}
+
+constexpr std::array<double, 3> kGravity{0.0, -9.81, 0.0};
+
+TEST(ReleaseCheck, AColumnRestingItsWeightOnTheStructureIsAtRest) {
+  // The fluid pushes the floor down (along g) with its weight, give or take 0.5 %.
+  const std::array<double, 3> force{0.2, -16.9 * 9.81 * 1.005, 0.0};
+  const ReleaseCheck check = check_release(settled_column(), force, kGravity, 4000, std::nullopt);
+  EXPECT_TRUE(check.at_rest) << check.warning;
+  EXPECT_TRUE(check.warning.empty());
+  EXPECT_DOUBLE_EQ(check.weight, 16.9 * 9.81);
+  ASSERT_TRUE(check.weight_fraction);
+  EXPECT_NEAR(*check.weight_fraction, 1.005, 1e-12);
+  ASSERT_TRUE(check.kinetic_over_potential);
+  EXPECT_NEAR(*check.kinetic_over_potential, 1e-6 / 10.7, 1e-18);
+}
+
+TEST(ReleaseCheck, TheWeightIsMeasuredAlongGravityWhereverItPoints) {
+  // Gravity along -z in 3D: only the z component of the force counts.
+  const std::array<double, 3> force{50.0, -30.0, -16.9 * 9.81};
+  const ReleaseCheck check =
+      check_release(settled_column(), force, {0.0, 0.0, -9.81}, 4000, std::nullopt);
+  ASSERT_TRUE(check.weight_fraction);
+  EXPECT_NEAR(*check.weight_fraction, 1.0, 1e-12);
+  EXPECT_TRUE(check.at_rest);
+}
+
+TEST(ReleaseCheck, AColumnCarryingTooLittleWeightIsNotAtRestAndTheWarningSaysWhatToChange) {
+  const std::array<double, 3> force{0.0, -16.9 * 9.81 * 0.65, 0.0};
+  const ReleaseCheck check = check_release(settled_column(), force, kGravity, 1000, 0.0);
+  EXPECT_FALSE(check.at_rest);
+  EXPECT_NE(check.warning.find("carries 65.0 % of the fluid's weight (99 to 101 % at rest)"),
+            std::string::npos)
+      << check.warning;
+  EXPECT_NE(check.warning.find("equilibration_steps }, now 1000"), std::string::npos)
+      << check.warning;
+  EXPECT_NE(check.warning.find("settling_drag = 0 } turns the settling drag off"),
+            std::string::npos)
+      << check.warning;
+  // Too much is as wrong as too little: the column is on its way up.
+  const std::array<double, 3> heavy{0.0, -16.9 * 9.81 * 1.02, 0.0};
+  EXPECT_FALSE(check_release(settled_column(), heavy, kGravity, 1000, std::nullopt).at_rest);
+}
+
+TEST(ReleaseCheck, AMovingFluidIsNotAtRestEvenWhenItsWeightIsRight) {
+  protocol::ReleaseState moving = settled_column();
+  moving.kinetic_energy = 2e-3 * moving.potential_energy;
+  const std::array<double, 3> force{0.0, -16.9 * 9.81, 0.0};
+  const ReleaseCheck check = check_release(moving, force, kGravity, 4000, std::nullopt);
+  EXPECT_FALSE(check.at_rest);
+  EXPECT_NE(check.warning.find("kinetic energy is 2.00e-03 of its potential energy"),
+            std::string::npos)
+      << check.warning;
+  EXPECT_NE(check.warning.find("automatic settling drag of 54.6 1/s did not suffice"),
+            std::string::npos)
+      << check.warning;
+  EXPECT_EQ(check.warning.find("carries"), std::string::npos) << check.warning;
+}
+
+TEST(ReleaseCheck, WithoutGravityThereIsNoWeightToJudge) {
+  const ReleaseCheck check =
+      check_release(settled_column(), {0.0, 0.0, 0.0}, {0.0, 0.0, 0.0}, 0, std::nullopt);
+  EXPECT_FALSE(check.weight_fraction);
+  EXPECT_TRUE(check.at_rest);
+}
+
+}  // namespace
+}  // namespace fsi::coupling
