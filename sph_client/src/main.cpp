@@ -60,7 +60,7 @@ int main(int argc, char** argv) {
   double peer_timeout = 300.0;
   app.add_option("--peer-timeout", peer_timeout,
                  "Seconds of silence from fsi-server after which the client gives up (a stopped "
-                 "or hung server). A computing server sends a heartbeat every second, so long "
+                 "or hung server). A computing server sends a heartbeat every 0.5 s, so long "
                  "structure solves do not count as silence. At least 2")
       ->check(CLI::Range(2.0, 1e9))
       ->capture_default_str();

@@ -245,7 +245,7 @@ void declare_network_options(CLI::App& app, CommandLine& line) {
       ->check(CLI::PositiveNumber);
   app.add_option("--peer-timeout", line.peer_timeout,
                  "Seconds of silence from fsi-client after which the server gives up (a stopped or "
-                 "hung client). A computing client sends a heartbeat every second, so long "
+                 "hung client). A computing client sends a heartbeat every 0.5 s, so long "
                  "steps and the equilibration do not count as silence. At least 2")
       ->capture_default_str()
       ->check(CLI::Range(2.0, 1e9));

@@ -28,7 +28,7 @@ using Milliseconds = std::chrono::milliseconds;
 // How often a busy side sends Heartbeat frames (docs/protocol.md, "Waiting"; the first one an
 // interval after the compute phase began, then one per interval, each at most a quarter interval
 // late). A peer's receive timeout must be longer than 1.25 intervals.
-inline constexpr Milliseconds kHeartbeatInterval{1000};
+inline constexpr Milliseconds kHeartbeatInterval{500};
 
 struct ChannelOptions {
   // Version written into every sent header. Only tests that fake another peer change it.
