@@ -22,6 +22,7 @@
 
 #include "command_policy.hpp"
 #include "fsi/common/error.hpp"
+#include "fsi/contact/script_text.hpp"
 
 namespace fsi::client {
 namespace {
@@ -30,60 +31,6 @@ std::string format_double(double value) {
   char text[40];
   std::snprintf(text, sizeof text, "%.17g", value);
   return text;
-}
-
-// Removes a '#' comment that is not inside quotes (LIGGGHTS' own rule).
-std::string strip_comment(const std::string& line) {
-  bool in_single = false, in_double = false;
-  for (std::size_t i = 0; i < line.size(); ++i) {
-    const char c = line[i];
-    if (c == '"' && !in_single) in_double = !in_double;
-    if (c == '\'' && !in_double) in_single = !in_single;
-    if (c == '#' && !in_single && !in_double) return line.substr(0, i);
-  }
-  return line;
-}
-
-std::vector<std::string> split_words(const std::string& line) {
-  std::vector<std::string> words;
-  std::size_t i = 0;
-  while (i < line.size()) {
-    while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i])))
-      ++i;
-    if (i >= line.size()) break;
-    if (line[i] == '"' || line[i] == '\'') {
-      const char quote = line[i];
-      const std::size_t end = line.find(quote, i + 1);
-      words.push_back(
-          line.substr(i + 1, end == std::string::npos ? std::string::npos : end - i - 1));
-      i = end == std::string::npos ? line.size() : end + 1;
-    } else {
-      const std::size_t start = i;
-      while (i < line.size() && !std::isspace(static_cast<unsigned char>(line[i])))
-        ++i;
-      words.push_back(line.substr(start, i - start));
-    }
-  }
-  return words;
-}
-
-// Names referenced as ${name} or $x in a line (outside quotes).
-std::vector<std::string> referenced_variables(const std::string& line) {
-  std::vector<std::string> names;
-  bool in_single = false, in_double = false;
-  for (std::size_t i = 0; i + 1 < line.size(); ++i) {
-    const char c = line[i];
-    if (c == '"' && !in_single) in_double = !in_double;
-    if (c == '\'' && !in_double) in_single = !in_single;
-    if (c != '$' || in_single || in_double) continue;
-    if (line[i + 1] == '{') {
-      const std::size_t end = line.find('}', i + 2);
-      if (end != std::string::npos) names.push_back(line.substr(i + 2, end - i - 2));
-    } else if (line[i + 1] != '(') {
-      names.emplace_back(1, line[i + 1]);
-    }
-  }
-  return names;
 }
 
 }  // namespace
@@ -125,7 +72,7 @@ void LiggghtsDriver::command(const std::string& line) {
 
 std::vector<std::string> LiggghtsDriver::substituted_words(const std::string& line) {
   // Input::substitute aborts the job on an unknown variable: check first and fail softly.
-  for (const std::string& name : referenced_variables(line)) {
+  for (const std::string& name : contact::referenced_variables(line)) {
     std::vector<char> buffer(name.begin(), name.end());
     buffer.push_back('\0');
     if (lammps_->input->variable->find(buffer.data()) < 0) {
@@ -141,7 +88,7 @@ std::vector<std::string> LiggghtsDriver::substituted_words(const std::string& li
   auto* work = static_cast<char*>(lammps_->memory->smalloc(work_capacity, "fsi:work"));
   std::memcpy(text, line.c_str(), line.size() + 1);
   lammps_->input->substitute(text, work, capacity, work_capacity, 0);
-  std::vector<std::string> words = split_words(text);
+  std::vector<std::string> words = contact::command_words(text);
   lammps_->memory->sfree(text);
   lammps_->memory->sfree(work);
   return words;
@@ -149,26 +96,10 @@ std::vector<std::string> LiggghtsDriver::substituted_words(const std::string& li
 
 void LiggghtsDriver::run_script(const std::string& name, const std::string& text,
                                 const std::function<void()>& after_create_box) {
-  std::vector<std::string> lines;
-  std::size_t start = 0;
-  while (start <= text.size()) {
-    std::size_t end = text.find('\n', start);
-    if (end == std::string::npos) end = text.size();
-    lines.push_back(text.substr(start, end - start));
-    start = end + 1;
-  }
-  for (std::size_t i = 0; i < lines.size(); ++i) {
-    const int first_line = static_cast<int>(i) + 1;
-    std::string line = lines[i];
-    // '&' at the end continues the command on the next line.
-    while (!line.empty() && line.find_last_not_of(" \t\r") != std::string::npos &&
-           line[line.find_last_not_of(" \t\r")] == '&' && i + 1 < lines.size()) {
-      line = line.substr(0, line.find_last_not_of(" \t\r")) + " " + lines[++i];
-    }
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    const std::string code = strip_comment(line);
-    const std::vector<std::string> raw = split_words(code);
-    if (raw.empty()) continue;
+  for (const contact::ScriptCommand& command : contact::script_commands(text)) {
+    const int first_line = command.line;
+    const std::string& code = command.code;
+    const std::vector<std::string>& raw = command.words;
     position_ = {name, first_line, code};
     if (contact::is_fix_fsi_sph_command(raw)) {
       const std::vector<std::string> words = substituted_words(code);

@@ -10,10 +10,10 @@
 #include <limits>
 #include <numbers>
 #include <optional>
-#include <sstream>
 
 #include "fsi/contact/fix_arguments.hpp"
 #include "fsi/contact/force_law.hpp"
+#include "fsi/contact/script_text.hpp"
 #include "fsi/scene/fluid_region.hpp"
 
 namespace fsi::scene {
@@ -60,33 +60,12 @@ std::string point_text(const Point& point) {
 
 // --- LIGGGHTS scripts as the checks read them ---------------------------------------------------
 
-// Calls visit(tokens, line) for every command of a LIGGGHTS script: comments stripped, lines
-// ending in '&' joined; `line` is the command's first line (1-based).
+// Calls visit(words, line) for every command of a LIGGGHTS script, read as fsi-client and
+// LIGGGHTS read it (fsi/contact/script_text.hpp); `line` is the command's first line (1-based).
 template <class Visit>
 void for_each_command(const std::string& script, Visit visit) {
-  std::istringstream lines(script);
-  std::string line;
-  std::string command;
-  int number = 0;
-  int first_line = 1;
-  while (std::getline(lines, line)) {
-    ++number;
-    if (command.empty()) first_line = number;
-    line = line.substr(0, line.find('#'));
-    const auto last = line.find_last_not_of(" \t\r");
-    line = last == std::string::npos ? "" : line.substr(0, last + 1);
-    if (!line.empty() && line.back() == '&') {
-      command += line.substr(0, line.size() - 1) + " ";
-      continue;
-    }
-    command += line;
-    std::istringstream words(command);
-    command.clear();
-    std::vector<std::string> tokens;
-    for (std::string token; words >> token;)
-      tokens.push_back(token);
-    if (!tokens.empty()) visit(tokens, first_line);
-  }
+  for (const contact::ScriptCommand& command : contact::script_commands(script))
+    visit(command.words, command.line);
 }
 
 // A script word with LIGGGHTS' ${name} and $c replaced by the LIGGGHTS_SPH_parameters values the
@@ -942,6 +921,65 @@ void check_gravity(const Scene& scene, Report& report) {
   }
 }
 
+// fsi-client defines every LIGGGHTS_SPH_parameters entry as a LIGGGHTS variable, runs script 1,
+// the equilibration, then script 2. LIGGGHTS stops the job at a ${name} it does not know, and
+// without `fix ... fsi/sph` in script 1 the client has nothing to couple: both only showed at run
+// time, after the set-up; here they are named at their script line before any run.
+void check_liggghts_scripts(const Scene& scene, Report& report) {
+  constexpr std::string_view kCheck = "liggghts_scripts";
+  const LiggghtsSetup& liggghts = scene.liggghts;
+  std::vector<std::string> defined;
+  for (const auto& [name, value] : liggghts.variables)
+    defined.push_back(name);
+  auto is_defined = [&](const std::string& name) {
+    return std::find(defined.begin(), defined.end(), name) != defined.end();
+  };
+  bool any_command = false;
+  bool fsi_fix = false;
+  std::optional<SourceLocation> unfollowed;  // include, jump: the check cannot follow them
+  for (const auto& [name, text] : {std::pair{&liggghts.script1_name, &liggghts.script1_text},
+                                   std::pair{&liggghts.script2_name, &liggghts.script2_text}}) {
+    for (const contact::ScriptCommand& command : contact::script_commands(*text)) {
+      any_command = true;
+      const SourceLocation where{*name, command.line, 1};
+      const std::string& verb = command.words.front();
+      if (verb == "include" || verb == "jump" || verb == "label") {
+        if (!unfollowed) unfollowed = where;
+        continue;
+      }
+      if (name == &liggghts.script1_name && command.words.size() >= 4 && verb == "fix" &&
+          command.words[3] == "fsi/sph")
+        fsi_fix = true;
+      if (unfollowed) continue;
+      for (const std::string& variable : contact::referenced_variables(command.code)) {
+        if (is_defined(variable)) continue;
+        report.warn(kCheck, where,
+                    "LIGGGHTS variable '" + variable +
+                        "' is not defined when this line runs (fsi-client defines the " +
+                        std::string(kSphBlock) +
+                        " entries before script 1, then the scripts' own 'variable' lines in "
+                        "order): LIGGGHTS would stop the run here",
+                    "add '" + variable + " = ...' to " + std::string(kSphBlock) +
+                        " in the scene, or a 'variable " + variable + " ...' line above this one");
+        defined.push_back(variable);  // one warning per name
+      }
+      if (verb == "variable" && command.words.size() >= 2) defined.push_back(command.words[1]);
+    }
+  }
+  if (!any_command) return;  // placeholder scripts of a scene without fluid (--mbd-only)
+  if (unfollowed) {
+    report.skip(kCheck, "LIGGGHTS script variables",
+                {"the scripts use 'include', 'jump' or 'label' (" + unfollowed->text() +
+                 "), which the check does not follow"});
+  }
+  if (!fsi_fix && !unfollowed) {
+    report.warn(kCheck, SourceLocation{liggghts.script1_name, 1, 1},
+                "script 1 has no 'fix ID group fsi/sph ...': the fluid would not feel the "
+                "structure, and fsi-client stops after the set-up",
+                "add e.g. 'fix fsi all fsi/sph t ${SPH_wall_visc} spacing ${particlespacing} "
+                "pressure ${SPH_wall_pressure}' to script 1 (docs/fix_fsi_sph.md)");
+  }
+}
 }  // namespace
 
 std::string_view name(Severity severity) {
@@ -963,6 +1001,7 @@ std::vector<Diagnostic> physics_checks(const Scene& scene) {
   check_wall_viscosity(scene, report);
   check_fluid_overlap(scene, report);
   check_gravity(scene, report);
+  check_liggghts_scripts(scene, report);
   return report.take();
 }
 

@@ -42,11 +42,19 @@ std::vector<Diagnostic> coarse_diagnostics(const std::vector<Override>& override
   return physics_checks(build_scene(kCoarseTank, overrides));
 }
 
+// Script 1 of the small scene: the fluid's gravity and the coupling fix with the wall law of the
+// LIGGGHTS_SPH_parameters.
+const std::string kSetUp =
+    "# set-up\n"
+    "fix gravity all gravity 9.81 vector 0.0 -1.0 0.0\n"
+    "fix fsi all fsi/sph k ${SPH_wall_rep} t ${SPH_wall_visc} r0 ${SPH_wall_equilibriumdist} &\n"
+    "    cutoff ${SPH_wall_cutoff}\n";
+
 class SmallScene : public testing::FolderPerTest {
  protected:
   void SetUp() override {
     FolderPerTest::SetUp();
-    set_up_script("# set-up\nfix gravity all gravity 9.81 vector 0.0 -1.0 0.0\n");
+    set_up_script(kSetUp);
     std::ofstream(folder_ / "after.in") << "# after the equilibration\n";
   }
 
@@ -336,13 +344,18 @@ TEST_F(SmallScene, AGoodSceneIsSilent) {
 }
 
 TEST_F(SmallScene, MissingInputsSkipChecksWithOneInfoEach) {
-  // No cAB, no SPH_wall_visc, no FluidRegion (so no spacing, density or fluid height).
+  // No cAB, no SPH_wall_* values, no FluidRegion (so no spacing, density or fluid height); the
+  // fix line gives its numbers itself.
+  set_up_script(
+      "fix gravity all gravity 9.81 vector 0.0 -1.0 0.0\n"
+      "fix fsi all fsi/sph k 2000 t 1000 r0 0.002 cutoff 0.002\n");
   const std::vector<Diagnostic> diagnostics =
       physics_checks(build("smoothinglength = 0.001; viscosity = 1e-3", ""));
   for (const Diagnostic& diagnostic : diagnostics)
     EXPECT_EQ(diagnostic.severity, Severity::Info) << diagnostic.text();
-  // Every check but gravity, whose inputs (the Gravity block, the scripts) are all there.
-  ASSERT_EQ(diagnostics.size(), std::size(kPhysicsCheckNames) - 1) << listing(diagnostics);
+  // Every check but gravity and liggghts_scripts, whose inputs (the Gravity block, the scripts)
+  // are all there.
+  ASSERT_EQ(diagnostics.size(), std::size(kPhysicsCheckNames) - 2) << listing(diagnostics);
   EXPECT_TRUE(of(diagnostics, "gravity", Severity::Info).empty()) << listing(diagnostics);
   EXPECT_EQ(of(diagnostics, "acoustic_time_step", Severity::Info)[0].message,
             "no 'cAB' in LIGGGHTS_SPH_parameters: acoustic time-step check skipped");
@@ -358,10 +371,15 @@ TEST_F(SmallScene, MissingInputsSkipChecksWithOneInfoEach) {
 }
 
 TEST_F(SmallScene, AnUnsetWallViscosityGetsTheSuggestedValue) {
-  const std::vector<Diagnostic> diagnostics = physics_checks(
+  // Without a fix line the checks read the wall law from LIGGGHTS_SPH_parameters (and say that
+  // script 1 lacks the fix).
+  set_up_script("fix gravity all gravity 9.81 vector 0.0 -1.0 0.0\n");
+  std::vector<Diagnostic> diagnostics = physics_checks(
       build("smoothinglength = 0.001; cAB = 20; viscosity = 1e-3; SPH_wall_rep = 2000\n"
             "SPH_wall_equilibriumdist = 0.002; SPH_wall_cutoff = 0.002",
             kGoodFluid));
+  ASSERT_EQ(of(diagnostics, "liggghts_scripts").size(), 1u) << listing(diagnostics);
+  diagnostics = of(diagnostics, "wall_viscosity", Severity::Info);
   ASSERT_EQ(diagnostics.size(), 1u) << listing(diagnostics);
   EXPECT_EQ(diagnostics[0].message,
             "no 'SPH_wall_visc' in LIGGGHTS_SPH_parameters (thesis eq. 6.4 suggests t = nu rho / "
@@ -376,10 +394,12 @@ TEST(PhysicsChecks, SeveralProblemsAreAllListed) {
       {"LIGGGHTS_SPH_parameters.SPH_wall_visc", "10"},                 // wall viscosity
       {"FluidRegion.lower", "[0.0005, 0.0041]"},                       // overlap
       {"Gravity.acceleration", "[0, -9.8]"},                           // gravity
+      {"LIGGGHTS.script1", "\"static_tank.in2\""},  // liggghts_scripts: twice (below)
   });
+  // Script 2 run as script 1 lacks the fix and uses ${alpha}, which script 1 defines.
   for (std::string_view check : kPhysicsCheckNames)
-    EXPECT_EQ(of(diagnostics, check).size(), 1u) << check;
-  EXPECT_EQ(diagnostics.size(), std::size(kPhysicsCheckNames)) << listing(diagnostics);
+    EXPECT_EQ(of(diagnostics, check).size(), check == "liggghts_scripts" ? 2u : 1u) << check;
+  EXPECT_EQ(diagnostics.size(), std::size(kPhysicsCheckNames) + 1) << listing(diagnostics);
 }
 
 TEST(PhysicsChecks, FluidGravityOtherThanTheStructuresIsFlaggedAtTheScriptLine) {
@@ -478,6 +498,45 @@ TEST_F(SmallScene, AFixLineTheFixRefusesIsNotJudged) {
   EXPECT_CONTAINS(found[0].message,
                   "fix fsi/sph at setup.in:2:1 is refused: unknown keyword 'speed': wall-repulsion "
                   "check skipped");
+}
+
+TEST_F(SmallScene, AnUndefinedScriptVariableIsNamedAtItsLine) {
+  set_up_script(std::string(kSetUp) +
+                "variable skin equal 0.25*${smoothinglength}\n"
+                "neighbor ${skin} bin   # defined just above\n"
+                "pair_style sph/artVisc/tensCorr spiky2d ${smoothing_length} artVisc\n"
+                "region r block 0 1 0 1 0 1 units box # ${in_a_comment} is not read\n");
+  std::ofstream(folder_ / "after.in")
+      << "fix m3 all property/global artViscAlpha peratomtype ${alpha}\n";
+  const std::vector<Diagnostic> found =
+      of(physics_checks(build(kGoodSph, kGoodFluid)), "liggghts_scripts");
+  ASSERT_EQ(found.size(), 2u) << listing(found);
+  EXPECT_EQ(found[0].location.text(), "setup.in:7:1");
+  EXPECT_CONTAINS(found[0].message, "LIGGGHTS variable 'smoothing_length' is not defined");
+  EXPECT_CONTAINS(found[0].fix, "add 'smoothing_length = ...' to LIGGGHTS_SPH_parameters");
+  EXPECT_EQ(found[1].location.text(), "after.in:1:1");
+  EXPECT_CONTAINS(found[1].message, "'alpha'");
+}
+
+TEST_F(SmallScene, AScriptWithoutTheCouplingFixIsNamed) {
+  set_up_script("fix gravity all gravity 9.81 vector 0.0 -1.0 0.0\n");
+  // In script 2 it comes too late: fsi-client needs it before the equilibration.
+  std::ofstream(folder_ / "after.in")
+      << "fix fsi all fsi/sph k 2000 t 1000 r0 0.002 cutoff 0.002\n";
+  const std::vector<Diagnostic> found =
+      of(physics_checks(build(kGoodSph, kGoodFluid)), "liggghts_scripts");
+  ASSERT_EQ(found.size(), 1u) << listing(found);
+  EXPECT_EQ(found[0].location.text(), "setup.in:1:1");
+  EXPECT_CONTAINS(found[0].message, "script 1 has no 'fix ID group fsi/sph ...'");
+}
+
+TEST_F(SmallScene, ScriptsWithIncludeAreNotFollowedAndSaySo) {
+  set_up_script(std::string(kSetUp) + "include more.in\nneighbor ${skin} bin\n");
+  const std::vector<Diagnostic> diagnostics = physics_checks(build(kGoodSph, kGoodFluid));
+  EXPECT_TRUE(of(diagnostics, "liggghts_scripts").empty()) << listing(diagnostics);
+  const std::vector<Diagnostic> found = of(diagnostics, "liggghts_scripts", Severity::Info);
+  ASSERT_EQ(found.size(), 1u) << listing(diagnostics);
+  EXPECT_CONTAINS(found[0].message, "(setup.in:5:1), which the check does not follow");
 }
 
 TEST_F(SmallScene, SpeedOfSoundIsCabOrUnknown) {

@@ -46,6 +46,7 @@ inline constexpr std::string_view kPhysicsCheckNames[] = {
     "wall_viscosity",      // t within a factor 3 of nu rho / h (thesis eq. 6.4)
     "fluid_overlap",       // fluid box or polygon clear of every mesh by r0 / 2
     "gravity",             // the scripts' fix gravity equals the Gravity block
+    "liggghts_scripts",    // every ${variable} defined where used; script 1 has fix fsi/sph
 };
 
 // Every check over `scene`: warnings for broken rules, infos for checks skipped. Pure: reads the
