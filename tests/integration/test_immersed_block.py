@@ -1,9 +1,11 @@
 #!/usr/bin/python3
 """The true shape: a 20 mm block drawn with its true outline and held 3.5 cm under water (d = 2 mm,
-fsi-run with 2 ranks) feels Archimedes' buoyancy rho0 g V within 3 % (analyze.py; measured 0.978,
-docs/validation.md "True shape"; the issue asked for 2 %, not reached in every geometry), where the
-thesis' wall (k = 17500, r0 = r_c = 2h) gave 1.78 rho0 g V. The run judges itself: completed, no
-particle lost, no physics warning."""
+fsi-run with 2 ranks, the built-in settling) feels Archimedes' buoyancy rho0 g V within 3 % over the
+second half of the run (analyze.py; measured 0.980 on 2026-12-02, docs/validation.md "True shape")
+where the thesis' wall (k = 17500, r0 = r_c = 2h) gave 1.78 rho0 g V. The issue asked for 2 %: at
+a/d = 10 the particle lattice at rest carries a history-dependent part of the load (docs/theory.md,
+"The true shape", limits), so 2 % holds at d = 1 mm, not here. The run judges itself: completed,
+no particle lost, no physics warning, the water at rest at release."""
 import os
 import subprocess
 
@@ -19,6 +21,7 @@ run = manifest(run_dir)
 check(run["status"] == "completed", "run.json says completed")
 check(run["checks"]["particles_final"] == run["checks"]["particles_initial"], "no particle lost")
 check(run.get("warnings", []) == [], f"no physics warning: {run.get('warnings')}")
+check(run["release"]["at_rest"], f"the water is at rest at release: {run['release'].get('warning')}")
 analysis = subprocess.run(["/usr/bin/python3", example("immersed_block", "analyze.py"), run_dir, "--tolerance", "0.03"],
                           capture_output=True, text=True)
 print(analysis.stdout, analysis.stderr)
