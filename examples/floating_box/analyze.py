@@ -53,32 +53,60 @@ def settled_mean(time, signal, start):
     return mean, (upward[0], upward[-1])
 
 
-def free_surface(run_dir, settle_start, box_left, box_right, tank_width, spacing, margin):
-    """Mean height of the free surface over the snapshots at or after settle_start: per bin of
-    width 2 d, the top particle centre + d/2, in the water beside the box (farther than `margin`
-    from the box and from the walls). Returns (mean, spread over snapshots, snapshot times)."""
-    levels, times = [], []
+def beside_box(x, box_left, box_right, tank_width, margin):
+    """The water beside the box, farther than `margin` from the box and from the tank walls."""
+    return ((x > margin) & (x < box_left - margin)) | \
+           ((x > box_right + margin) & (x < tank_width - margin))
+
+
+def settled_snapshots(run_dir, settle_start):
+    """(time, data) of each particle snapshot at or after settle_start."""
     for path in sorted(glob.glob(os.path.join(run_dir, "snapshots", "particles_*.csv"))):
         with open(path) as handle:
             header = handle.readline()  # "# SPH particles at step N, t = T s"
         snapshot_time = float(header.split("t =")[1].split()[0])
-        if snapshot_time < settle_start:
-            continue
-        data = numpy.genfromtxt(path, delimiter=",", skip_header=2)
-        x, y = data[:, 1], data[:, 2]
-        beside = ((x > margin) & (x < box_left - margin)) | \
-                 ((x > box_right + margin) & (x < tank_width - margin))
+        if snapshot_time >= settle_start:
+            yield snapshot_time, numpy.genfromtxt(path, delimiter=",", skip_header=2)
+
+
+def free_surface(run_dir, settle_start, box_left, box_right, tank_width, spacing, margin):
+    """Two free surfaces beside the box, each averaged over the settled snapshots:
+      - by volume: per bin of width 2 d the top particle centre + d/2 (a particle fills a d x d
+        cell);
+      - by pressure: where the hydrostatic pressure of the water beside the box, fitted as a
+        straight line p = a + b y over its middle 60 % (away from the floor and the surface
+        layers), vanishes: y = -a / b. Archimedes' draft is measured from this level, where the
+        pressure that carries the box starts.
+    Returns a dict with both levels, their spread over the snapshots, the fitted slope -b (against
+    rho0 g) and the snapshot times; None without a settled snapshot."""
+    volume_levels, pressure_levels, slopes, times = [], [], [], []
+    for snapshot_time, data in settled_snapshots(run_dir, settle_start):
+        x, y, pressure = data[:, 1], data[:, 2], data[:, 6]
+        beside = beside_box(x, box_left, box_right, tank_width, margin)
         tops = []
         for low in numpy.arange(0.0, tank_width, 2.0 * spacing):
             in_bin = beside & (x >= low) & (x < low + 2.0 * spacing)
             if in_bin.any():
                 tops.append(y[in_bin].max() + 0.5 * spacing)
-        if tops:
-            levels.append(float(numpy.mean(tops)))
-            times.append(snapshot_time)
-    if not levels:
-        return None, None, []
-    return float(numpy.mean(levels)), float(numpy.max(levels) - numpy.min(levels)), times
+        if not tops:
+            continue
+        volume_level = float(numpy.mean(tops))
+        middle = beside & (y > 0.2 * volume_level) & (y < 0.8 * volume_level)
+        if middle.sum() < 10:
+            continue
+        slope, intercept = numpy.polyfit(y[middle], pressure[middle], 1)
+        volume_levels.append(volume_level)
+        pressure_levels.append(float(-intercept / slope))
+        slopes.append(float(-slope))
+        times.append(snapshot_time)
+    if not times:
+        return None
+
+    def spread(values):
+        return float(numpy.max(values) - numpy.min(values))
+    return {"volume": float(numpy.mean(volume_levels)), "volume_spread": spread(volume_levels),
+            "pressure": float(numpy.mean(pressure_levels)), "pressure_spread": spread(pressure_levels),
+            "pressure_gradient": float(numpy.mean(slopes)), "times": times}
 
 
 def heave_period(time, height, mean, start):
@@ -140,33 +168,46 @@ def main():
 
     centre, whole_periods = settled_mean(time, height, args.settle_start)
     bottom = centre - 0.5 * size
-    level, level_spread, level_times = free_surface(
+    surface = free_surface(
         args.run_dir, args.settle_start, box_x - 0.5 * size, box_x + 0.5 * size, tank_width,
         spacing, args.surface_margin)
     archimedes = mass / (rho0 * size)
     result = {"box_mass": mass, "archimedes_draft": archimedes, "settle_start": args.settle_start,
               "mean_box_centre_y": centre, "mean_box_bottom_y": bottom,
               "whole_periods_interval": whole_periods}
-    print(f"box {size} x {size} m, m = {mass} kg/m; Archimedes' draft m/(rho0 B) = {archimedes:.4f} m")
+    print(f"box {size} x {size} m, m = {mass} kg/m, d = {spacing} m; Archimedes' draft "
+          f"m/(rho0 B) = {archimedes:.4f} m")
     interval = (f"{whole_periods[0]:.3f} .. {whole_periods[1]:.3f} s (whole periods)"
                 if whole_periods else f"{args.settle_start:.3f} s .. end (fewer than two periods)")
     print(f"settled part {interval}: mean box centre y = {centre:.4f} m, bottom {bottom:.4f} m")
     failed = False
-    if level is None:
+    if surface is None:
         print("no particle snapshot in the settled part: no free surface, no draft")
         if args.draft_tolerance is not None:
             print("FAIL: a draft tolerance was given but the draft could not be measured")
             failed = True
     else:
-        draft = level - bottom
+        draft = surface["pressure"] - bottom
         ratio = draft / archimedes
-        result.update({"free_surface_y": level, "free_surface_spread": level_spread,
-                       "free_surface_snapshot_times": level_times, "draft": draft,
-                       "draft_ratio": ratio})
-        print(f"free surface beside the box {level:.4f} m (top particle centres + d/2, "
-              f"{len(level_times)} snapshots, spread {level_spread:.4f} m)")
+        volume_draft = surface["volume"] - bottom
+        result.update({"free_surface_y": surface["pressure"],
+                       "free_surface_spread": surface["pressure_spread"],
+                       "free_surface_by_volume_y": surface["volume"],
+                       "free_surface_by_volume_spread": surface["volume_spread"],
+                       "pressure_gradient": surface["pressure_gradient"],
+                       "free_surface_snapshot_times": surface["times"], "draft": draft,
+                       "draft_ratio": ratio, "draft_by_volume": volume_draft,
+                       "draft_by_volume_ratio": volume_draft / archimedes})
+        print(f"free surface beside the box, {len(surface['times'])} snapshots:")
+        print(f"  by pressure (where the fitted hydrostatic pressure vanishes) {surface['pressure']:.4f} m, "
+              f"spread {surface['pressure_spread']:.4f} m; gradient {surface['pressure_gradient']:.0f} Pa/m "
+              f"= {surface['pressure_gradient'] / (rho0 * gravity):.4f} rho0 g")
+        print(f"  by volume (top particle centres + d/2) {surface['volume']:.4f} m, spread "
+              f"{surface['volume_spread']:.4f} m: {(surface['volume'] - surface['pressure']) / spacing:+.2f} d "
+              f"above the pressure's")
         print(f"equilibrium draft {draft:.4f} m = {ratio:.4f} x Archimedes ({archimedes:.4f} m), "
-              f"off by {100 * (ratio - 1):+.1f} %")
+              f"off by {100 * (ratio - 1):+.1f} % (from the volume's surface: {volume_draft:.4f} m, "
+              f"{100 * (volume_draft / archimedes - 1):+.1f} %)")
         if args.draft_tolerance is not None and abs(ratio - 1.0) > args.draft_tolerance:
             print(f"FAIL: draft ratio {ratio:.4f} outside 1 +- {args.draft_tolerance}")
             failed = True
