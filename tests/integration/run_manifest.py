@@ -20,7 +20,8 @@ SHAPE = {
         "total", "setup_and_equilibration", "client_setup", "client_equilibration", "coupled_phase",
         "stepping", "mbd", "liggghts", "contact_fix", "communication", "client_mpi_communication",
         "output")},
-    "newton": {"steps": None, "iterations": None, "jacobian_evaluations": None, "factorisations": None},
+    "newton": {"steps": None, "iterations": None, "jacobian_evaluations": None, "factorisations": None,
+               "substepped_steps": None},
     "checks": {name: None for name in (
         "max_action_reaction_relative", "closest_approach_over_r0", "particles_initial",
         "particles_final", "snapshots_checked", "max_density_deviation_at_snapshots",

@@ -194,7 +194,8 @@ void write_run_manifest(const fs::path& output_dir, const scene::Scene& scene,
   manifest["newton"] = {{"steps", record.newton.steps},
                         {"iterations", record.newton.newton_iterations},
                         {"jacobian_evaluations", record.newton.jacobian_evaluations},
-                        {"factorisations", record.newton.factorisations}};
+                        {"factorisations", record.newton.factorisations},
+                        {"substepped_steps", record.newton.substepped_steps}};
   manifest["checks"] = checks_entry(record);
   manifest["release"] = release_entry(record.release);
   manifest["warnings"] = record.warnings;

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <string>
 
 #include "fsi/common/error.hpp"
@@ -51,6 +52,28 @@ bool finite(const mbd::State& state) {
 
 }  // namespace
 
+int advance_in_substeps(const std::function<void(mbd::State&, double)>& take_step,
+                        mbd::State& state, double step_size, int max_substeps) {
+  const mbd::State start = state;
+  std::string tried;
+  for (int substeps = 1;; substeps *= 2) {
+    try {
+      for (int k = 0; k < substeps; ++k)
+        take_step(state, step_size / substeps);
+      return substeps;
+    } catch (const Error& failure) {
+      state = start;
+      tried += (tried.empty() ? std::string() : std::string(", ")) + std::to_string(substeps);
+      if (2 * substeps > max_substeps) {
+        throw Error(std::string(failure.fault()) + " (the step failed as " + tried +
+                        " substeps with the fluid forces held; the limit is " +
+                        std::to_string(max_substeps) + ")",
+                    std::string(failure.location()), std::string(failure.remedy()));
+      }
+    }
+  }
+}
+
 StructureSide::StructureSide(scene::Scene& scene, scene::IntegrationMethod method)
     : scene_(scene),
       method_(method),
@@ -81,9 +104,22 @@ StructureSide::StructureSide(scene::Scene& scene, scene::IntegrationMethod metho
 
 void StructureSide::integrate_to(double end_time, double step_size) {
   switch (method_) {
-    case scene::IntegrationMethod::FixedStep:
-      integrator_.step(scene_.model, state_, step_size);
+    case scene::IntegrationMethod::FixedStep: {
+      const int substeps = advance_in_substeps(
+          [this](mbd::State& state, double h) { integrator_.step(scene_.model, state, h); }, state_,
+          step_size);
+      if (substeps > 1) {
+        if (substepped_steps_ == 0) {
+          spdlog::warn(
+              "t = {:.9g} s: the multibody Newton iteration failed on the whole step of {:g} s "
+              "and converged in {} substeps of {:g} s with the fluid forces held (later such "
+              "steps are counted in run.json, newton.substepped_steps)",
+              state_.time, step_size, substeps, step_size / substeps);
+        }
+        ++substepped_steps_;
+      }
       return;
+    }
     case scene::IntegrationMethod::AdaptiveRadau:
       adaptive_->advance(scene_.model, state_, end_time);
       return;
@@ -97,7 +133,9 @@ mbd::IntegratorStatistics StructureSide::statistics() const {
   mbd::IntegratorStatistics totals;
   switch (method_) {
     case scene::IntegrationMethod::FixedStep:
-      return integrator_.statistics();
+      totals = integrator_.statistics();
+      totals.substepped_steps = substepped_steps_;
+      return totals;
     case scene::IntegrationMethod::AdaptiveRadau: {
       const mbd::AdaptiveStatistics& adaptive = adaptive_->statistics();
       totals.steps = adaptive.accepted;

@@ -5,7 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <string>
+#include <vector>
 
+#include "fsi/common/error.hpp"
 #include "fsi/coupling/structure_side.hpp"
 #include "fsi/scene/scene.hpp"
 
@@ -52,6 +54,87 @@ INSTANTIATE_TEST_SUITE_P(EveryMethod, StructureSideMethod,
                          ::testing::Values(scene::IntegrationMethod::FixedStep,
                                            scene::IntegrationMethod::AdaptiveRadau,
                                            scene::IntegrationMethod::Ida));
+
+// A fake multibody step: moves x by v h, and fails like a Newton iteration that does not
+// converge when asked for a step longer than `longest` (the state then stays as it was).
+struct FakeStep {
+  double longest;
+  std::vector<double> asked;
+  void operator()(mbd::State& state, double h) {
+    asked.push_back(h);
+    if (h > longest) {
+      throw Error("Newton iterations of Radau IIA (3 stages) failed", "multibody integration",
+                  "the advice of the integrator");
+    }
+    state.q(0) += state.v(0) * h;
+    state.time += h;
+  }
+};
+
+mbd::State moving_start() {
+  mbd::State state;
+  state.time = 1.0;
+  state.q = Eigen::VectorXd::Constant(1, 2.0);
+  state.v = Eigen::VectorXd::Constant(1, 3.0);
+  state.lambda = Eigen::VectorXd(0);
+  return state;
+}
+
+TEST(StructureSubsteps, AStepThatFailsWholeIsTakenAgainInHalvedSubstepsFromTheSameStart) {
+  FakeStep fake{.longest = 0.3e-5, .asked = {}};
+  mbd::State state = moving_start();
+  const int substeps =
+      advance_in_substeps([&](mbd::State& s, double h) { fake(s, h); }, state, 1e-5);
+  EXPECT_EQ(substeps, 4);
+  EXPECT_EQ(fake.asked, (std::vector<double>{1e-5, 0.5e-5, 0.25e-5, 0.25e-5, 0.25e-5, 0.25e-5}));
+  EXPECT_NEAR(state.time, 1.0 + 1e-5, 1e-15);
+  EXPECT_NEAR(state.q(0), 2.0 + 3.0 * 1e-5, 1e-15);
+}
+
+TEST(StructureSubsteps, AWholeStepThatConvergesIsTakenAsItIs) {
+  FakeStep fake{.longest = 1.0, .asked = {}};
+  mbd::State state = moving_start();
+  EXPECT_EQ(advance_in_substeps([&](mbd::State& s, double h) { fake(s, h); }, state, 1e-5), 1);
+  EXPECT_EQ(fake.asked, std::vector<double>{1e-5});
+}
+
+TEST(StructureSubsteps, ASubstepThatFailsHalfWayRestartsFromTheStepsStart) {
+  // Fails on the second of two substeps only: the first one's progress must not be kept.
+  int calls = 0;
+  mbd::State state = moving_start();
+  const int substeps = advance_in_substeps(
+      [&](mbd::State& s, double h) {
+        ++calls;
+        if (calls == 1 || calls == 3) throw Error("no convergence", "here", "advice");
+        s.q(0) += s.v(0) * h;
+        s.time += h;
+      },
+      state, 1e-5);
+  EXPECT_EQ(substeps, 4);
+  EXPECT_NEAR(state.q(0), 2.0 + 3.0 * 1e-5, 1e-15);
+}
+
+TEST(StructureSubsteps, AtTheLimitTheFailureSaysWhatWasTriedAndKeepsTheIntegratorsAdvice) {
+  FakeStep fake{.longest = 0.0, .asked = {}};
+  mbd::State state = moving_start();
+  const mbd::State start = state;
+  try {
+    advance_in_substeps([&](mbd::State& s, double h) { fake(s, h); }, state, 1e-5);
+    ADD_FAILURE() << "no error at the limit";
+  } catch (const Error& error) {
+    const std::string fault = error.fault();
+    EXPECT_NE(fault.find("Newton iterations of Radau IIA (3 stages) failed"), std::string::npos)
+        << fault;
+    EXPECT_NE(fault.find("failed as 1, 2, 4, 8, 16 substeps with the fluid forces held; the "
+                         "limit is 16"),
+              std::string::npos)
+        << fault;
+    EXPECT_EQ(std::string(error.remedy()), "the advice of the integrator");
+  }
+  EXPECT_EQ(fake.asked.size(), 5u) << "one failing attempt per substep count";
+  EXPECT_EQ(state.time, start.time);
+  EXPECT_EQ(state.q, start.q);
+}
 
 }  // namespace
 }  // namespace fsi::coupling

@@ -11,6 +11,7 @@
 
 #include "fsi/common/error.hpp"
 #include "fsi/mbd/integrator.hpp"
+#include "newton_convergence.hpp"
 #include "radau_stage_equations.hpp"
 
 namespace fsi::mbd {
@@ -55,6 +56,8 @@ struct Attempt {
   double increment = std::numeric_limits<double>::infinity();
   double residual = std::numeric_limits<double>::infinity();
   const char* reason = "";
+  // What the user should change; empty: the general advice (non-finite values).
+  std::string advice;
 };
 
 }  // namespace
@@ -64,7 +67,7 @@ struct RadauIIA::Workspace {
   NewtonOptions options;
   IntegratorStatistics statistics;
   detail::RadauStageEquations equations;
-  Eigen::VectorXd unknowns, residual, increment;
+  Eigen::VectorXd unknowns, residual, increment, previous_increment, solve_rounding;
   Eigen::MatrixXd jacobian;
   Eigen::PartialPivLU<Eigen::MatrixXd> lu;
   Eigen::SparseMatrix<double> sparse_jacobian;
@@ -84,6 +87,7 @@ struct RadauIIA::Workspace {
   std::vector<bool> factorised_released;  // a release changes the Newton matrix's rows
   int steps_with_factorisation = 0;
   double last_contraction = 0.0;
+  detail::NewtonConvergence convergence;
   const ConstrainedSystem* current_system = nullptr;
   double current_step_size = 0.0;
 
@@ -91,6 +95,7 @@ struct RadauIIA::Workspace {
       : tableau(butcher_tableau(o.family, o.stages)),
         options(o.newton),
         equations(tableau),
+        convergence(o.newton.relative_tolerance),
         constraint_form(o.constraint_form) {}
   ConstraintForm constraint_form;
 
@@ -175,11 +180,12 @@ struct RadauIIA::Workspace {
   }
 
   // --- Newton increments of one attempt, from the prediction ---
+  // Convergence, round-off and divergence are judged by detail::NewtonConvergence.
   Attempt iterate(bool fresh_start, StepStatistics& stats) {
     Attempt attempt;
     bool fresh = fresh_start;
     if (fresh) refactorise(stats);
-    double previous = std::numeric_limits<double>::infinity();
+    convergence.restart();
     last_contraction = 0.0;
     for (int iteration = 1; iteration <= options.max_iterations; ++iteration) {
       equations.residual(unknowns, residual);
@@ -188,6 +194,7 @@ struct RadauIIA::Workspace {
         attempt.reason = "the stage equations are not finite (forces or constraints gave NaN/inf)";
         return attempt;
       }
+      if (iteration > 1) previous_increment = increment;
       if (full_newton() && iteration > 1) refactorise(stats);
       if (sparse && singular) {
         attempt.reason = "the Newton matrix is singular (sparse LU)";
@@ -207,9 +214,31 @@ struct RadauIIA::Workspace {
         attempt.reason = "the Newton increment is not finite (singular Newton matrix?)";
         return attempt;
       }
-      if (iteration > 1) last_contraction = attempt.increment / previous;
-      if (attempt.increment <= 1.0) {
+      // Whether the iterate the increment started from (the residual's) was at the round-off
+      // floor; asked only when the increments stop shrinking, the one case it decides.
+      bool at_floor = false;
+      if (convergence.floor_matters(attempt.increment)) {
+        // The LU solve of the previous increment left rounding of about |J| |dz| in the rows.
+        solve_rounding =
+            sparse ? Eigen::VectorXd(sparse_jacobian.cwiseAbs() * previous_increment.cwiseAbs())
+                   : Eigen::VectorXd(jacobian.cwiseAbs() * previous_increment.cwiseAbs());
+        at_floor = equations.residual_at_floor(unknowns - increment, residual, solve_rounding);
+      }
+      const detail::NewtonVerdict verdict =
+          convergence.observe(attempt.increment, attempt.residual, at_floor, fresh);
+      if (verdict == detail::NewtonVerdict::ConvergedAtRoundOff) {
+        // The last rate measured rounding, not the matrix: it keeps the one measured before.
         attempt.converged = true;
+        return attempt;
+      }
+      last_contraction = convergence.contraction();
+      if (verdict == detail::NewtonVerdict::Converged) {
+        attempt.converged = true;
+        return attempt;
+      }
+      if (verdict == detail::NewtonVerdict::Diverging) {
+        attempt.reason = "the iteration diverges";
+        attempt.advice = convergence.advice(options.max_iterations);
         return attempt;
       }
       // A reused matrix is replaced at the current iterate when it contracts slowly, or so slowly
@@ -226,11 +255,13 @@ struct RadauIIA::Workspace {
           fresh = true;
         }
       }
-      previous = attempt.increment;
     }
     equations.residual(unknowns, residual);
     attempt.residual = residual.lpNorm<Eigen::Infinity>();
-    attempt.reason = "no convergence within the iteration limit";
+    attempt.reason = convergence.failure_kind() == detail::NewtonFailureKind::StalledAtRoundOff
+                         ? "the increments stalled at round-off above the tolerance"
+                         : "no convergence within the iteration limit";
+    attempt.advice = convergence.advice(options.max_iterations);
     return attempt;
   }
 
@@ -276,9 +307,11 @@ struct RadauIIA::Workspace {
                   tableau.name.c_str(), equations.stages(), state.time, h, attempt.reason,
                   attempt.iterations, attempt.increment, attempt.residual);
     throw Error(text + culprit(state, h), "multibody integration",
-                "reduce the step size; check that the constraints are consistent with each other "
-                "and with the initial state, and that loads and force elements are finite; or "
-                "raise the Newton iteration limit");
+                attempt.advice.empty()
+                    ? "reduce the step size; check that the constraints are consistent with each "
+                      "other and with the initial state, and that loads and force elements are "
+                      "finite; or raise the Newton iteration limit"
+                    : attempt.advice);
   }
 
   // --- finalise: the last stage is the solution (stiffly accurate) ---

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include "fsi/common/error.hpp"
 
@@ -315,6 +316,87 @@ void RadauStageEquations::jacobian(const Eigen::VectorXd& unknowns,
   // matrix does: the COLAMD ordering and so the rounding of the solve stay those of the dense
   // matrix's non-zeros. A pattern that changes with them is analysed again (radau_iia.cpp).
   jacobian.prune(0.0);
+}
+
+bool RadauStageEquations::residual_at_floor(const Eigen::VectorXd& unknowns,
+                                            const Eigen::VectorXd& residual,
+                                            const Eigen::VectorXd& solve_rounding) const {
+  // Rounding of a sum of terms is a few eps times the sum of their magnitudes; the factor leaves
+  // room for the number of terms and operations per row while staying far below the residuals
+  // of an iteration that still converges.
+  constexpr double kFloorMultiple = 32.0;
+  const double eps = std::numeric_limits<double>::epsilon();
+  const double h = step_size_;
+  if (!residual.allFinite()) return false;
+  std::vector<Eigen::VectorXd> constraint_forces(stages_);
+  for (int j = 0; j < stages_; ++j) {
+    const Eigen::VectorXd impulses = unknowns.segment(l_offset(j), m_).cwiseAbs();
+    constraint_forces[j] =
+        sparse_ ? Eigen::VectorXd(stage_sparse_constraint_jacobian_[j].cwiseAbs().transpose() *
+                                  impulses)
+                : Eigen::VectorXd(stage_constraint_jacobian_[j].cwiseAbs().transpose() * impulses);
+  }
+  // Partial pivoting mixes the rows, so the solve's backward error is normwise.
+  const double from_solve =
+      solve_rounding.size() == residual.size() ? max_abs(solve_rounding) : 0.0;
+  auto within = [&](Eigen::Index row, double magnitude) {
+    return std::abs(residual(row)) <= kFloorMultiple * eps * (magnitude + from_solve);
+  };
+  for (int i = 0; i < stages_; ++i) {
+    const Eigen::VectorXd z = unknowns.segment(z_offset(i), n_).cwiseAbs();
+    const Eigen::VectorXd v = unknowns.segment(v_offset(i), n_).cwiseAbs();
+    Eigen::VectorXd kinematic = z;
+    Eigen::VectorXd dynamic =
+        sparse_
+            ? Eigen::VectorXd(system_->sparse_mass_matrix().cwiseAbs() * (v + start_.v.cwiseAbs()))
+            : Eigen::VectorXd(system_->mass_matrix().cwiseAbs() * (v + start_.v.cwiseAbs()));
+    for (int j = 0; j < stages_; ++j) {
+      const double weight = std::abs(a_(i, j));
+      kinematic += weight * unknowns.segment(v_offset(j), n_).cwiseAbs();
+      dynamic += weight * (h * (stage_force_[j].cwiseAbs().array() + force_rounding_).matrix() +
+                           constraint_forces[j]);
+    }
+    for (int k = 0; k < n_; ++k) {
+      if (!within(z_offset(i) + k, kinematic(k)) || !within(v_offset(i) + k, dynamic(k))) {
+        return false;
+      }
+    }
+    if (i == 0 && first_stage_is_start_) {
+      for (int k = 0; k < m_; ++k) {
+        const double start_impulse = h * std::abs(start_.lambda(k));
+        if (!within(l_offset(0) + k, std::abs(unknowns(l_offset(0) + k)) + start_impulse)) {
+          return false;
+        }
+      }
+      continue;
+    }
+    const Eigen::VectorXd q = position(unknowns, i).cwiseAbs();
+    const double largest_q = max_abs(q), largest_v = max_abs(v);
+    Eigen::VectorXd by_position, by_velocity, row_sums;
+    if (sparse_) {
+      const Eigen::SparseMatrix<double> g = stage_sparse_constraint_jacobian_[i].cwiseAbs();
+      by_position = g * q;
+      by_velocity = g * v;
+      row_sums = g * Eigen::VectorXd::Ones(n_);
+    } else {
+      const Eigen::MatrixXd g = stage_constraint_jacobian_[i].cwiseAbs();
+      by_position = g * q;
+      by_velocity = g * v;
+      row_sums = g.rowwise().sum();
+    }
+    for (int k = 0; k < m_; ++k) {
+      if (released_[k]) {
+        if (residual(l_offset(i) + k) != 0.0) return false;
+        continue;
+      }
+      // Position rows are C / h (index 3); velocity rows and the index-2 rates are G V - g.
+      const bool position_row = position_level_[k] && !index2_;
+      const double magnitude = position_row ? (by_position(k) + row_sums(k) * largest_q) / h
+                                            : by_velocity(k) + row_sums(k) * largest_v;
+      if (!within(l_offset(i) + k, magnitude)) return false;
+    }
+  }
+  return true;
 }
 
 double RadauStageEquations::increment_norm(const Eigen::VectorXd& unknowns,

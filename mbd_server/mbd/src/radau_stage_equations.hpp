@@ -86,6 +86,17 @@ class RadauStageEquations {
   double increment_norm(const Eigen::VectorXd& unknowns, const Eigen::VectorXd& increment,
                         const NewtonOptions& options) const;
 
+  // Whether `residual` (from the last residual() call, at `unknowns`) has reached its round-off
+  // floor: every row within a small multiple of eps times the magnitudes of the terms it is
+  // summed from (kinematic: |Z_i| + sum |a_ij| |V_j|; dynamic: |M| (|V_i| + |v_n|) +
+  // sum |a_ij| (h (|F_j| + rounding of F) + |G_j|^T |L_j|); position rows: |G_i| (|Q_i| +
+  // |Q_i|_inf) / h; velocity rows: |G_i| (|V_i| + |V_i|_inf)), plus `solve_rounding` per row (|J|
+  // |dz| of the increment that led to `unknowns`: the backward error of the LU solve puts that much
+  // rounding into the rows it updates; empty: none). Below it Newton cannot improve the iterate:
+  // its increments are rounding, amplified by the Newton matrix (newton_convergence.hpp).
+  bool residual_at_floor(const Eigen::VectorXd& unknowns, const Eigen::VectorXd& residual,
+                         const Eigen::VectorXd& solve_rounding) const;
+
   // Physical stage values.
   Eigen::VectorXd position(const Eigen::VectorXd& unknowns, int stage) const;
   Eigen::VectorXd velocity(const Eigen::VectorXd& unknowns, int stage) const;

@@ -8,6 +8,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <span>
@@ -22,13 +23,29 @@
 
 namespace fsi::coupling {
 
+// How many equal substeps the structure may split one coupled step into when its Newton
+// iteration fails on the whole step (2, 4, ... up to this), the fluid's forces held as they are.
+inline constexpr int kMaxStructureSubsteps = 16;
+
+// Advances `state` by `step_size` with `take_step`, which takes one multibody step of the size
+// it is given and throws fsi::Error, leaving the state as it was, when its Newton iteration
+// fails. A failed step is taken again from the same start as 2, 4, ... equal substeps, up to
+// `max_substeps`; returns the number of substeps used (1: the step as given). When
+// `max_substeps` substeps fail too, throws the last failure with the substep counts tried
+// added, and `state` is the start again.
+int advance_in_substeps(const std::function<void(mbd::State&, double)>& take_step,
+                        mbd::State& state, double step_size,
+                        int max_substeps = kMaxStructureSubsteps);
+
 class StructureSide {
  public:
   // Starts from the model's initial state at t = 0.
   StructureSide(scene::Scene& scene, scene::IntegrationMethod method);
 
   // Integrates from t(step - 1) to t(step) = step * step_size (the clock does not drift over
-  // many steps); an error-controlled method takes the steps its tolerances need in between. Throws
+  // many steps); an error-controlled method takes the steps its tolerances need in between. The
+  // fixed step retries a step whose Newton iteration fails as 2, 4, ... kMaxStructureSubsteps
+  // substeps (advance_in_substeps; logged the first time, counted in statistics()). Throws
   // fsi::Error naming the step and time when Newton fails or the state becomes non-finite; the
   // state is then the last good one. Also throws when two meshes without contact between them
   // cross (scene::CrossingWatch; the pairs touching at the start are logged and not watched).
@@ -56,7 +73,7 @@ class StructureSide {
   const mbd::State& state() const { return state_; }
   double time() const { return state_.time; }
   // Steps, Newton iterations, Jacobians, factorisations and rejected or retried steps of
-  // whichever integrator runs.
+  // whichever integrator runs, and the coupled steps taken in substeps.
   mbd::IntegratorStatistics statistics() const;
   // Constraint drift of the current state; none when the state is not finite.
   std::optional<double> position_constraint_drift() const;
@@ -75,6 +92,7 @@ class StructureSide {
   std::unique_ptr<mbd::IdaIntegrator> ida_;
   std::vector<double> loads_;
   scene::CrossingWatch crossing_;
+  std::uint64_t substepped_steps_ = 0;
 };
 
 }  // namespace fsi::coupling

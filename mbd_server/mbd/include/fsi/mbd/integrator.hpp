@@ -84,6 +84,9 @@ struct IntegratorStatistics {
   std::uint64_t jacobian_evaluations = 0;
   std::uint64_t factorisations = 0;
   std::uint64_t retries = 0;
+  // Steps a caller took again in substeps after the whole step's Newton iteration failed
+  // (fsi::coupling's structure side; the integrator itself leaves it 0).
+  std::uint64_t substepped_steps = 0;
   void add(const StepStatistics& step);
 };
 
