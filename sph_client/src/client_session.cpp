@@ -14,6 +14,7 @@
 #include <variant>
 #include <vector>
 
+#include "fluid_probes.hpp"
 #include "fsi/common/error.hpp"
 #include "fsi/common/stopwatch.hpp"
 #include "fsi/common/version.hpp"
@@ -35,6 +36,7 @@ struct SetupData {
   protocol::Mesh mesh;
   protocol::Particles particles;
   std::optional<protocol::Settling> settling;  // protocol 1.2, when both sides agreed
+  std::optional<protocol::ProbeSetup> probes;  // protocol 1.3, when both sides agreed
 };
 
 // State the exit handler needs when LIGGGHTS ends the process with exit(1) (Error::all).
@@ -169,7 +171,7 @@ class ClientSession {
     handshake.hello.host = host_name();
     handshake.hello.mpi_ranks = static_cast<std::uint32_t>(mpi_.size());
     handshake.timeout = options_.connect_timeout;
-    handshake.session_capabilities = protocol::kCapabilitySettling;
+    handshake.session_capabilities = protocol::kCapabilitySettling | protocol::kCapabilityProbes;
     const protocol::ClientHandshakeResult opened = protocol::open_session(*channel_, handshake);
     capabilities_ = opened.capabilities;
     heartbeat_ = std::make_unique<protocol::HeartbeatSender>(
@@ -253,6 +255,9 @@ class ClientSession {
     data.particles = expect_message<protocol::Particles>("set-up (particles)");
     if ((capabilities_ & protocol::kCapabilitySettling) != 0) {
       data.settling = expect_message<protocol::Settling>("set-up (settling)");
+    }
+    if ((capabilities_ & protocol::kCapabilityProbes) != 0) {
+      data.probes = expect_message<protocol::ProbeSetup>("set-up (probes)");
     }
     if ((data.setup.dimension != 2 && data.setup.dimension != 3) ||
         data.mesh.dimension != data.setup.dimension ||
@@ -368,7 +373,51 @@ class ClientSession {
         channel_->send(release);
       }
     }
+    if (data.probes && !data.probes->probes.empty()) prepare_probes(*data.probes, data.particles);
     send_forces(0, 0.0, 0.0);
+    send_probe_values(0);
+  }
+
+  // The scene's probes over LIGGGHTS' particles, with the kernel and h of the scripts (collective).
+  void prepare_probes(const protocol::ProbeSetup& setup, const protocol::Particles& particles) {
+    probes::ProbeContext context;
+    context.dimension = dimension_;
+    context.gravity = setup.gravity;
+    context.particle_spacing = setup.particle_spacing;
+    if (!(context.particle_spacing > 0.0)) {
+      const FluidExtent extent = driver_->fluid_extent(setup.gravity);
+      if (extent.mean_density > 0.0)
+        context.particle_spacing =
+            std::pow(extent.mean_mass / extent.mean_density, 1.0 / dimension_);
+    }
+    std::vector<probes::ProbeDefinition> definitions;
+    for (const protocol::ProbeRecord& record : setup.probes) {
+      definitions.push_back(
+          {static_cast<probes::ProbeKind>(record.kind), record.name, record.parameters});
+    }
+    probe_every_steps_ = setup.every_steps;
+    probes_ = std::make_unique<FluidProbes>(driver_->lammps(), mpi_.communicator(),
+                                            probes::ProbeSet(std::move(definitions), context),
+                                            static_cast<int>(particles.atom_type));
+    if (mpi_.root()) {
+      spdlog::info(
+          "{} probe(s) every {} step(s), {} column(s); LIGGGHTS kernel {}, support {:.6g} m (h = "
+          "{:.6g} m)",
+          setup.probes.size(), probe_every_steps_, probes_->probes().column_count(),
+          probes_->kernel_name(), probes_->kernel_support(), probes_->smoothing_length());
+    }
+  }
+
+  // After the Forces of a probe step: the probes' values, reduced onto rank 0, which sends them.
+  void send_probe_values(std::uint64_t step) {
+    if (!probes_ || step % probe_every_steps_ != 0) return;
+    probe_time_.start();
+    protocol::ProbeValues reply;
+    reply.step = step;
+    reply.values = probes_->evaluate();
+    probe_time_.stop();
+    ++probe_evaluations_;
+    if (mpi_.root()) channel_->send(reply);
   }
 
   struct AppliedDrag {
@@ -478,6 +527,7 @@ class ClientSession {
         const double contact = boundary_->seconds_in_fix - fix_before;
         computing = {};
         send_forces(step->step, liggghts.seconds() - contact, contact);
+        send_probe_values(step->step);
         ++steps;
       } else if (auto* request = std::get_if<protocol::SnapshotRequest>(&message)) {
         auto gathering = busy();
@@ -502,6 +552,10 @@ class ClientSession {
           goodbye.seconds_total = total.stop();
           channel_->send(goodbye);
           spdlog::info("run finished after {} coupled steps", steps);
+          if (probes_) {
+            spdlog::info("probes evaluated {} times in {:.3f} s (rank 0)", probe_evaluations_,
+                         probe_time_.seconds());
+          }
         }
         return;
       } else if (auto* error = std::get_if<protocol::ErrorMessage>(&message)) {
@@ -545,6 +599,10 @@ class ClientSession {
   std::shared_ptr<contact::CouplingBoundary> boundary_;
   std::unique_ptr<LiggghtsDriver> driver_;
   std::vector<double> initial_velocities_;
+  std::unique_ptr<FluidProbes> probes_;  // when the scene declares probes (protocol 1.3)
+  std::uint64_t probe_every_steps_ = 1;
+  Stopwatch probe_time_;
+  std::uint64_t probe_evaluations_ = 0;
   double time_step_ = 0.0;
   double last_time_ = 0.0;
   int dimension_ = 2;
