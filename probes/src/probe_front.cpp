@@ -60,12 +60,15 @@ void partials(const ProbeDefinition& probe, const ProbeContext& context,
   auto ahead = [&](std::size_t i) {
     return rule.direction * particles.positions[i * dimension + rule.axis];
   };
-  // The rank's own particles from the front backwards; the first that counts is the front.
+  // The rank's own particles from the front backwards, the first that counts is the front: a
+  // heap, since that is usually one of the first few (a sort would order all of them).
   std::vector<std::size_t> order(particles.owned);
   std::iota(order.begin(), order.end(), std::size_t{0});
-  std::sort(order.begin(), order.end(),
-            [&](std::size_t a, std::size_t b) { return ahead(a) > ahead(b); });
-  for (std::size_t candidate : order) {
+  const auto behind = [&](std::size_t a, std::size_t b) { return ahead(a) < ahead(b); };
+  std::make_heap(order.begin(), order.end(), behind);
+  for (auto end = order.end(); end != order.begin(); --end) {
+    std::pop_heap(order.begin(), end, behind);
+    const std::size_t candidate = *(end - 1);
     const double* x = &particles.positions[candidate * dimension];
     std::size_t neighbours = 0;
     for (std::size_t j = 0; j < all && neighbours < rule.min_neighbours; ++j) {
