@@ -1,6 +1,7 @@
 #include "fsi/probes/probe.hpp"
 
 #include <cmath>
+#include <utility>
 
 #include "probe_kind.hpp"
 
@@ -26,6 +27,15 @@ ProbeDefinition front_probe(std::string name, int axis, int direction, int min_n
           std::move(name),
           {static_cast<double>(axis), static_cast<double>(direction),
            static_cast<double>(min_neighbours)}};
+}
+
+ProbeDefinition flux_probe(std::string name, const std::vector<std::array<double, 3>>& points,
+                           int samples) {
+  ProbeDefinition probe{ProbeKind::Flux, std::move(name), {static_cast<double>(points.size())}};
+  for (const auto& point : points)
+    probe.parameters.insert(probe.parameters.end(), point.begin(), point.end());
+  probe.parameters.push_back(static_cast<double>(samples));
+  return probe;
 }
 
 std::vector<Column> columns(const ProbeDefinition& probe, int dimension) {

@@ -27,6 +27,10 @@ TEST(ProbeColumns, EachKindNamesItsColumnsWithUnits) {
   EXPECT_EQ(columns(point_probe("p1", {}), 3).size(), 6u);
   EXPECT_EQ(names_of(columns(free_surface_probe("level", {}, 0.1, 50), 2)),
             (std::vector<std::string>{"level_elevation [m]", "level_wet [-]"}));
+  EXPECT_EQ(names_of(columns(flux_probe("q", {{0, 0, 0}, {0, 1, 0}}, 10), 2)),
+            (std::vector<std::string>{"q_flux [m^2/s]"}));
+  EXPECT_EQ(names_of(columns(flux_probe("q", {{0, 0, 0}, {0, 1, 0}, {1, 0, 0}}, 10), 3)),
+            (std::vector<std::string>{"q_flux [m^3/s]"}));
   EXPECT_EQ(names_of(columns(front_probe("surge", 0, 1, 3), 2)),
             (std::vector<std::string>{"surge_position [m]", "surge_wet [-]"}));
 }
@@ -51,6 +55,16 @@ TEST(ProbeDefinitionCheck, NamesWhatDoesNotFit) {
             std::string::npos);
   EXPECT_EQ(definition_problem(front_probe("f", 2, 1, 3), 3), "");
   EXPECT_NE(definition_problem(front_probe("f", 0, 0, 3), 2).find("direction"), std::string::npos);
+  EXPECT_EQ(definition_problem(flux_probe("q", {{0, 0, 0}, {0, 1, 0}, {1, 0, 0}}, 10), 2),
+            "flux probe 'q' needs a segment of 2 points");
+  EXPECT_EQ(definition_problem(flux_probe("q", {{0, 0, 0}, {0, 1, 0}, {0, 2, 0}}, 10), 3),
+            "flux probe 'q' has no area (its points are in line)");
+  EXPECT_NE(
+      definition_problem(flux_probe("q", {{0, 0, 0}, {0, 1, 0}, {1, 1, 0}, {1, 0, 0.1}}, 10), 3)
+          .find("flux probe 'q' is not planar"),
+      std::string::npos);
+  EXPECT_EQ(definition_problem(flux_probe("q", {{0, 0, 0}, {0, 0, 0}}, 10), 2),
+            "flux probe 'q' has no extent");
   ProbeDefinition unknown{static_cast<ProbeKind>(99), "u", {}};
   EXPECT_EQ(definition_problem(unknown, 2), "probe 'u' is of unknown kind 99");
   EXPECT_FALSE(is_known_kind(99));

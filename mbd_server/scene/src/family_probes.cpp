@@ -64,6 +64,23 @@ std::vector<BlockSpec> probe_blocks() {
                       .between(0.0, 1000.0)})
           .as_list()
           .for_coupled_runs(),
+      block_spec("FluxProbe",
+                 "Volume flux through a segment (2D, per unit depth) or a planar polygon (3D): the "
+                 "integral over the section of the kernel-interpolated sum V_j W v_j.n (no "
+                 "Shepard normalisation: a dry part of the section counts 0): column NAME_flux "
+                 "[m^2/s; 3D m^3/s]. n: 2D the segment's direction turned clockwise (a segment "
+                 "drawn upwards counts flow in +x); 3D the right-hand rule of the points' order.",
+                 {probe_name_spec(),
+                  per_dimension(matrix("points", 2, "m",
+                                       "2D: the segment's two points [[x, y], [x, y]]; 3D: the "
+                                       "polygon's corners in order, [[x, y, z], ...]")),
+                  integer("samples",
+                          "midpoint-rule pieces of the segment (3D: per side of each triangle of "
+                          "the polygon's fan)")
+                      .with_default(40.0)
+                      .between(1.0, 1000.0)})
+          .as_list()
+          .for_coupled_runs(),
   };
 }
 
@@ -111,6 +128,31 @@ void build_probes(SceneBuilder& builder) {
                 probes::free_surface_probe(block.string("name"), *bottom, block.number("length"),
                                            static_cast<int>(block.integer("samples"))));
     }
+  });
+  builder.each("FluxProbe", [&](const View& block) {
+    std::vector<std::array<double, 3>> points;
+    for (const std::vector<double>& row : block.matrix("points")) {
+      if (row.size() != static_cast<std::size_t>(builder.dimension)) {
+        builder.problem(
+            block.location("points"),
+            "a point of 'points' has " + std::to_string(row.size()) +
+                " components, the scene has dimension = " + std::to_string(builder.dimension),
+            builder.spatial() ? "write points = [[x, y, z], ...]"
+                              : "write points = [[x, y], [x, y]]");
+        return;
+      }
+      points.push_back({row[0], row[1], builder.spatial() ? row[2] : 0.0});
+    }
+    probes::ProbeDefinition probe = probes::flux_probe(block.string("name"), points,
+                                                       static_cast<int>(block.integer("samples")));
+    if (const std::string problem = probes::definition_problem(probe, builder.dimension);
+        !problem.empty()) {
+      builder.problem(block.location("points"), problem,
+                      builder.spatial() ? "give three or more corners of a planar polygon"
+                                        : "give the segment's two distinct points");
+      return;
+    }
+    add_probe(builder, block, std::move(probe));
   });
   builder.each("FrontProbe", [&](const View& block) {
     const std::string& axis = block.string("axis");

@@ -92,6 +92,30 @@ TEST_P(ProbeScene, ProblemsAreReportedAtTheirPlace) {
   EXPECT_NE(text.find("'FreeSurfaceProbe.samples' = 1 is out of range"), std::string::npos) << text;
 }
 
+TEST_P(ProbeScene, AFluxSectionFitsTheDimension) {
+  Scene scene;
+  const bool spatial = GetParam() == 3;
+  const std::string good = spatial ? "[[0, 0, 0], [0, 1, 0], [0, 1, 1]]" : "[[0, 0], [0, 1]]";
+  ASSERT_EQ(build("FluxProbe { name = \"q\"; points = " + good + " }\n", &scene), "(accepted)");
+  ASSERT_EQ(scene.probes.size(), 1u);
+  EXPECT_TRUE(scene.probes[0] ==
+              probes::flux_probe(
+                  "q",
+                  spatial ? std::vector<std::array<double, 3>>{{0, 0, 0}, {0, 1, 0}, {0, 1, 1}}
+                          : std::vector<std::array<double, 3>>{{0, 0, 0}, {0, 1, 0}},
+                  40));
+  const std::string bad =
+      spatial ? "[[0, 0, 0], [0, 1, 0], [0, 2, 0]]" : "[[0, 0], [0, 1], [1, 1]]";
+  const std::string text = build("FluxProbe { name = \"q\"; points = " + bad + " }\n");
+  EXPECT_NE(
+      text.find(spatial ? "p.scene:4:25: flux probe 'q' has no area (its points are in line); "
+                          "give three or more corners of a planar polygon"
+                        : "p.scene:4:25: flux probe 'q' needs a segment of 2 points; give "
+                          "the segment's two distinct points"),
+      std::string::npos)
+      << text;
+}
+
 TEST_P(ProbeScene, AFrontAlongZNeedsThreeDimensions) {
   const std::string text = build("FrontProbe { name = \"up\"; axis = \"z\" }\n");
   if (GetParam() == 3) {

@@ -13,7 +13,13 @@
 namespace fsi::probes {
 
 // The wire ids of the probe kinds (ProbeSetup, docs/protocol.md): never renumber one.
-enum class ProbeKind : std::uint32_t { FluidEnergy = 1, Point = 2, FreeSurface = 3, Front = 4 };
+enum class ProbeKind : std::uint32_t {
+  FluidEnergy = 1,
+  Point = 2,
+  FreeSurface = 3,
+  Front = 4,
+  Flux = 5
+};
 
 // One probe. `parameters` holds the kind's numbers in the kind's own order; build definitions
 // with the functions below rather than by hand.
@@ -45,6 +51,11 @@ ProbeDefinition free_surface_probe(std::string name, const std::array<double, 3>
 // particles with at least `min_neighbours` others within 2 d.
 ProbeDefinition front_probe(std::string name, int axis, int direction, int min_neighbours);
 
+// The volume flux through a segment (2D: two points) or a planar polygon (3D: three or more
+// points, in order), each section sampled by the midpoint rule on `samples` pieces per side.
+ProbeDefinition flux_probe(std::string name, const std::vector<std::array<double, 3>>& points,
+                           int samples);
+
 // A column of sensors.csv.
 struct Column {
   std::string name;
@@ -55,7 +66,7 @@ struct Column {
 // Units per unit depth in 2D.
 std::vector<Column> columns(const ProbeDefinition& probe, int dimension);
 
-// "fluid_energy", "point", "free_surface", "front"; "kind 42" for an unknown id.
+// "fluid_energy", "point", "free_surface", "front", "flux"; "kind 42" for an unknown id.
 std::string kind_name(ProbeKind kind);
 bool is_known_kind(std::uint32_t kind);
 
