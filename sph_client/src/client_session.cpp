@@ -553,8 +553,11 @@ class ClientSession {
           channel_->send(goodbye);
           spdlog::info("run finished after {} coupled steps", steps);
           if (probes_) {
-            spdlog::info("probes evaluated {} times in {:.3f} s (rank 0)", probe_evaluations_,
-                         probe_time_.seconds());
+            spdlog::info(
+                "probes evaluated {} times in {:.3f} s (rank 0: {:.3f} s over its particles, "
+                "{:.3f} s in the reduction over ranks)",
+                probe_evaluations_, probe_time_.seconds(), probes_->seconds_evaluating(),
+                probes_->seconds_reducing());
           }
         }
         return;

@@ -94,6 +94,7 @@ FluidProbes::FluidProbes(LAMMPS_NS::LAMMPS& lammps, MPI_Comm communicator, probe
 }
 
 std::vector<double> FluidProbes::evaluate() {
+  evaluating_.start();
   const LAMMPS_NS::Atom& atom = *lammps_.atom;
   const int dimension = probes_.context().dimension;
   const auto owned = static_cast<std::size_t>(atom.nlocal);
@@ -118,6 +119,8 @@ std::vector<double> FluidProbes::evaluate() {
   }
   const probes::ParticleSet particles{owned, positions_, velocities_, density_, pressure_, mass_};
   const probes::Partials partials = probes_.partials(particles, kernel_);
+  evaluating_.stop();
+  ScopedTimer reducing(reducing_);
   reduced_.sums.resize(partials.sums.size());
   reduced_.maxima.resize(partials.maxima.size());
   MPI_Reduce(partials.sums.data(), reduced_.sums.data(), static_cast<int>(partials.sums.size()),

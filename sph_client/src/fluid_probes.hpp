@@ -5,6 +5,8 @@
 
 #include <mpi.h>
 
+#include "fsi/common/stopwatch.hpp"
+
 #include <string>
 #include <vector>
 
@@ -31,6 +33,10 @@ class FluidProbes {
 
   // The values of every column (rank 0; empty on the other ranks).
   std::vector<double> evaluate();
+  // Wall time of this rank in the evaluation over its own particles, and in the reduction (which
+  // includes waiting for the slowest rank).
+  double seconds_evaluating() const { return evaluating_.seconds(); }
+  double seconds_reducing() const { return reducing_.seconds(); }
 
  private:
   LAMMPS_NS::LAMMPS& lammps_;
@@ -42,6 +48,7 @@ class FluidProbes {
   // Reused from one evaluation to the next.
   std::vector<double> positions_, velocities_, density_, pressure_, mass_;
   probes::Partials reduced_;
+  Stopwatch evaluating_, reducing_;
 };
 
 }  // namespace fsi::client
