@@ -375,7 +375,6 @@ class ClientSession {
     }
     if (data.probes && !data.probes->probes.empty()) prepare_probes(*data.probes, data.particles);
     send_forces(0, 0.0, 0.0);
-    send_probe_values(0);
   }
 
   // The scene's probes over LIGGGHTS' particles, with the kernel and h of the scripts (collective).
@@ -406,18 +405,6 @@ class ClientSession {
           setup.probes.size(), probe_every_steps_, probes_->probes().column_count(),
           probes_->kernel_name(), probes_->kernel_support(), probes_->smoothing_length());
     }
-  }
-
-  // After the Forces of a probe step: the probes' values, reduced onto rank 0, which sends them.
-  void send_probe_values(std::uint64_t step) {
-    if (!probes_ || step % probe_every_steps_ != 0) return;
-    probe_time_.start();
-    protocol::ProbeValues reply;
-    reply.step = step;
-    reply.values = probes_->evaluate();
-    probe_time_.stop();
-    ++probe_evaluations_;
-    if (mpi_.root()) channel_->send(reply);
   }
 
   struct AppliedDrag {
@@ -461,14 +448,20 @@ class ClientSession {
   }
 
   // Sums this rank's vertex forces and diagnostics over all ranks; rank 0 sends them.
+  // On probe steps the probes' partials travel in the same reductions (no extra synchronisation
+  // of the ranks), and rank 0 sends ProbeValues right after the Forces.
   void send_forces(std::uint64_t step, double seconds_liggghts, double seconds_contact) {
+    const bool probing = probes_ && step % probe_every_steps_ == 0;
+    const probes::Partials* probe_partials = probing ? &probes_->partials() : nullptr;
+    if (probing) ++probe_evaluations_;
     Stopwatch& communication = mpi_.mpi_time();
     communication.start();
     const std::size_t dynamic_values = boundary_->dynamic_vertex_count * dimension_;
     const auto& diagnostics = boundary_->diagnostics;
     // Layout: dynamic vertex forces, force on fluid (3), on structure (3), magnitude sum,
-    // particles in range.
-    std::vector<double> sums(dynamic_values + 8, 0.0);
+    // particles in range, then the probes' sums.
+    constexpr std::size_t kDiagnostics = 8;
+    std::vector<double> sums(dynamic_values + kDiagnostics, 0.0);
     std::copy_n(boundary_->vertex_forces.begin(),
                 std::min(dynamic_values, boundary_->vertex_forces.size()), sums.begin());
     for (int k = 0; k < 3; ++k) {
@@ -477,12 +470,19 @@ class ClientSession {
     }
     sums[dynamic_values + 6] = diagnostics.pair_force_magnitude_sum;
     sums[dynamic_values + 7] = static_cast<double>(diagnostics.particles_in_range);
+    // Maxima: the closest approach as its negative (the minimum), then the probes' maxima.
+    std::vector<double> maxima{-diagnostics.closest_distance};
+    if (probe_partials) {
+      sums.insert(sums.end(), probe_partials->sums.begin(), probe_partials->sums.end());
+      maxima.insert(maxima.end(), probe_partials->maxima.begin(), probe_partials->maxima.end());
+    }
     std::vector<double> total(sums.size(), 0.0);
     MPI_Reduce(sums.data(), total.data(), static_cast<int>(sums.size()), MPI_DOUBLE, MPI_SUM, 0,
                mpi_.communicator());
-    double closest = diagnostics.closest_distance;
-    double closest_total = 0.0;
-    MPI_Reduce(&closest, &closest_total, 1, MPI_DOUBLE, MPI_MIN, 0, mpi_.communicator());
+    std::vector<double> maxima_total(maxima.size(), 0.0);
+    MPI_Reduce(maxima.data(), maxima_total.data(), static_cast<int>(maxima.size()), MPI_DOUBLE,
+               MPI_MAX, 0, mpi_.communicator());
+    const double closest_total = -maxima_total[0];
     const std::uint64_t particles = driver_->particle_count();
     communication.stop();
     if (!mpi_.root()) return;
@@ -507,6 +507,13 @@ class ClientSession {
     out.seconds_client_communication = communication.seconds();  // since the previous Forces
     communication.reset();
     channel_->send(forces);
+    if (probe_partials) {
+      probes::Partials reduced;
+      const auto first_sum = static_cast<long>(dynamic_values + kDiagnostics);
+      reduced.sums.assign(total.begin() + first_sum, total.end());
+      reduced.maxima.assign(maxima_total.begin() + 1, maxima_total.end());
+      channel_->send(protocol::ProbeValues{step, probes_->values(reduced)});
+    }
   }
 
   void exchange_loop() {
@@ -527,7 +534,6 @@ class ClientSession {
         const double contact = boundary_->seconds_in_fix - fix_before;
         computing = {};
         send_forces(step->step, liggghts.seconds() - contact, contact);
-        send_probe_values(step->step);
         ++steps;
       } else if (auto* request = std::get_if<protocol::SnapshotRequest>(&message)) {
         auto gathering = busy();
@@ -554,10 +560,9 @@ class ClientSession {
           spdlog::info("run finished after {} coupled steps", steps);
           if (probes_) {
             spdlog::info(
-                "probes evaluated {} times in {:.3f} s (rank 0: {:.3f} s over its particles, "
-                "{:.3f} s in the reduction over ranks)",
-                probe_evaluations_, probe_time_.seconds(), probes_->seconds_evaluating(),
-                probes_->seconds_reducing());
+                "probes evaluated {} times in {:.3f} s over the particles of rank 0 (reduced "
+                "with the forces)",
+                probe_evaluations_, probes_->seconds_evaluating());
           }
         }
         return;
@@ -604,7 +609,6 @@ class ClientSession {
   std::vector<double> initial_velocities_;
   std::unique_ptr<FluidProbes> probes_;  // when the scene declares probes (protocol 1.3)
   std::uint64_t probe_every_steps_ = 1;
-  Stopwatch probe_time_;
   std::uint64_t probe_evaluations_ = 0;
   double time_step_ = 0.0;
   double last_time_ = 0.0;

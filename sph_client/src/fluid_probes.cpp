@@ -93,8 +93,8 @@ FluidProbes::FluidProbes(LAMMPS_NS::LAMMPS& lammps, MPI_Comm communicator, probe
   };
 }
 
-std::vector<double> FluidProbes::evaluate() {
-  evaluating_.start();
+const probes::Partials& FluidProbes::partials() {
+  ScopedTimer timer(evaluating_);
   const LAMMPS_NS::Atom& atom = *lammps_.atom;
   const int dimension = probes_.context().dimension;
   const auto owned = static_cast<std::size_t>(atom.nlocal);
@@ -118,19 +118,8 @@ std::vector<double> FluidProbes::evaluate() {
     mass_[i] = mass_of(atom, index);
   }
   const probes::ParticleSet particles{owned, positions_, velocities_, density_, pressure_, mass_};
-  const probes::Partials partials = probes_.partials(particles, kernel_);
-  evaluating_.stop();
-  ScopedTimer reducing(reducing_);
-  reduced_.sums.resize(partials.sums.size());
-  reduced_.maxima.resize(partials.maxima.size());
-  MPI_Reduce(partials.sums.data(), reduced_.sums.data(), static_cast<int>(partials.sums.size()),
-             MPI_DOUBLE, MPI_SUM, 0, communicator_);
-  MPI_Reduce(partials.maxima.data(), reduced_.maxima.data(),
-             static_cast<int>(partials.maxima.size()), MPI_DOUBLE, MPI_MAX, 0, communicator_);
-  int rank = 0;
-  MPI_Comm_rank(communicator_, &rank);
-  if (rank != 0) return {};
-  return probes_.values(reduced_);
+  partials_ = probes_.partials(particles, kernel_);
+  return partials_;
 }
 
 }  // namespace fsi::client

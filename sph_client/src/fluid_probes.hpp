@@ -1,7 +1,7 @@
 #pragma once
 // The probes of protocol 1.3 on the client (docs/user-guide.md, "Probes"): fsi::probes evaluated
 // over this rank's particles in LIGGGHTS, with LIGGGHTS' own SPH kernel and smoothing length,
-// reduced over the ranks onto rank 0. Every method is collective.
+// reduced over the ranks onto rank 0 together with the vertex forces (one reduction for both).
 
 #include <mpi.h>
 
@@ -31,12 +31,15 @@ class FluidProbes {
   double kernel_support() const { return kernel_.support; }
   const std::string& kernel_name() const { return kernel_name_; }
 
-  // The values of every column (rank 0; empty on the other ranks).
-  std::vector<double> evaluate();
-  // Wall time of this rank in the evaluation over its own particles, and in the reduction (which
-  // includes waiting for the slowest rank).
+  // This rank's partials over its own particles, to be reduced element-wise onto rank 0 (sums
+  // with MPI_SUM, maxima with MPI_MAX).
+  const probes::Partials& partials();
+  // The values of every column from the reduced partials (rank 0).
+  std::vector<double> values(const probes::Partials& reduced) const {
+    return probes_.values(reduced);
+  }
+  // Wall time of this rank in partials().
   double seconds_evaluating() const { return evaluating_.seconds(); }
-  double seconds_reducing() const { return reducing_.seconds(); }
 
  private:
   LAMMPS_NS::LAMMPS& lammps_;
@@ -47,8 +50,8 @@ class FluidProbes {
   std::string kernel_name_;
   // Reused from one evaluation to the next.
   std::vector<double> positions_, velocities_, density_, pressure_, mass_;
-  probes::Partials reduced_;
-  Stopwatch evaluating_, reducing_;
+  probes::Partials partials_;
+  Stopwatch evaluating_;
 };
 
 }  // namespace fsi::client
