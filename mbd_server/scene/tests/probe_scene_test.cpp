@@ -18,7 +18,13 @@ namespace fs = std::filesystem;
 class ProbeScene : public ::testing::TestWithParam<int> {
  protected:
   void SetUp() override {
-    folder_ = fs::temp_directory_path() / ("fsi_probe_scene_" + std::to_string(GetParam()));
+    // One folder per test: ctest runs the tests of this suite in parallel.
+    const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
+    std::string name = std::string("fsi_probe_scene_") + test->name();
+    for (char& c : name) {
+      if (c == '/') c = '_';
+    }
+    folder_ = fs::temp_directory_path() / name;
     fs::create_directories(folder_);
   }
   void TearDown() override { fs::remove_all(folder_); }
