@@ -78,6 +78,12 @@ Settling seed(std::type_identity<Settling>) {
 ReleaseState seed(std::type_identity<ReleaseState>) {
   return {54.6, 0.13, 16.9, 1.5e-7, 10.7};
 }
+ProbeSetup seed(std::type_identity<ProbeSetup>) {
+  return {20, {0.0, -9.81, 0.0}, 0.001, {{2, "gauge", {0.02, kSubnormal, -0.0}}, {1, "water", {}}}};
+}
+ProbeValues seed(std::type_identity<ProbeValues>) {
+  return {40, {0.1, -0.0, 196.2, 12.0, 1.0}};
+}
 Step seed(std::type_identity<Step>) {
   return {7, 7e-5, 1e-5, {1.0, -0.0, kInf, -kInf}, {kNaN, kSubnormal, -kSubnormal, 0.0}};
 }

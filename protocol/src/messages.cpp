@@ -120,6 +120,19 @@ void layout(auto& io, MessageOf<ReleaseState> auto& m) {
   io.scalar("potential_energy", m.potential_energy);
 }
 
+void layout(auto& io, MessageOf<ProbeSetup> auto& m) {
+  io.scalar("every_steps", m.every_steps);
+  for (auto& component : m.gravity)
+    io.scalar("gravity", component);
+  io.scalar("particle_spacing", m.particle_spacing);
+  // A record is a kind, a name's length and a parameter count: at least 16 bytes.
+  io.records("probes", m.probes, 16, [](auto& record_io, auto& probe) {
+    record_io.scalar("kind", probe.kind);
+    record_io.text("name", probe.name);
+    record_io.array("parameters", probe.parameters);
+  });
+}
+
 void layout(auto& io, MessageOf<Step> auto& m) {
   io.scalar("step", m.step);
   io.scalar("time", m.time);
@@ -143,6 +156,11 @@ void layout(auto& io, MessageOf<Forces> auto& m) {
   io.scalar("seconds_liggghts", d.seconds_liggghts);
   io.scalar("seconds_contact", d.seconds_contact);
   io.scalar("seconds_client_communication", d.seconds_client_communication);
+}
+
+void layout(auto& io, MessageOf<ProbeValues> auto& m) {
+  io.scalar("step", m.step);
+  io.array("values", m.values);
 }
 
 void layout(auto& io, MessageOf<SnapshotRequest> auto& m) {
@@ -641,6 +659,20 @@ void check(const Reader& in, const ReleaseState& m) {
   check_not_negative_finite(in, "fluid_mass", m.fluid_mass);
   check_not_negative_finite(in, "kinetic_energy", m.kinetic_energy);
   check_not_negative_finite(in, "potential_energy", m.potential_energy);
+}
+
+void check(const Reader& in, const ProbeSetup& m) {
+  if (m.every_steps == 0) in.fail("every_steps", "is 0; probes are evaluated every N >= 1 steps");
+  for (const double component : m.gravity)
+    check_finite(in, "gravity", component);
+  check_not_negative_finite(in, "particle_spacing", m.particle_spacing);
+  for (std::size_t i = 0; i < m.probes.size(); ++i) {
+    // Each name starts the names of sensors.csv columns.
+    if (m.probes[i].name.empty())
+      in.fail("probes", "entry " + std::to_string(i) + " has an empty name");
+    for (const double parameter : m.probes[i].parameters)
+      check_finite(in, "probes", parameter);
+  }
 }
 
 void check(const Reader& in, const Step& m) {

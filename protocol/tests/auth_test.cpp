@@ -226,6 +226,18 @@ TEST(ProtocolAuthHandshake, SessionCapabilitiesAreAgreedOnlyWhenBothSidesOfferTh
   EXPECT_EQ(old_server.client, "ok " + heartbeat_only + " run");
 }
 
+TEST(ProtocolAuthHandshake, ProbesAreAgreedOnlyWhenBothSidesOfferThem) {
+  const std::uint32_t current = kCapabilitySettling | kCapabilityProbes;
+  const Outcome both = handshake(std::nullopt, std::nullopt, current, current);
+  EXPECT_EQ(both.client, "ok " + std::to_string(kCapabilityHeartbeat | current) + " run");
+  // A client of protocol 1.2 offers settling only: the session has no probes, and the server
+  // sees which bit is missing (TcpFluidSide then refuses a scene with probes by name).
+  const std::string without_probes = std::to_string(kCapabilityHeartbeat | kCapabilitySettling);
+  const Outcome old_client = handshake(std::nullopt, std::nullopt, current, kCapabilitySettling);
+  EXPECT_TRUE(contains(old_client.server, "ok " + without_probes)) << old_client.server;
+  EXPECT_EQ(old_client.client, "ok " + without_probes + " run");
+}
+
 TEST(ProtocolAuthHandshake, WrongClientTokenIsRefusedByTheServer) {
   const Outcome outcome =
       handshake(token_of("the server's secret token"), token_of("another secret token!"));

@@ -78,6 +78,14 @@ AuthBytes counting_bytes(std::uint8_t first) {
   return bytes;
 }
 
+ProbeSetup sample_probe_setup() {
+  return {20, {0.0, -9.81, 0.0}, 0.001, {{2, "gauge", {0.02, 0.01, 0.0}}, {1, "water", {}}}};
+}
+
+ProbeValues sample_probe_values() {
+  return {40, {0.1, -0.0, 196.2, 12.0, 1.0}};
+}
+
 std::vector<Message> all_samples() {
   return {sample_hello(),
           sample_welcome(),
@@ -92,8 +100,10 @@ std::vector<Message> all_samples() {
           sample_ready(),
           sample_settling(),
           sample_release_state(),
+          sample_probe_setup(),
           sample_step(),
           sample_forces(),
+          sample_probe_values(),
           sample_snapshot_request(),
           sample_snapshot(),
           sample_shutdown(),
@@ -138,6 +148,10 @@ TEST(ProtocolMessages, PayloadSizesFollowTheSpecTables) {
   EXPECT_EQ(encode(Heartbeat{}).size(), 0u);
   EXPECT_EQ(encode(sample_settling()).size(), 3u * 8 + 8 + 8 + (8 + 3 * 8));
   EXPECT_EQ(encode(sample_release_state()).size(), 5u * 8);
+  // Each probe: kind, name, parameter count and parameters.
+  EXPECT_EQ(encode(sample_probe_setup()).size(),
+            8u + 3 * 8 + 8 + 8 + (4 + 4 + 5 + 8 + 3 * 8) + (4 + 4 + 5 + 8));
+  EXPECT_EQ(encode(sample_probe_values()).size(), 8u + 8 + 5 * 8);
 }
 
 std::vector<double> awkward_doubles() {
@@ -491,6 +505,29 @@ TEST(ProtocolMessages, SettlingAndReleaseStateContentIsChecked) {
   release = sample_release_state();
   release.drag_rate = -1;
   EXPECT_NE(decode_error(release).find("'drag_rate' is -1"), std::string::npos);
+}
+
+TEST(ProtocolMessages, ProbeSetupContentIsChecked) {
+  ProbeSetup probes = sample_probe_setup();
+  probes.every_steps = 0;
+  EXPECT_NE(decode_error(probes).find("'every_steps' is 0; probes are evaluated every N >= 1"),
+            std::string::npos);
+  probes = sample_probe_setup();
+  probes.probes[1].name.clear();
+  EXPECT_NE(decode_error(probes).find("'probes' entry 1 has an empty name"), std::string::npos);
+  probes = sample_probe_setup();
+  probes.probes[0].parameters[2] = Limits::quiet_NaN();
+  EXPECT_NE(decode_error(probes).find("'probes' is nan"), std::string::npos);
+  probes = sample_probe_setup();
+  probes.particle_spacing = -1e-3;
+  EXPECT_NE(decode_error(probes).find("'particle_spacing' is -0.001"), std::string::npos);
+  // A count of probes larger than the bytes that could hold them is refused before allocating.
+  std::vector<std::byte> payload = encode(sample_probe_setup());
+  const std::uint64_t huge = 1u << 30;
+  std::memcpy(payload.data() + 8 + 3 * 8 + 8, &huge, sizeof huge);
+  EXPECT_NE(decode_error(MessageType::ProbeSetup, payload)
+                .find("announces 1073741824 entries of at least 16 bytes"),
+            std::string::npos);
 }
 
 TEST(ProtocolMessages, UnknownErrorCodesAndEmptyValuesDecode) {

@@ -14,6 +14,7 @@
 #include <variant>
 #include <vector>
 
+#include "fluid_probes.hpp"
 #include "fsi/common/error.hpp"
 #include "fsi/common/stopwatch.hpp"
 #include "fsi/common/version.hpp"
@@ -35,6 +36,7 @@ struct SetupData {
   protocol::Mesh mesh;
   protocol::Particles particles;
   std::optional<protocol::Settling> settling;  // protocol 1.2, when both sides agreed
+  std::optional<protocol::ProbeSetup> probes;  // protocol 1.3, when both sides agreed
 };
 
 // State the exit handler needs when LIGGGHTS ends the process with exit(1) (Error::all).
@@ -169,7 +171,7 @@ class ClientSession {
     handshake.hello.host = host_name();
     handshake.hello.mpi_ranks = static_cast<std::uint32_t>(mpi_.size());
     handshake.timeout = options_.connect_timeout;
-    handshake.session_capabilities = protocol::kCapabilitySettling;
+    handshake.session_capabilities = protocol::kCapabilitySettling | protocol::kCapabilityProbes;
     const protocol::ClientHandshakeResult opened = protocol::open_session(*channel_, handshake);
     capabilities_ = opened.capabilities;
     heartbeat_ = std::make_unique<protocol::HeartbeatSender>(
@@ -253,6 +255,9 @@ class ClientSession {
     data.particles = expect_message<protocol::Particles>("set-up (particles)");
     if ((capabilities_ & protocol::kCapabilitySettling) != 0) {
       data.settling = expect_message<protocol::Settling>("set-up (settling)");
+    }
+    if ((capabilities_ & protocol::kCapabilityProbes) != 0) {
+      data.probes = expect_message<protocol::ProbeSetup>("set-up (probes)");
     }
     if ((data.setup.dimension != 2 && data.setup.dimension != 3) ||
         data.mesh.dimension != data.setup.dimension ||
@@ -368,7 +373,38 @@ class ClientSession {
         channel_->send(release);
       }
     }
+    if (data.probes && !data.probes->probes.empty()) prepare_probes(*data.probes, data.particles);
     send_forces(0, 0.0, 0.0);
+  }
+
+  // The scene's probes over LIGGGHTS' particles, with the kernel and h of the scripts (collective).
+  void prepare_probes(const protocol::ProbeSetup& setup, const protocol::Particles& particles) {
+    probes::ProbeContext context;
+    context.dimension = dimension_;
+    context.gravity = setup.gravity;
+    context.particle_spacing = setup.particle_spacing;
+    if (!(context.particle_spacing > 0.0)) {
+      const FluidExtent extent = driver_->fluid_extent(setup.gravity);
+      if (extent.mean_density > 0.0)
+        context.particle_spacing =
+            std::pow(extent.mean_mass / extent.mean_density, 1.0 / dimension_);
+    }
+    std::vector<probes::ProbeDefinition> definitions;
+    for (const protocol::ProbeRecord& record : setup.probes) {
+      definitions.push_back(
+          {static_cast<probes::ProbeKind>(record.kind), record.name, record.parameters});
+    }
+    probe_every_steps_ = setup.every_steps;
+    probes_ = std::make_unique<FluidProbes>(driver_->lammps(), mpi_.communicator(),
+                                            probes::ProbeSet(std::move(definitions), context),
+                                            static_cast<int>(particles.atom_type));
+    if (mpi_.root()) {
+      spdlog::info(
+          "{} probe(s) every {} step(s), {} column(s); LIGGGHTS kernel {}, support {:.6g} m (h = "
+          "{:.6g} m)",
+          setup.probes.size(), probe_every_steps_, probes_->probes().column_count(),
+          probes_->kernel_name(), probes_->kernel_support(), probes_->smoothing_length());
+    }
   }
 
   struct AppliedDrag {
@@ -412,14 +448,20 @@ class ClientSession {
   }
 
   // Sums this rank's vertex forces and diagnostics over all ranks; rank 0 sends them.
+  // On probe steps the probes' partials travel in the same reductions (no extra synchronisation
+  // of the ranks), and rank 0 sends ProbeValues right after the Forces.
   void send_forces(std::uint64_t step, double seconds_liggghts, double seconds_contact) {
+    const bool probing = probes_ && step % probe_every_steps_ == 0;
+    const probes::Partials* probe_partials = probing ? &probes_->partials() : nullptr;
+    if (probing) ++probe_evaluations_;
     Stopwatch& communication = mpi_.mpi_time();
     communication.start();
     const std::size_t dynamic_values = boundary_->dynamic_vertex_count * dimension_;
     const auto& diagnostics = boundary_->diagnostics;
     // Layout: dynamic vertex forces, force on fluid (3), on structure (3), magnitude sum,
-    // particles in range.
-    std::vector<double> sums(dynamic_values + 8, 0.0);
+    // particles in range, then the probes' sums.
+    constexpr std::size_t kDiagnostics = 8;
+    std::vector<double> sums(dynamic_values + kDiagnostics, 0.0);
     std::copy_n(boundary_->vertex_forces.begin(),
                 std::min(dynamic_values, boundary_->vertex_forces.size()), sums.begin());
     for (int k = 0; k < 3; ++k) {
@@ -428,12 +470,19 @@ class ClientSession {
     }
     sums[dynamic_values + 6] = diagnostics.pair_force_magnitude_sum;
     sums[dynamic_values + 7] = static_cast<double>(diagnostics.particles_in_range);
+    // Maxima: the closest approach as its negative (the minimum), then the probes' maxima.
+    std::vector<double> maxima{-diagnostics.closest_distance};
+    if (probe_partials) {
+      sums.insert(sums.end(), probe_partials->sums.begin(), probe_partials->sums.end());
+      maxima.insert(maxima.end(), probe_partials->maxima.begin(), probe_partials->maxima.end());
+    }
     std::vector<double> total(sums.size(), 0.0);
     MPI_Reduce(sums.data(), total.data(), static_cast<int>(sums.size()), MPI_DOUBLE, MPI_SUM, 0,
                mpi_.communicator());
-    double closest = diagnostics.closest_distance;
-    double closest_total = 0.0;
-    MPI_Reduce(&closest, &closest_total, 1, MPI_DOUBLE, MPI_MIN, 0, mpi_.communicator());
+    std::vector<double> maxima_total(maxima.size(), 0.0);
+    MPI_Reduce(maxima.data(), maxima_total.data(), static_cast<int>(maxima.size()), MPI_DOUBLE,
+               MPI_MAX, 0, mpi_.communicator());
+    const double closest_total = -maxima_total[0];
     const std::uint64_t particles = driver_->particle_count();
     communication.stop();
     if (!mpi_.root()) return;
@@ -458,6 +507,13 @@ class ClientSession {
     out.seconds_client_communication = communication.seconds();  // since the previous Forces
     communication.reset();
     channel_->send(forces);
+    if (probe_partials) {
+      probes::Partials reduced;
+      const auto first_sum = static_cast<long>(dynamic_values + kDiagnostics);
+      reduced.sums.assign(total.begin() + first_sum, total.end());
+      reduced.maxima.assign(maxima_total.begin() + 1, maxima_total.end());
+      channel_->send(protocol::ProbeValues{step, probes_->values(reduced)});
+    }
   }
 
   void exchange_loop() {
@@ -502,6 +558,12 @@ class ClientSession {
           goodbye.seconds_total = total.stop();
           channel_->send(goodbye);
           spdlog::info("run finished after {} coupled steps", steps);
+          if (probes_) {
+            spdlog::info(
+                "probes evaluated {} times in {:.3f} s over the particles of rank 0 (reduced "
+                "with the forces)",
+                probe_evaluations_, probes_->seconds_evaluating());
+          }
         }
         return;
       } else if (auto* error = std::get_if<protocol::ErrorMessage>(&message)) {
@@ -545,6 +607,9 @@ class ClientSession {
   std::shared_ptr<contact::CouplingBoundary> boundary_;
   std::unique_ptr<LiggghtsDriver> driver_;
   std::vector<double> initial_velocities_;
+  std::unique_ptr<FluidProbes> probes_;  // when the scene declares probes (protocol 1.3)
+  std::uint64_t probe_every_steps_ = 1;
+  std::uint64_t probe_evaluations_ = 0;
   double time_step_ = 0.0;
   double last_time_ = 0.0;
   int dimension_ = 2;

@@ -4,6 +4,9 @@
 // written in the given major version.
 // `fake_peer client-token HOST PORT TOKEN_FILE` opens a session with that token and prints every
 // message type the server sends until it closes (so a test sees that no set-up data came).
+// `fake_peer client-capabilities HOST PORT BITS` opens a session without token offering those
+// session capabilities (4: a client of protocol 1.2, settling only) and prints every message
+// type the server sends until it closes, with the text of an Error.
 // `fake_peer impostor PORT_FILE TOKEN_FILE` plays a server that does not know the client's token:
 // it ignores the client's proof and answers with a proof made from its own token.
 #include <chrono>
@@ -67,6 +70,31 @@ int main(int argc, char** argv) {
         std::printf("then: %s\n", error.fault().c_str());
       }
       return status;
+    }
+    if (mode == "client-capabilities" && argc >= 5) {
+      auto channel = protocol::Channel::connect(
+          argv[2], static_cast<std::uint16_t>(std::atoi(argv[3])), 10s, options);
+      protocol::ClientHandshake handshake;
+      handshake.hello = protocol::Hello{"fake-peer", "test", 1, 0};
+      handshake.timeout = 10s;
+      handshake.session_capabilities =
+          static_cast<std::uint32_t>(std::strtoul(argv[4], nullptr, 0));
+      const auto opened = protocol::open_session(channel, handshake);
+      std::printf("session capabilities %u\n", static_cast<unsigned>(opened.capabilities));
+      try {
+        while (true) {
+          const protocol::Frame frame = channel.receive(10s, "anything");
+          std::printf("received %s\n", protocol::name(frame.header.type).c_str());
+          const auto message = protocol::decode(frame.header.type, frame.payload);
+          if (const auto* error = std::get_if<protocol::ErrorMessage>(&message)) {
+            std::printf("error: [%s] %s\n", protocol::name(error->code).c_str(),
+                        error->text.c_str());
+          }
+        }
+      } catch (const protocol::ProtocolError& error) {
+        std::printf("then: %s\n", error.fault().c_str());
+      }
+      return 0;
     }
     if (mode == "impostor" && argc >= 4) {
       const protocol::Token guess = protocol::read_token_file(argv[3]);

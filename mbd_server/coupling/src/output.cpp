@@ -37,25 +37,40 @@ SensorFile::SensorFile(const std::string& path, const std::string& title,
 
 namespace {
 
-std::vector<std::string> names_of(const std::vector<scene::SensorSpec>& sensors) {
-  std::vector<std::string> names;
+std::vector<probes::Column> columns_of(const std::vector<scene::SensorSpec>& sensors,
+                                       const std::vector<probes::ProbeDefinition>& probes,
+                                       int dimension) {
+  std::vector<probes::Column> columns;
   for (const auto& sensor : sensors)
-    names.push_back(sensor.name);
+    columns.push_back({sensor.name, sensor.unit});
+  for (const auto& probe : probes) {
+    for (auto& column : probes::columns(probe, dimension))
+      columns.push_back(std::move(column));
+  }
+  return columns;
+}
+
+std::vector<std::string> names_of(const std::vector<probes::Column>& columns) {
+  std::vector<std::string> names;
+  for (const auto& column : columns)
+    names.push_back(column.name);
   return names;
 }
 
-std::vector<std::string> units_of(const std::vector<scene::SensorSpec>& sensors) {
+std::vector<std::string> units_of(const std::vector<probes::Column>& columns) {
   std::vector<std::string> units;
-  for (const auto& sensor : sensors)
-    units.push_back(sensor.unit);
+  for (const auto& column : columns)
+    units.push_back(column.unit);
   return units;
 }
 
 }  // namespace
 
 SensorFile::SensorFile(const std::filesystem::path& path, const std::string& title,
-                       const std::vector<scene::SensorSpec>& sensors)
-    : SensorFile(path.string(), title, names_of(sensors), units_of(sensors)) {}
+                       const std::vector<scene::SensorSpec>& sensors,
+                       const std::vector<probes::ProbeDefinition>& probes, int dimension)
+    : SensorFile(path.string(), title, names_of(columns_of(sensors, probes, dimension)),
+                 units_of(columns_of(sensors, probes, dimension))) {}
 
 SensorFile::~SensorFile() {
   if (file_) std::fclose(file_);

@@ -97,7 +97,10 @@ class Session {
   void prepare_output() {
     create_run_folder(options_.output_dir);
     sensors_ = std::make_unique<SensorFile>(fs::path(options_.output_dir) / "sensors.csv",
-                                            "fsi-server sensors of " + scene_.file, scene_.sensors);
+                                            "fsi-server sensors of " + scene_.file, scene_.sensors,
+                                            scene_.probes, scene_.dimension);
+    for (const auto& probe : scene_.probes)
+      probe_columns_ += probes::columns(probe, scene_.dimension).size();
     if (scene_.output.snapshot_every_steps > 0) {
       fs::create_directories(fs::path(options_.output_dir) / "snapshots");
       vtk_ = std::make_unique<VtkOutput>(fs::path(options_.output_dir) / "vtk");
@@ -127,15 +130,16 @@ class Session {
     take_forces(ready.initial_forces, 0);
     if (ready.release) judge_release(*ready.release, ready.initial_forces.diagnostics);
     timings_.setup.stop();
-    write_initial_output();
+    write_initial_output(ready.initial_forces.probe_values);
   }
 
   // Row and frame at t = 0: the structure as given and the fluid as equilibrated around it, with
   // the forces they exchange before the first step.
-  void write_initial_output() {
+  void write_initial_output(const std::vector<double>& probe_values) {
     {
       ScopedTimer timer(timings_.output);
-      sensors_->write(0.0, structure_->initial_sensor_readout(total_fluid_force_));
+      sensors_->write(0.0, with_probes(structure_->initial_sensor_readout(total_fluid_force_),
+                                       probe_values, 0));
     }
     if (scene_.output.snapshot_every_steps > 0) take_snapshot(0);
   }
@@ -261,6 +265,7 @@ class Session {
   // the boundary to t(n) and returns f(t(n)).
   void coupled_step(std::uint64_t n, double dt) {
     BoundaryMotion motion;
+    std::optional<std::vector<double>> row;  // this step's sensor row, when it is written
     {
       // The fluid waits for the boundary meanwhile.
       const auto waiting = fluid_.waiting();
@@ -271,16 +276,40 @@ class Session {
       {
         ScopedTimer timer(timings_.output);
         // Sensors at t_n: multipliers of the step and the fluid forces that acted during it.
-        if (n % static_cast<std::uint64_t>(scene_.output.sensor_every_steps) == 0)
-          sensors_->write(structure_->time(), structure_->sensor_readout(total_fluid_force_));
+        // The probes of t_n come with the fluid's answer to this step: the row waits for them.
+        if (n % static_cast<std::uint64_t>(scene_.output.sensor_every_steps) == 0) {
+          row = structure_->sensor_readout(total_fluid_force_);
+          if (probe_columns_ == 0) {
+            sensors_->write(structure_->time(), *row);
+            row.reset();
+          }
+        }
       }
       motion = structure_->boundary_motion(n, dt);
     }
     timings_.round_trip.start();
     const FluidForces forces = fluid_.exchange(motion);
     timings_.round_trip.stop();
+    if (row) {
+      ScopedTimer timer(timings_.output);
+      sensors_->write(structure_->time(), with_probes(std::move(*row), forces.probe_values, n));
+    }
     take_forces(forces, n);
     steps_done_ = n;
+  }
+
+  // A sensor row followed by the probes' values of the same step (none without probes).
+  std::vector<double> with_probes(std::vector<double> row, const std::vector<double>& probe_values,
+                                  std::uint64_t step) const {
+    if (probe_values.size() != probe_columns_) {
+      throw Error("the fluid side returned " + std::to_string(probe_values.size()) +
+                      " probe values at step " + std::to_string(step) +
+                      ", the scene's probes have " + std::to_string(probe_columns_) + " columns",
+                  "sensor row of step " + std::to_string(step),
+                  "use matching fsi-server and fsi-client releases");
+    }
+    row.insert(row.end(), probe_values.begin(), probe_values.end());
+    return row;
   }
 
   void report_progress(std::uint64_t n, std::uint64_t steps) {
@@ -392,6 +421,7 @@ class Session {
   std::unique_ptr<VtkOutput> vtk_;
   std::unique_ptr<StructureSide> structure_;
   std::array<double, 3> total_fluid_force_{};
+  std::size_t probe_columns_ = 0;  // columns of the scene's probes after the sensors'
   Timings timings_;
   std::optional<ReleaseCheck> release_;  // absent: the fluid side did not report it
   FluidWatch watch_;

@@ -51,7 +51,7 @@ void TcpFluidSide::connect() {
   handshake.software_version = std::string(fsi::software_version());
   handshake.run_name = fs::path(options_.output_dir).filename().string();
   handshake.timeout = options_.handshake_timeout;
-  handshake.session_capabilities = protocol::kCapabilitySettling;
+  handshake.session_capabilities = protocol::kCapabilitySettling | protocol::kCapabilityProbes;
   const protocol::ServerHandshakeResult opened = protocol::accept_client(*channel_, handshake);
   const protocol::Hello& hello = opened.hello;
   client_ = hello;
@@ -68,6 +68,8 @@ void TcpFluidSide::connect() {
 void TcpFluidSide::set_up(const scene::Scene& scene, const std::vector<double>& boundary_positions,
                           const std::vector<double>& boundary_velocities) {
   connect();
+  // Before any set-up data: an older client would otherwise run its whole set-up first.
+  refuse_client_without_probes(scene);
   protocol::Setup setup;
   setup.dimension = static_cast<std::uint32_t>(scene.dimension);
   setup.time_step = scene.solver.step_size;
@@ -115,6 +117,33 @@ void TcpFluidSide::set_up(const scene::Scene& scene, const std::vector<double>& 
         "protocol 1.2 or later)",
         protocol::version_text(channel_->peer_major(), channel_->peer_minor()));
   }
+  send_probes(scene);
+}
+
+void TcpFluidSide::refuse_client_without_probes(const scene::Scene& scene) const {
+  if (probes_agreed() || scene.probes.empty()) return;
+  throw Error("the scene declares " + std::to_string(scene.probes.size()) +
+                  " probe(s) (the first: '" + scene.probes.front().name + "'), and fsi-client " +
+                  client_->software_version + " (protocol " +
+                  protocol::version_text(channel_->peer_major(), channel_->peer_minor()) +
+                  ") lacks probes (capability 'probes' of protocol 1.3)",
+              "set-up of " + scene.file + " with fsi-client at " + channel_->peer_description(),
+              "use an fsi-client of protocol 1.3 or later, or remove the *Probe blocks from "
+              "the scene");
+}
+
+void TcpFluidSide::send_probes(const scene::Scene& scene) {
+  if (!probes_agreed()) return;
+  protocol::ProbeSetup setup;
+  setup.every_steps = static_cast<std::uint64_t>(scene.output.sensor_every_steps);
+  setup.gravity = scene.gravity;
+  setup.particle_spacing = scene.fluid.spacing;
+  for (const probes::ProbeDefinition& probe : scene.probes) {
+    setup.probes.push_back({static_cast<std::uint32_t>(probe.kind), probe.name, probe.parameters});
+  }
+  channel_->send(setup);
+  probes_expected_ = !scene.probes.empty();
+  probe_every_steps_ = setup.every_steps;
 }
 
 FluidReady TcpFluidSide::equilibrate() {
@@ -141,7 +170,17 @@ FluidForces TcpFluidSide::expect_forces(std::uint64_t step) {
                     std::to_string(step) + " was expected",
                 "coupled step", "use matching fsi-server and fsi-client releases");
   }
-  return {std::move(forces.forces), forces.diagnostics};
+  FluidForces result{std::move(forces.forces), forces.diagnostics, {}};
+  if (probes_expected_ && step % probe_every_steps_ == 0) {
+    auto probes = channel_->expect<protocol::ProbeValues>(options_.peer_timeout);
+    if (probes.step != step) {
+      throw Error("ProbeValues of step " + std::to_string(probes.step) + " arrived, step " +
+                      std::to_string(step) + " was expected",
+                  "coupled step", "use matching fsi-server and fsi-client releases");
+    }
+    result.probe_values = std::move(probes.values);
+  }
+  return result;
 }
 
 FluidForces TcpFluidSide::exchange(const BoundaryMotion& motion) {

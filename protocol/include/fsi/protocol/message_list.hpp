@@ -21,8 +21,10 @@
   X(Ready, Ready, 0x13)                     \
   X(Settling, Settling, 0x14)               \
   X(ReleaseState, ReleaseState, 0x15)       \
+  X(ProbeSetup, ProbeSetup, 0x16)           \
   X(Step, Step, 0x20)                       \
   X(Forces, Forces, 0x21)                   \
+  X(ProbeValues, ProbeValues, 0x22)         \
   X(SnapshotRequest, SnapshotRequest, 0x30) \
   X(Snapshot, Snapshot, 0x31)               \
   X(Shutdown, Shutdown, 0x40)               \

@@ -1,5 +1,5 @@
 #pragma once
-// The messages of protocol 1.2; docs/protocol.md gives the byte layout of each. encode() makes a
+// The messages of protocol 1.3; docs/protocol.md gives the byte layout of each. encode() makes a
 // payload; decode() checks every count against the bytes that remain before allocating, checks
 // the content for consistency, and throws ProtocolError naming the message, the field and the
 // byte offset.
@@ -29,6 +29,9 @@ inline constexpr std::uint32_t kCapabilityHeartbeat = 1u << 1;
 // 1.2: the sender takes part in the settling of the fluid and the check at release (Settling,
 // ReleaseState).
 inline constexpr std::uint32_t kCapabilitySettling = 1u << 2;
+// 1.3: the sender evaluates (client) or records (server) probes of the fluid (ProbeSetup,
+// ProbeValues).
+inline constexpr std::uint32_t kCapabilityProbes = 1u << 3;
 
 // The codes of an Error message (docs/protocol.md §7) as X(enumerator, value); AuthenticationFailed
 // came with 1.1.
@@ -205,6 +208,26 @@ struct ReleaseState {  // client -> server, right after Ready
   bool operator==(const ReleaseState&) const = default;
 };
 
+// 1.3, capability kCapabilityProbes: one probe of the fluid (docs/user-guide.md, "Probes"). The
+// kinds and the order of their parameters are fsi::probes' (probes/include/fsi/probes/probe.hpp);
+// the protocol carries them as numbers.
+struct ProbeRecord {
+  std::uint32_t kind = 0;
+  std::string name;
+  std::vector<double> parameters;
+  bool operator==(const ProbeRecord&) const = default;
+};
+
+struct ProbeSetup {  // server -> client, after Settling, whenever both sides agreed on probes
+  static constexpr MessageType kType = MessageType::ProbeSetup;
+  // The probes are evaluated after the steps that are multiples of this (step 0 included).
+  std::uint64_t every_steps = 1;
+  std::array<double, 3> gravity{};  // [m/s^2] (2D: z = 0)
+  double particle_spacing = 0.0;    // d [m]; 0: the client derives it from the particles
+  std::vector<ProbeRecord> probes;  // may be empty
+  bool operator==(const ProbeSetup&) const = default;
+};
+
 struct Step {  // server -> client: the dynamic vertices at the end of the step
   static constexpr MessageType kType = MessageType::Step;
   std::uint64_t step = 0;
@@ -234,6 +257,15 @@ struct Forces {  // client -> server
   std::vector<double> forces;  // dynamic vertices only, dimension values each
   ForceDiagnostics diagnostics;
   bool operator==(const Forces&) const = default;
+};
+
+// 1.3, capability kCapabilityProbes: the probes' values (one per column, fsi::probes::columns)
+// at the end of a probe step, reduced over the client's ranks.
+struct ProbeValues {  // client -> server, right after the Forces of a step that has probes
+  static constexpr MessageType kType = MessageType::ProbeValues;
+  std::uint64_t step = 0;
+  std::vector<double> values;
+  bool operator==(const ProbeValues&) const = default;
 };
 
 struct SnapshotRequest {  // server -> client

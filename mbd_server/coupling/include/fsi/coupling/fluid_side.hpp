@@ -23,6 +23,9 @@ namespace fsi::coupling {
 struct FluidForces {
   std::vector<double> forces;
   protocol::ForceDiagnostics diagnostics;
+  // The scene's probes at the end of the step, one value per column (fsi::probes::columns):
+  // at every sensor step of a scene with probes, empty otherwise.
+  std::vector<double> probe_values;
 };
 
 // Where the dynamic boundary vertices are at the end of a step.

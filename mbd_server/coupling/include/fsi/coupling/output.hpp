@@ -21,9 +21,11 @@ class SensorFile {
   // names/units exclude the time column.
   SensorFile(const std::string& path, const std::string& title,
              const std::vector<std::string>& names, const std::vector<std::string>& units);
-  // One column per sensor of the scene, named and united as declared.
+  // One column per sensor of the scene, named and united as declared, then the probes' columns
+  // (fsi::probes::columns) in `dimension`.
   SensorFile(const std::filesystem::path& path, const std::string& title,
-             const std::vector<scene::SensorSpec>& sensors);
+             const std::vector<scene::SensorSpec>& sensors,
+             const std::vector<probes::ProbeDefinition>& probes = {}, int dimension = 2);
   ~SensorFile();
   SensorFile(const SensorFile&) = delete;
   SensorFile& operator=(const SensorFile&) = delete;

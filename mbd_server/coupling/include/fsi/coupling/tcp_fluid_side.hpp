@@ -35,12 +35,19 @@ class TcpFluidSide final : public FluidSide {
   void connect();
   FluidForces expect_forces(std::uint64_t step);
   bool settling_agreed() const { return (capabilities_ & protocol::kCapabilitySettling) != 0; }
+  bool probes_agreed() const { return (capabilities_ & protocol::kCapabilityProbes) != 0; }
+  void refuse_client_without_probes(const scene::Scene& scene) const;
+  void send_probes(const scene::Scene& scene);
 
   ServerOptions options_;
   std::unique_ptr<protocol::Channel> channel_;
   std::optional<protocol::Hello> client_;
   std::uint32_t capabilities_ = 0;
   std::unique_ptr<protocol::HeartbeatSender> heartbeat_;
+  // Steps after which ProbeValues follow the Forces: multiples of probe_every_steps_, when the
+  // scene has probes.
+  bool probes_expected_ = false;
+  std::uint64_t probe_every_steps_ = 1;
 };
 
 }  // namespace fsi::coupling

@@ -12,6 +12,7 @@
 #include "fsi/mbd/assembly.hpp"
 #include "fsi/mbd/integrator.hpp"
 #include "fsi/mbd/model.hpp"
+#include "fsi/probes/probe.hpp"
 #include "fsi/scene/parameter_file.hpp"
 #include "fsi/scene/schema.hpp"
 
@@ -158,6 +159,8 @@ struct Scene {
   FluidParticles fluid;
   LiggghtsSetup liggghts;
   std::vector<SensorSpec> sensors;
+  // The probes of the fluid (coupled runs): their columns follow the sensors' in sensors.csv.
+  std::vector<probes::ProbeDefinition> probes;
   // What the Assembly block's initial assembly did (absent without the block); the model's
   // initial configuration is then the assembled one.
   std::optional<mbd::AssemblyReport> assembly;

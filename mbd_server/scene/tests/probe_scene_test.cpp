@@ -1,0 +1,139 @@
+// Probe blocks (docs/user-guide.md, "Probes"): each kind's declared keys become its definition in
+// the scene's dimension, and a probe whose columns another probe or a sensor writes, a vector of
+// the wrong length or an axis the dimension lacks are problems at their place.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "fsi/common/error.hpp"
+#include "fsi/scene/scene.hpp"
+
+namespace fsi::scene {
+namespace {
+
+namespace fs = std::filesystem;
+
+class ProbeScene : public ::testing::TestWithParam<int> {
+ protected:
+  void SetUp() override {
+    // One folder per test: ctest runs the tests of this suite in parallel.
+    const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
+    std::string name = std::string("fsi_probe_scene_") + test->name();
+    for (char& c : name) {
+      if (c == '/') c = '_';
+    }
+    folder_ = fs::temp_directory_path() / name;
+    fs::create_directories(folder_);
+  }
+  void TearDown() override { fs::remove_all(folder_); }
+
+  // A structure-only scene with the given blocks in the test's dimension; "(accepted)" or the
+  // problems.
+  std::string build(const std::string& blocks, Scene* built = nullptr) {
+    const fs::path path = folder_ / "p.scene";
+    std::ofstream(path) << "scene_language = 1\ndimension = " << GetParam()
+                        << "\nSolverOptions { end_time = 1; Timeint { step_size = 1e-3 } }\n"
+                        << blocks;
+    try {
+      Scene scene = build_scene(path.string(), {}, SceneMode::MbdOnly);
+      if (built != nullptr) *built = std::move(scene);
+    } catch (const Error& error) {
+      return error.what();
+    }
+    return "(accepted)";
+  }
+  std::string point(double x, double y) const {
+    return "[" + std::to_string(x) + ", " + std::to_string(y) + (GetParam() == 3 ? ", 0.5]" : "]");
+  }
+
+  fs::path folder_;
+};
+
+TEST_P(ProbeScene, EachKindBecomesItsDefinition) {
+  Scene scene;
+  const std::string text =
+      build("PointProbe { name = \"gauge\"; point = " + point(0.1, 0.2) +
+                " }\n"
+                "FreeSurfaceProbe { name = \"level\"; bottom = " +
+                point(0.3, 0.0) +
+                "; length = 0.5 }\n"
+                "FluidEnergyProbe { name = \"water\" }\n"
+                "FrontProbe { name = \"surge\"; direction = \"decreasing\"; min_neighbours = 5 }\n",
+            &scene);
+  ASSERT_EQ(text, "(accepted)");
+  const double z = GetParam() == 3 ? 0.5 : 0.0;
+  // In the order of the kinds (their columns in sensors.csv too), each kind in file order.
+  ASSERT_EQ(scene.probes.size(), 4u);
+  EXPECT_TRUE(scene.probes[0] == probes::fluid_energy_probe("water", {0.0, 0.0, 0.0}));
+  EXPECT_TRUE(scene.probes[1] == probes::point_probe("gauge", {0.1, 0.2, z}));
+  EXPECT_TRUE(scene.probes[2] == probes::free_surface_probe("level", {0.3, 0.0, z}, 0.5, 200));
+  EXPECT_TRUE(scene.probes[3] == probes::front_probe("surge", 0, -1, 5));
+}
+
+TEST_P(ProbeScene, ProblemsAreReportedAtTheirPlace) {
+  const std::string text = build(
+      "Sensor { name = \"gauge_vx\"; type = \"kinetic_energy\" }\n"
+      "PointProbe { name = \"gauge\"; point = [1, 2, 3, 4] }\n"
+      "PointProbe { name = \"gauge\"; point = " +
+      point(0.0, 0.0) +
+      " }\n"
+      "FluidEnergyProbe { name = \"e\" }\n"
+      "FluidEnergyProbe { name = \"e\" }\n"
+      "FreeSurfaceProbe { name = \"s\"; bottom = " +
+      point(0.0, 0.0) + "; length = 0; samples = 1 }\n");
+  EXPECT_NE(text.find("p.scene:5:30: 'point' has 4 components, the scene has dimension = " +
+                      std::to_string(GetParam())),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("p.scene:6:14: probe 'gauge' writes the column 'gauge_vx', which a sensor "
+                      "or another probe writes already; rename the probe"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("p.scene:8:20: probe 'e' writes the column 'e_kinetic'"), std::string::npos)
+      << text;
+  EXPECT_NE(text.find("'FreeSurfaceProbe.length' = 0 m is out of range"), std::string::npos)
+      << text;
+  EXPECT_NE(text.find("'FreeSurfaceProbe.samples' = 1 is out of range"), std::string::npos) << text;
+}
+
+TEST_P(ProbeScene, AFluxSectionFitsTheDimension) {
+  Scene scene;
+  const bool spatial = GetParam() == 3;
+  const std::string good = spatial ? "[[0, 0, 0], [0, 1, 0], [0, 1, 1]]" : "[[0, 0], [0, 1]]";
+  ASSERT_EQ(build("FluxProbe { name = \"q\"; points = " + good + " }\n", &scene), "(accepted)");
+  ASSERT_EQ(scene.probes.size(), 1u);
+  EXPECT_TRUE(scene.probes[0] ==
+              probes::flux_probe(
+                  "q",
+                  spatial ? std::vector<std::array<double, 3>>{{0, 0, 0}, {0, 1, 0}, {0, 1, 1}}
+                          : std::vector<std::array<double, 3>>{{0, 0, 0}, {0, 1, 0}},
+                  40));
+  const std::string bad =
+      spatial ? "[[0, 0, 0], [0, 1, 0], [0, 2, 0]]" : "[[0, 0], [0, 1], [1, 1]]";
+  const std::string text = build("FluxProbe { name = \"q\"; points = " + bad + " }\n");
+  EXPECT_NE(
+      text.find(spatial ? "p.scene:4:25: flux probe 'q' has no area (its points are in line); "
+                          "give three or more corners of a planar polygon"
+                        : "p.scene:4:25: flux probe 'q' needs a segment of 2 points; give "
+                          "the segment's two distinct points"),
+      std::string::npos)
+      << text;
+}
+
+TEST_P(ProbeScene, AFrontAlongZNeedsThreeDimensions) {
+  const std::string text = build("FrontProbe { name = \"up\"; axis = \"z\" }\n");
+  if (GetParam() == 3) {
+    EXPECT_EQ(text, "(accepted)");
+  } else {
+    EXPECT_NE(text.find("p.scene:4:27: axis z needs a 3D scene (dimension = 2 here); write x or y"),
+              std::string::npos)
+        << text;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(BothDimensions, ProbeScene, ::testing::Values(2, 3));
+
+}  // namespace
+}  // namespace fsi::scene

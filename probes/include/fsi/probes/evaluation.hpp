@@ -1,0 +1,68 @@
+#pragma once
+// The evaluation of probes over a set of particles, pure C++ (no LIGGGHTS, no MPI): each rank
+// computes partial values over the particles it owns, the partials are reduced over the ranks
+// (element-wise sums and maxima: MPI_Reduce with MPI_SUM and MPI_MAX), and the reduced partials
+// give the values of sensors.csv. docs/user-guide.md, "Probes", states each kind's rule.
+
+#include <cstddef>
+#include <functional>
+#include <span>
+#include <vector>
+
+#include "fsi/probes/probe.hpp"
+
+namespace fsi::probes {
+
+// The particles of one rank. The first `owned` entries are the rank's own; the ones after them
+// are ghosts (copies of neighbouring ranks' particles), which count only as neighbours (front),
+// so that every particle is summed exactly once over the ranks.
+struct ParticleSet {
+  std::size_t owned = 0;
+  std::span<const double> positions;   // dimension values per particle, owned and ghosts
+  std::span<const double> velocities;  // dimension values per owned particle
+  std::span<const double> density;     // one per owned particle [kg/m^3]
+  std::span<const double> pressure;    // one per owned particle [Pa]
+  std::span<const double> mass;        // one per owned particle [kg; 2D kg/m]
+};
+
+// The SPH kernel W(r) [1/m^dimension] the fluid uses and its support radius [m] (W = 0 beyond).
+struct Kernel {
+  double support = 0.0;
+  std::function<double(double distance)> value;
+};
+
+// Partial values of a probe set on one rank, to be reduced element-wise over the ranks.
+struct Partials {
+  std::vector<double> sums;
+  std::vector<double> maxima;
+};
+
+class ProbeSet {
+ public:
+  // Throws fsi::Error naming the first definition that does not fit its kind (or a front probe
+  // without a particle spacing in the context).
+  ProbeSet(std::vector<ProbeDefinition> probes, ProbeContext context);
+
+  const std::vector<ProbeDefinition>& probes() const { return probes_; }
+  const ProbeContext& context() const { return context_; }
+  // Every column of every probe, in order (the values below follow it).
+  std::vector<Column> columns() const;
+  std::size_t column_count() const { return column_count_; }
+
+  // This rank's partials; the same sizes on every rank.
+  Partials partials(const ParticleSet& particles, const Kernel& kernel) const;
+  // The probes' values from the partials reduced over all ranks, one per column.
+  std::vector<double> values(const Partials& reduced) const;
+
+ private:
+  struct Slots {
+    std::size_t first_sum = 0, sums = 0, first_maximum = 0, maxima = 0, first_column = 0,
+                columns = 0;
+  };
+  std::vector<ProbeDefinition> probes_;
+  ProbeContext context_;
+  std::vector<Slots> slots_;
+  std::size_t sum_count_ = 0, maximum_count_ = 0, column_count_ = 0;
+};
+
+}  // namespace fsi::probes
