@@ -23,6 +23,7 @@
   X(ReleaseState, ReleaseState, 0x15)       \
   X(Step, Step, 0x20)                       \
   X(Forces, Forces, 0x21)                   \
+  X(FluidHealth, FluidHealth, 0x23)         \
   X(SnapshotRequest, SnapshotRequest, 0x30) \
   X(Snapshot, Snapshot, 0x31)               \
   X(Shutdown, Shutdown, 0x40)               \

@@ -1,5 +1,5 @@
 #pragma once
-// The messages of protocol 1.2; docs/protocol.md gives the byte layout of each. encode() makes a
+// The messages of protocol 1.3; docs/protocol.md gives the byte layout of each. encode() makes a
 // payload; decode() checks every count against the bytes that remain before allocating, checks
 // the content for consistency, and throws ProtocolError naming the message, the field and the
 // byte offset.
@@ -29,6 +29,10 @@ inline constexpr std::uint32_t kCapabilityHeartbeat = 1u << 1;
 // 1.2: the sender takes part in the settling of the fluid and the check at release (Settling,
 // ReleaseState).
 inline constexpr std::uint32_t kCapabilitySettling = 1u << 2;
+// 1.3: the sender reports the fluid's health after every Forces (FluidHealth), so that the server
+// can stop a run whose fluid is failing before it writes NaN (docs/user-guide.md, "When a run
+// stops: the health checks"). Bit 3 is left to the probes of the same minor.
+inline constexpr std::uint32_t kCapabilityFluidHealth = 1u << 4;
 
 // The codes of an Error message (docs/protocol.md §7) as X(enumerator, value); AuthenticationFailed
 // came with 1.1.
@@ -234,6 +238,20 @@ struct Forces {  // client -> server
   std::vector<double> forces;  // dynamic vertices only, dimension values each
   ForceDiagnostics diagnostics;
   bool operator==(const Forces&) const = default;
+};
+
+// 1.3, capability kCapabilityFluidHealth: the state of every particle at the end of a step,
+// reduced over all ranks. Extremes are over the particles whose position, velocity and density
+// are all finite; the others are only counted.
+struct FluidHealth {  // client -> server, right after each Forces (step 0 included)
+  static constexpr MessageType kType = MessageType::FluidHealth;
+  std::uint64_t step = 0;
+  std::uint64_t particle_count = 0;
+  std::uint64_t non_finite_particles = 0;  // a NaN or inf in position, velocity or density
+  double min_density = 0.0;                // [kg/m^3]; +inf when no particle is finite
+  double max_density = 0.0;                // [kg/m^3]; -inf when no particle is finite
+  double max_speed = 0.0;                  // max |v| [m/s]
+  bool operator==(const FluidHealth&) const = default;
 };
 
 struct SnapshotRequest {  // server -> client
