@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -169,7 +170,8 @@ class ClientSession {
     handshake.hello.host = host_name();
     handshake.hello.mpi_ranks = static_cast<std::uint32_t>(mpi_.size());
     handshake.timeout = options_.connect_timeout;
-    handshake.session_capabilities = protocol::kCapabilitySettling;
+    handshake.session_capabilities =
+        protocol::kCapabilitySettling | protocol::kCapabilityFluidHealth;
     const protocol::ClientHandshakeResult opened = protocol::open_session(*channel_, handshake);
     capabilities_ = opened.capabilities;
     heartbeat_ = std::make_unique<protocol::HeartbeatSender>(
@@ -428,12 +430,28 @@ class ClientSession {
     }
     sums[dynamic_values + 6] = diagnostics.pair_force_magnitude_sum;
     sums[dynamic_values + 7] = static_cast<double>(diagnostics.particles_in_range);
+    // The fluid's health (protocol 1.3) rides on the same two reductions: the counts with the
+    // sums, the extremes as minima (a maximum as the minimum of its negative).
+    const bool report_health = health_agreed();
+    LocalFluidHealth health;
+    if (report_health) {
+      communication.stop();
+      health_scan_.start();
+      health = driver_->local_fluid_health();
+      health_scan_.stop();
+      communication.start();
+      sums.push_back(static_cast<double>(driver_->local_particle_count()));
+      sums.push_back(static_cast<double>(health.non_finite));
+    }
     std::vector<double> total(sums.size(), 0.0);
     MPI_Reduce(sums.data(), total.data(), static_cast<int>(sums.size()), MPI_DOUBLE, MPI_SUM, 0,
                mpi_.communicator());
-    double closest = diagnostics.closest_distance;
-    double closest_total = 0.0;
-    MPI_Reduce(&closest, &closest_total, 1, MPI_DOUBLE, MPI_MIN, 0, mpi_.communicator());
+    std::array<double, 4> minima = {diagnostics.closest_distance, health.min_density,
+                                    -health.max_density, -health.max_speed_squared};
+    std::array<double, 4> minima_total{};
+    MPI_Reduce(minima.data(), minima_total.data(), report_health ? 4 : 1, MPI_DOUBLE, MPI_MIN, 0,
+               mpi_.communicator());
+    const double closest_total = minima_total[0];
     const std::uint64_t particles = driver_->particle_count();
     communication.stop();
     if (!mpi_.root()) return;
@@ -458,6 +476,29 @@ class ClientSession {
     out.seconds_client_communication = communication.seconds();  // since the previous Forces
     communication.reset();
     channel_->send(forces);
+    if (!report_health) return;
+    protocol::FluidHealth report;
+    report.step = step;
+    report.particle_count = static_cast<std::uint64_t>(std::llround(total[dynamic_values + 8]));
+    report.non_finite_particles =
+        static_cast<std::uint64_t>(std::llround(total[dynamic_values + 9]));
+    report.min_density = minima_total[1];
+    report.max_density = -minima_total[2];
+    report.max_speed = std::sqrt(-minima_total[3]);
+    channel_->send(report);
+  }
+
+  bool health_agreed() const { return (capabilities_ & protocol::kCapabilityFluidHealth) != 0; }
+
+  // What the per-step health scan costs, measured against the LIGGGHTS steps it accompanies.
+  void log_health_scan_cost(std::uint64_t steps) const {
+    if (!health_agreed() || steps == 0) return;
+    spdlog::info(
+        "fluid health scan: {:.3f} s over {} steps ({:.2f} us per step, {:.2f} % of the {:.2f} s "
+        "of LIGGGHTS steps) on this rank",
+        health_scan_.seconds(), steps, 1e6 * health_scan_.seconds() / static_cast<double>(steps),
+        seconds_stepping_ > 0.0 ? 100.0 * health_scan_.seconds() / seconds_stepping_ : 0.0,
+        seconds_stepping_);
   }
 
   void exchange_loop() {
@@ -474,7 +515,7 @@ class ClientSession {
         Stopwatch liggghts;
         liggghts.start();
         driver_->step();
-        liggghts.stop();
+        seconds_stepping_ += liggghts.stop();
         const double contact = boundary_->seconds_in_fix - fix_before;
         computing = {};
         send_forces(step->step, liggghts.seconds() - contact, contact);
@@ -503,6 +544,7 @@ class ClientSession {
           channel_->send(goodbye);
           spdlog::info("run finished after {} coupled steps", steps);
         }
+        log_health_scan_cost(steps);
         return;
       } else if (auto* error = std::get_if<protocol::ErrorMessage>(&message)) {
         throw protocol::PeerReportedError(error->code, error->text,
@@ -547,6 +589,8 @@ class ClientSession {
   std::vector<double> initial_velocities_;
   double time_step_ = 0.0;
   double last_time_ = 0.0;
+  Stopwatch health_scan_;          // the per-step health scans of this rank
+  double seconds_stepping_ = 0.0;  // the coupled LIGGGHTS steps of this rank
   int dimension_ = 2;
 };
 

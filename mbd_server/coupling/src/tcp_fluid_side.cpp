@@ -51,7 +51,7 @@ void TcpFluidSide::connect() {
   handshake.software_version = std::string(fsi::software_version());
   handshake.run_name = fs::path(options_.output_dir).filename().string();
   handshake.timeout = options_.handshake_timeout;
-  handshake.session_capabilities = protocol::kCapabilitySettling;
+  handshake.session_capabilities = protocol::kCapabilitySettling | protocol::kCapabilityFluidHealth;
   const protocol::ServerHandshakeResult opened = protocol::accept_client(*channel_, handshake);
   const protocol::Hello& hello = opened.hello;
   client_ = hello;
@@ -141,7 +141,16 @@ FluidForces TcpFluidSide::expect_forces(std::uint64_t step) {
                     std::to_string(step) + " was expected",
                 "coupled step", "use matching fsi-server and fsi-client releases");
   }
-  return {std::move(forces.forces), forces.diagnostics};
+  FluidForces result{std::move(forces.forces), forces.diagnostics, std::nullopt};
+  if ((capabilities_ & protocol::kCapabilityFluidHealth) != 0) {
+    result.health = channel_->expect<protocol::FluidHealth>(options_.peer_timeout);
+    if (result.health->step != step) {
+      throw Error("FluidHealth of step " + std::to_string(result.health->step) +
+                      " arrived after the Forces of step " + std::to_string(step),
+                  "coupled step", "use matching fsi-server and fsi-client releases");
+    }
+  }
+  return result;
 }
 
 FluidForces TcpFluidSide::exchange(const BoundaryMotion& motion) {

@@ -23,6 +23,9 @@ namespace fsi::coupling {
 struct FluidForces {
   std::vector<double> forces;
   protocol::ForceDiagnostics diagnostics;
+  // The state of every particle at the same time (protocol 1.3); absent when the fluid side does
+  // not report it (a client of protocol 1.2).
+  std::optional<protocol::FluidHealth> health;
 };
 
 // Where the dynamic boundary vertices are at the end of a step.
