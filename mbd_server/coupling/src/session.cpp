@@ -201,10 +201,14 @@ class Session {
   // The fluid forces on the dynamic vertices become point loads held over the next step; the
   // fluid's diagnostics are checked and kept for run.json and the progress report.
   void take_forces(const FluidForces& forces, std::uint64_t step) {
-    watch_.record.particles_final = forces.diagnostics.particle_count;
+    const auto& d = forces.diagnostics;
+    // Recorded before the judgement, so that run.json of a stopped run shows what stopped it.
+    watch_.closest_approach_over_r0 =
+        std::min(watch_.closest_approach_over_r0, d.closest_approach_over_r0);
+    watch_.closest_since_report = std::min(watch_.closest_since_report, d.closest_approach_over_r0);
+    watch_.record.particles_final = d.particle_count;
     judge_health(forces, step);
     structure_->apply_vertex_forces(forces.forces, step);
-    const auto& d = forces.diagnostics;
     // Held for the sensors of the step these forces act in (like the point loads).
     total_fluid_force_ = d.force_on_structure;
     FluidRecord& record = watch_.record;
@@ -225,10 +229,6 @@ class Session {
         watch_.balance_warned = true;
       }
     }
-    watch_.closest_approach_over_r0 =
-        std::min(watch_.closest_approach_over_r0, d.closest_approach_over_r0);
-    watch_.closest_since_report = std::min(watch_.closest_since_report, d.closest_approach_over_r0);
-    record.particles_final = d.particle_count;
     if (d.particle_count == 0) {
       throw Error("every particle has left LIGGGHTS (" + std::to_string(record.particles_initial) +
                       " at the start)",
