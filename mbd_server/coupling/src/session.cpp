@@ -244,7 +244,8 @@ class Session {
     if (!forces.health && !watch_.health_unreported_warned) {
       spdlog::warn(
           "the fluid side reports no FluidHealth (an fsi-client of protocol 1.2): density and "
-          "particle speed are checked at snapshots only, not at every step");
+          "particle speed are not checked, only recorded at the snapshots; use an fsi-client of "
+          "protocol 1.3 or later");
       watch_.health_unreported_warned = true;
     }
     const HealthVerdict verdict = health_.judge(step, forces);
