@@ -94,6 +94,9 @@ Forces seed(std::type_identity<Forces>) {
   forces.diagnostics.particle_count = 1200;
   return forces;
 }
+FluidHealth seed(std::type_identity<FluidHealth>) {
+  return {7, 1200, 1, 998.5, 1004.25, 0.75};
+}
 SnapshotRequest seed(std::type_identity<SnapshotRequest>) {
   return {42};
 }

@@ -163,6 +163,15 @@ void layout(auto& io, MessageOf<ProbeValues> auto& m) {
   io.array("values", m.values);
 }
 
+void layout(auto& io, MessageOf<FluidHealth> auto& m) {
+  io.scalar("step", m.step);
+  io.scalar("particle_count", m.particle_count);
+  io.scalar("non_finite_particles", m.non_finite_particles);
+  io.scalar("min_density", m.min_density);
+  io.scalar("max_density", m.max_density);
+  io.scalar("max_speed", m.max_speed);
+}
+
 void layout(auto& io, MessageOf<SnapshotRequest> auto& m) {
   io.scalar("step", m.step);
 }
@@ -678,6 +687,16 @@ void check(const Reader& in, const ProbeSetup& m) {
 void check(const Reader& in, const Step& m) {
   check_positive_finite(in, "time_step", m.time_step);
   check_count(in, "velocities", m.velocities.size(), m.positions.size(), "one per position value");
+}
+
+// The extremes may be infinite (no finite particle) or NaN-free garbage of a failing fluid: the
+// server judges them; only the counts must agree.
+void check(const Reader& in, const FluidHealth& m) {
+  if (m.non_finite_particles > m.particle_count) {
+    in.fail("non_finite_particles", "is " + std::to_string(m.non_finite_particles) +
+                                        ", more than the " + std::to_string(m.particle_count) +
+                                        " particles");
+  }
 }
 
 void check(const Reader& in, const Snapshot& m) {

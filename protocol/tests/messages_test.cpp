@@ -58,6 +58,9 @@ Forces sample_forces() {
   return {
       7, {0.5, -0.25, 1e-9, 3}, {{1, 2, 3}, {-1, -2, -3}, 17.5, 42, 0.75, 13892, 0.5, 0.1, 0.01}};
 }
+FluidHealth sample_fluid_health() {
+  return {7, 13892, 2, 996.5, 1003.25, 0.375};
+}
 SnapshotRequest sample_snapshot_request() {
   return {99};
 }
@@ -104,6 +107,7 @@ std::vector<Message> all_samples() {
           sample_step(),
           sample_forces(),
           sample_probe_values(),
+          sample_fluid_health(),
           sample_snapshot_request(),
           sample_snapshot(),
           sample_shutdown(),
@@ -152,6 +156,7 @@ TEST(ProtocolMessages, PayloadSizesFollowTheSpecTables) {
   EXPECT_EQ(encode(sample_probe_setup()).size(),
             8u + 3 * 8 + 8 + 8 + (4 + 4 + 5 + 8 + 3 * 8) + (4 + 4 + 5 + 8));
   EXPECT_EQ(encode(sample_probe_values()).size(), 8u + 8 + 5 * 8);
+  EXPECT_EQ(encode(sample_fluid_health()).size(), 3u * 8 + 3 * 8);
 }
 
 std::vector<double> awkward_doubles() {
@@ -527,6 +532,21 @@ TEST(ProtocolMessages, ProbeSetupContentIsChecked) {
   std::memcpy(payload.data() + 8 + 3 * 8 + 8, &huge, sizeof huge);
   EXPECT_NE(decode_error(MessageType::ProbeSetup, payload)
                 .find("announces 1073741824 entries of at least 16 bytes"),
+            std::string::npos);
+}
+
+TEST(ProtocolMessages, FluidHealthCarriesAFailingFluidAndChecksItsCounts) {
+  // A blown-up fluid is what the message exists to report: infinite extremes must arrive intact.
+  FluidHealth failing = sample_fluid_health();
+  failing.min_density = Limits::infinity();
+  failing.max_density = -Limits::infinity();
+  failing.max_speed = 1e300;
+  failing.non_finite_particles = failing.particle_count;
+  EXPECT_EQ(std::get<FluidHealth>(decode(MessageType::FluidHealth, encode(failing))), failing);
+  FluidHealth impossible = sample_fluid_health();
+  impossible.non_finite_particles = impossible.particle_count + 1;
+  EXPECT_NE(decode_error(impossible)
+                .find("'non_finite_particles' is 13893, more than the 13892 particles"),
             std::string::npos);
 }
 

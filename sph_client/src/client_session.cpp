@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -171,7 +172,8 @@ class ClientSession {
     handshake.hello.host = host_name();
     handshake.hello.mpi_ranks = static_cast<std::uint32_t>(mpi_.size());
     handshake.timeout = options_.connect_timeout;
-    handshake.session_capabilities = protocol::kCapabilitySettling | protocol::kCapabilityProbes;
+    handshake.session_capabilities = protocol::kCapabilitySettling |
+                                     protocol::kCapabilityFluidHealth | protocol::kCapabilityProbes;
     const protocol::ClientHandshakeResult opened = protocol::open_session(*channel_, handshake);
     capabilities_ = opened.capabilities;
     heartbeat_ = std::make_unique<protocol::HeartbeatSender>(
@@ -448,8 +450,9 @@ class ClientSession {
   }
 
   // Sums this rank's vertex forces and diagnostics over all ranks; rank 0 sends them.
-  // On probe steps the probes' partials travel in the same reductions (no extra synchronisation
-  // of the ranks), and rank 0 sends ProbeValues right after the Forces.
+  // The fluid's health (every step) and, on probe steps, the probes' partials travel in the same
+  // two reductions (no extra synchronisation of the ranks); rank 0 sends FluidHealth and then
+  // ProbeValues right after the Forces.
   void send_forces(std::uint64_t step, double seconds_liggghts, double seconds_contact) {
     const bool probing = probes_ && step % probe_every_steps_ == 0;
     const probes::Partials* probe_partials = probing ? &probes_->partials() : nullptr;
@@ -458,8 +461,8 @@ class ClientSession {
     communication.start();
     const std::size_t dynamic_values = boundary_->dynamic_vertex_count * dimension_;
     const auto& diagnostics = boundary_->diagnostics;
-    // Layout: dynamic vertex forces, force on fluid (3), on structure (3), magnitude sum,
-    // particles in range, then the probes' sums.
+    // Sums: dynamic vertex forces, force on fluid (3), on structure (3), magnitude sum, particles
+    // in range; then the health's counts (particles, non-finite ones); then the probes' sums.
     constexpr std::size_t kDiagnostics = 8;
     std::vector<double> sums(dynamic_values + kDiagnostics, 0.0);
     std::copy_n(boundary_->vertex_forces.begin(),
@@ -470,8 +473,23 @@ class ClientSession {
     }
     sums[dynamic_values + 6] = diagnostics.pair_force_magnitude_sum;
     sums[dynamic_values + 7] = static_cast<double>(diagnostics.particles_in_range);
-    // Maxima: the closest approach as its negative (the minimum), then the probes' maxima.
+    // Maxima: the closest approach as its negative (a minimum); then the health's extremes
+    // (-min density, max density, max speed squared); then the probes' maxima.
     std::vector<double> maxima{-diagnostics.closest_distance};
+    const bool report_health = health_agreed();
+    if (report_health) {
+      communication.stop();
+      health_scan_.start();
+      const LocalFluidHealth health = driver_->local_fluid_health();
+      health_scan_.stop();
+      communication.start();
+      sums.push_back(static_cast<double>(driver_->local_particle_count()));
+      sums.push_back(static_cast<double>(health.non_finite));
+      maxima.insert(maxima.end(),
+                    {-health.min_density, health.max_density, health.max_speed_squared});
+    }
+    const std::size_t first_probe_sum = sums.size();
+    const std::size_t first_probe_maximum = maxima.size();
     if (probe_partials) {
       sums.insert(sums.end(), probe_partials->sums.begin(), probe_partials->sums.end());
       maxima.insert(maxima.end(), probe_partials->maxima.begin(), probe_partials->maxima.end());
@@ -507,13 +525,38 @@ class ClientSession {
     out.seconds_client_communication = communication.seconds();  // since the previous Forces
     communication.reset();
     channel_->send(forces);
+    if (report_health) {
+      protocol::FluidHealth report;
+      report.step = step;
+      report.particle_count =
+          static_cast<std::uint64_t>(std::llround(total[dynamic_values + kDiagnostics]));
+      report.non_finite_particles =
+          static_cast<std::uint64_t>(std::llround(total[dynamic_values + kDiagnostics + 1]));
+      report.min_density = -maxima_total[1];
+      report.max_density = maxima_total[2];
+      report.max_speed = std::sqrt(maxima_total[3]);
+      channel_->send(report);
+    }
     if (probe_partials) {
       probes::Partials reduced;
-      const auto first_sum = static_cast<long>(dynamic_values + kDiagnostics);
-      reduced.sums.assign(total.begin() + first_sum, total.end());
-      reduced.maxima.assign(maxima_total.begin() + 1, maxima_total.end());
+      reduced.sums.assign(total.begin() + static_cast<long>(first_probe_sum), total.end());
+      reduced.maxima.assign(maxima_total.begin() + static_cast<long>(first_probe_maximum),
+                            maxima_total.end());
       channel_->send(protocol::ProbeValues{step, probes_->values(reduced)});
     }
+  }
+
+  bool health_agreed() const { return (capabilities_ & protocol::kCapabilityFluidHealth) != 0; }
+
+  // What the per-step health scan costs, measured against the LIGGGHTS steps it accompanies.
+  void log_health_scan_cost(std::uint64_t steps) const {
+    if (!health_agreed() || steps == 0) return;
+    spdlog::info(
+        "fluid health scan: {:.3f} s over {} steps ({:.2f} us per step, {:.2f} % of the {:.2f} s "
+        "of LIGGGHTS steps) on this rank",
+        health_scan_.seconds(), steps, 1e6 * health_scan_.seconds() / static_cast<double>(steps),
+        seconds_stepping_ > 0.0 ? 100.0 * health_scan_.seconds() / seconds_stepping_ : 0.0,
+        seconds_stepping_);
   }
 
   void exchange_loop() {
@@ -530,7 +573,7 @@ class ClientSession {
         Stopwatch liggghts;
         liggghts.start();
         driver_->step();
-        liggghts.stop();
+        seconds_stepping_ += liggghts.stop();
         const double contact = boundary_->seconds_in_fix - fix_before;
         computing = {};
         send_forces(step->step, liggghts.seconds() - contact, contact);
@@ -565,6 +608,7 @@ class ClientSession {
                 probe_evaluations_, probes_->seconds_evaluating());
           }
         }
+        log_health_scan_cost(steps);
         return;
       } else if (auto* error = std::get_if<protocol::ErrorMessage>(&message)) {
         throw protocol::PeerReportedError(error->code, error->text,
@@ -612,6 +656,8 @@ class ClientSession {
   std::uint64_t probe_evaluations_ = 0;
   double time_step_ = 0.0;
   double last_time_ = 0.0;
+  Stopwatch health_scan_;          // the per-step health scans of this rank
+  double seconds_stepping_ = 0.0;  // the coupled LIGGGHTS steps of this rank
   int dimension_ = 2;
 };
 

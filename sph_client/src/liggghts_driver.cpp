@@ -337,6 +337,26 @@ std::uint64_t LiggghtsDriver::local_particle_count() const {
   return static_cast<std::uint64_t>(lammps_->atom->nlocal);
 }
 
+LocalFluidHealth LiggghtsDriver::local_fluid_health() const {
+  const auto& atom = *lammps_->atom;
+  LocalFluidHealth health;
+  for (int i = 0; i < atom.nlocal; ++i) {
+    const double* x = atom.x[i];
+    const double* v = atom.v[i];
+    const double rho = atom.rho ? atom.rho[i] : 0.0;
+    const double speed_squared = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+    // One sum catches a NaN or an infinity in any of the seven values.
+    if (!std::isfinite(x[0] + x[1] + x[2] + speed_squared + rho)) {
+      ++health.non_finite;
+      continue;
+    }
+    health.min_density = std::min(health.min_density, rho);
+    health.max_density = std::max(health.max_density, rho);
+    health.max_speed_squared = std::max(health.max_speed_squared, speed_squared);
+  }
+  return health;
+}
+
 Snapshot LiggghtsDriver::gather_snapshot(int dimension) const {
   const auto& atom = *lammps_->atom;
   const int local = atom.nlocal;

@@ -9,6 +9,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <span>
 #include <string>
@@ -54,6 +55,15 @@ struct FluidExtent {
   double height = 0.0;  // highest minus lowest particle along -g (0 without gravity)
   double mean_mass = 0.0;
   double mean_density = 0.0;
+};
+
+// The health of this rank's particles (not reduced): the extremes over the particles whose
+// position, velocity and density are all finite, and how many are not.
+struct LocalFluidHealth {
+  std::uint64_t non_finite = 0;
+  double min_density = std::numeric_limits<double>::infinity();
+  double max_density = -std::numeric_limits<double>::infinity();
+  double max_speed_squared = 0.0;
 };
 
 struct Snapshot {
@@ -108,6 +118,9 @@ class LiggghtsDriver {
   // Particles owned by this rank.
   std::uint64_t local_particle_count() const;
   bool has_fsi_fix() const { return fsi_fix_count_ > 0; }
+  // This rank's particles only (not collective): one pass over them, for the per-step health
+  // report (docs/protocol.md, FluidHealth).
+  LocalFluidHealth local_fluid_health() const;
   // Gathers id, position, velocity, density and pressure of every particle on rank 0, sorted by id.
   Snapshot gather_snapshot(int dimension) const;
 

@@ -1,9 +1,9 @@
-"""One reader for run.json (format_version 3) of every run mode: checks that the manifest has the
+"""One reader for run.json (format_version 4) of every run mode: checks that the manifest has the
 one shape fsi-server writes for coupled and --mbd-only runs, and returns it as a dict."""
 import json
 import os
 
-FORMAT_VERSION = 3
+FORMAT_VERSION = 4
 
 # Every key of the shape, with the keys of its objects; None marks a leaf.
 SHAPE = {
@@ -29,10 +29,11 @@ SHAPE = {
         "max_particle_speed_over_speed_of_sound_at_snapshots", "position_constraint_drift",
         "velocity_constraint_drift")},
     "release": None,
+    "health": None,
     "warnings": None, "status": None, "reason": None,
 }
 # Present in a coupled run, null in an --mbd-only run.
-COUPLED_ONLY = ("protocol", "fluid")
+COUPLED_ONLY = ("protocol", "fluid", "health")
 
 
 class ManifestError(Exception):

@@ -150,6 +150,35 @@ json checks_entry(const RunRecord& record) {
   return checks;
 }
 
+json health_entry(const RunRecord& record) {
+  if (!record.health) return nullptr;
+  const HealthSummary& health = *record.health;
+  const HealthRecord& worst = health.record;
+  const FluidRecord* fluid = record.fluid ? &*record.fluid : nullptr;
+  const bool reported = worst.steps_checked > 0;
+  json mach = nullptr;
+  if (reported && fluid && fluid->speed_of_sound && *fluid->speed_of_sound > 0.0)
+    mach = worst.max_particle_speed / *fluid->speed_of_sound;
+  return {
+      {"limits",
+       {{"max_density_deviation", health.limits.max_density_deviation},
+        {"warn_density_deviation", health.limits.warn_density_deviation},
+        {"max_mach", health.limits.max_mach},
+        {"warn_mach", health.limits.warn_mach},
+        {"min_wall_distance", health.limits.min_wall_distance},
+        {"allowed_lost_particles", health.allowed_lost_particles}}},
+      {"steps_checked", worst.steps_checked},
+      {"max_density_deviation", reported ? json(worst.max_density_deviation) : json(nullptr)},
+      {"max_density_deviation_step",
+       reported ? json(worst.max_density_deviation_step) : json(nullptr)},
+      {"max_particle_speed", reported ? json(worst.max_particle_speed) : json(nullptr)},
+      {"max_particle_speed_step", reported ? json(worst.max_particle_speed_step) : json(nullptr)},
+      {"max_mach", mach},
+      {"particles_lost", worst.particles_lost},
+      {"failed_check", worst.failed_check ? json(*worst.failed_check) : json(nullptr)},
+      {"warnings", worst.warnings}};
+}
+
 json release_entry(const std::optional<ReleaseCheck>& release) {
   if (!release) return nullptr;
   return {{"settling_drag", release->settling_drag},
@@ -198,6 +227,7 @@ void write_run_manifest(const fs::path& output_dir, const scene::Scene& scene,
                         {"substepped_steps", record.newton.substepped_steps}};
   manifest["checks"] = checks_entry(record);
   manifest["release"] = release_entry(record.release);
+  manifest["health"] = health_entry(record);
   manifest["warnings"] = record.warnings;
   manifest["status"] = record.status;
   manifest["reason"] = record.reason.empty() ? json(nullptr) : json(record.reason);

@@ -13,6 +13,7 @@
 
 #include "fsi/common/error.hpp"
 #include "fsi/common/stopwatch.hpp"
+#include "fsi/coupling/fluid_health.hpp"
 #include "fsi/coupling/output.hpp"
 #include "fsi/coupling/progress.hpp"
 #include "fsi/coupling/release_check.hpp"
@@ -40,8 +41,8 @@ struct Timings {
 struct FluidWatch {
   FluidRecord record;
   double closest_approach_over_r0 = std::numeric_limits<double>::infinity();
-  bool lost_warned = false;
   bool balance_warned = false;
+  bool health_unreported_warned = false;
   double last_snapshot_time = 0.0;
   double last_density_deviation = 0.0;  // max |rho/rho0 - 1| in the latest snapshot
   double last_max_speed = 0.0;          // max |v| in the latest snapshot [m/s]
@@ -54,6 +55,7 @@ class Session {
       : scene_(scene),
         options_(options),
         fluid_(fluid),
+        health_(scene.health, scene.liggghts.allowed_lost_particles, fluid_scales(scene)),
         progress_logger_(spdlog::get("progress") ? spdlog::get("progress")
                                                  : spdlog::default_logger()) {
     watch_.record.speed_of_sound = scene::speed_of_sound(scene);
@@ -148,6 +150,14 @@ class Session {
     FluidRecord& record = watch_.record;
     record.particle_count = ready.particle_count;
     record.particles_initial = ready.particle_count;
+    health_.set_initial_particles(ready.particle_count);
+    const scene::FluidHealthLimits& limits = health_.limits();
+    spdlog::info(
+        "fluid health checks at every exchange: stop at NaN, a particle closer than {:.3g} r0 "
+        "to a wall, |rho/rho0 - 1| > {:.3g}, |v| > {:.3g} c, more than {} particle(s) lost "
+        "(scene block FluidHealth, LIGGGHTS.allowed_lost_particles)",
+        limits.min_wall_distance, limits.max_density_deviation, limits.max_mach,
+        health_.allowed_lost_particles());
     record.liggghts_version = ready.liggghts_version;
     record.seconds_client_setup = ready.seconds_setup;
     record.seconds_client_equilibration = ready.seconds_equilibration;
@@ -195,8 +205,14 @@ class Session {
   // The fluid forces on the dynamic vertices become point loads held over the next step; the
   // fluid's diagnostics are checked and kept for run.json and the progress report.
   void take_forces(const FluidForces& forces, std::uint64_t step) {
-    structure_->apply_vertex_forces(forces.forces, step);
     const auto& d = forces.diagnostics;
+    // Recorded before the judgement, so that run.json of a stopped run shows what stopped it.
+    watch_.closest_approach_over_r0 =
+        std::min(watch_.closest_approach_over_r0, d.closest_approach_over_r0);
+    watch_.closest_since_report = std::min(watch_.closest_since_report, d.closest_approach_over_r0);
+    watch_.record.particles_final = d.particle_count;
+    judge_health(forces, step);
+    structure_->apply_vertex_forces(forces.forces, step);
     // Held for the sensors of the step these forces act in (like the point loads).
     total_fluid_force_ = d.force_on_structure;
     FluidRecord& record = watch_.record;
@@ -217,10 +233,6 @@ class Session {
         watch_.balance_warned = true;
       }
     }
-    watch_.closest_approach_over_r0 =
-        std::min(watch_.closest_approach_over_r0, d.closest_approach_over_r0);
-    watch_.closest_since_report = std::min(watch_.closest_since_report, d.closest_approach_over_r0);
-    record.particles_final = d.particle_count;
     if (d.particle_count == 0) {
       throw Error("every particle has left LIGGGHTS (" + std::to_string(record.particles_initial) +
                       " at the start)",
@@ -228,10 +240,25 @@ class Session {
                   "the fluid left the LIGGGHTS box: check the box in script 1, the time step "
                   "(fsi-server --check lists the physics warnings) and the wall forces");
     }
-    if (d.particle_count < record.particles_initial && !watch_.lost_warned) {
-      spdlog::warn("step {}: {} particle(s) lost (left the LIGGGHTS box)", step,
-                   record.particles_initial - d.particle_count);
-      watch_.lost_warned = true;
+  }
+
+  // The run judges its fluid (fluid_health.hpp): a failing check ends the run with its diagnosis
+  // before this step's forces act or its output is written.
+  void judge_health(const FluidForces& forces, std::uint64_t step) {
+    if (!forces.health && !watch_.health_unreported_warned) {
+      spdlog::warn(
+          "the fluid side reports no FluidHealth (an fsi-client of protocol 1.2): density and "
+          "particle speed are not checked, only recorded at the snapshots; use an fsi-client of "
+          "protocol 1.3 or later");
+      watch_.health_unreported_warned = true;
+    }
+    const HealthVerdict verdict = health_.judge(step, forces);
+    for (const HealthFinding& warning : verdict.warnings)
+      spdlog::warn("fluid health ({}): {}; {}", warning.check, warning.message, warning.fix);
+    if (verdict.stop) {
+      throw Error(
+          "fluid health check '" + verdict.stop->check + "' failed: " + verdict.stop->message,
+          "step " + std::to_string(step), verdict.stop->fix);
     }
   }
 
@@ -401,6 +428,8 @@ class Session {
     run.seconds_mbd = timings_.mbd.seconds();
     run.seconds_output = timings_.output.seconds();
     run.fluid = watch_.record;
+    run.health =
+        HealthSummary{health_.record(), health_.limits(), health_.allowed_lost_particles()};
     run.fluid->peer = fluid_.peer();
     run.fluid->seconds_round_trip = timings_.round_trip.seconds();
     if (std::isfinite(watch_.closest_approach_over_r0))
@@ -425,6 +454,7 @@ class Session {
   Timings timings_;
   std::optional<ReleaseCheck> release_;  // absent: the fluid side did not report it
   FluidWatch watch_;
+  FluidHealthMonitor health_;
   bool coupling_ = false;  // the set-up is done, the coupled steps have begun
   std::uint64_t steps_done_ = 0;
   std::uint64_t snapshots_ = 0;

@@ -51,7 +51,8 @@ void TcpFluidSide::connect() {
   handshake.software_version = std::string(fsi::software_version());
   handshake.run_name = fs::path(options_.output_dir).filename().string();
   handshake.timeout = options_.handshake_timeout;
-  handshake.session_capabilities = protocol::kCapabilitySettling | protocol::kCapabilityProbes;
+  handshake.session_capabilities = protocol::kCapabilitySettling |
+                                   protocol::kCapabilityFluidHealth | protocol::kCapabilityProbes;
   const protocol::ServerHandshakeResult opened = protocol::accept_client(*channel_, handshake);
   const protocol::Hello& hello = opened.hello;
   client_ = hello;
@@ -170,7 +171,16 @@ FluidForces TcpFluidSide::expect_forces(std::uint64_t step) {
                     std::to_string(step) + " was expected",
                 "coupled step", "use matching fsi-server and fsi-client releases");
   }
-  FluidForces result{std::move(forces.forces), forces.diagnostics, {}};
+  FluidForces result{std::move(forces.forces), forces.diagnostics, {}, std::nullopt};
+  // The client sends FluidHealth, then ProbeValues, after the Forces (docs/protocol.md).
+  if ((capabilities_ & protocol::kCapabilityFluidHealth) != 0) {
+    result.health = channel_->expect<protocol::FluidHealth>(options_.peer_timeout);
+    if (result.health->step != step) {
+      throw Error("FluidHealth of step " + std::to_string(result.health->step) +
+                      " arrived after the Forces of step " + std::to_string(step),
+                  "coupled step", "use matching fsi-server and fsi-client releases");
+    }
+  }
   if (probes_expected_ && step % probe_every_steps_ == 0) {
     auto probes = channel_->expect<protocol::ProbeValues>(options_.peer_timeout);
     if (probes.step != step) {

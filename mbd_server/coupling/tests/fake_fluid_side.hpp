@@ -34,6 +34,11 @@ class FakeFluidSide final : public FluidSide {
   std::optional<std::uint64_t> fail_at_step;  // exchange of this step throws
   bool fail_in_equilibration = false;
   std::uint64_t particle_count = 0;  // 0: as many as the scene generates
+  // Reports FluidHealth (protocol 1.3) with every Forces: a fluid at rest at the scene's density,
+  // with `non_finite_particles` NaN particles at step `nan_at_step`.
+  bool report_health = false;
+  std::optional<std::uint64_t> nan_at_step;
+  std::uint64_t non_finite_particles = 1;
 
   // What the loop did.
   int set_up_calls = 0;
@@ -50,6 +55,7 @@ class FakeFluidSide final : public FluidSide {
     ++set_up_calls;
     set_up_vertex_values = positions.size();
     if (particle_count == 0) particle_count = scene.fluid.count();
+    density_ = scene.fluid.density;
     const auto dynamic_values =
         static_cast<long>(dimension_) * static_cast<long>(scene.boundary.dynamic_vertex_count);
     initial_.positions.assign(positions.begin(), positions.begin() + dynamic_values);
@@ -109,12 +115,22 @@ class FakeFluidSide final : public FluidSide {
       result.diagnostics.force_on_fluid[k] = -result.diagnostics.force_on_structure[k];
     result.diagnostics.particle_count = particle_count;
     result.diagnostics.closest_approach_over_r0 = 1.0;
+    if (report_health) {
+      protocol::FluidHealth health;
+      health.step = motion.step;
+      health.particle_count = particle_count;
+      health.non_finite_particles =
+          nan_at_step && motion.step == *nan_at_step ? non_finite_particles : 0;
+      health.min_density = health.max_density = density_;
+      result.health = health;
+    }
     return result;
   }
 
   int dimension_;
   ForceLaw law_;
   BoundaryMotion initial_;  // the dynamic vertices at set-up (step 0)
+  double density_ = 0.0;    // the scene's rho0
 };
 
 }  // namespace fsi::coupling::testing

@@ -211,6 +211,47 @@ TEST_F(SessionLoop, NonFiniteFluidForcesStopTheRunAtTheirStep) {
             std::string::npos);
 }
 
+TEST_F(SessionLoop, AFailingHealthCheckStopsTheRunBeforeItsStepIsWritten) {
+  scene::Scene scene = static_tank();
+  FakeFluidSide fluid(2, FakeFluidSide::constant({0.0, -0.01}));
+  fluid.report_health = true;
+  fluid.nan_at_step = 7;
+  fluid.non_finite_particles = 4;
+
+  EXPECT_EQ(run_session(scene, options_, fluid), 1);
+
+  EXPECT_EQ(fluid.exchanges.size(), 7u);
+  const auto run = manifest();
+  EXPECT_EQ(run["status"], "failed");
+  EXPECT_EQ(run["steps"], 6);
+  EXPECT_EQ(run["health"]["failed_check"], "non_finite");
+  EXPECT_EQ(run["health"]["steps_checked"], 8);  // step 0 and 1 to 7
+  EXPECT_NE(run["reason"].get<std::string>().find(
+                "fluid health check 'non_finite' failed: 4 of 1980 particles have a NaN"),
+            std::string::npos)
+      << run["reason"];
+  // The sensors stop at the last good step: rows for t = 0 and steps 1 to 7 (step 7's row holds
+  // the forces of step 6, written before its exchange).
+  EXPECT_EQ(sensors().at("time").size(), 8u);
+  ASSERT_EQ(fluid.reported_faults.size(), 1u);
+  EXPECT_TRUE(fluid.faults_during_coupled_steps[0]);
+}
+
+TEST_F(SessionLoop, AHealthyFluidIsRecordedInRunJson) {
+  scene::Scene scene = static_tank();
+  FakeFluidSide fluid(2, FakeFluidSide::constant({0.0, -0.01}));
+  fluid.report_health = true;
+
+  EXPECT_EQ(run_session(scene, options_, fluid), 0);
+
+  const auto health = manifest()["health"];
+  EXPECT_EQ(health["steps_checked"], kSteps + 1);
+  EXPECT_EQ(health["max_density_deviation"], 0.0);
+  EXPECT_TRUE(health["failed_check"].is_null());
+  EXPECT_EQ(health["limits"]["max_density_deviation"], 0.03);
+  EXPECT_EQ(health["limits"]["allowed_lost_particles"], 0);
+}
+
 // Both run kinds (coupled and --mbd-only) create their folder this way: a folder that cannot be
 // made (here: below a regular file) is an error naming it and the option.
 TEST_F(SessionLoop, ARunFolderThatCannotBeCreatedIsAnErrorNamingIt) {

@@ -64,6 +64,32 @@ BlockSpec fluid_region_spec() {
            .as_list()});
 }
 
+// The defaults are derived in docs/user-guide.md, "When a run stops: the health checks".
+BlockSpec fluid_health_spec() {
+  const FluidHealthLimits defaults;
+  return block_spec(
+      "FluidHealth",
+      "Limits of the checks that stop a coupled run whose fluid fails, judged at every exchange "
+      "(docs/user-guide.md, \"When a run stops: the health checks\").",
+      {number("max_density_deviation", "",
+              "stop when max |rho/rho0 - 1| exceeds this (weakly compressible SPH aims at 0.01)")
+           .positive()
+           .with_default(defaults.max_density_deviation),
+       number("warn_density_deviation", "", "warn (once) when max |rho/rho0 - 1| exceeds this")
+           .positive()
+           .with_default(defaults.warn_density_deviation),
+       number("max_mach", "", "stop when the fastest particle exceeds this fraction of c (cAB)")
+           .positive()
+           .with_default(defaults.max_mach),
+       number("warn_mach", "", "warn (once) when the fastest particle exceeds this fraction of c")
+           .positive()
+           .with_default(defaults.warn_mach),
+       number("min_wall_distance", "",
+              "stop when a particle comes closer to a wall than this fraction of r0 (0: never)")
+           .between(0.0, 1.0)
+           .with_default(defaults.min_wall_distance)});
+}
+
 std::vector<BlockSpec> fluid_blocks() {
   return {
       fluid_region_spec().for_coupled_runs(),
@@ -80,9 +106,15 @@ std::vector<BlockSpec> fluid_blocks() {
                          "script 2; 0 = none; absent: 2 pi sqrt(g/H), at most 0.1/dt "
                          "(docs/theory.md, \"Settling the fluid\")")
                       .at_least(0.0)
-                      .optional()})
+                      .optional(),
+                  integer("allowed_lost_particles",
+                          "particles that may leave the LIGGGHTS box before the run fails "
+                          "(counted from the end of the equilibration)")
+                      .at_least(0)
+                      .with_default(0)})
           .as_required()
           .for_coupled_runs(),
+      fluid_health_spec().for_coupled_runs(),
       block_spec("LIGGGHTS_SPH_parameters",
                  "Every entry becomes a LIGGGHTS string variable ${name} defined before script 1.")
           .as_open()
@@ -261,6 +293,10 @@ void build_liggghts(SceneBuilder& builder) {
   builder.guard(liggghts.location(), [&] {
     if (liggghts.has("settling_drag")) setup.settling_drag = liggghts.number("settling_drag");
   });
+  builder.guard(liggghts.location(), [&] {
+    setup.allowed_lost_particles =
+        static_cast<std::uint64_t>(liggghts.integer("allowed_lost_particles"));
+  });
   const Block* sph = builder.scene.parameters.child("LIGGGHTS_SPH_parameters");
   if (sph == nullptr) return;
   for (const Parameter& p : sph->parameters) {
@@ -274,6 +310,27 @@ void build_liggghts(SceneBuilder& builder) {
                       "LIGGGHTS variable '" + p.key + "' is a " + std::string(name(p.value.kind)),
                       "LIGGGHTS variables are numbers or strings");
     }
+  }
+}
+
+void build_fluid_health(SceneBuilder& builder) {
+  FluidHealthLimits& limits = builder.scene.health;
+  const View health = builder.root.block("FluidHealth");
+  limits.max_density_deviation = health.number("max_density_deviation");
+  limits.warn_density_deviation = health.number("warn_density_deviation");
+  limits.max_mach = health.number("max_mach");
+  limits.warn_mach = health.number("warn_mach");
+  limits.min_wall_distance = health.number("min_wall_distance");
+  if (limits.warn_density_deviation > limits.max_density_deviation) {
+    builder.problem(health.location("warn_density_deviation"),
+                    "warn_density_deviation exceeds max_density_deviation: the run would stop "
+                    "before it warns",
+                    "make warn_density_deviation at most max_density_deviation");
+  }
+  if (limits.warn_mach > limits.max_mach) {
+    builder.problem(health.location("warn_mach"),
+                    "warn_mach exceeds max_mach: the run would stop before it warns",
+                    "make warn_mach at most max_mach");
   }
 }
 
@@ -299,6 +356,7 @@ void build_fluid(SceneBuilder& builder) {
     builder.guard(region.location(), [&] { build_fluid_region(builder, region); });
   }
   build_liggghts(builder);
+  builder.guard(root.location(), [&] { build_fluid_health(builder); });
 }
 
 }  // namespace

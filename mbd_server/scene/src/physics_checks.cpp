@@ -1045,4 +1045,11 @@ std::optional<double> speed_of_sound(const Scene& scene) {
   return c->value;
 }
 
+std::optional<double> smoothing_length(const Scene& scene) {
+  Inputs in(scene);
+  const auto h = in.sph("smoothinglength");
+  if (!h) return std::nullopt;
+  return h->value;
+}
+
 }  // namespace fsi::scene

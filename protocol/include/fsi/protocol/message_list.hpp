@@ -25,6 +25,7 @@
   X(Step, Step, 0x20)                       \
   X(Forces, Forces, 0x21)                   \
   X(ProbeValues, ProbeValues, 0x22)         \
+  X(FluidHealth, FluidHealth, 0x23)         \
   X(SnapshotRequest, SnapshotRequest, 0x30) \
   X(Snapshot, Snapshot, 0x31)               \
   X(Shutdown, Shutdown, 0x40)               \

@@ -32,6 +32,10 @@ inline constexpr std::uint32_t kCapabilitySettling = 1u << 2;
 // 1.3: the sender evaluates (client) or records (server) probes of the fluid (ProbeSetup,
 // ProbeValues).
 inline constexpr std::uint32_t kCapabilityProbes = 1u << 3;
+// 1.3: the sender reports the fluid's health after every Forces (FluidHealth), so that the server
+// can stop a run whose fluid is failing before it writes NaN (docs/user-guide.md, "When a run
+// stops: the health checks").
+inline constexpr std::uint32_t kCapabilityFluidHealth = 1u << 4;
 
 // The codes of an Error message (docs/protocol.md §7) as X(enumerator, value); AuthenticationFailed
 // came with 1.1.
@@ -261,11 +265,25 @@ struct Forces {  // client -> server
 
 // 1.3, capability kCapabilityProbes: the probes' values (one per column, fsi::probes::columns)
 // at the end of a probe step, reduced over the client's ranks.
-struct ProbeValues {  // client -> server, right after the Forces of a step that has probes
+struct ProbeValues {  // client -> server, after the Forces (and FluidHealth) of a probe step
   static constexpr MessageType kType = MessageType::ProbeValues;
   std::uint64_t step = 0;
   std::vector<double> values;
   bool operator==(const ProbeValues&) const = default;
+};
+
+// 1.3, capability kCapabilityFluidHealth: the state of every particle at the end of a step,
+// reduced over all ranks. Extremes are over the particles whose position, velocity and density
+// are all finite; the others are only counted.
+struct FluidHealth {  // client -> server, right after each Forces (step 0 included)
+  static constexpr MessageType kType = MessageType::FluidHealth;
+  std::uint64_t step = 0;
+  std::uint64_t particle_count = 0;
+  std::uint64_t non_finite_particles = 0;  // a NaN or inf in position, velocity or density
+  double min_density = 0.0;                // [kg/m^3]; +inf when no particle is finite
+  double max_density = 0.0;                // [kg/m^3]; -inf when no particle is finite
+  double max_speed = 0.0;                  // max |v| [m/s]
+  bool operator==(const FluidHealth&) const = default;
 };
 
 struct SnapshotRequest {  // server -> client

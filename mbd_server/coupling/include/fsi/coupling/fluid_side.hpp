@@ -26,6 +26,9 @@ struct FluidForces {
   // The scene's probes at the end of the step, one value per column (fsi::probes::columns):
   // at every sensor step of a scene with probes, empty otherwise.
   std::vector<double> probe_values;
+  // The state of every particle at the same time (protocol 1.3); absent when the fluid side does
+  // not report it (a client of protocol 1.2).
+  std::optional<protocol::FluidHealth> health;
 };
 
 // Where the dynamic boundary vertices are at the end of a step.

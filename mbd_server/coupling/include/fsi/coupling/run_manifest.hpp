@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "fsi/coupling/fluid_health.hpp"
 #include "fsi/coupling/fluid_side.hpp"
 #include "fsi/coupling/release_check.hpp"
 #include "fsi/mbd/integrator.hpp"
@@ -19,7 +20,8 @@ namespace fsi::coupling {
 
 // Version 2: one shape for every mode ("mode", gravity with `dimension` components, bodies as a
 // list, null for what a mode does not have). Version 3: "release", the fluid at release.
-inline constexpr int kRunManifestFormatVersion = 3;
+// Version 4: "health", the fluid health checks (limits, the worst values, the failed check).
+inline constexpr int kRunManifestFormatVersion = 4;
 
 enum class RunMode { Coupled, MbdOnly };
 
@@ -44,6 +46,13 @@ struct FluidRecord {
   std::optional<double> speed_of_sound;
 };
 
+// The fluid health checks of a coupled run (fluid_health.hpp).
+struct HealthSummary {
+  HealthRecord record;
+  scene::FluidHealthLimits limits;
+  std::uint64_t allowed_lost_particles = 0;
+};
+
 struct RunRecord {
   RunMode mode = RunMode::Coupled;
   std::string command_line;
@@ -63,6 +72,7 @@ struct RunRecord {
   std::optional<FluidRecord> fluid;  // coupled runs only
   // Coupled runs whose client reported the fluid at release (protocol 1.2).
   std::optional<ReleaseCheck> release;
+  std::optional<HealthSummary> health;  // coupled runs only
 };
 
 // Writes DIR/run.json. Throws fsi::Error if it cannot.

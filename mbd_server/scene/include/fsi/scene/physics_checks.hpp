@@ -62,5 +62,8 @@ std::vector<Diagnostic> end_time_check(const Scene& scene);
 // The speed of sound c [m/s] the checks use (LIGGGHTS_SPH_parameters.cAB), or nullopt when the
 // scene does not give a positive number; the server's progress line compares particle speeds to it.
 std::optional<double> speed_of_sound(const Scene& scene);
+// The smoothing length h [m] (LIGGGHTS_SPH_parameters.smoothinglength), or nullopt; the health
+// checks' advice on the time step states dt c / h with it.
+std::optional<double> smoothing_length(const Scene& scene);
 
 }  // namespace fsi::scene

@@ -109,6 +109,18 @@ struct LiggghtsSetup {
   // The drag rate [1/s] of the equilibration's settling (docs/theory.md, "Settling the fluid"):
   // absent = derived by fsi-client from H, |g| and dt; 0 = none.
   std::optional<double> settling_drag;
+  // Particles the run may lose (leave the LIGGGHTS box) before it fails.
+  std::uint64_t allowed_lost_particles = 0;
+};
+
+// The limits of the fluid health checks that stop a coupled run (block FluidHealth;
+// docs/user-guide.md, "When a run stops: the health checks"). The defaults are the block's.
+struct FluidHealthLimits {
+  double max_density_deviation = 0.03;   // stop above: max |rho/rho0 - 1|
+  double warn_density_deviation = 0.01;  // warn above (the aim of weakly compressible SPH)
+  double max_mach = 0.5;                 // stop above: max |v| / c
+  double warn_mach = 0.1;                // warn above (c >= 10 v_max, thesis §6.2)
+  double min_wall_distance = 0.1;        // stop below: closest particle-wall distance / r0
 };
 
 // TotalFluidForce: the force of the fluid on every boundary, static walls included (no body).
@@ -158,6 +170,7 @@ struct Scene {
   BoundaryMesh boundary;
   FluidParticles fluid;
   LiggghtsSetup liggghts;
+  FluidHealthLimits health;
   std::vector<SensorSpec> sensors;
   // The probes of the fluid (coupled runs): their columns follow the sensors' in sensors.csv.
   std::vector<probes::ProbeDefinition> probes;

@@ -1,0 +1,297 @@
+#include "fsi/coupling/fluid_health.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include "fsi/scene/physics_checks.hpp"
+
+namespace fsi::coupling {
+namespace {
+
+// dt c / h measured stable here (docs/user-guide.md, "Physics checks": below the thesis' 0.25).
+constexpr double kStableCourant = 0.125;
+// Weakly compressible SPH aims at |rho/rho0 - 1| <= 1 % (Monaghan 1994: c >= 10 v_max).
+constexpr double kDensityAim = 0.01;
+
+std::string number(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g", value);
+  return text;
+}
+
+std::string at_step(std::uint64_t step) {
+  return step == 0 ? std::string("at release (step 0)") : "at step " + std::to_string(step);
+}
+
+bool finite_forces(const FluidForces& forces) {
+  const auto& d = forces.diagnostics;
+  auto finite = [](double value) { return std::isfinite(value); };
+  return std::all_of(forces.forces.begin(), forces.forces.end(), finite) &&
+         std::all_of(d.force_on_fluid.begin(), d.force_on_fluid.end(), finite) &&
+         std::all_of(d.force_on_structure.begin(), d.force_on_structure.end(), finite) &&
+         std::isfinite(d.pair_force_magnitude_sum) && !std::isnan(d.closest_approach_over_r0);
+}
+
+std::optional<double> sph_number(const scene::Scene& scene, const std::string& name) {
+  for (const auto& [key, value] : scene.liggghts.variables) {
+    if (key != name) continue;
+    try {
+      std::size_t used = 0;
+      const double parsed = std::stod(value, &used);
+      if (used == value.size() && std::isfinite(parsed)) return parsed;
+    } catch (const std::exception&) {
+    }
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+FluidHealthMonitor::FluidHealthMonitor(const scene::FluidHealthLimits& limits,
+                                       std::uint64_t allowed_lost_particles, FluidScales scales)
+    : limits_(limits), allowed_lost_(allowed_lost_particles), scales_(std::move(scales)) {
+  closest_over_r0_ = std::numeric_limits<double>::infinity();
+}
+
+HealthVerdict FluidHealthMonitor::judge(std::uint64_t step, const FluidForces& forces) {
+  HealthVerdict verdict;
+  const double closest = forces.diagnostics.closest_approach_over_r0;
+  if (!std::isnan(closest)) closest_over_r0_ = std::min(closest_over_r0_, closest);
+  auto first = [&](std::optional<HealthFinding> finding) {
+    if (!verdict.stop && finding) verdict.stop = std::move(finding);
+  };
+  first(non_finite(step, forces));
+  first(wall_distance(step, closest));
+  if (forces.health) {
+    ++record_.steps_checked;
+    first(density(step, *forces.health, verdict.warnings));
+    first(mach(step, *forces.health, verdict.warnings));
+  }
+  const std::uint64_t count =
+      forces.health ? forces.health->particle_count : forces.diagnostics.particle_count;
+  first(lost(step, count, verdict.warnings));
+  if (verdict.stop) record_.failed_check = verdict.stop->check;
+  for (const HealthFinding& warning : verdict.warnings)
+    record_.warnings.push_back(warning.message);
+  return verdict;
+}
+
+std::string FluidHealthMonitor::time_step_advice() const {
+  if (!scales_.speed_of_sound || !scales_.smoothing_length || !(scales_.time_step > 0.0)) return {};
+  const double courant = scales_.time_step * *scales_.speed_of_sound / *scales_.smoothing_length;
+  std::string text = "dt c / h = " + number(courant);
+  if (courant > kStableCourant) {
+    text += " exceeds the " + number(kStableCourant) +
+            " measured stable: reduce SolverOptions.Timeint.step_size from " +
+            number(scales_.time_step) + " s to at most " +
+            number(scales_.time_step * kStableCourant / courant) + " s";
+  } else {
+    text += " (stable up to " + number(kStableCourant) + ")";
+  }
+  return text;
+}
+
+std::optional<HealthFinding> FluidHealthMonitor::non_finite(std::uint64_t step,
+                                                            const FluidForces& forces) const {
+  std::string what;
+  if (forces.health && forces.health->non_finite_particles > 0) {
+    what = std::to_string(forces.health->non_finite_particles) + " of " +
+           std::to_string(forces.health->particle_count) +
+           " particles have a NaN or infinite position, velocity or density " + at_step(step);
+  } else if (!finite_forces(forces)) {
+    what = "the fluid forces of step " + std::to_string(step) +
+           " are not finite (NaN or infinite forces on the structure)";
+  } else if (forces.health && forces.health->particle_count > 0 &&
+             !(std::isfinite(forces.health->max_speed) &&
+               std::isfinite(forces.health->max_density) &&
+               std::isfinite(forces.health->min_density))) {
+    what = "the fluid's extremes are NaN or infinite " + at_step(step);
+  }
+  if (what.empty()) return std::nullopt;
+  std::string fix = "the fluid blew up within one step, faster than the other checks could see; ";
+  const std::string advice = time_step_advice();
+  fix += "halve SolverOptions.Timeint.step_size" + (advice.empty() ? "" : " (now " + advice + ")");
+  fix += ", and check the wall repulsion SPH_wall_rep (fsi-server --check prints the limits)";
+  return HealthFinding{kCheckNonFinite, what, fix};
+}
+
+std::optional<HealthFinding> FluidHealthMonitor::wall_distance(std::uint64_t step,
+                                                               double closest_over_r0) const {
+  if (!(limits_.min_wall_distance > 0.0) || !(closest_over_r0 < limits_.min_wall_distance))
+    return std::nullopt;
+  HealthFinding finding;
+  finding.check = kCheckWallDistance;
+  finding.message =
+      "a particle is " + number(closest_over_r0) + " r0 from a wall " + at_step(step) +
+      ", closer than FluidHealth.min_wall_distance = " + number(limits_.min_wall_distance) +
+      " r0: it has broken through the wall law (a fluid at rest keeps about 0.5 r0)";
+  // The wall law's force at a given distance scales with k: a particle pressed to d/r0 by its
+  // load stays near the distance it keeps at rest only if k grows by about the ratio of the two.
+  const double factor = std::max(2.0, 0.5 / std::max(closest_over_r0, 0.05));
+  finding.fix = "raise the wall repulsion SPH_wall_rep (k) by a factor of " + number(factor);
+  if (scales_.wall_repulsion)
+    finding.fix += ", from " + number(*scales_.wall_repulsion) + " to " +
+                   number(factor * *scales_.wall_repulsion);
+  const std::string advice = time_step_advice();
+  finding.fix += ", and keep the step below the contact limit of fsi-server --check" +
+                 (advice.empty() ? std::string() : " (" + advice + ")");
+  return finding;
+}
+
+std::optional<HealthFinding> FluidHealthMonitor::density(std::uint64_t step,
+                                                         const protocol::FluidHealth& health,
+                                                         std::vector<HealthFinding>& warnings) {
+  const double rho0 = scales_.rest_density;
+  if (!(rho0 > 0.0) || health.particle_count == health.non_finite_particles) return std::nullopt;
+  const double deviation =
+      std::max(health.max_density / rho0 - 1.0, 1.0 - health.min_density / rho0);
+  if (deviation > record_.max_density_deviation) {
+    record_.max_density_deviation = deviation;
+    record_.max_density_deviation_step = step;
+  }
+  const std::string what = "max |rho/rho0 - 1| = " + number(deviation) + " " + at_step(step) +
+                           " (rho from " + number(health.min_density) + " to " +
+                           number(health.max_density) + " kg/m^3, rho0 = " + number(rho0) + ")";
+  // In a weakly compressible fluid the deviation goes as (v/c)^2 + g H / c^2: raising c by
+  // sqrt(deviation / 1 %) brings it back to the aim.
+  const double factor = std::sqrt(deviation / kDensityAim);
+  std::string fix;
+  const std::string advice = time_step_advice();
+  if (scales_.speed_of_sound && scales_.smoothing_length &&
+      scales_.time_step * *scales_.speed_of_sound / *scales_.smoothing_length > kStableCourant) {
+    fix = "the time step is too large for the speed of sound: " + advice;
+  } else {
+    fix = "the speed of sound is too low for this flow (rho/rho0 - 1 goes as 1/c^2): raise cAB";
+    if (scales_.speed_of_sound) {
+      fix += " from " + number(*scales_.speed_of_sound) + " to at least " +
+             number(factor * *scales_.speed_of_sound) + " m/s";
+    } else {
+      fix += " by a factor of " + number(factor);
+    }
+    fix += " and reduce SolverOptions.Timeint.step_size by the same factor to keep dt c / h";
+    if (!advice.empty()) fix += " (now " + advice + ")";
+  }
+  if (deviation > limits_.max_density_deviation) {
+    return HealthFinding{kCheckDensityDeviation,
+                         what + " exceeds FluidHealth.max_density_deviation = " +
+                             number(limits_.max_density_deviation) +
+                             " (weakly compressible SPH aims at " + number(kDensityAim) + ")",
+                         fix};
+  }
+  if (deviation > limits_.warn_density_deviation && !density_warned_) {
+    density_warned_ = true;
+    warnings.push_back({kCheckDensityDeviation,
+                        what + " exceeds FluidHealth.warn_density_deviation = " +
+                            number(limits_.warn_density_deviation) + " (warned once)",
+                        fix});
+  }
+  return std::nullopt;
+}
+
+std::optional<HealthFinding> FluidHealthMonitor::mach(std::uint64_t step,
+                                                      const protocol::FluidHealth& health,
+                                                      std::vector<HealthFinding>& warnings) {
+  if (health.max_speed > record_.max_particle_speed) {
+    record_.max_particle_speed = health.max_speed;
+    record_.max_particle_speed_step = step;
+  }
+  if (!scales_.speed_of_sound || !(*scales_.speed_of_sound > 0.0)) return std::nullopt;
+  const double c = *scales_.speed_of_sound;
+  const double mach_number = health.max_speed / c;
+  const std::string what = "the fastest particle moves at " + number(health.max_speed) +
+                           " m/s = " + number(mach_number) + " c (c = cAB = " + number(c) +
+                           " m/s) " + at_step(step);
+  // c >= 10 v_max keeps the density within 1 % (thesis §6.2).
+  std::string fix = "raise cAB from " + number(c) +
+                    " to at least 10 v_max = " + number(10.0 * health.max_speed) +
+                    " m/s and reduce SolverOptions.Timeint.step_size by the same factor";
+  const std::string advice = time_step_advice();
+  if (!advice.empty()) fix += " (now " + advice + ")";
+  fix +=
+      "; a speed far above sqrt(2 g H) of the flow means a wall or the time step kicked the "
+      "fluid: halve the step first";
+  if (mach_number > limits_.max_mach) {
+    return HealthFinding{kCheckMach,
+                         what + ", above FluidHealth.max_mach = " + number(limits_.max_mach), fix};
+  }
+  if (mach_number > limits_.warn_mach && !mach_warned_) {
+    mach_warned_ = true;
+    warnings.push_back(
+        {kCheckMach,
+         what + ", above FluidHealth.warn_mach = " + number(limits_.warn_mach) + " (warned once)",
+         fix});
+  }
+  return std::nullopt;
+}
+
+std::optional<HealthFinding> FluidHealthMonitor::lost(std::uint64_t step, std::uint64_t count,
+                                                      std::vector<HealthFinding>& warnings) {
+  if (count >= initial_particles_) return std::nullopt;
+  const std::uint64_t lost_now = initial_particles_ - count;
+  record_.particles_lost = std::max(record_.particles_lost, lost_now);
+  const std::string what = std::to_string(lost_now) + " of " + std::to_string(initial_particles_) +
+                           " particles have left the LIGGGHTS box " + at_step(step) +
+                           "; the scene allows " + std::to_string(allowed_lost_) +
+                           " (LIGGGHTS.allowed_lost_particles)";
+  std::string fix = "the LIGGGHTS box in script 1 is too small for the flow: enlarge " +
+                    scales_.box_description +
+                    " beyond every wall and above the highest splash, or declare "
+                    "LIGGGHTS.allowed_lost_particles = " +
+                    std::to_string(lost_now) + " if losing them is intended";
+  if (std::isfinite(closest_over_r0_)) {
+    fix += " (if they left through a wall instead: the closest approach so far was " +
+           number(closest_over_r0_) + " r0; raise SPH_wall_rep)";
+  }
+  if (lost_now > allowed_lost_) return HealthFinding{kCheckLostParticles, what, fix};
+  if (!lost_warned_) {
+    lost_warned_ = true;
+    warnings.push_back({kCheckLostParticles, what + " (warned once)", fix});
+  }
+  return std::nullopt;
+}
+
+std::string describe_liggghts_box(const std::string& script_name, const std::string& script_text) {
+  std::istringstream lines(script_text);
+  std::string line, region_id;
+  std::vector<std::pair<int, std::string>> regions;
+  int number_of_line = 0;
+  while (std::getline(lines, line)) {
+    ++number_of_line;
+    std::istringstream words(line.substr(0, line.find('#')));
+    std::string command, id;
+    words >> command >> id;
+    if (command == "region") {
+      std::string rest;
+      std::getline(words, rest);
+      regions.emplace_back(number_of_line, id + "|" + rest);
+    } else if (command == "create_box") {
+      std::string region;
+      words >> region;
+      region_id = region;
+    }
+  }
+  for (const auto& [at, text] : regions) {
+    const std::string id = text.substr(0, text.find('|'));
+    if (id != region_id) continue;
+    std::string shape = text.substr(text.find('|') + 1);
+    shape.erase(0, shape.find_first_not_of(" \t"));
+    return "region " + id + " at " + script_name + ":" + std::to_string(at) + " (" + shape + ")";
+  }
+  return "the region of create_box in " + script_name;
+}
+
+FluidScales fluid_scales(const scene::Scene& scene) {
+  FluidScales scales;
+  scales.rest_density = scene.fluid.density;
+  scales.speed_of_sound = scene::speed_of_sound(scene);
+  scales.smoothing_length = scene::smoothing_length(scene);
+  scales.time_step = scene.solver.step_size;
+  scales.wall_repulsion = sph_number(scene, "SPH_wall_rep");
+  scales.box_description =
+      describe_liggghts_box(scene.liggghts.script1_name, scene.liggghts.script1_text);
+  return scales;
+}
+
+}  // namespace fsi::coupling

@@ -1,0 +1,232 @@
+// The fluid health checks on hand-made diagnostics: each check stops at its limit with a diagnosis
+// naming the parameter and the number to change, warns once below it, and a healthy fluid passes.
+#include "fsi/coupling/fluid_health.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <string>
+
+namespace fsi::coupling {
+namespace {
+
+constexpr std::uint64_t kParticles = 1000;
+
+FluidScales water_column_scales() {
+  FluidScales scales;
+  scales.rest_density = 1000.0;
+  scales.speed_of_sound = 20.0;
+  scales.smoothing_length = 0.004;
+  scales.time_step = 2.5e-5;  // dt c / h = 0.125
+  scales.wall_repulsion = 12753.0;
+  scales.box_description = "region domain at column.in1:22 (block ${xmin} ${xmax})";
+  return scales;
+}
+
+// A fluid at rest: 0.3 % compressed at the bottom, slow, half r0 from the walls.
+FluidForces healthy() {
+  FluidForces forces;
+  forces.forces = {0.0, -12.5};
+  forces.diagnostics.force_on_structure = {0.0, -12.5, 0.0};
+  forces.diagnostics.force_on_fluid = {0.0, 12.5, 0.0};
+  forces.diagnostics.closest_approach_over_r0 = 0.5;
+  forces.diagnostics.particle_count = kParticles;
+  protocol::FluidHealth health;
+  health.particle_count = kParticles;
+  health.min_density = 999.0;
+  health.max_density = 1003.0;
+  health.max_speed = 0.05;
+  forces.health = health;
+  return forces;
+}
+
+FluidHealthMonitor monitor(FluidScales scales = water_column_scales(),
+                           std::uint64_t allowed_lost = 0) {
+  FluidHealthMonitor watch(scene::FluidHealthLimits{}, allowed_lost, std::move(scales));
+  watch.set_initial_particles(kParticles);
+  return watch;
+}
+
+bool contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+TEST(FluidHealth, AHealthyFluidPassesWithoutWarningAndIsRecorded) {
+  FluidHealthMonitor watch = monitor();
+  for (std::uint64_t step = 0; step < 3; ++step) {
+    const HealthVerdict verdict = watch.judge(step, healthy());
+    EXPECT_FALSE(verdict.stop) << verdict.stop->message;
+    EXPECT_TRUE(verdict.warnings.empty());
+  }
+  EXPECT_EQ(watch.record().steps_checked, 3u);
+  EXPECT_NEAR(watch.record().max_density_deviation, 0.003, 1e-12);
+  EXPECT_DOUBLE_EQ(watch.record().max_particle_speed, 0.05);
+  EXPECT_FALSE(watch.record().failed_check);
+}
+
+TEST(FluidHealth, ANonFiniteParticleStopsAtOnceWithItsStep) {
+  FluidHealthMonitor watch = monitor();
+  FluidForces forces = healthy();
+  forces.health->non_finite_particles = 3;
+  const HealthVerdict verdict = watch.judge(79, forces);
+  ASSERT_TRUE(verdict.stop);
+  EXPECT_EQ(verdict.stop->check, kCheckNonFinite);
+  EXPECT_TRUE(contains(verdict.stop->message, "3 of 1000 particles have a NaN or infinite"));
+  EXPECT_TRUE(contains(verdict.stop->message, "at step 79"));
+  EXPECT_TRUE(contains(verdict.stop->fix, "step_size")) << verdict.stop->fix;
+  EXPECT_EQ(watch.record().failed_check, std::string(kCheckNonFinite));
+}
+
+TEST(FluidHealth, NonFiniteForcesOrExtremesStopToo) {
+  FluidHealthMonitor watch = monitor();
+  FluidForces forces = healthy();
+  forces.diagnostics.force_on_structure[1] = std::numeric_limits<double>::quiet_NaN();
+  HealthVerdict verdict = watch.judge(4, forces);
+  ASSERT_TRUE(verdict.stop);
+  EXPECT_TRUE(contains(verdict.stop->message, "the fluid forces of step 4 are not finite"));
+  forces = healthy();
+  forces.health->max_speed = std::numeric_limits<double>::infinity();
+  verdict = watch.judge(5, forces);
+  ASSERT_TRUE(verdict.stop);
+  EXPECT_EQ(verdict.stop->check, kCheckNonFinite);
+}
+
+TEST(FluidHealth, AParticleThroughTheWallLawStopsNamingTheWallStiffness) {
+  FluidHealthMonitor watch = monitor();
+  FluidForces forces = healthy();
+  forces.diagnostics.closest_approach_over_r0 = 0.11;
+  EXPECT_FALSE(watch.judge(1, forces).stop);
+  forces.diagnostics.closest_approach_over_r0 = 0.05;
+  const HealthVerdict verdict = watch.judge(2, forces);
+  ASSERT_TRUE(verdict.stop);
+  EXPECT_EQ(verdict.stop->check, kCheckWallDistance);
+  EXPECT_TRUE(contains(verdict.stop->message, "0.05 r0 from a wall at step 2"));
+  EXPECT_TRUE(contains(verdict.stop->message, "min_wall_distance = 0.1"));
+  // 0.5 r0 at rest over 0.05 r0 reached: k ten times larger.
+  EXPECT_TRUE(contains(verdict.stop->fix,
+                       "SPH_wall_rep (k) by a factor of 10, from 1.28e+04 to "
+                       "1.28e+05"))
+      << verdict.stop->fix;
+}
+
+TEST(FluidHealth, ADensityDeviationOverTheLimitStopsNamingTheSpeedOfSound) {
+  FluidHealthMonitor watch = monitor();
+  FluidForces forces = healthy();
+  forces.health->max_density = 1040.0;  // 4 %: c must grow by sqrt(4)
+  const HealthVerdict verdict = watch.judge(12, forces);
+  ASSERT_TRUE(verdict.stop);
+  EXPECT_EQ(verdict.stop->check, kCheckDensityDeviation);
+  EXPECT_TRUE(contains(verdict.stop->message, "max |rho/rho0 - 1| = 0.04 at step 12"));
+  EXPECT_TRUE(contains(verdict.stop->message, "max_density_deviation = 0.03"));
+  EXPECT_TRUE(contains(verdict.stop->fix, "raise cAB from 20 to at least 40 m/s"))
+      << verdict.stop->fix;
+  EXPECT_EQ(watch.record().max_density_deviation_step, 12u);
+}
+
+TEST(FluidHealth, ADensityDeviationWithATooLargeStepNamesTheStep) {
+  FluidScales scales = water_column_scales();
+  scales.time_step = 5e-5;  // dt c / h = 0.25
+  FluidHealthMonitor watch = monitor(scales);
+  FluidForces forces = healthy();
+  forces.health->min_density = 900.0;  // expansion counts as well
+  const HealthVerdict verdict = watch.judge(3, forces);
+  ASSERT_TRUE(verdict.stop);
+  EXPECT_EQ(verdict.stop->check, kCheckDensityDeviation);
+  EXPECT_TRUE(contains(verdict.stop->fix,
+                       "dt c / h = 0.25 exceeds the 0.125 measured stable: "
+                       "reduce SolverOptions.Timeint.step_size from 5e-05 s "
+                       "to at most 2.5e-05 s"))
+      << verdict.stop->fix;
+}
+
+TEST(FluidHealth, ADensityDeviationBetweenAimAndLimitWarnsOnce) {
+  FluidHealthMonitor watch = monitor();
+  FluidForces forces = healthy();
+  forces.health->max_density = 1015.0;
+  HealthVerdict verdict = watch.judge(1, forces);
+  EXPECT_FALSE(verdict.stop);
+  ASSERT_EQ(verdict.warnings.size(), 1u);
+  EXPECT_EQ(verdict.warnings[0].check, kCheckDensityDeviation);
+  EXPECT_TRUE(watch.judge(2, forces).warnings.empty());
+  EXPECT_EQ(watch.record().warnings.size(), 1u);
+}
+
+TEST(FluidHealth, AParticleOverHalfTheSpeedOfSoundStopsAndOverATenthWarns) {
+  FluidHealthMonitor watch = monitor();
+  FluidForces forces = healthy();
+  forces.health->max_speed = 3.0;  // 0.15 c
+  HealthVerdict verdict = watch.judge(1, forces);
+  EXPECT_FALSE(verdict.stop);
+  ASSERT_EQ(verdict.warnings.size(), 1u);
+  EXPECT_EQ(verdict.warnings[0].check, kCheckMach);
+  forces.health->max_speed = 12.0;  // 0.6 c
+  verdict = watch.judge(2, forces);
+  ASSERT_TRUE(verdict.stop);
+  EXPECT_EQ(verdict.stop->check, kCheckMach);
+  EXPECT_TRUE(contains(verdict.stop->message, "12 m/s = 0.6 c (c = cAB = 20 m/s) at step 2"))
+      << verdict.stop->message;
+  EXPECT_TRUE(contains(verdict.stop->fix, "raise cAB from 20 to at least 10 v_max = 120 m/s"));
+}
+
+TEST(FluidHealth, LosingParticlesFailsUnlessTheSceneAllowsIt) {
+  FluidHealthMonitor strict = monitor();
+  FluidForces forces = healthy();
+  forces.health->particle_count = kParticles - 2;
+  const HealthVerdict verdict = strict.judge(30, forces);
+  ASSERT_TRUE(verdict.stop);
+  EXPECT_EQ(verdict.stop->check, kCheckLostParticles);
+  EXPECT_TRUE(contains(verdict.stop->message,
+                       "2 of 1000 particles have left the LIGGGHTS box at step 30; the scene "
+                       "allows 0 (LIGGGHTS.allowed_lost_particles)"));
+  EXPECT_TRUE(contains(verdict.stop->fix,
+                       "the LIGGGHTS box in script 1 is too small for the "
+                       "flow: enlarge region domain at column.in1:22"));
+  EXPECT_TRUE(contains(verdict.stop->fix, "LIGGGHTS.allowed_lost_particles = 2"));
+
+  FluidHealthMonitor tolerant = monitor(water_column_scales(), 2);
+  const HealthVerdict allowed = tolerant.judge(30, forces);
+  EXPECT_FALSE(allowed.stop);
+  ASSERT_EQ(allowed.warnings.size(), 1u);
+  EXPECT_EQ(tolerant.record().particles_lost, 2u);
+  forces.health->particle_count = kParticles - 3;
+  EXPECT_TRUE(tolerant.judge(31, forces).stop);
+}
+
+TEST(FluidHealth, WithoutAHealthReportTheForcesAreStillChecked) {
+  // A client of protocol 1.2: closest approach and particle count travel with Forces.
+  FluidHealthMonitor watch = monitor();
+  FluidForces forces = healthy();
+  forces.health.reset();
+  forces.diagnostics.particle_count = kParticles - 1;
+  const HealthVerdict verdict = watch.judge(8, forces);
+  ASSERT_TRUE(verdict.stop);
+  EXPECT_EQ(verdict.stop->check, kCheckLostParticles);
+  EXPECT_EQ(watch.record().steps_checked, 0u);
+}
+
+TEST(FluidHealth, TheFirstFailingCheckIsTheVerdict) {
+  FluidHealthMonitor watch = monitor();
+  FluidForces forces = healthy();
+  forces.diagnostics.closest_approach_over_r0 = 0.01;
+  forces.health->max_density = 1100.0;
+  forces.health->particle_count = kParticles - 5;
+  const HealthVerdict verdict = watch.judge(9, forces);
+  ASSERT_TRUE(verdict.stop);
+  EXPECT_EQ(verdict.stop->check, kCheckWallDistance);
+}
+
+TEST(FluidHealth, TheBoxIsFoundThroughCreateBox) {
+  const std::string script =
+      "dimension 2\n"
+      "region other block 0 1 0 1 0 1\n"
+      "region domain block ${xmin} ${xmax} ${ymin} ${ymax} -1 1 units box  # the box\n"
+      "create_box 1 domain\n";
+  EXPECT_EQ(describe_liggghts_box("tank.in1", script),
+            "region domain at tank.in1:3 (block ${xmin} ${xmax} ${ymin} ${ymax} -1 1 units box  )");
+  EXPECT_EQ(describe_liggghts_box("tank.in1", "dimension 2\n"),
+            "the region of create_box in tank.in1");
+}
+
+}  // namespace
+}  // namespace fsi::coupling
