@@ -76,7 +76,7 @@ def free_surface(run_dir, settle_start, box_left, box_right, tank_width, spacing
       - by pressure, a cross-check: where the hydrostatic pressure of the water beside the box,
         fitted as a straight line p = a + b y over its middle 60 % (away from the floor and the
         surface layers), vanishes: y = -a / b. Measured, it lies 0.43 d below the volume's at
-        d = 0.05 m and 0.27 d above it at d = 0.025 m: both are the SPH surface to within O(d).
+        d = 0.05 m and 0.31 d below at d = 0.025 m: both are the SPH surface to within O(d).
     The draft is measured from the volume's surface.
     Returns a dict with both levels, their spread over the snapshots, the fitted slope -b (against
     rho0 g) and the snapshot times; None without a settled snapshot."""
