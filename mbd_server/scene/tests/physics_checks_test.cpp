@@ -53,7 +53,7 @@ const std::string kSetUp =
 class SmallScene : public testing::FolderPerTest {
  protected:
   void SetUp() override {
-    FolderPerTest::SetUp();
+    testing::FolderPerTest::SetUp();
     set_up_script(kSetUp);
     std::ofstream(folder_ / "after.in") << "# after the equilibration\n";
   }

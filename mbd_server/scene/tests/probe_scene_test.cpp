@@ -9,26 +9,16 @@
 
 #include "fsi/common/error.hpp"
 #include "fsi/scene/scene.hpp"
+#include "test_files.hpp"
 
 namespace fsi::scene {
 namespace {
 
 namespace fs = std::filesystem;
 
-class ProbeScene : public ::testing::TestWithParam<int> {
+// A folder per test and dimension: ctest runs them in parallel.
+class ProbeScene : public testing::FolderPerTestOf<::testing::TestWithParam<int>> {
  protected:
-  void SetUp() override {
-    // One folder per test: ctest runs the tests of this suite in parallel.
-    const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
-    std::string name = std::string("fsi_probe_scene_") + test->name();
-    for (char& c : name) {
-      if (c == '/') c = '_';
-    }
-    folder_ = fs::temp_directory_path() / name;
-    fs::create_directories(folder_);
-  }
-  void TearDown() override { fs::remove_all(folder_); }
-
   // A structure-only scene with the given blocks in the test's dimension; "(accepted)" or the
   // problems.
   std::string build(const std::string& blocks, Scene* built = nullptr) {
@@ -47,8 +37,6 @@ class ProbeScene : public ::testing::TestWithParam<int> {
   std::string point(double x, double y) const {
     return "[" + std::to_string(x) + ", " + std::to_string(y) + (GetParam() == 3 ? ", 0.5]" : "]");
   }
-
-  fs::path folder_;
 };
 
 TEST_P(ProbeScene, EachKindBecomesItsDefinition) {

@@ -9,20 +9,16 @@
 
 #include "fsi/common/error.hpp"
 #include "fsi/scene/scene.hpp"
+#include "test_files.hpp"
 
 namespace fsi::scene {
 namespace {
 
 namespace fs = std::filesystem;
 
-class SensorVariants : public ::testing::TestWithParam<int> {
+// A folder per test and dimension: ctest runs them in parallel.
+class SensorVariants : public testing::FolderPerTestOf<::testing::TestWithParam<int>> {
  protected:
-  void SetUp() override {
-    folder_ = fs::temp_directory_path() / ("fsi_sensor_variants_" + std::to_string(GetParam()));
-    fs::create_directories(folder_);
-  }
-  void TearDown() override { fs::remove_all(folder_); }
-
   // A structure-only scene of one body and the given sensors, in the test's dimension.
   std::string build(const std::string& sensors, Scene* built = nullptr) {
     const fs::path path = folder_ / "s.scene";
@@ -40,8 +36,6 @@ class SensorVariants : public ::testing::TestWithParam<int> {
     }
     return "(accepted)";
   }
-
-  fs::path folder_;
 };
 
 TEST_P(SensorVariants, RequiredAndForbiddenKeysAreTheSameInBothDimensions) {

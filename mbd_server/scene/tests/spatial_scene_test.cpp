@@ -19,8 +19,8 @@ namespace {
 class SpatialScene : public testing::FolderPerTest {
  protected:
   void SetUp() override {
-    FolderPerTest::SetUp();
-    FolderPerTest::write("box.stl", testing::unit_box_stl());
+    testing::FolderPerTest::SetUp();
+    testing::FolderPerTest::write("box.stl", testing::unit_box_stl());
   }
 
   std::filesystem::path write(const std::string& body, int dimension = 3,

@@ -25,13 +25,19 @@ std::string listing(const auto& reports) {
   return text;
 }
 
-// A fresh folder for each test, named after it, removed afterwards.
-class FolderPerTest : public ::testing::Test {
+// A fresh folder for each test, named after it (ctest runs the tests of a suite in parallel, each
+// test and each parameter its own process), removed afterwards. Base: ::testing::Test, or
+// ::testing::TestWithParam<T> for parameterised suites.
+template <class Base = ::testing::Test>
+class FolderPerTestOf : public Base {
  protected:
   void SetUp() override {
     const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
-    folder_ = std::filesystem::temp_directory_path() /
-              ("fsi_" + std::string(test->test_suite_name()) + "_" + test->name());
+    std::string name = "fsi_" + std::string(test->test_suite_name()) + "_" + test->name();
+    for (char& c : name) {
+      if (c == '/') c = '_';  // "Dimensions/Suite" and "Test/0" of parameterised suites
+    }
+    folder_ = std::filesystem::temp_directory_path() / name;
     std::filesystem::remove_all(folder_);
     std::filesystem::create_directories(folder_);
   }
@@ -59,6 +65,7 @@ class FolderPerTest : public ::testing::Test {
 
   std::filesystem::path folder_;
 };
+using FolderPerTest = FolderPerTestOf<>;
 
 // The unit cube [0, 1]^3 as ASCII STL, 12 triangles (11 with drop_last_triangle: a hole).
 inline std::string unit_box_stl(bool drop_last_triangle = false) {
