@@ -18,9 +18,6 @@ std::vector<Column> columns(const ProbeDefinition& probe, int dimension) {
 std::size_t two(const ProbeDefinition&, int) {
   return 2;
 }
-std::size_t none(const ProbeDefinition&, int) {
-  return 0;
-}
 
 void partials(const ProbeDefinition& probe, const ProbeContext& context,
               const ParticleSet& particles, const Kernel&, std::span<double> sums,
@@ -52,7 +49,8 @@ void values(const ProbeDefinition&, const ProbeContext&, std::span<const double>
 }  // namespace
 
 KindRules fluid_energy_probe_rules() {
-  return {ProbeKind::FluidEnergy, "fluid_energy", problem, columns, two, none, partials, values};
+  return {
+      ProbeKind::FluidEnergy, "fluid_energy", problem, columns, two, no_partials, partials, values};
 }
 
 }  // namespace fsi::probes::detail

@@ -128,13 +128,6 @@ std::vector<Column> columns(const ProbeDefinition& probe, int dimension) {
   return {{probe.name + "_flux", per_depth(dimension, "m^2/s", "m^3/s")}};
 }
 
-std::size_t one(const ProbeDefinition&, int) {
-  return 1;
-}
-std::size_t none(const ProbeDefinition&, int) {
-  return 0;
-}
-
 void partials(const ProbeDefinition& probe, const ProbeContext& context,
               const ParticleSet& particles, const Kernel& kernel, std::span<double> sums,
               std::span<double>) {
@@ -179,7 +172,7 @@ void values(const ProbeDefinition&, const ProbeContext&, std::span<const double>
 }  // namespace
 
 KindRules flux_probe_rules() {
-  return {ProbeKind::Flux, "flux", problem, columns, one, none, partials, values};
+  return {ProbeKind::Flux, "flux", problem, columns, one_partial, no_partials, partials, values};
 }
 
 }  // namespace fsi::probes::detail

@@ -39,9 +39,6 @@ std::vector<Column> columns(const ProbeDefinition& probe, int) {
 std::size_t sum_count(const ProbeDefinition& probe, int) {
   return samples_of(probe);
 }
-std::size_t none(const ProbeDefinition&, int) {
-  return 0;
-}
 
 void partials(const ProbeDefinition& probe, const ProbeContext& context,
               const ParticleSet& particles, const Kernel& kernel, std::span<double> sums,
@@ -93,8 +90,14 @@ void values(const ProbeDefinition& probe, const ProbeContext& context, std::span
 }  // namespace
 
 KindRules free_surface_probe_rules() {
-  return {
-      ProbeKind::FreeSurface, "free_surface", problem, columns, sum_count, none, partials, values};
+  return {ProbeKind::FreeSurface,
+          "free_surface",
+          problem,
+          columns,
+          sum_count,
+          no_partials,
+          partials,
+          values};
 }
 
 }  // namespace fsi::probes::detail

@@ -42,13 +42,6 @@ std::vector<Column> columns(const ProbeDefinition& probe, int) {
   return {{probe.name + "_position", "m"}, {probe.name + "_wet", "-"}};
 }
 
-std::size_t none(const ProbeDefinition&, int) {
-  return 0;
-}
-std::size_t one(const ProbeDefinition&, int) {
-  return 1;
-}
-
 void partials(const ProbeDefinition& probe, const ProbeContext& context,
               const ParticleSet& particles, const Kernel&, std::span<double>,
               std::span<double> maxima) {
@@ -93,7 +86,7 @@ void values(const ProbeDefinition& probe, const ProbeContext&, std::span<const d
 }  // namespace
 
 KindRules front_probe_rules() {
-  return {ProbeKind::Front, "front", problem, columns, none, one, partials, values};
+  return {ProbeKind::Front, "front", problem, columns, no_partials, one_partial, partials, values};
 }
 
 }  // namespace fsi::probes::detail

@@ -45,5 +45,12 @@ std::string per_depth(int dimension, const std::string& planar, const std::strin
 // The expected parameter count, as a problem text when it differs.
 std::string count_problem(const ProbeDefinition& probe, std::size_t expected);
 double squared_distance(const double* a, const double* b, int dimension);
+// Fixed partial counts (KindRules::sum_count, maximum_count) for kinds that need none or one.
+inline std::size_t no_partials(const ProbeDefinition&, int) {
+  return 0;
+}
+inline std::size_t one_partial(const ProbeDefinition&, int) {
+  return 1;
+}
 
 }  // namespace fsi::probes::detail

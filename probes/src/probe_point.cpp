@@ -29,9 +29,6 @@ std::vector<Column> columns(const ProbeDefinition& probe, int dimension) {
 std::size_t sum_count(const ProbeDefinition&, int dimension) {
   return static_cast<std::size_t>(dimension) + 3;
 }
-std::size_t none(const ProbeDefinition&, int) {
-  return 0;
-}
 
 void partials(const ProbeDefinition& probe, const ProbeContext& context,
               const ParticleSet& particles, const Kernel& kernel, std::span<double> sums,
@@ -67,7 +64,7 @@ void values(const ProbeDefinition&, const ProbeContext& context, std::span<const
 }  // namespace
 
 KindRules point_probe_rules() {
-  return {ProbeKind::Point, "point", problem, columns, sum_count, none, partials, values};
+  return {ProbeKind::Point, "point", problem, columns, sum_count, no_partials, partials, values};
 }
 
 }  // namespace fsi::probes::detail

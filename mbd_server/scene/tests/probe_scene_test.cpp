@@ -3,8 +3,6 @@
 // the wrong length or an axis the dimension lacks are problems at their place.
 #include <gtest/gtest.h>
 
-#include <filesystem>
-#include <fstream>
 #include <string>
 
 #include "fsi/common/error.hpp"
@@ -14,25 +12,17 @@
 namespace fsi::scene {
 namespace {
 
-namespace fs = std::filesystem;
-
 // A folder per test and dimension: ctest runs them in parallel.
 class ProbeScene : public testing::FolderPerTestOf<::testing::TestWithParam<int>> {
  protected:
   // A structure-only scene with the given blocks in the test's dimension; "(accepted)" or the
   // problems.
   std::string build(const std::string& blocks, Scene* built = nullptr) {
-    const fs::path path = folder_ / "p.scene";
-    std::ofstream(path) << "scene_language = 1\ndimension = " << GetParam()
-                        << "\nSolverOptions { end_time = 1; Timeint { step_size = 1e-3 } }\n"
-                        << blocks;
-    try {
-      Scene scene = build_scene(path.string(), {}, SceneMode::MbdOnly);
-      if (built != nullptr) *built = std::move(scene);
-    } catch (const Error& error) {
-      return error.what();
-    }
-    return "(accepted)";
+    return mbd_only_outcome("p.scene",
+                            "scene_language = 1\ndimension = " + std::to_string(GetParam()) +
+                                "\nSolverOptions { end_time = 1; Timeint { step_size = 1e-3 } }\n" +
+                                blocks,
+                            built);
   }
   std::string point(double x, double y) const {
     return "[" + std::to_string(x) + ", " + std::to_string(y) + (GetParam() == 3 ? ", 0.5]" : "]");

@@ -3,8 +3,6 @@
 // dimension (planar: per unit depth).
 #include <gtest/gtest.h>
 
-#include <filesystem>
-#include <fstream>
 #include <string>
 
 #include "fsi/common/error.hpp"
@@ -14,27 +12,20 @@
 namespace fsi::scene {
 namespace {
 
-namespace fs = std::filesystem;
-
 // A folder per test and dimension: ctest runs them in parallel.
 class SensorVariants : public testing::FolderPerTestOf<::testing::TestWithParam<int>> {
  protected:
   // A structure-only scene of one body and the given sensors, in the test's dimension.
   std::string build(const std::string& sensors, Scene* built = nullptr) {
-    const fs::path path = folder_ / "s.scene";
     const bool spatial = GetParam() == 3;
-    std::ofstream(path) << "scene_language = 1\ndimension = " << GetParam()
-                        << "\nSolverOptions { end_time = 1; Timeint { step_size = 1e-3 } }\n"
-                        << (spatial ? "PointMass { name = \"bob\"; mass = 1 }\n"
-                                    : "RigidBody2D { name = \"bob\"; mass = 1; inertia = 1 }\n")
-                        << sensors;
-    try {
-      Scene scene = build_scene(path.string(), {}, SceneMode::MbdOnly);
-      if (built != nullptr) *built = std::move(scene);
-    } catch (const Error& error) {
-      return error.what();
-    }
-    return "(accepted)";
+    return mbd_only_outcome(
+        "s.scene",
+        "scene_language = 1\ndimension = " + std::to_string(GetParam()) +
+            "\nSolverOptions { end_time = 1; Timeint { step_size = 1e-3 } }\n" +
+            (spatial ? "PointMass { name = \"bob\"; mass = 1 }\n"
+                     : "RigidBody2D { name = \"bob\"; mass = 1; inertia = 1 }\n") +
+            sensors,
+        built);
   }
 };
 

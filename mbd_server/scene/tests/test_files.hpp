@@ -51,6 +51,19 @@ class FolderPerTestOf : public Base {
     return file.string();
   }
 
+  // Writes the scene `text` to `name` and builds it for --mbd-only: "(accepted)", or the problems
+  // it was refused with; the scene in `built` when given and accepted.
+  std::string mbd_only_outcome(const std::string& name, const std::string& text,
+                               Scene* built = nullptr) const {
+    try {
+      Scene scene = build_scene(write(name, text), {}, SceneMode::MbdOnly);
+      if (built != nullptr) *built = std::move(scene);
+    } catch (const Error& error) {
+      return error.what();
+    }
+    return "(accepted)";
+  }
+
   // A coupled scene `name`: the language line, `blocks`, then LIGGGHTS running the folder's
   // "s.in" (written here) and Coupling { `coupling` }; the file's path.
   std::filesystem::path write_coupled_scene(
