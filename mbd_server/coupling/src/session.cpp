@@ -336,7 +336,8 @@ class Session {
       sensors_->write(structure_->time(), with_probes(std::move(*row), forces.probe_values, n));
     }
     take_forces(forces, n);
-    audit(motion, forces, n, dt, row.has_value());
+    audit(motion, forces, n, dt,
+          n % static_cast<std::uint64_t>(scene_.output.sensor_every_steps) == 0);
     steps_done_ = n;
   }
 
