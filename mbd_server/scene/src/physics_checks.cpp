@@ -16,6 +16,7 @@
 #include "fsi/contact/force_law.hpp"
 #include "fsi/contact/script_text.hpp"
 #include "fsi/scene/fluid_region.hpp"
+#include "viscosity_match.hpp"
 
 namespace fsi::scene {
 namespace {
@@ -661,22 +662,30 @@ void check_wall_viscosity(const Scene& scene, Report& report) {
   const auto rho = in.density();
   const auto h = in.sph("smoothinglength");
   if (!in.complete()) return report.skip(kCheck, kTitle, in.missing());
-  const double suggested = nu->value * rho->value / h->value;
+  // The friction's range r_v: the fix's cutoff_visc (default its cutoff), else the thesis' 2h.
+  double range = 2.0 * h->value;
+  std::string range_source = "2h";
+  if (const auto& fix = in.fix_line(); fix && fix->arguments) {
+    range = fix->arguments->law.effective_viscous_cutoff();
+    range_source = "the fix's cutoff_visc";
+  }
+  const double suggested = nu->value * rho->value / range;
   const auto t = in.wall("t", "SPH_wall_visc");
   if (!t) {
     std::vector<std::string> why = in.missing();
-    why.back() += " (thesis eq. 6.4 suggests t = nu rho / h = " + number(suggested) + " N s/m^3)";
+    why.back() += " (no slip at the wall needs t = rho0 nu / r_v = " + number(suggested) +
+                  " N s/m^3, docs/theory.md \"Viscosity\")";
     return report.skip(kCheck, kTitle, why);
   }
   const double ratio = t->value / suggested;
   if (!above(ratio, kWallViscosityFactor) && !below(ratio, 1.0 / kWallViscosityFactor)) return;
-  report.warn(
-      kCheck, t->location,
-      "wall viscosity t = " + number(t->value) + " N s/m^3 is " + number(ratio) +
-          "x the estimate t = nu rho / h = " + number(suggested) +
-          " N s/m^3 of thesis eq. (6.4) (nu = " + number(nu->value) + " m^2/s, rho = " +
-          number(rho->value) + " kg/m^3, h = " + number(h->value) + " m), more than a factor 3 off",
-      "set SPH_wall_visc = " + number(suggested) + " (SPHdensity*viscosity/smoothinglength)");
+  report.warn(kCheck, t->location,
+              "wall viscosity t = " + number(t->value) + " N s/m^3 is " + number(ratio) +
+                  "x the no-slip value t = rho0 nu / r_v = " + number(suggested) +
+                  " N s/m^3 (nu = " + number(nu->value) + " m^2/s, rho0 = " + number(rho->value) +
+                  " kg/m^3, r_v = " + number(range) + " m, " + range_source +
+                  "; measured, docs/theory.md \"Viscosity\"), more than a factor 3 off",
+              "set SPH_wall_visc = " + number(suggested) + " (SPHdensity*viscosity/r_v)");
 }
 
 // --- 7. fluid regions overlapping a mesh ------------------------------------------------------
@@ -1025,7 +1034,9 @@ std::vector<Diagnostic> physics_checks(const Scene& scene) {
   check_fluid_overlap(scene, report);
   check_gravity(scene, report);
   check_liggghts_scripts(scene, report);
-  return report.take();
+  std::vector<Diagnostic> diagnostics = report.take();
+  check_viscosity_match(scene, diagnostics);
+  return diagnostics;
 }
 
 std::vector<Diagnostic> end_time_check(const Scene& scene) {
