@@ -1,4 +1,4 @@
-// fsi-run SCENE --np N --output DIR [--set KEY=EXPR ...]
+// fsi-run SCENE --np N --output DIR [--overwrite] [--set KEY=EXPR ...]
 // Starts fsi-server (port chosen by the OS, written to a port file) and `mpirun -np N fsi-client`
 // on localhost, waits for both and exits with the server's status. A client that outlives the
 // server by more than the grace period is terminated.
@@ -19,7 +19,9 @@
 #include <thread>
 #include <vector>
 
+#include "fsi/common/error.hpp"
 #include "fsi/common/version.hpp"
+#include "fsi/output/run_folder.hpp"
 
 extern char** environ;
 
@@ -108,7 +110,14 @@ int main(int argc, char** argv) {
   app.add_option("--np", ranks, "Number of MPI ranks of fsi-client")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
-  app.add_option("--output", output, "Output folder of the run (created)")->required();
+  app.add_option("--output", output,
+                 "Output folder of the run (created). A folder that holds an earlier run's "
+                 "results is refused, naming that run, unless --overwrite")
+      ->required();
+  bool overwrite = false;
+  app.add_flag("--overwrite", overwrite,
+               "Replace the results of an earlier run in --output (its run.json, sensors.csv, "
+               "logs, snapshots/, vtk/, plots/; other files stay; default: off)");
   app.add_option("--set", overrides,
                  "Override a scene parameter, KEY=EXPR (repeatable; default: none)");
   app.add_option("--server-arg", server_arguments,
@@ -144,6 +153,14 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
+  // Before anything is written into the folder (the port file below): the server refuses too,
+  // but only after this launcher has touched the folder.
+  try {
+    fsi::output::claim_run_folder(output, overwrite);
+  } catch (const fsi::Error& refused) {
+    std::fprintf(stderr, "fsi-run: error: %s\n", refused.what());
+    return 2;
+  }
   std::error_code error;
   fs::create_directories(output, error);
   if (error) {
@@ -167,6 +184,7 @@ int main(int argc, char** argv) {
   }
   if (!token_file.empty())
     server_command.insert(server_command.end(), {"--token-file", token_file});
+  if (overwrite) server_command.push_back("--overwrite");
   server_command.insert(server_command.end(), {"--log-level", log_level});
   server_command.insert(server_command.end(), server_arguments.begin(), server_arguments.end());
   const pid_t server_pid = spawn(server_command);
