@@ -214,7 +214,9 @@ int main(int argc, char** argv) {
     if (port.empty()) std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
 
-  std::vector<std::string> client_command{mpirun, "-np", std::to_string(ranks)};
+  // -q: mpirun's own notices about an aborted job ("MPI_ABORT was invoked ...") would follow the
+  // clear message fsi-client and fsi-server already gave, and say less.
+  std::vector<std::string> client_command{mpirun, "-q", "-np", std::to_string(ranks)};
   if (geteuid() == 0) client_command.push_back("--allow-run-as-root");
   client_command.insert(
       client_command.end(),
