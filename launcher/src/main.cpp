@@ -135,7 +135,10 @@ int main(int argc, char** argv) {
   app.add_option("--client-grace", client_grace,
                  "Seconds the client may outlive the server before it is terminated")
       ->capture_default_str();
-  app.add_option("--mpirun", mpirun, "MPI launcher")->capture_default_str();
+  app.add_option("--mpirun", mpirun,
+                 "MPI launcher; one named mpirun* (Open MPI) is started with -q, which leaves out "
+                 "its notices after a job that the client ended with a clear message")
+      ->capture_default_str();
   std::string token_file;
   app.add_option("--token-file", token_file,
                  "Shared token file given to both fsi-server and fsi-client (--token-file): they "
@@ -214,9 +217,12 @@ int main(int argc, char** argv) {
     if (port.empty()) std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
 
-  // -q: mpirun's own notices about an aborted job ("MPI_ABORT was invoked ...") would follow the
-  // clear message fsi-client and fsi-server already gave, and say less.
-  std::vector<std::string> client_command{mpirun, "-q", "-np", std::to_string(ranks)};
+  std::vector<std::string> client_command{mpirun};
+  // Open MPI's -q: mpirun's own notices about an aborted job ("MPI_ABORT was invoked ...") would
+  // follow the clear message fsi-client and fsi-server already gave, and say less. Only for a
+  // launcher named mpirun (Debian's is Open MPI's); another --mpirun gets no flag it may not know.
+  if (fs::path(mpirun).filename().string().rfind("mpirun", 0) == 0) client_command.push_back("-q");
+  client_command.insert(client_command.end(), {"-np", std::to_string(ranks)});
   if (geteuid() == 0) client_command.push_back("--allow-run-as-root");
   client_command.insert(
       client_command.end(),
