@@ -771,7 +771,11 @@ int run_client_session(MPI_Comm communicator, const ClientOptions& options) {
   if (rank == 0 && relay.active()) std::signal(SIGTERM, on_termination_signal);
   for (int run = 1;; ++run) {
     const int status = run_one_session(communicator, options, relay, rank);
-    if (!options.persistent) return status;
+    if (!options.persistent) {
+      // No watcher after this: a SIGTERM ends the process again.
+      if (rank == 0 && relay.active()) std::signal(SIGTERM, SIG_DFL);
+      return status;
+    }
     if (rank == 0) {
       std::fprintf(stderr,
                    "fsi-client: run %d done; waiting for the next fsi-server at %s:%u "
