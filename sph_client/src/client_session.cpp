@@ -761,6 +761,9 @@ int run_client_session(MPI_Comm communicator, const ClientOptions& options) {
   int threading = MPI_THREAD_SINGLE;
   MPI_Query_thread(&threading);
   FaultRelay relay(communicator, threading == MPI_THREAD_MULTIPLE);
+  int size = 1;
+  MPI_Comm_size(communicator, &size);
+  FaultRelay::install_crash_report(rank, size);
   if (rank == 0 && !relay.active()) {
     spdlog::warn(
         "this MPI provides no MPI_THREAD_MULTIPLE: a fault that a rank other than 0 sees ends the "

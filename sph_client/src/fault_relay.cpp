@@ -1,6 +1,10 @@
 #include "fault_relay.hpp"
 
+#include <unistd.h>
+
 #include <chrono>
+#include <csignal>
+#include <cstdio>
 #include <cstring>
 #include <vector>
 
@@ -12,6 +16,26 @@ namespace {
 constexpr int kFaultTag = 0x46;  // 'F'
 constexpr auto kPollInterval = std::chrono::milliseconds(20);
 std::atomic<int> g_termination_signal{0};
+
+// Formatted before any crash: a signal handler may only write(2).
+char g_crash_prefix[96];
+std::size_t g_crash_prefix_length = 0;
+
+extern "C" void on_crash(int signal) {
+  char text[160];
+  std::memcpy(text, g_crash_prefix, g_crash_prefix_length);
+  std::size_t length = g_crash_prefix_length;
+  char digits[4];
+  int count = 0;
+  for (int value = signal; value > 0 && count < 4; value /= 10)
+    digits[count++] = static_cast<char>('0' + value % 10);
+  while (count > 0)
+    text[length++] = digits[--count];
+  text[length++] = '\n';
+  [[maybe_unused]] const ssize_t written = ::write(STDERR_FILENO, text, length);
+  std::signal(signal, SIG_DFL);
+  std::raise(signal);
+}
 
 }  // namespace
 
@@ -34,6 +58,14 @@ void FaultRelay::set_handler(Handler handler) {
 
 void FaultRelay::note_termination_signal(int signal) {
   g_termination_signal = signal;
+}
+
+void FaultRelay::install_crash_report(int rank, int size) {
+  const int length = std::snprintf(g_crash_prefix, sizeof g_crash_prefix,
+                                   "fsi-client rank %d of %d: crashed with signal ", rank, size);
+  g_crash_prefix_length = length > 0 ? static_cast<std::size_t>(length) : 0;
+  for (const int signal : {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT})
+    std::signal(signal, on_crash);
 }
 
 bool FaultRelay::tell_root(std::uint32_t code, const std::string& text, double seconds) {

@@ -42,6 +42,11 @@ class FaultRelay {
   // fsi-client's main on every rank; only rank 0's watcher reports it).
   static void note_termination_signal(int signal);
 
+  // Every rank: a crash (SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT) prints "fsi-client rank R of N:
+  // crashed with signal S" on stderr before the process dies as it would have (mpirun -q, which
+  // fsi-run uses, says nothing of it; rank 0 then reports the job ended from outside).
+  static void install_crash_report(int rank, int size);
+
  private:
   void watch();
   void handle(int rank, std::uint32_t code, const std::string& text);

@@ -4,8 +4,8 @@ ranks: a LIGGGHTS error raised on rank 1 only (fix wall/region finds particles t
 owns outside its region: Error::one) and one raised on every rank (an unknown pair style:
 Error::all) end both programs non-zero within 10 s of the error, the server's log names LIGGGHTS'
 message and the script line, and nothing alarming from mpirun follows (no MPI_ABORT notice, no
-ORTE "unpack would read past end of buffer"). A rank killed mid-run (a crash) ends both sides
-with a message on the server's side. fix fsi/sph's close-approach warning for a particle that
+ORTE "unpack would read past end of buffer"). A rank that crashes mid-run (SIGSEGV) says so, and
+both sides end with a message on the server's side. fix fsi/sph's close-approach warning for a particle that
 rank 1 owns is printed. FSI_RANK_ERROR_REPEATS (default 3) repeats the two error cases; the
 20-fold run under load is recorded in docs/testing.md."""
 import os
@@ -107,7 +107,7 @@ for repetition in range(1, REPEATS + 1):
 
 
 def kill_rank1(run_dir):
-    """SIGKILL to rank 1 of this run's fsi-client (found by its --log-file), as a crash."""
+    """SIGSEGV to rank 1 of this run's fsi-client (found by its --log-file): a crash."""
     found = subprocess.run(["pgrep", "-f", f"fsi-client --server .* --log-file {run_dir}/fsi-client.log"],
                            capture_output=True, text=True).stdout.split()
     for pid in found:
@@ -117,14 +117,15 @@ def kill_rank1(run_dir):
         except OSError:
             continue
         if b"OMPI_COMM_WORLD_RANK=1" in environment:
-            os.kill(int(pid), signal.SIGKILL)
+            os.kill(int(pid), signal.SIGSEGV)
             return
     fail(f"rank 1 of the client writing {run_dir}/fsi-client.log not found among {found}")
 
 
 status, text, seconds, run_dir = fsi_run("crash", "--set", "Resolution.end_time=10", strike=kill_rank1)
-ends_cleanly("rank 1 killed mid-run", status, text, seconds, run_dir,
+ends_cleanly("rank 1 crashed mid-run", status, text, seconds, run_dir,
              ["the MPI job was ended from outside", "another rank crashed or was killed"])
+check("fsi-client rank 1 of 2: crashed with signal 11" in text, "the crashed rank says so on stderr")
 
 status, text, seconds, run_dir = fsi_run("near_wall", "--set", f'LIGGGHTS.script2="{NEAR_WALL}"',
                                          "--set", "Resolution.end_time=10*Resolution.time_step")
