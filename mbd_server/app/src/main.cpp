@@ -1,7 +1,7 @@
-// fsi-server SCENE --output DIR [--overwrite] [--port P] [--port-file F] [--listen ADDR] [--set
-// KEY=EXPR ...] The multibody side of the co-simulation: owns the clock and the set-up of both
-// sides, serves boundary positions and velocities to fsi-client and applies the fluid forces it
-// returns.
+// fsi-server SCENE --output DIR [--overwrite] [--port P] [--port-file F] [--listen ADDR]
+//            [--set KEY=EXPR ...]
+// The multibody side of the co-simulation: owns the clock and the set-up of both sides, serves
+// boundary positions and velocities to fsi-client and applies the fluid forces it returns.
 #include <spdlog/sinks/base_sink.h>
 #include <spdlog/sinks/basic_file_sink.h>
 #include <spdlog/sinks/stdout_color_sinks.h>
