@@ -117,7 +117,7 @@ int main(int argc, char** argv) {
   bool overwrite = false;
   app.add_flag("--overwrite", overwrite,
                "Replace the results of an earlier run in --output (its run.json, sensors.csv, "
-               "logs, snapshots/, vtk/, plots/; other files stay; default: off)");
+               "energy.csv, logs, snapshots/, vtk/, plots/; other files stay; default: off)");
   app.add_option("--set", overrides,
                  "Override a scene parameter, KEY=EXPR (repeatable; default: none)");
   app.add_option("--server-arg", server_arguments,

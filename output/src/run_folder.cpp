@@ -16,11 +16,11 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// What our programs write into a run folder: fsi-server (run.json, sensors.csv, its log,
-// snapshots/, vtk/), fsi-client under fsi-run (its logs) and fsi-plot (plots/). Temporary names
-// of the atomic writes (NAME.tmp) belong to the same files.
-const std::vector<std::string> kTopFiles = {"run.json", "sensors.csv", "fsi-server.log",
-                                            "fsi-client.log"};
+// What our programs write into a run folder: fsi-server (run.json, sensors.csv, energy.csv, its
+// log, snapshots/, vtk/), fsi-client under fsi-run (its logs) and fsi-plot (plots/). Temporary
+// names of the atomic writes (NAME.tmp) belong to the same files.
+const std::vector<std::string> kTopFiles = {"run.json", "sensors.csv", "energy.csv",
+                                            "fsi-server.log", "fsi-client.log"};
 struct OwnFolder {
   const char* name;
   const char* file_pattern;

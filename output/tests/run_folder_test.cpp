@@ -50,6 +50,7 @@ class RunFolderTest : public ::testing::Test {
   void write_run(const std::string& manifest) {
     write(folder_ / "run.json", manifest);
     write(folder_ / "sensors.csv", "# sensors\n# units: time [s]\ntime,F\n0,1\n1e-05,2\n");
+    write(folder_ / "energy.csv", "# energy\ntime,coupling_energy\n0,0\n");
     write(folder_ / "fsi-server.log", "log\n");
     write(folder_ / "fsi-client.log", "log\n");
     write(folder_ / "snapshots" / "particles_000000000.csv", "id,x,y\n");
@@ -93,7 +94,7 @@ TEST_F(RunFolderTest, OverwriteRemovesOurFilesAndKeepsTheUsers) {
   ASSERT_TRUE(earlier);
   EXPECT_TRUE(earlier->has_results());
   const auto removed = remove_earlier_run(folder_);
-  EXPECT_EQ(removed.size(), 11u);  // 8 files, 3 emptied folders
+  EXPECT_EQ(removed.size(), 12u);  // 9 files, 3 emptied folders
   const auto left = contents(folder_);
   EXPECT_EQ(left.size(), 1u);
   EXPECT_EQ(left.count("notes.txt"), 1u);

@@ -63,6 +63,8 @@ with open(os.path.join(run_dir, "sensors.csv")) as handle:
 for name in header[1:]:
     check_png(os.path.join(run_dir, "plots", "sensors", f"{name}.png"), 10_000)
 check_png(os.path.join(run_dir, "plots", "sensors.png"), 30_000)
+# The energy audit of the coupled run (energy.csv): the works exchanged, in one figure.
+check_png(os.path.join(run_dir, "plots", "energy.png"), 20_000)
 # The example's own figure, declared in examples/static_tank/fsi-plot.json (found through the scene
 # path in run.json), with N m g from this run's counts.
 check_png(os.path.join(run_dir, "plots", "static_tank.png"), 60_000)

@@ -212,7 +212,7 @@ void declare_run_options(CLI::App& app, CommandLine& line) {
                  "results is refused, naming that run, unless --overwrite");
   app.add_flag("--overwrite", line.overwrite,
                "Replace the results of an earlier run in --output (its run.json, sensors.csv, "
-               "logs, snapshots/, vtk/, plots/; other files stay; default: off)");
+               "energy.csv, logs, snapshots/, vtk/, plots/; other files stay; default: off)");
   app.add_option("--set", line.overrides,
                  "Override a scene parameter, KEY=EXPR (repeatable; default: none)");
   app.add_flag("--check", line.check_only,

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <map>
 #include <numbers>
 #include <optional>
 
@@ -857,7 +858,10 @@ std::string vector_text(const Eigen::Vector3d& vector) {
 
 // LIGGGHTS moves the fluid under its own `fix ... gravity`, the multibody system under the Gravity
 // block: a scene that gives them different accelerations weighs a fluid the structure does not
-// feel (thesis §6.3 measures the fluid weight through the structure).
+// feel (thesis §6.3 measures the fluid weight through the structure). What counts is the gravity
+// of the coupled run: the gravity fixes still defined after script 2 (a fix of the same ID
+// replaces one, `unfix ID` removes it), so an equilibration may settle the fluid under another
+// gravity on purpose (e.g. tilted, to start a U-tube's column displaced; examples/u_tube).
 void check_gravity(const Scene& scene, Report& report) {
   constexpr std::string_view kCheck = "gravity";
   const LiggghtsSetup& liggghts = scene.liggghts;
@@ -870,10 +874,23 @@ void check_gravity(const Scene& scene, Report& report) {
   std::vector<std::string> unreadable;
   bool fluid_gravity = false;
   bool any_command = false;  // placeholder scripts (no fluid at all) have none
+  struct FluidGravity {
+    SourceLocation where;
+    Eigen::Vector3d acceleration;
+  };
+  std::map<std::string, std::optional<FluidGravity>> active;  // by fix ID; nullopt: unreadable
   auto scan = [&](const std::string& script, const std::string& script_name) {
     for_each_command(script, [&](const std::vector<std::string>& tokens, int line) {
       any_command = true;
-      if (tokens.size() < 4 || tokens[0] != "fix" || tokens[3] != "gravity") return;
+      if (tokens.size() >= 2 && tokens[0] == "unfix") {
+        active.erase(tokens[1]);
+        return;
+      }
+      if (tokens.size() < 4 || tokens[0] != "fix") return;
+      if (tokens[3] != "gravity") {
+        active.erase(tokens[1]);  // the ID now names another fix
+        return;
+      }
       fluid_gravity = true;
       const SourceLocation where{script_name, line, 1};
       const auto magnitude = tokens.size() > 4 ? script_number(tokens[4], liggghts) : std::nullopt;
@@ -892,20 +909,26 @@ void check_gravity(const Scene& scene, Report& report) {
         }
         direction[k] = *component;
       }
-      if (!(direction.norm() > 0.0)) return;  // LIGGGHTS refuses a zero direction itself
-      const Eigen::Vector3d fluid = *magnitude * direction / direction.norm();
-      const double size = std::max(fluid.norm(), structure.norm());
-      if ((fluid - structure).norm() <= kTolerance * size) return;
-      report.warn(kCheck, where,
-                  "fix " + tokens[1] + " gives the fluid g = " + vector_text(fluid) +
-                      " m/s^2, but " + structure_text + " (" + block.text() +
-                      "): fluid and structure must fall alike, or the structure does not carry "
-                      "the fluid's weight (thesis §6.3)",
-                  "make Gravity.acceleration and the script's fix gravity the same vector");
+      if (!(direction.norm() > 0.0)) {  // LIGGGHTS refuses a zero direction itself
+        active[tokens[1]] = std::nullopt;
+        return;
+      }
+      active[tokens[1]] = FluidGravity{where, *magnitude * direction / direction.norm()};
     });
   };
   scan(liggghts.script1_text, liggghts.script1_name);
   scan(liggghts.script2_text, liggghts.script2_name);
+  for (const auto& [id, gravity] : active) {
+    if (!gravity) continue;
+    const double size = std::max(gravity->acceleration.norm(), structure.norm());
+    if ((gravity->acceleration - structure).norm() <= kTolerance * size) continue;
+    report.warn(kCheck, gravity->where,
+                "fix " + id + " gives the fluid g = " + vector_text(gravity->acceleration) +
+                    " m/s^2 in the coupled run, but " + structure_text + " (" + block.text() +
+                    "): fluid and structure must fall alike, or the structure does not carry "
+                    "the fluid's weight (thesis §6.3)",
+                "make Gravity.acceleration and the script's fix gravity the same vector");
+  }
   if (!any_command && !in.has_fluid_region()) {
     report.skip(kCheck, "gravity",
                 {"no FluidRegion and no command in the LIGGGHTS scripts (a scene without fluid, "

@@ -423,6 +423,28 @@ TEST_F(SmallScene, FluidGravityAlongAnotherDirectionIsFlagged) {
   EXPECT_CONTAINS(found[0].message, "fix down gives the fluid g = (9.81, 0, 0) m/s^2");
 }
 
+TEST_F(SmallScene, OnlyTheCoupledRunsGravityCounts) {
+  // An equilibration under a tilted gravity (examples/u_tube) that script 2 turns upright is no
+  // mismatch; a tilted fix left in place, or one script 2 defines, is.
+  set_up_script("fix gravity all gravity 9.81 vector 0.0871 -0.9962 0.0\n");
+  std::ofstream(folder_ / "after.in")
+      << "unfix gravity\nfix gravity all gravity 9.81 vector 0 -1 0\n";
+  EXPECT_TRUE(of(physics_checks(build(kGoodSph, kGoodFluid)), "gravity").empty());
+  std::ofstream(folder_ / "after.in") << "fix gravity all gravity 9.81 vector 0 -1 0  # replaces\n";
+  EXPECT_TRUE(of(physics_checks(build(kGoodSph, kGoodFluid)), "gravity").empty());
+  std::ofstream(folder_ / "after.in") << "# gravity stays tilted\n";
+  std::vector<Diagnostic> found = of(physics_checks(build(kGoodSph, kGoodFluid)), "gravity");
+  ASSERT_EQ(found.size(), 1u);
+  EXPECT_CONTAINS(found[0].location.text(), "setup.in:1:1");
+  EXPECT_CONTAINS(found[0].message, "in the coupled run");
+  std::ofstream(folder_ / "after.in")
+      << "unfix gravity\n\nfix tilt all gravity 9.81 vector 1 -1 0\n";
+  found = of(physics_checks(build(kGoodSph, kGoodFluid)), "gravity");
+  ASSERT_EQ(found.size(), 1u);
+  EXPECT_CONTAINS(found[0].location.text(), "after.in:3:1");
+  EXPECT_CONTAINS(found[0].message, "fix tilt gives the fluid g = (6.94, -6.94, 0) m/s^2");
+}
+
 TEST_F(SmallScene, AFluidWithoutGravityUnderAFallingStructureIsFlagged) {
   set_up_script("# no gravity for the fluid\n");
   const std::vector<Diagnostic> found = of(physics_checks(build(kGoodSph, kGoodFluid)), "gravity");

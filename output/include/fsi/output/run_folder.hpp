@@ -14,8 +14,8 @@ namespace fsi::output {
 
 // What an earlier run left in a folder, read from its run.json where there is one.
 struct EarlierRun {
-  // Our programs' files and folders found (run.json, sensors.csv, the logs, snapshots/, vtk/,
-  // plots/), relative to the folder.
+  // Our programs' files and folders found (run.json, sensors.csv, energy.csv, the logs,
+  // snapshots/, vtk/, plots/), relative to the folder.
   std::vector<std::string> found;
   bool manifest = false;               // a run.json was found
   std::string manifest_problem;        // why run.json could not be read; empty when it could

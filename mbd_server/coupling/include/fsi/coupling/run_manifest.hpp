@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "fsi/coupling/energy_audit.hpp"
 #include "fsi/coupling/fluid_health.hpp"
 #include "fsi/coupling/fluid_side.hpp"
 #include "fsi/coupling/release_check.hpp"
@@ -21,9 +22,10 @@ namespace fsi::coupling {
 // Version 2: one shape for every mode ("mode", gravity with `dimension` components, bodies as a
 // list, null for what a mode does not have). Version 3: "release", the fluid at release.
 // Version 4: "health", the fluid health checks (limits, the worst values, the failed check).
-// Version 5: "started_utc"; run.json is written when the run starts too ("status": "started"
+// Version 5: "energy_audit", the works exchanged by the coupling (energy_audit.hpp).
+// Version 6: "started_utc"; run.json is written when the run starts too ("status": "started"
 // until the end is recorded), always whole (a temporary name and a rename).
-inline constexpr int kRunManifestFormatVersion = 5;
+inline constexpr int kRunManifestFormatVersion = 6;
 
 // Now, as run.json's "started_utc" writes it: "2026-12-02T11:40:12Z".
 std::string utc_now();
@@ -58,6 +60,12 @@ struct HealthSummary {
   std::uint64_t allowed_lost_particles = 0;
 };
 
+// The energy audit of a coupled run's exchanges.
+struct EnergyAuditSummary {
+  EnergyTotals totals;
+  std::optional<std::uint64_t> warned_at;  // the step of the injection warning, if any
+};
+
 struct RunRecord {
   RunMode mode = RunMode::Coupled;
   std::string command_line;
@@ -78,7 +86,8 @@ struct RunRecord {
   std::optional<FluidRecord> fluid;  // coupled runs only
   // Coupled runs whose client reported the fluid at release (protocol 1.2).
   std::optional<ReleaseCheck> release;
-  std::optional<HealthSummary> health;  // coupled runs only
+  std::optional<HealthSummary> health;             // coupled runs only
+  std::optional<EnergyAuditSummary> energy_audit;  // coupled runs that began their steps
 };
 
 // Writes DIR/run.json whole or not at all (a reader never sees a part of it). Throws fsi::Error
