@@ -1,4 +1,4 @@
-// fsi-run SCENE --np N --output DIR [--set KEY=EXPR ...]
+// fsi-run SCENE --np N --output DIR [--overwrite] [--set KEY=EXPR ...]
 // Starts fsi-server (port chosen by the OS, written to a port file) and `mpirun -np N fsi-client`
 // on localhost, waits for both and exits with the server's status. A client that outlives the
 // server by more than the grace period is terminated.
@@ -19,7 +19,9 @@
 #include <thread>
 #include <vector>
 
+#include "fsi/common/error.hpp"
 #include "fsi/common/version.hpp"
+#include "fsi/output/run_folder.hpp"
 
 extern char** environ;
 
@@ -108,7 +110,14 @@ int main(int argc, char** argv) {
   app.add_option("--np", ranks, "Number of MPI ranks of fsi-client")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
-  app.add_option("--output", output, "Output folder of the run (created)")->required();
+  app.add_option("--output", output,
+                 "Output folder of the run (created). A folder that holds an earlier run's "
+                 "results is refused, naming that run, unless --overwrite")
+      ->required();
+  bool overwrite = false;
+  app.add_flag("--overwrite", overwrite,
+               "Replace the results of an earlier run in --output (its run.json, sensors.csv, "
+               "energy.csv, logs, snapshots/, vtk/, plots/; other files stay; default: off)");
   app.add_option("--set", overrides,
                  "Override a scene parameter, KEY=EXPR (repeatable; default: none)");
   app.add_option("--server-arg", server_arguments,
@@ -126,7 +135,10 @@ int main(int argc, char** argv) {
   app.add_option("--client-grace", client_grace,
                  "Seconds the client may outlive the server before it is terminated")
       ->capture_default_str();
-  app.add_option("--mpirun", mpirun, "MPI launcher")->capture_default_str();
+  app.add_option("--mpirun", mpirun,
+                 "MPI launcher; one named mpirun* (Open MPI) is started with -q, which leaves out "
+                 "its notices after a job that the client ended with a clear message")
+      ->capture_default_str();
   std::string token_file;
   app.add_option("--token-file", token_file,
                  "Shared token file given to both fsi-server and fsi-client (--token-file): they "
@@ -143,6 +155,14 @@ int main(int argc, char** argv) {
                    program.c_str());
       return 2;
     }
+  }
+  // Before anything is written into the folder (the port file below): the server refuses too,
+  // but only after this launcher has touched the folder.
+  try {
+    fsi::output::claim_run_folder(output, overwrite);
+  } catch (const fsi::Error& refused) {
+    std::fprintf(stderr, "fsi-run: error: %s\n", refused.what());
+    return 2;
   }
   std::error_code error;
   fs::create_directories(output, error);
@@ -167,6 +187,7 @@ int main(int argc, char** argv) {
   }
   if (!token_file.empty())
     server_command.insert(server_command.end(), {"--token-file", token_file});
+  if (overwrite) server_command.push_back("--overwrite");
   server_command.insert(server_command.end(), {"--log-level", log_level});
   server_command.insert(server_command.end(), server_arguments.begin(), server_arguments.end());
   const pid_t server_pid = spawn(server_command);
@@ -196,7 +217,12 @@ int main(int argc, char** argv) {
     if (port.empty()) std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
 
-  std::vector<std::string> client_command{mpirun, "-np", std::to_string(ranks)};
+  std::vector<std::string> client_command{mpirun};
+  // Open MPI's -q: mpirun's own notices about an aborted job ("MPI_ABORT was invoked ...") would
+  // follow the clear message fsi-client and fsi-server already gave, and say less. Only for a
+  // launcher named mpirun (Debian's is Open MPI's); another --mpirun gets no flag it may not know.
+  if (fs::path(mpirun).filename().string().rfind("mpirun", 0) == 0) client_command.push_back("-q");
+  client_command.insert(client_command.end(), {"-np", std::to_string(ranks)});
   if (geteuid() == 0) client_command.push_back("--allow-run-as-root");
   client_command.insert(
       client_command.end(),

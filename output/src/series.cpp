@@ -1,38 +1,12 @@
 #include "fsi/output/series.hpp"
 
-#include <cerrno>
 #include <cstdio>
-#include <cstring>
 
-#include "fsi/common/error.hpp"
+#include "fsi/output/atomic_file.hpp"
 
 namespace fsi::output {
 
 namespace fs = std::filesystem;
-
-void write_file_atomically(const fs::path& path, const std::string& bytes) {
-  const fs::path temporary = fs::path(path.string() + ".tmp");
-  std::FILE* file = std::fopen(temporary.c_str(), "wb");
-  if (!file) {
-    throw Error("cannot create " + temporary.string() + ": " + std::strerror(errno), "VTK output",
-                "choose a writable --output folder with free space");
-  }
-  const std::size_t written = std::fwrite(bytes.data(), 1, bytes.size(), file);
-  const bool closed = std::fclose(file) == 0;
-  if (written != bytes.size() || !closed) {
-    std::remove(temporary.c_str());
-    throw Error("cannot write " + temporary.string() + " (" + std::to_string(written) + " of " +
-                    std::to_string(bytes.size()) + " bytes written)",
-                "VTK output", "free disk space in the --output folder");
-  }
-  std::error_code error;
-  fs::rename(temporary, path, error);
-  if (error) {
-    throw Error(
-        "cannot rename " + temporary.string() + " to " + path.string() + ": " + error.message(),
-        "VTK output", "check the permissions of the --output folder");
-  }
-}
 
 std::string encode_collection(const std::vector<CollectionEntry>& entries) {
   std::string text =

@@ -5,16 +5,20 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <thread>
 #include <variant>
 #include <vector>
 
+#include "fault_relay.hpp"
 #include "fluid_probes.hpp"
 #include "fsi/common/error.hpp"
 #include "fsi/common/stopwatch.hpp"
@@ -24,6 +28,7 @@
 #include "fsi/protocol/channel.hpp"
 #include "fsi/protocol/messages.hpp"
 #include "liggghts_driver.hpp"
+#include "liggghts_errors.hpp"
 #include "settling.hpp"
 
 namespace fsi::client {
@@ -115,12 +120,14 @@ std::string host_name() {
 
 class ClientSession {
  public:
-  ClientSession(MPI_Comm communicator, const ClientOptions& options)
-      : mpi_(communicator), options_(options) {}
+  ClientSession(MPI_Comm communicator, const ClientOptions& options, FaultRelay& relay)
+      : mpi_(communicator), options_(options), relay_(relay) {}
   ClientSession(const ClientSession&) = delete;
   ClientSession& operator=(const ClientSession&) = delete;
-  // The exit handler must not reach into a finished session (--persistent runs several).
+  // The exit handler and the relay must not reach into a finished session (--persistent runs
+  // several).
   ~ClientSession() {
+    relay_.set_handler({});
     g_exit_report.active = false;
     g_exit_report.channel = nullptr;
     g_exit_report.driver = nullptr;
@@ -128,7 +135,16 @@ class ClientSession {
   }
 
   int run() {
-    if (mpi_.root()) connect();
+    if (mpi_.root()) {
+      connect();
+      // Another rank's fault, relayed while this rank may wait for it inside LIGGGHTS.
+      relay_.set_handler([this](int rank, std::uint32_t code, const std::string& text) {
+        spdlog::error("fsi-client: {}{}", rank >= 0 ? "rank " + std::to_string(rank) + ": " : "",
+                      text);
+        spdlog::default_logger()->flush();
+        report_failure(text, static_cast<protocol::ErrorCode>(code));
+      });
+    }
     // Every rank must know which optional messages of the set-up follow.
     MPI_Bcast(&capabilities_, 1, MPI_UINT32_T, 0, mpi_.communicator());
     const SetupData data = receive_setup();
@@ -148,15 +164,47 @@ class ClientSession {
     return 0;
   }
 
+  // Tells the server why the client ends: once, from whichever thread of rank 0 learns it first
+  // (the main thread's own fault, or the relay's watcher with another rank's).
   void report_failure(const std::string& text, protocol::ErrorCode code) {
-    if (!channel_) return;
-    setup_busy_ = {};
+    if (!channel_ || told_server_.exchange(true)) return;
+    g_exit_report.active = false;
     if (heartbeat_) heartbeat_->stop();
+    // The main thread holds the channel only while it talks to the server, which no fault of
+    // another rank interrupts (that rank would wait in a collective call, not fail); a channel
+    // still held after two seconds is left alone, and the server sees the connection close.
+    std::unique_lock lock(channel_mutex_, std::defer_lock);
+    if (!lock.try_lock_for(std::chrono::seconds(2))) return;
     try {
       channel_->send(protocol::ErrorMessage{code, text});
       channel_->close();  // lingers until the server has read it (MPI_Abort follows)
     } catch (...) {
     }
+  }
+
+  // What the server and the log are told of a fault on this rank: LIGGGHTS' own line with the
+  // script line being executed, and which rank saw it when there are several.
+  std::string describe(const std::exception& failure) const {
+    const std::string rank = mpi_.size() > 1 ? " on rank " + std::to_string(mpi_.rank()) + " of " +
+                                                   std::to_string(mpi_.size())
+                                             : std::string();
+    const auto* liggghts = dynamic_cast<const LiggghtsError*>(&failure);
+    if (liggghts == nullptr) {
+      return mpi_.root() ? std::string(failure.what())
+                         : "fsi-client" + rank + ": " + failure.what();
+    }
+    // An error every rank raises is the job's, not a rank's.
+    std::string text = "LIGGGHTS stopped the client" + (liggghts->every_rank() ? "" : rank) + ": " +
+                       failure.what();
+    if (driver_) {
+      const auto& position = driver_->position();
+      if (!position.script.empty()) {
+        text += " (while executing " + position.script +
+                (position.line > 0 ? ":" + std::to_string(position.line) : std::string()) + ": '" +
+                position.command + "')";
+      }
+    }
+    return text;
   }
 
  private:
@@ -226,6 +274,7 @@ class ClientSession {
     std::uint16_t type = 0;
     std::vector<std::byte> payload;
     if (mpi_.root()) {
+      std::lock_guard lock(channel_mutex_);
       protocol::Frame frame =
           channel_->receive(options_.peer_timeout, "the next message from fsi-server");
       type = static_cast<std::uint16_t>(frame.header.type);
@@ -364,7 +413,7 @@ class ClientSession {
       ready.liggghts_version = "LIGGGHTS 3.8 (Debian libliggghts)";
       ready.seconds_setup = seconds_setup;
       ready.seconds_equilibration = seconds_equilibration;
-      channel_->send(ready);
+      send(ready);
       if (energies) {
         protocol::ReleaseState release;
         release.drag_rate = drag.rate;
@@ -372,7 +421,7 @@ class ClientSession {
         release.fluid_mass = energies->mass;
         release.kinetic_energy = energies->kinetic;
         release.potential_energy = energies->potential;
-        channel_->send(release);
+        send(release);
       }
     }
     if (data.probes && !data.probes->probes.empty()) prepare_probes(*data.probes, data.particles);
@@ -524,7 +573,7 @@ class ClientSession {
     out.seconds_contact = seconds_contact;
     out.seconds_client_communication = communication.seconds();  // since the previous Forces
     communication.reset();
-    channel_->send(forces);
+    send(forces);
     if (report_health) {
       protocol::FluidHealth report;
       report.step = step;
@@ -535,14 +584,14 @@ class ClientSession {
       report.min_density = -maxima_total[1];
       report.max_density = maxima_total[2];
       report.max_speed = std::sqrt(maxima_total[3]);
-      channel_->send(report);
+      send(report);
     }
     if (probe_partials) {
       probes::Partials reduced;
       reduced.sums.assign(total.begin() + static_cast<long>(first_probe_sum), total.end());
       reduced.maxima.assign(maxima_total.begin() + static_cast<long>(first_probe_maximum),
                             maxima_total.end());
-      channel_->send(protocol::ProbeValues{step, probes_->values(reduced)});
+      send(protocol::ProbeValues{step, probes_->values(reduced)});
     }
   }
 
@@ -592,14 +641,14 @@ class ClientSession {
           reply.velocities = std::move(snapshot.velocities);
           reply.density = std::move(snapshot.density);
           reply.pressure = std::move(snapshot.pressure);
-          channel_->send(reply);
+          send(reply);
         }
       } else if (std::holds_alternative<protocol::Shutdown>(message)) {
         if (mpi_.root()) {
           protocol::Goodbye goodbye;
           goodbye.steps_done = steps;
           goodbye.seconds_total = total.stop();
-          channel_->send(goodbye);
+          send(goodbye);
           spdlog::info("run finished after {} coupled steps", steps);
           if (probes_) {
             spdlog::info(
@@ -642,9 +691,19 @@ class ClientSession {
     last_time_ = step.time;
   }
 
+  // Rank 0's sends on the channel, which the relay's watcher may use to report a fault.
+  template <class Message>
+  void send(const Message& message) {
+    std::lock_guard lock(channel_mutex_);
+    channel_->send(message);
+  }
+
   MpiContext mpi_;
   ClientOptions options_;
+  FaultRelay& relay_;
   std::unique_ptr<protocol::Channel> channel_;
+  std::timed_mutex channel_mutex_;  // held by whichever thread of rank 0 uses channel_
+  std::atomic<bool> told_server_{false};
   std::uint32_t capabilities_ = 0;                        // agreed in the handshake
   std::unique_ptr<protocol::HeartbeatSender> heartbeat_;  // rank 0
   protocol::HeartbeatSender::Busy setup_busy_;
@@ -663,24 +722,35 @@ class ClientSession {
 
 // One connection, set-up and run. A fault ends the whole MPI job (also with --persistent: the
 // ranks may be stuck in different collective calls, so there is no common place to resume).
-int run_one_session(MPI_Comm communicator, const ClientOptions& options, int rank) {
-  ClientSession session(communicator, options);
+int run_one_session(MPI_Comm communicator, const ClientOptions& options, FaultRelay& relay,
+                    int rank) {
+  ClientSession session(communicator, options, relay);
   try {
     return session.run();
   } catch (const std::exception& failure) {
     // Whatever happened on this rank ends the whole job: the other ranks may wait in a
     // collective call forever otherwise.
-    spdlog::error("fsi-client (rank {}): {}", rank, failure.what());
+    const std::string text = session.describe(failure);
+    spdlog::error("fsi-client (rank {}): {}", rank, text);
     spdlog::default_logger()->flush();
-    // Tell the server unless it reported the fault itself (docs/protocol.md §7).
-    if (const auto code = protocol::error_code_for(failure, protocol::ErrorCode::SetupFailed);
-        rank == 0 && code) {
-      session.report_failure(failure.what(), *code);
-    }
     g_exit_report.active = false;
+    // Tell the server unless it reported the fault itself (docs/protocol.md §7); another rank
+    // tells it through rank 0, which then ends the job.
+    const auto code = dynamic_cast<const LiggghtsError*>(&failure) != nullptr
+                          ? std::optional(protocol::ErrorCode::LiggghtsError)
+                          : protocol::error_code_for(failure, protocol::ErrorCode::SetupFailed);
+    if (rank == 0 && code) {
+      session.report_failure(text, *code);
+    } else if (code && relay.tell_root(static_cast<std::uint32_t>(*code), text)) {
+      std::this_thread::sleep_for(std::chrono::seconds(15));  // rank 0 ends the job meanwhile
+    }
     MPI_Abort(communicator, 1);
     return 1;
   }
+}
+
+extern "C" void on_termination_signal(int signal) {
+  FaultRelay::note_termination_signal(signal);
 }
 
 }  // namespace
@@ -688,9 +758,27 @@ int run_one_session(MPI_Comm communicator, const ClientOptions& options, int ran
 int run_client_session(MPI_Comm communicator, const ClientOptions& options) {
   int rank = 0;
   MPI_Comm_rank(communicator, &rank);
+  int threading = MPI_THREAD_SINGLE;
+  MPI_Query_thread(&threading);
+  FaultRelay relay(communicator, threading == MPI_THREAD_MULTIPLE);
+  int size = 1;
+  MPI_Comm_size(communicator, &size);
+  FaultRelay::install_crash_report(rank, size);
+  if (rank == 0 && !relay.active()) {
+    spdlog::warn(
+        "this MPI provides no MPI_THREAD_MULTIPLE: a fault that a rank other than 0 sees ends the "
+        "job with that rank's message on stderr only; fsi-server sees the connection close");
+  }
+  // mpirun ends every rank with SIGTERM when one crashed or aborted: rank 0's watcher tells the
+  // server before the job ends.
+  if (rank == 0 && relay.active()) std::signal(SIGTERM, on_termination_signal);
   for (int run = 1;; ++run) {
-    const int status = run_one_session(communicator, options, rank);
-    if (!options.persistent) return status;
+    const int status = run_one_session(communicator, options, relay, rank);
+    if (!options.persistent) {
+      // No watcher after this: a SIGTERM ends the process again.
+      if (rank == 0 && relay.active()) std::signal(SIGTERM, SIG_DFL);
+      return status;
+    }
     if (rank == 0) {
       std::fprintf(stderr,
                    "fsi-client: run %d done; waiting for the next fsi-server at %s:%u "

@@ -6,6 +6,7 @@
 #include <spdlog/spdlog.h>
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <memory>
 #include <string>
@@ -20,8 +21,9 @@
 namespace {
 
 // Rank-aware logs: rank 0 logs at the chosen level to stderr and --log-file; the other ranks only
-// report errors (a fault one rank sees must still be told), unless --log-all-ranks, which gives
-// each rank r > 0 its own file FILE.rank<r> (one file per rank: no interleaved lines).
+// report warnings and errors (what one rank sees must still be told, e.g. fix fsi/sph's
+// close-approach warning for a particle of rank 1), unless --log-all-ranks, which gives each
+// rank r > 0 its own file FILE.rank<r> (one file per rank: no interleaved lines).
 void configure_logging(int rank, const std::string& level, const std::string& log_file,
                        bool all_ranks) {
   std::vector<spdlog::sink_ptr> sinks{std::make_shared<spdlog::sinks::stderr_color_sink_mt>()};
@@ -32,7 +34,8 @@ void configure_logging(int rank, const std::string& level, const std::string& lo
   }
   auto logger = std::make_shared<spdlog::logger>("fsi-client", sinks.begin(), sinks.end());
   logger->set_pattern("[%H:%M:%S.%e] [fsi-client rank " + std::to_string(rank) + "] [%l] %v");
-  logger->set_level(verbose ? spdlog::level::from_str(level) : spdlog::level::err);
+  const spdlog::level::level_enum chosen = spdlog::level::from_str(level);
+  logger->set_level(verbose ? chosen : std::max(chosen, spdlog::level::warn));
   logger->flush_on(spdlog::level::info);
   spdlog::set_default_logger(logger);
 }
@@ -40,7 +43,9 @@ void configure_logging(int rank, const std::string& level, const std::string& lo
 }  // namespace
 
 int main(int argc, char** argv) {
-  MPI_Init(&argc, &argv);
+  // Rank 0's fault watcher (fault_relay.hpp) calls MPI beside the main thread.
+  int threading = MPI_THREAD_SINGLE;
+  MPI_Init_thread(&argc, &argv, MPI_THREAD_MULTIPLE, &threading);
   int rank = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
 

@@ -1,13 +1,13 @@
-"""One reader for run.json (format_version 5) of every run mode: checks that the manifest has the
+"""One reader for run.json (format_version 6) of every run mode: checks that the manifest has the
 one shape fsi-server writes for coupled and --mbd-only runs, and returns it as a dict."""
 import json
 import os
 
-FORMAT_VERSION = 5
+FORMAT_VERSION = 6
 
 # Every key of the shape, with the keys of its objects; None marks a leaf.
 SHAPE = {
-    "format": None, "format_version": None, "mode": None,
+    "format": None, "format_version": None, "mode": None, "started_utc": None,
     "program": {"name": None, "version": None, "git_revision": None, "command_line": None},
     "protocol": None, "client": None,
     "scene": {"file": None, "fnv1a64": None},

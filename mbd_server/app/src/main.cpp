@@ -1,4 +1,5 @@
-// fsi-server SCENE --output DIR [--port P] [--port-file F] [--listen ADDR] [--set KEY=EXPR ...]
+// fsi-server SCENE --output DIR [--overwrite] [--port P] [--port-file F] [--listen ADDR]
+//            [--set KEY=EXPR ...]
 // The multibody side of the co-simulation: owns the clock and the set-up of both sides, serves
 // boundary positions and velocities to fsi-client and applies the fluid forces it returns.
 #include <spdlog/sinks/base_sink.h>
@@ -19,7 +20,10 @@
 #include "fsi/common/error.hpp"
 #include "fsi/common/version.hpp"
 #include "fsi/coupling/mbd_only.hpp"
+#include "fsi/coupling/output.hpp"
 #include "fsi/coupling/session.hpp"
+#include "fsi/output/atomic_file.hpp"
+#include "fsi/output/run_folder.hpp"
 #include "fsi/protocol/auth.hpp"
 #include "fsi/scene/physics_checks.hpp"
 #include "fsi/scene/scene.hpp"
@@ -176,6 +180,7 @@ fsi::scene::Diagnostic coupled_step_notice(const fsi::scene::Scene& scene) {
 struct CommandLine {
   std::string scene_file;
   std::string output;
+  bool overwrite = false;
   int port = 0;
   std::string port_file;
   std::string listen = "127.0.0.1";
@@ -203,7 +208,11 @@ void declare_run_options(CLI::App& app, CommandLine& line) {
   app.add_option("scene", line.scene_file, "Scene parameter file (*.scene); required");
   app.add_option("--output", line.output,
                  "Output folder of the run (created): sensors.csv, run.json, fsi-server.log, "
-                 "snapshots/, vtk/; required for a run");
+                 "snapshots/, vtk/; required for a run. A folder that holds an earlier run's "
+                 "results is refused, naming that run, unless --overwrite");
+  app.add_flag("--overwrite", line.overwrite,
+               "Replace the results of an earlier run in --output (its run.json, sensors.csv, "
+               "energy.csv, logs, snapshots/, vtk/, plots/; other files stay; default: off)");
   app.add_option("--set", line.overrides,
                  "Override a scene parameter, KEY=EXPR (repeatable; default: none)");
   app.add_flag("--check", line.check_only,
@@ -378,11 +387,36 @@ int run(fsi::scene::Scene& scene, const CommandLine& line, const SceneNotes& not
   }
   std::optional<fsi::protocol::Token> token;
   if (!decide_access(line, token)) return 2;
-  std::error_code error;
-  std::filesystem::create_directories(line.output, error);
-  const std::shared_ptr<TerminalSink> terminal = configure_logging(
-      line.log_level, (std::filesystem::path(line.output) / "fsi-server.log").string(),
-      !line.no_live);
+  if (line.mbd_only && scene.model.coordinate_count() == 0) {
+    std::fprintf(stderr,
+                 "error: --mbd-only runs the multibody system, and the scene %s has no bodies "
+                 "(static ground only)\n  fix: run it coupled (without --mbd-only)\n",
+                 scene.file.c_str());
+    return 2;
+  }
+  // Before anything is written: the folder must not hold another run's results.
+  std::optional<fsi::output::EarlierRun> earlier;
+  try {
+    earlier = fsi::output::claim_run_folder(line.output, line.overwrite);
+    if (earlier) fsi::output::remove_earlier_run(line.output);
+  } catch (const fsi::Error& refused) {
+    spdlog::error("{}", refused.what());
+    return 2;
+  }
+  const std::filesystem::path log_file = std::filesystem::path(line.output) / "fsi-server.log";
+  try {
+    fsi::coupling::create_run_folder(line.output);
+    fsi::output::check_writable(log_file, "the server's log");
+  } catch (const fsi::Error& unwritable) {
+    spdlog::error("{}", unwritable.what());
+    return 2;
+  }
+  const std::shared_ptr<TerminalSink> terminal =
+      configure_logging(line.log_level, log_file.string(), !line.no_live);
+  if (earlier) {
+    spdlog::info("replaced the files of an earlier run in {} ({}){}", line.output,
+                 earlier->summary(), earlier->has_results() ? " (--overwrite)" : "");
+  }
   for (const fsi::scene::Diagnostic& warning : notes.run_warnings)
     spdlog::warn("{}", warning.text());
   log_diagnostics(scene, notes.diagnostics);
@@ -392,13 +426,6 @@ int run(fsi::scene::Scene& scene, const CommandLine& line, const SceneNotes& not
   }
   fsi::coupling::ServerOptions options = server_options(line, notes, terminal);
   options.token = token;
-  if (line.mbd_only && scene.model.coordinate_count() == 0) {
-    std::fprintf(stderr,
-                 "error: --mbd-only runs the multibody system, and the scene %s has no bodies "
-                 "(static ground only)\n  fix: run it coupled (without --mbd-only)\n",
-                 scene.file.c_str());
-    return 2;
-  }
   if (line.mbd_only) {
     fsi::coupling::MbdOnlyOptions mbd_options;
     mbd_options.output_dir = line.output;

@@ -28,6 +28,7 @@ int run_mbd_only(scene::Scene& scene, const MbdOnlyOptions& options) {
   RunRecord run;
   run.mode = RunMode::MbdOnly;
   run.command_line = options.command_line;
+  run.started_utc = utc_now();
   run.warnings = options.warnings;
   const double dt = scene.solver.step_size;
   const std::uint64_t steps = scene.solver.step_count();
@@ -35,6 +36,7 @@ int run_mbd_only(scene::Scene& scene, const MbdOnlyOptions& options) {
   std::unique_ptr<StructureSide> structure;
   try {
     create_run_folder(options.output_dir);
+    write_run_manifest(options.output_dir, scene, run);  // "started": the folder names its run
     sensors = std::make_unique<SensorFile>(fs::path(options.output_dir) / "sensors.csv",
                                            "fsi-server --mbd-only sensors of " + scene.file,
                                            scene.sensors);

@@ -1,10 +1,15 @@
 #include "fsi/coupling/output.hpp"
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <system_error>
 
 #include "fsi/common/error.hpp"
+#include "fsi/output/atomic_file.hpp"
 
 namespace fsi::coupling {
 
@@ -20,22 +25,26 @@ void create_run_folder(const std::string& folder) {
 SensorFile::SensorFile(const std::string& path, const std::string& title,
                        const std::vector<std::string>& names, const std::vector<std::string>& units)
     : path_(path), last_flush_(std::chrono::steady_clock::now()) {
-  file_ = std::fopen(path.c_str(), "w");
-  if (!file_) {
-    throw Error("cannot write " + path + ": " + std::strerror(errno), "output folder",
-                "choose a writable --output folder");
-  }
-  std::fprintf(file_, "# %s\n# units: time [s]", title.c_str());
+  descriptor_ = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (descriptor_ < 0) throw output::file_error("cannot create", path, errno, "sensor output");
+  std::string header = "# " + title + "\n# units: time [s]";
   for (std::size_t i = 0; i < names.size(); ++i)
-    std::fprintf(file_, ", %s [%s]", names[i].c_str(), units[i].c_str());
-  std::fprintf(file_, "\ntime");
+    header += ", " + names[i] + " [" + units[i] + "]";
+  header += "\ntime";
   for (const auto& name : names)
-    std::fprintf(file_, ",%s", name.c_str());
-  std::fprintf(file_, "\n");
-  std::fflush(file_);
+    header += "," + name;
+  header += "\n";
+  append(header);
 }
 
 namespace {
+
+// printf's %.17g (the round-trip text of a double), after `separator`.
+void append_number(std::string& text, const char* separator, double value) {
+  char digits[40];
+  const int length = std::snprintf(digits, sizeof digits, "%s%.17g", separator, value);
+  text.append(digits, static_cast<std::size_t>(length));
+}
 
 std::vector<probes::Column> columns_of(const std::vector<scene::SensorSpec>& sensors,
                                        const std::vector<probes::ProbeDefinition>& probes,
@@ -73,15 +82,20 @@ SensorFile::SensorFile(const std::filesystem::path& path, const std::string& tit
                  units_of(columns_of(sensors, probes, dimension))) {}
 
 SensorFile::~SensorFile() {
-  if (file_) std::fclose(file_);
+  if (descriptor_ < 0) return;
+  try {
+    flush();
+  } catch (const std::exception&) {
+    // The run has ended already; its error was reported where it happened.
+  }
+  ::close(descriptor_);
 }
 
 void SensorFile::write(double time, const std::vector<double>& values) {
-  std::fprintf(file_, "%.17g", time);
+  append_number(pending_, "", time);
   for (double value : values)
-    std::fprintf(file_, ",%.17g", value);
-  std::fputc('\n', file_);
-  // A crash loses at most about one second of rows.
+    append_number(pending_, ",", value);
+  pending_ += '\n';
   const auto now = std::chrono::steady_clock::now();
   if (now - last_flush_ > std::chrono::seconds(1)) {
     flush();
@@ -90,32 +104,46 @@ void SensorFile::write(double time, const std::vector<double>& values) {
 }
 
 void SensorFile::flush() {
-  if (std::fflush(file_) != 0) {
-    throw Error("cannot write " + path_ + ": " + std::strerror(errno), "sensor output",
-                "free disk space");
+  if (pending_.empty()) return;
+  append(pending_);
+  pending_.clear();
+}
+
+void SensorFile::append(const std::string& text) {
+  const off_t whole = ::lseek(descriptor_, 0, SEEK_END);
+  std::size_t done = 0;
+  while (done < text.size()) {
+    const ssize_t written = ::write(descriptor_, text.data() + done, text.size() - done);
+    if (written < 0 && errno == EINTR) continue;
+    if (written <= 0) {
+      const int error_number = written < 0 ? errno : ENOSPC;
+      // A part of a row must not look like a row to a reader.
+      if (whole >= 0 && ::ftruncate(descriptor_, whole) == 0) ::lseek(descriptor_, whole, SEEK_SET);
+      pending_.clear();
+      throw output::file_error("cannot write", path_, error_number, "sensor output");
+    }
+    done += static_cast<std::size_t>(written);
   }
 }
 
 void write_snapshot_csv(const std::string& path, const ParticleSnapshot& snapshot) {
-  std::FILE* file = std::fopen(path.c_str(), "w");
-  if (!file) {
-    throw Error("cannot write " + path + ": " + std::strerror(errno), "snapshot output",
-                "free disk space");
-  }
   const bool spatial = snapshot.dimension == 3;
-  std::fprintf(file, "# SPH particles at step %llu, t = %.17g s\n%s\n",
-               static_cast<unsigned long long>(snapshot.step), snapshot.time,
-               spatial ? "id,x,y,z,vx,vy,vz,density,pressure" : "id,x,y,vx,vy,density,pressure");
+  std::string text = "# SPH particles at step " + std::to_string(snapshot.step) + ", t = ";
+  append_number(text, "", snapshot.time);
+  text +=
+      spatial ? " s\nid,x,y,z,vx,vy,vz,density,pressure\n" : " s\nid,x,y,vx,vy,density,pressure\n";
   const auto dimension = static_cast<std::size_t>(snapshot.dimension);
   for (std::size_t i = 0; i < snapshot.ids.size(); ++i) {
-    std::fprintf(file, "%llu", static_cast<unsigned long long>(snapshot.ids[i]));
+    text += std::to_string(snapshot.ids[i]);
     for (const auto* values : {&snapshot.positions, &snapshot.velocities}) {
       for (std::size_t k = 0; k < dimension; ++k)
-        std::fprintf(file, ",%.17g", (*values)[dimension * i + k]);
+        append_number(text, ",", (*values)[dimension * i + k]);
     }
-    std::fprintf(file, ",%.17g,%.17g\n", snapshot.density[i], snapshot.pressure[i]);
+    append_number(text, ",", snapshot.density[i]);
+    append_number(text, ",", snapshot.pressure[i]);
+    text += '\n';
   }
-  std::fclose(file);
+  output::write_file_atomically(path, text);
 }
 
 }  // namespace fsi::coupling

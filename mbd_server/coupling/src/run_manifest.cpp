@@ -2,12 +2,14 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <ctime>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "fsi/common/error.hpp"
 #include "fsi/common/version.hpp"
+#include "fsi/output/atomic_file.hpp"
 #include "fsi/protocol/frame.hpp"
 
 namespace fsi::coupling {
@@ -208,6 +210,15 @@ json release_entry(const std::optional<ReleaseCheck>& release) {
 
 }  // namespace
 
+std::string utc_now() {
+  const std::time_t now = std::time(nullptr);
+  std::tm parts{};
+  gmtime_r(&now, &parts);
+  char text[32];
+  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &parts);
+  return text;
+}
+
 void write_run_manifest(const fs::path& output_dir, const scene::Scene& scene,
                         const RunRecord& record) {
   json manifest;
@@ -220,6 +231,7 @@ void write_run_manifest(const fs::path& output_dir, const scene::Scene& scene,
                          {"command_line", record.command_line}};
   manifest["protocol"] = protocol_entry(record.fluid);
   manifest["client"] = client_entry(record.fluid);
+  manifest["started_utc"] = record.started_utc.empty() ? json(nullptr) : json(record.started_utc);
   manifest["scene"] = scene_entry(scene);
   manifest["parameters"] = scene::to_json(scene.parameters);
   manifest["parameters_flat"] = scene::flatten_numbers(scene.parameters);
@@ -244,10 +256,7 @@ void write_run_manifest(const fs::path& output_dir, const scene::Scene& scene,
   manifest["warnings"] = record.warnings;
   manifest["status"] = record.status;
   manifest["reason"] = record.reason.empty() ? json(nullptr) : json(record.reason);
-  const fs::path path = output_dir / "run.json";
-  std::ofstream out(path);
-  out << manifest.dump(2) << "\n";
-  if (!out) throw Error("cannot write " + path.string(), "output folder", "free disk space");
+  output::write_file_atomically(output_dir / "run.json", manifest.dump(2) + "\n");
 }
 
 }  // namespace fsi::coupling

@@ -64,9 +64,12 @@ class Session {
 
   int run() {
     timings_.total.start();
+    started_utc_ = utc_now();
     int status = 0;
     try {
       prepare_output();
+      // From now on the folder says which run it holds, also when this run is killed.
+      write_run_manifest(options_.output_dir, scene_, record());
       set_up();
       couple();
       fluid_.finish();
@@ -445,6 +448,7 @@ class Session {
     RunRecord run;
     run.mode = RunMode::Coupled;
     run.command_line = options_.command_line;
+    run.started_utc = started_utc_;
     run.warnings = options_.warnings;
     // The release warning stays in run.json's "release" entry: "warnings" lists the scene's
     // physics checks, which tools compare from run to run.
@@ -492,6 +496,7 @@ class Session {
   bool coupling_ = false;  // the set-up is done, the coupled steps have begun
   std::uint64_t steps_done_ = 0;
   std::uint64_t snapshots_ = 0;
+  std::string started_utc_;
   std::string status_ = "started";
   std::string reason_;
   std::shared_ptr<spdlog::logger> progress_logger_;

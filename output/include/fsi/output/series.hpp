@@ -10,9 +10,6 @@
 
 namespace fsi::output {
 
-// Writes bytes to path via path.tmp and a rename. Throws fsi::Error (what, where, how to fix).
-void write_file_atomically(const std::filesystem::path& path, const std::string& bytes);
-
 // The text of a .pvd collection: one DataSet per (time, file) with a timestep attribute.
 struct CollectionEntry {
   double time = 0.0;

@@ -1,9 +1,8 @@
 #pragma once
-// Files of a run folder: sensors.csv (one column per sensor, flushed on a schedule) and
-// particle snapshots (snapshots/particles_<step>.csv).
+// Files of a run folder: sensors.csv (one column per sensor, whole rows appended on a schedule)
+// and particle snapshots (snapshots/particles_<step>.csv, each written whole or not at all).
 
 #include <chrono>
-#include <cstdio>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -30,12 +29,19 @@ class SensorFile {
   SensorFile(const SensorFile&) = delete;
   SensorFile& operator=(const SensorFile&) = delete;
 
+  // Appends a row; rows reach the file about once a second and at flush(). Throws an fsi::Error
+  // naming the file when the system refuses the write (a full disk).
   void write(double time, const std::vector<double>& values);
   void flush();
 
  private:
-  std::FILE* file_ = nullptr;
+  // The file holds whole rows only: rows are written whole, and a write the disk refuses is cut
+  // back to the last whole row before the error is thrown. A crash loses the rows not yet
+  // written (at most about a second's).
+  void append(const std::string& text);
+  int descriptor_ = -1;
   std::string path_;
+  std::string pending_;  // whole rows not yet written
   std::chrono::steady_clock::time_point last_flush_;
 };
 
@@ -47,6 +53,7 @@ struct ParticleSnapshot {
   std::vector<double> positions, velocities, density, pressure;
 };
 
+// The snapshot's CSV text, written whole or not at all (fsi::output::write_file_atomically).
 void write_snapshot_csv(const std::string& path, const ParticleSnapshot& snapshot);
 
 }  // namespace fsi::coupling

@@ -23,7 +23,12 @@ namespace fsi::coupling {
 // list, null for what a mode does not have). Version 3: "release", the fluid at release.
 // Version 4: "health", the fluid health checks (limits, the worst values, the failed check).
 // Version 5: "energy_audit", the works exchanged by the coupling (energy_audit.hpp).
-inline constexpr int kRunManifestFormatVersion = 5;
+// Version 6: "started_utc"; run.json is written when the run starts too ("status": "started"
+// until the end is recorded), always whole (a temporary name and a rename).
+inline constexpr int kRunManifestFormatVersion = 6;
+
+// Now, as run.json's "started_utc" writes it: "2026-12-02T11:40:12Z".
+std::string utc_now();
 
 enum class RunMode { Coupled, MbdOnly };
 
@@ -65,6 +70,7 @@ struct RunRecord {
   RunMode mode = RunMode::Coupled;
   std::string command_line;
   std::vector<std::string> warnings;
+  std::string started_utc;         // utc_now() when the run began
   std::string status = "started";  // "completed" or "failed" at the end
   std::string reason;              // why it failed; empty otherwise
   std::uint64_t steps = 0;         // done
@@ -84,7 +90,8 @@ struct RunRecord {
   std::optional<EnergyAuditSummary> energy_audit;  // coupled runs that began their steps
 };
 
-// Writes DIR/run.json. Throws fsi::Error if it cannot.
+// Writes DIR/run.json whole or not at all (a reader never sees a part of it). Throws fsi::Error
+// naming the file and the fix if it cannot; the previous run.json stays then.
 void write_run_manifest(const std::filesystem::path& output_dir, const scene::Scene& scene,
                         const RunRecord& record);
 
