@@ -67,10 +67,11 @@ class FixFsiSph : public LAMMPS_NS::Fix {
     }
     boundary.vertex_forces.resize(boundary.positions().size());
     try {
-      boundary.diagnostics =
-          boundary.dimension == 3
-              ? contact3d_.compute(boundary.mesh3d, particles, boundary.vertex_forces)
-              : contact_.compute(boundary.mesh, particles, boundary.vertex_forces);
+      boundary.diagnostics = boundary.dimension == 3
+                                 ? contact3d_.compute(boundary.mesh3d, particles,
+                                                      boundary.vertex_forces, &boundary.samples)
+                                 : contact_.compute(boundary.mesh, particles,
+                                                    boundary.vertex_forces, &boundary.samples);
     } catch (const NonFiniteParticle& bad) {
       const double* x = atom->x[bad.index];
       const double* v = atom->v[bad.index];
