@@ -103,6 +103,15 @@ void check_evaluation_inputs(const MeshShape& shape, const ParticleArrays& parti
 
 }  // namespace skeleton
 
+void WallSampleRecord::clear() {
+  positions.clear();
+  normals.clear();
+  forces.clear();
+  measures.clear();
+  elements.clear();
+  pairs.clear();
+}
+
 void ContactDiagnostics::merge(const ContactDiagnostics& other) {
   for (int k = 0; k < 3; ++k) {
     force_on_particles[k] += other.force_on_particles[k];

@@ -33,7 +33,9 @@ struct SamplingPoint {
   static constexpr int kDimension = Dimension;
   double position[Dimension];
   double velocity[Dimension];
-  double measure_weight;  // length (2D) or area (3D) of the sub-element times the rule's weight
+  double measure_weight;     // length (2D) or area (3D) of the sub-element times the rule's weight
+  double normal[Dimension];  // unit normal of the element (WallSampleRecord's orientation)
+  std::uint32_t element_index;
   std::uint32_t corner_vertex[Corners];
   double corner_share[Corners];  // eq. (4.11/4.12) weights of the point in the original element
   const Element* element;
@@ -103,6 +105,11 @@ class PairKernel {
       diagnostics_.force_on_particles[k] += force[k];
     }
     redistribute(force, s.corner_vertex, s.corner_share, vertex_forces_);
+    if (sample_force_) {
+      for (int k = 0; k < kDimension; ++k)
+        sample_force_[k] -= force[k];
+      ++*sample_pairs_;
+    }
 
     double magnitude2 = force[0] * force[0];
     for (int k = 1; k < kDimension; ++k)
@@ -116,6 +123,23 @@ class PairKernel {
     diagnostics_.closest_distance = s.element->closest_distance(x, diagnostics_.closest_distance);
   }
 
+  // Starts sampling point `s` of the record (when there is one): the pairs that follow add their
+  // reaction to its force.
+  void begin_sample(const Point& s, WallSampleRecord* record) {
+    if (!record) return;
+    const auto append = [](std::vector<double>& to, const double* values) {
+      to.insert(to.end(), values, values + kDimension);
+    };
+    append(record->positions, s.position);
+    append(record->normals, s.normal);
+    record->forces.resize(record->forces.size() + kDimension, 0.0);
+    record->measures.push_back(s.measure_weight);
+    record->elements.push_back(s.element_index);
+    record->pairs.push_back(0);
+    sample_force_ = record->forces.data() + record->forces.size() - kDimension;
+    sample_pairs_ = &record->pairs.back();
+  }
+
  private:
   const ForceLaw& law_;
   double range2_;
@@ -123,7 +147,18 @@ class PairKernel {
   double* vertex_forces_;
   std::vector<std::uint8_t>& in_range_;
   ContactDiagnostics& diagnostics_;
+  double* sample_force_ = nullptr;  // the recorded sampling point's force, when recording
+  std::uint32_t* sample_pairs_ = nullptr;
 };
+
+// Empties the record for an evaluation of `Dimension`; nullptr when there is nothing to record.
+template <int Dimension>
+WallSampleRecord* start_record(WallSampleRecord* record) {
+  if (!record || !record->enabled) return nullptr;
+  record->clear();
+  record->dimension = Dimension;
+  return record;
+}
 
 // Zeroes the vertex forces and starts the diagnostics (no particle seen yet).
 inline ContactDiagnostics start_evaluation(std::span<double> vertex_forces) {
@@ -152,8 +187,10 @@ template <class Sampling>
 ContactDiagnostics evaluate_near_particles(
     const Sampling& sampling, const ForceLaw& law, const ParticleArrays& particles,
     std::span<const double> vertex_positions, std::span<double> vertex_forces,
-    NeighbourSearchBuffers<Sampling::Point::kDimension>& buffers) {
+    NeighbourSearchBuffers<Sampling::Point::kDimension>& buffers,
+    WallSampleRecord* samples = nullptr) {
   using Point = typename Sampling::Point;
+  WallSampleRecord* record = start_record<Point::kDimension>(samples);
   ContactDiagnostics diagnostics = start_evaluation(vertex_forces);
   const double range = law.range();
   mark_particles_near_mesh(particles, vertex_positions, Point::kDimension, range, buffers.near);
@@ -163,6 +200,7 @@ ContactDiagnostics evaluate_near_particles(
   const double reach = range * (1.0 + kSearchMargin);
   sampling.for_each_point([&](const Point& s) {
     ++diagnostics.sampling_points;
+    kernel.begin_sample(s, record);
     diagnostics.candidate_pairs +=
         buffers.grid.visit_near(s.position, reach, [&](std::uint32_t i) { kernel(s, i); });
   });
@@ -175,13 +213,16 @@ ContactDiagnostics evaluate_near_particles(
 template <class Sampling>
 ContactDiagnostics evaluate_all_pairs(const Sampling& sampling, const ForceLaw& law,
                                       const ParticleArrays& particles,
-                                      std::span<double> vertex_forces) {
+                                      std::span<double> vertex_forces,
+                                      WallSampleRecord* samples = nullptr) {
   using Point = typename Sampling::Point;
+  WallSampleRecord* record = start_record<Point::kDimension>(samples);
   ContactDiagnostics diagnostics = start_evaluation(vertex_forces);
   std::vector<std::uint8_t> in_range(particles.count, 0);
   PairKernel<Point> kernel(law, particles, vertex_forces, in_range, diagnostics);
   sampling.for_each_point([&](const Point& s) {
     ++diagnostics.sampling_points;
+    kernel.begin_sample(s, record);
     for (std::size_t i = 0; i < particles.count; ++i) {
       if (!takes_part(particles, i)) continue;
       ++diagnostics.candidate_pairs;

@@ -80,8 +80,10 @@ class FixFsiSph : public LAMMPS_NS::Fix {
     try {
       boundary.diagnostics =
           boundary.dimension == 3
-              ? contact3d_.compute(boundary.mesh3d, evaluated, boundary.vertex_forces)
-              : contact_.compute(boundary.mesh, evaluated, boundary.vertex_forces);
+              ? contact3d_.compute(boundary.mesh3d, evaluated, boundary.vertex_forces,
+                                   &boundary.samples)
+              : contact_.compute(boundary.mesh, evaluated, boundary.vertex_forces,
+                                 &boundary.samples);
       if (box.any()) images_.fold_forces(particles);
     } catch (const NonFiniteParticle& bad) {
       const std::size_t index = box.any() ? images_.origin(bad.index) : bad.index;

@@ -54,6 +54,10 @@ class SegmentSampling {
       point.element = &element;
       point.corner_vertex[0] = a;
       point.corner_vertex[1] = b;
+      point.element_index = static_cast<std::uint32_t>(segment);
+      const double inverse_length = length > 0.0 ? 1.0 / length : 0.0;  // 0: no normal
+      point.normal[0] = (rb[1] - ra[1]) * inverse_length;
+      point.normal[1] = -(rb[0] - ra[0]) * inverse_length;
       for (std::size_t piece = 0; piece < pieces; ++piece) {
         const double start = static_cast<double>(piece) * piece_fraction;
         for (const QuadraturePoint& q : rule_) {
@@ -112,21 +116,23 @@ WallContact2D::WallContact2D(const ContactSettings& settings) : settings_(settin
 
 ContactDiagnostics WallContact2D::compute(const BoundaryMesh2D& mesh,
                                           const ParticleArrays& particles,
-                                          std::span<double> vertex_forces) {
+                                          std::span<double> vertex_forces,
+                                          WallSampleRecord* samples) {
   skeleton::check_evaluation_inputs(kSegmentMesh, particles, mesh.positions, mesh.velocities,
                                     mesh.segments, vertex_forces);
   return skeleton::evaluate_near_particles(SegmentSampling(settings_, mesh), settings_.law,
-                                           particles, mesh.positions, vertex_forces, buffers_);
+                                           particles, mesh.positions, vertex_forces, buffers_,
+                                           samples);
 }
 
 ContactDiagnostics compute_all_pairs(const ContactSettings& settings, const BoundaryMesh2D& mesh,
                                      const ParticleArrays& particles,
-                                     std::span<double> vertex_forces) {
+                                     std::span<double> vertex_forces, WallSampleRecord* samples) {
   settings.validate();
   skeleton::check_evaluation_inputs(kSegmentMesh, particles, mesh.positions, mesh.velocities,
                                     mesh.segments, vertex_forces);
   return skeleton::evaluate_all_pairs(SegmentSampling(settings, mesh), settings.law, particles,
-                                      vertex_forces);
+                                      vertex_forces, samples);
 }
 
 }  // namespace fsi::contact

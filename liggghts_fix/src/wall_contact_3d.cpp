@@ -153,8 +153,11 @@ class TriangleSampling {
       const double sub_area = std::ldexp(e.area, -2 * level);
       Point point{};
       point.element = &e;
-      for (int c = 0; c < 3; ++c)
+      for (int c = 0; c < 3; ++c) {
         point.corner_vertex[c] = e.vertex[c];
+        point.normal[c] = e.unit_normal[c];
+      }
+      point.element_index = static_cast<std::uint32_t>(t);
       auto leaf = [&](const Barycentric& c0, const Barycentric& c1, const Barycentric& c2) {
         for (const TrianglePoint& q : rule_) {
           const auto& mu = q.barycentric;
@@ -276,7 +279,8 @@ void WallContact3D::prepare(const BoundaryMesh3D& mesh) {
 
 ContactDiagnostics WallContact3D::compute(const BoundaryMesh3D& mesh,
                                           const ParticleArrays& particles,
-                                          std::span<double> vertex_forces) {
+                                          std::span<double> vertex_forces,
+                                          WallSampleRecord* samples) {
   skeleton::check_evaluation_inputs(kTriangleMesh, particles, mesh.positions, mesh.velocities,
                                     mesh.triangles, vertex_forces);
   if (uses_pre_refinement(settings_)) {
@@ -293,12 +297,13 @@ ContactDiagnostics WallContact3D::compute(const BoundaryMesh3D& mesh,
   plan_levels(settings_, mesh, pre_refinement_, levels_);
   return skeleton::evaluate_near_particles(TriangleSampling(settings_, mesh, levels_),
                                            settings_.law, particles, mesh.positions, vertex_forces,
-                                           buffers_);
+                                           buffers_, samples);
 }
 
 ContactDiagnostics compute_all_pairs_3d(const ContactSettings3D& settings,
                                         const BoundaryMesh3D& mesh, const ParticleArrays& particles,
-                                        std::span<double> vertex_forces) {
+                                        std::span<double> vertex_forces,
+                                        WallSampleRecord* samples) {
   settings.validate();
   skeleton::check_evaluation_inputs(kTriangleMesh, particles, mesh.positions, mesh.velocities,
                                     mesh.triangles, vertex_forces);
@@ -307,7 +312,7 @@ ContactDiagnostics compute_all_pairs_3d(const ContactSettings3D& settings,
   std::vector<std::uint8_t> levels;
   plan_levels(settings, mesh, pre_refinement, levels);
   return skeleton::evaluate_all_pairs(TriangleSampling(settings, mesh, levels), settings.law,
-                                      particles, vertex_forces);
+                                      particles, vertex_forces, samples);
 }
 
 }  // namespace fsi::contact

@@ -1025,5 +1025,49 @@ TEST(WallContact3D, RejectsBadMeshesNamingTheElement) {
                  {"triangle 0 ", "larger resolution"});
 }
 
+// The force at every sampling point (the wall-pressure probes' input) sums to the structure's
+// force; the samples of a triangle measure its area and carry its unit normal.
+TEST(WallContact3D, RecordedSampleForcesSumToTheForceOnTheStructure) {
+  std::mt19937 rng(11);
+  for_each_random_scene(
+      rng, 2, [&](int option, int trial, const BoundaryMesh3D& mesh, Particles& p) {
+        std::vector<double> vertex_forces(mesh.positions.size());
+        WallContact3D contact(settings(option));
+        WallSampleRecord samples;
+        samples.enabled = true;
+        const ContactDiagnostics d = contact.compute(mesh, p.arrays(), vertex_forces, &samples);
+        ASSERT_EQ(samples.count(), d.sampling_points);
+        ASSERT_EQ(samples.dimension, 3);
+        Vector total{0.0, 0.0, 0.0};
+        std::size_t pairs = 0;
+        std::vector<double> area(mesh.triangle_count(), 0.0);
+        for (std::size_t s = 0; s < samples.count(); ++s) {
+          for (int k = 0; k < 3; ++k)
+            total[k] += samples.forces[3 * s + k];
+          pairs += samples.pairs[s];
+          area[samples.elements[s]] += samples.measures[s];
+          const double* n = &samples.normals[3 * s];
+          EXPECT_NEAR(std::hypot(n[0], n[1], n[2]), 1.0, 1e-14);
+        }
+        const double scale = d.pair_force_magnitude_sum;
+        for (int k = 0; k < 3; ++k) {
+          EXPECT_NEAR(total[k], d.force_on_structure[k], 1e-12 * scale)
+              << "option " << option << ", trial " << trial;
+        }
+        EXPECT_EQ(pairs, d.pair_count);
+        for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
+          const double* a = &mesh.positions[3 * mesh.triangles[3 * t]];
+          const double* b = &mesh.positions[3 * mesh.triangles[3 * t + 1]];
+          const double* c = &mesh.positions[3 * mesh.triangles[3 * t + 2]];
+          const Vector u{b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+          const Vector v{c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+          const double exact =
+              0.5 * std::hypot(u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
+                               u[0] * v[1] - u[1] * v[0]);
+          EXPECT_NEAR(area[t], exact, 1e-12 * exact) << "triangle " << t;
+        }
+      });
+}
+
 }  // namespace
 }  // namespace fsi::contact

@@ -252,5 +252,61 @@ TEST(WallContact, RejectsInconsistentInput) {
   EXPECT_THROW(WallContact2D{bad}, std::invalid_argument);
 }
 
+// The wall-pressure probes read the force at every sampling point: those forces are the
+// structure's share of every pair, so they sum to the vertex forces' total; every sample lies on
+// its segment with the segment's unit normal, and the samples of a segment measure its length.
+TEST(WallContact, RecordedSampleForcesSumToTheForceOnTheStructure) {
+  std::mt19937 rng(7);
+  for (int trial = 0; trial < 5; ++trial) {
+    BoundaryMesh2D mesh = random_mesh(rng, 6 + trial);
+    Particles p = random_particles(rng, 2000, 0.09);
+    std::vector<double> plain_forces(mesh.positions.size()), vertex_forces(plain_forces.size());
+    WallContact2D plain(settings()), recording(settings());
+    const auto plain_diagnostics = plain.compute(mesh, p.arrays(), plain_forces);
+    p.clear_forces();
+    WallSampleRecord samples;
+    samples.enabled = true;
+    const auto diagnostics = recording.compute(mesh, p.arrays(), vertex_forces, &samples);
+    EXPECT_EQ(vertex_forces, plain_forces) << "recording changes no force";
+    EXPECT_EQ(diagnostics.pair_count, plain_diagnostics.pair_count);
+    ASSERT_EQ(samples.count(), diagnostics.sampling_points);
+    ASSERT_EQ(samples.dimension, 2);
+    double total[2] = {0.0, 0.0};
+    std::size_t pairs = 0;
+    std::vector<double> length_of_samples(mesh.segment_count(), 0.0);
+    for (std::size_t s = 0; s < samples.count(); ++s) {
+      total[0] += samples.forces[2 * s];
+      total[1] += samples.forces[2 * s + 1];
+      pairs += samples.pairs[s];
+      const std::uint32_t segment = samples.elements[s];
+      ASSERT_LT(segment, mesh.segment_count());
+      length_of_samples[segment] += samples.measures[s];
+      const double* a = &mesh.positions[2 * mesh.segments[2 * segment]];
+      const double* b = &mesh.positions[2 * mesh.segments[2 * segment + 1]];
+      const double along[2] = {b[0] - a[0], b[1] - a[1]};
+      const double length = std::hypot(along[0], along[1]);
+      const double* n = &samples.normals[2 * s];
+      EXPECT_NEAR(n[0], along[1] / length, 1e-14);
+      EXPECT_NEAR(n[1], -along[0] / length, 1e-14);
+      const double* x = &samples.positions[2 * s];
+      EXPECT_NEAR((x[0] - a[0]) * n[0] + (x[1] - a[1]) * n[1], 0.0, 1e-14) << "on the segment";
+    }
+    const double scale = diagnostics.pair_force_magnitude_sum;
+    for (int k = 0; k < 2; ++k)
+      EXPECT_NEAR(total[k], diagnostics.force_on_structure[k], 1e-12 * scale) << "trial " << trial;
+    EXPECT_EQ(pairs, diagnostics.pair_count);
+    for (std::size_t e = 0; e < mesh.segment_count(); ++e) {
+      const double* a = &mesh.positions[2 * mesh.segments[2 * e]];
+      const double* b = &mesh.positions[2 * mesh.segments[2 * e + 1]];
+      EXPECT_NEAR(length_of_samples[e], std::hypot(b[0] - a[0], b[1] - a[1]), 1e-14);
+    }
+    // A record that is not enabled stays empty.
+    WallSampleRecord off;
+    p.clear_forces();
+    recording.compute(mesh, p.arrays(), vertex_forces, &off);
+    EXPECT_EQ(off.count(), 0u);
+  }
+}
+
 }  // namespace
 }  // namespace fsi::contact

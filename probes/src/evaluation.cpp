@@ -1,5 +1,6 @@
 #include "fsi/probes/evaluation.hpp"
 
+#include <algorithm>
 #include <limits>
 #include <utility>
 
@@ -44,18 +45,36 @@ std::vector<Column> ProbeSet::columns() const {
   return all;
 }
 
-Partials ProbeSet::partials(const ParticleSet& particles, const Kernel& kernel) const {
+Partials ProbeSet::partials(const ParticleSet& particles, const Kernel& kernel,
+                            const WallSamples& wall) const {
   Partials partials;
   partials.sums.assign(sum_count_, 0.0);
   partials.maxima.assign(maximum_count_, -std::numeric_limits<double>::infinity());
   for (std::size_t i = 0; i < probes_.size(); ++i) {
     const Slots& slots = slots_[i];
     detail::rules_of(probes_[i].kind)
-        ->partials(probes_[i], context_, particles, kernel,
+        ->partials(probes_[i], context_, particles, kernel, wall,
                    std::span(partials.sums).subspan(slots.first_sum, slots.sums),
                    std::span(partials.maxima).subspan(slots.first_maximum, slots.maxima));
   }
   return partials;
+}
+
+bool ProbeSet::needs_wall_samples() const {
+  return std::any_of(probes_.begin(), probes_.end(), reads_wall_samples);
+}
+
+std::string ProbeSet::wall_problems(const WallSamples& wall) const {
+  std::string problems;
+  for (const ProbeDefinition& probe : probes_) {
+    const detail::WallPatchCount count = detail::rules_of(probe.kind)->wall_patch_samples;
+    if (!count || count(probe, context_.dimension, wall) > 0) continue;
+    if (!problems.empty()) problems += "; ";
+    problems += kind_name(probe.kind) + " probe '" + probe.name +
+                "': no sampling point of the wall law lies in its patch (of " +
+                std::to_string(wall.count) + " on the boundary mesh)";
+  }
+  return problems;
 }
 
 std::vector<double> ProbeSet::values(const Partials& reduced) const {

@@ -38,10 +38,30 @@ ProbeDefinition flux_probe(std::string name, const std::vector<std::array<double
   return probe;
 }
 
+ProbeDefinition wall_pressure_probe(
+    std::string name, const std::array<double, 3>& centre, double radius,
+    const std::array<double, 3>& fluid_side,
+    const std::vector<std::pair<std::uint32_t, std::uint32_t>>& element_ranges) {
+  ProbeDefinition probe{ProbeKind::WallPressure,
+                        std::move(name),
+                        {centre[0], centre[1], centre[2], radius, fluid_side[0], fluid_side[1],
+                         fluid_side[2], static_cast<double>(element_ranges.size())}};
+  for (const auto& [first, end] : element_ranges) {
+    probe.parameters.push_back(static_cast<double>(first));
+    probe.parameters.push_back(static_cast<double>(end));
+  }
+  return probe;
+}
+
 std::vector<Column> columns(const ProbeDefinition& probe, int dimension) {
   const detail::KindRules* rules = detail::rules_of(probe.kind);
   if (!rules) return {};
   return rules->columns(probe, dimension);
+}
+
+bool reads_wall_samples(const ProbeDefinition& probe) {
+  const detail::KindRules* rules = detail::rules_of(probe.kind);
+  return rules && rules->wall_patch_samples;
 }
 
 std::string kind_name(ProbeKind kind) {

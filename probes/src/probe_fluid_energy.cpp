@@ -20,8 +20,8 @@ std::size_t two(const ProbeDefinition&, int) {
 }
 
 void partials(const ProbeDefinition& probe, const ProbeContext& context,
-              const ParticleSet& particles, const Kernel&, std::span<double> sums,
-              std::span<double>) {
+              const ParticleSet& particles, const Kernel&, const WallSamples&,
+              std::span<double> sums, std::span<double>) {
   const int dimension = context.dimension;
   const double* datum = probe.parameters.data();
   double kinetic = 0.0, potential = 0.0;

@@ -129,8 +129,8 @@ std::vector<Column> columns(const ProbeDefinition& probe, int dimension) {
 }
 
 void partials(const ProbeDefinition& probe, const ProbeContext& context,
-              const ParticleSet& particles, const Kernel& kernel, std::span<double> sums,
-              std::span<double>) {
+              const ParticleSet& particles, const Kernel& kernel, const WallSamples&,
+              std::span<double> sums, std::span<double>) {
   const int dimension = context.dimension;
   const Section section = section_of(probe, dimension);
   // Only particles within the kernel's support of the section's bounding box contribute.

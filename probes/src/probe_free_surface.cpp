@@ -41,8 +41,8 @@ std::size_t sum_count(const ProbeDefinition& probe, int) {
 }
 
 void partials(const ProbeDefinition& probe, const ProbeContext& context,
-              const ParticleSet& particles, const Kernel& kernel, std::span<double> sums,
-              std::span<double>) {
+              const ParticleSet& particles, const Kernel& kernel, const WallSamples&,
+              std::span<double> sums, std::span<double>) {
   const int dimension = context.dimension;
   const int up = dimension - 1;
   const double* bottom = probe.parameters.data();

@@ -43,7 +43,7 @@ std::vector<Column> columns(const ProbeDefinition& probe, int) {
 }
 
 void partials(const ProbeDefinition& probe, const ProbeContext& context,
-              const ParticleSet& particles, const Kernel&, std::span<double>,
+              const ParticleSet& particles, const Kernel&, const WallSamples&, std::span<double>,
               std::span<double> maxima) {
   const int dimension = context.dimension;
   const FrontRule rule = rule_of(probe);

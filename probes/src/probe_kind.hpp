@@ -15,6 +15,11 @@
 
 namespace fsi::probes::detail {
 
+// The kinds that read the wall's sampling points: how many of them lie in the probe's patch
+// (KindRules of the others: nullptr).
+using WallPatchCount = std::size_t (*)(const ProbeDefinition& probe, int dimension,
+                                       const WallSamples& wall);
+
 struct KindRules {
   ProbeKind kind;
   std::string_view name;
@@ -25,12 +30,14 @@ struct KindRules {
   std::size_t (*maximum_count)(const ProbeDefinition& probe, int dimension);
   // This rank's partials; `sums` arrive zeroed, `maxima` at -infinity.
   void (*partials)(const ProbeDefinition& probe, const ProbeContext& context,
-                   const ParticleSet& particles, const Kernel& kernel, std::span<double> sums,
-                   std::span<double> maxima);
+                   const ParticleSet& particles, const Kernel& kernel, const WallSamples& wall,
+                   std::span<double> sums, std::span<double> maxima);
   // The values (one per column) from the partials reduced over all ranks.
   void (*values)(const ProbeDefinition& probe, const ProbeContext& context,
                  std::span<const double> sums, std::span<const double> maxima,
                  std::span<double> values);
+  // Only kinds that read the wall's sampling points; nullptr otherwise.
+  WallPatchCount wall_patch_samples = nullptr;
 };
 
 // Every kind of probe_kinds.inc.

@@ -31,8 +31,8 @@ std::size_t sum_count(const ProbeDefinition&, int dimension) {
 }
 
 void partials(const ProbeDefinition& probe, const ProbeContext& context,
-              const ParticleSet& particles, const Kernel& kernel, std::span<double> sums,
-              std::span<double>) {
+              const ParticleSet& particles, const Kernel& kernel, const WallSamples&,
+              std::span<double> sums, std::span<double>) {
   const int dimension = context.dimension;
   const double* point = probe.parameters.data();
   const double support2 = kernel.support * kernel.support;

@@ -394,6 +394,13 @@ class ClientSession {
     // The coupled phase starts from the structure's initial velocities; a run with set-up makes
     // script 2's changes effective and evaluates the wall forces f(0).
     boundary_->velocities() = initial_velocities_;
+    // The wall-pressure probes of step 0 read the wall forces of this evaluation.
+    boundary_->samples.enabled =
+        data.probes && std::any_of(data.probes->probes.begin(), data.probes->probes.end(),
+                                   [](const protocol::ProbeRecord& record) {
+                                     return probes::reads_wall_samples(
+                                         {static_cast<probes::ProbeKind>(record.kind), {}, {}});
+                                   });
     driver_->set_time_step(data.setup.time_step);
     driver_->run_with_setup(0);
     const double seconds_equilibration = equilibration_watch.stop();
@@ -449,6 +456,14 @@ class ClientSession {
     probes_ = std::make_unique<FluidProbes>(driver_->lammps(), mpi_.communicator(),
                                             probes::ProbeSet(std::move(definitions), context),
                                             static_cast<int>(particles.atom_type));
+    // Every rank holds every sampling point: all ranks find the same problems.
+    if (const std::string problems = probes_->probes().wall_problems(wall_samples());
+        !problems.empty()) {
+      throw Error(problems, "probe set-up (the wall law's sampling points at t = 0)",
+                  "enlarge the probe's radius to the spacing of the sampling points (about "
+                  "Coupling.refinement_resolution / the fix's gauss points) or move its centre "
+                  "onto the mesh");
+    }
     if (mpi_.root()) {
       spdlog::info(
           "{} probe(s) every {} step(s), {} column(s); LIGGGHTS kernel {}, support {:.6g} m (h = "
@@ -504,7 +519,7 @@ class ClientSession {
   // ProbeValues right after the Forces.
   void send_forces(std::uint64_t step, double seconds_liggghts, double seconds_contact) {
     const bool probing = probes_ && step % probe_every_steps_ == 0;
-    const probes::Partials* probe_partials = probing ? &probes_->partials() : nullptr;
+    const probes::Partials* probe_partials = probing ? &probes_->partials(wall_samples()) : nullptr;
     if (probing) ++probe_evaluations_;
     Stopwatch& communication = mpi_.mpi_time();
     communication.start();
@@ -595,6 +610,14 @@ class ClientSession {
     }
   }
 
+  // The wall forces at the sampling points of this rank's latest fix evaluation (recorded on the
+  // steps whose probes read them; empty otherwise).
+  probes::WallSamples wall_samples() const {
+    const contact::WallSampleRecord& record = boundary_->samples;
+    return {record.count(),  record.positions, record.normals, record.forces,
+            record.measures, record.elements,  record.pairs};
+  }
+
   bool health_agreed() const { return (capabilities_ & protocol::kCapabilityFluidHealth) != 0; }
 
   // What the per-step health scan costs, measured against the LIGGGHTS steps it accompanies.
@@ -618,6 +641,10 @@ class ClientSession {
         auto computing = busy();
         slow_step_for_tests(step->step);
         apply_step(*step);
+        // The fix records the forces at its sampling points only for a step whose probes read
+        // them.
+        boundary_->samples.enabled = probes_ && probes_->probes().needs_wall_samples() &&
+                                     step->step % probe_every_steps_ == 0;
         const double fix_before = boundary_->seconds_in_fix;
         Stopwatch liggghts;
         liggghts.start();

@@ -93,7 +93,7 @@ FluidProbes::FluidProbes(LAMMPS_NS::LAMMPS& lammps, MPI_Comm communicator, probe
   };
 }
 
-const probes::Partials& FluidProbes::partials() {
+const probes::Partials& FluidProbes::partials(const probes::WallSamples& wall) {
   ScopedTimer timer(evaluating_);
   const LAMMPS_NS::Atom& atom = *lammps_.atom;
   const int dimension = probes_.context().dimension;
@@ -118,7 +118,7 @@ const probes::Partials& FluidProbes::partials() {
     mass_[i] = mass_of(atom, index);
   }
   const probes::ParticleSet particles{owned, positions_, velocities_, density_, pressure_, mass_};
-  partials_ = probes_.partials(particles, kernel_);
+  partials_ = probes_.partials(particles, kernel_, wall);
   return partials_;
 }
 

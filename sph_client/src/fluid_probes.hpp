@@ -31,9 +31,10 @@ class FluidProbes {
   double kernel_support() const { return kernel_.support; }
   const std::string& kernel_name() const { return kernel_name_; }
 
-  // This rank's partials over its own particles, to be reduced element-wise onto rank 0 (sums
-  // with MPI_SUM, maxima with MPI_MAX).
-  const probes::Partials& partials();
+  // This rank's partials over its own particles and the wall forces at the sampling points of
+  // this rank's latest fix fsi/sph evaluation (read by the wall-pressure probes only), to be
+  // reduced element-wise onto rank 0 (sums with MPI_SUM, maxima with MPI_MAX).
+  const probes::Partials& partials(const probes::WallSamples& wall);
   // The values of every column from the reduced partials (rank 0).
   std::vector<double> values(const probes::Partials& reduced) const {
     return probes_.values(reduced);

@@ -3,9 +3,14 @@
 // per probe kind (the kinds' rules live in fsi::probes, one file each); their columns are named
 // by fsi::probes::columns, and must not collide with a sensor's or another probe's.
 
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
 #include <set>
 
 #include "fsi/probes/probe.hpp"
+#include "fsi/scene/scene.hpp"
 #include "scene_builder.hpp"
 
 namespace fsi::scene::detail {
@@ -81,6 +86,27 @@ std::vector<BlockSpec> probe_blocks() {
                       .between(1.0, 1000.0)})
           .as_list()
           .for_coupled_runs(),
+      block_spec(
+          "WallPressureProbe",
+          "The normal force per length (3D: per area) of the fluid on a patch of a boundary mesh, "
+          "from the wall law's forces at its sampling points (fix fsi/sph): the sampling points of "
+          "the mesh's elements within `radius` of `centre` (a patch fixed in space), each "
+          "element's normal turned to `fluid_side`: columns NAME_pressure [Pa] (positive: the "
+          "fluid pushes on the wall), NAME_force [N/m; 3D N] (the normal force on the patch) and "
+          "NAME_pairs (particle-sampling point pairs within the wall law's range; 0: the patch "
+          "is dry, pressure and force then read 0).",
+          {probe_name_spec(),
+           text("mesh", "whose mesh: \"ground\" (every Ground mesh) or a body's name (its meshes)"),
+           per_dimension(
+               vector("centre", 2, "m", "the patch's centre, on the mesh (3D: [x, y, z])")),
+           number("radius", "m",
+                  "the patch: the mesh within this distance of the centre (along a straight 2D "
+                  "wall, the half-length of the patch)")
+               .positive(),
+           per_dimension(vector("fluid_side", 2, "",
+                                "a direction from the wall into the fluid (3D: [x, y, z])"))})
+          .as_list()
+          .for_coupled_runs(),
   };
 }
 
@@ -111,6 +137,130 @@ void add_probe(SceneBuilder& builder, const View& block, probes::ProbeDefinition
     }
   }
   builder.scene.probes.push_back(std::move(probe));
+}
+
+// Distance of p to the segment a-b (dimension coordinates each).
+double distance_to_segment(const double* p, const double* a, const double* b, int dimension) {
+  double along = 0.0, length2 = 0.0;
+  for (int k = 0; k < dimension; ++k) {
+    along += (p[k] - a[k]) * (b[k] - a[k]);
+    length2 += (b[k] - a[k]) * (b[k] - a[k]);
+  }
+  const double t = length2 > 0.0 ? std::clamp(along / length2, 0.0, 1.0) : 0.0;
+  double distance2 = 0.0;
+  for (int k = 0; k < dimension; ++k) {
+    const double gap = p[k] - a[k] - t * (b[k] - a[k]);
+    distance2 += gap * gap;
+  }
+  return std::sqrt(distance2);
+}
+
+// Distance of p to the triangle a, b, c in 3D: to its plane where p's foot lies inside it,
+// otherwise to its nearest edge.
+double distance_to_triangle(const double* p, const double* a, const double* b, const double* c) {
+  const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+  const double v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+  const double w[3] = {p[0] - a[0], p[1] - a[1], p[2] - a[2]};
+  const double uu = u[0] * u[0] + u[1] * u[1] + u[2] * u[2];
+  const double uv = u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
+  const double vv = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+  const double wu = w[0] * u[0] + w[1] * u[1] + w[2] * u[2];
+  const double wv = w[0] * v[0] + w[1] * v[1] + w[2] * v[2];
+  const double determinant = uu * vv - uv * uv;
+  double edges = std::min({distance_to_segment(p, a, b, 3), distance_to_segment(p, b, c, 3),
+                           distance_to_segment(p, c, a, 3)});
+  if (!(determinant > 0.0)) return edges;
+  const double s = (vv * wu - uv * wv) / determinant, t = (uu * wv - uv * wu) / determinant;
+  if (s < 0.0 || t < 0.0 || s + t > 1.0) return edges;
+  double gap2 = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    const double gap = w[k] - s * u[k] - t * v[k];
+    gap2 += gap * gap;
+  }
+  return std::sqrt(gap2);
+}
+
+// A WallPressureProbe: its mesh (the elements of the ground or of one body, as [first, end)
+// ranges of the boundary mesh's elements) and a patch that reaches it in the initial
+// configuration.
+void build_wall_pressure_probe(SceneBuilder& builder, const View& block) {
+  const auto centre = point_of(builder, block, "centre");
+  const auto side = point_of(builder, block, "fluid_side");
+  if (!centre || !side) return;
+  const std::string& name = block.string("name");
+  const std::string& owner = block.string("mesh");
+  const BoundaryMesh& boundary = builder.scene.boundary;
+  const mbd::Model& model = builder.model;
+  const int corners = builder.dimension;
+  auto body_of = [&](std::uint32_t vertex) {
+    return vertex < boundary.dynamic_vertex_count ? model.marker_body(static_cast<int>(vertex))
+                                                  : mbd::kGround;
+  };
+  auto name_of = [&](mbd::BodyId body) {
+    return body == mbd::kGround ? std::string("ground") : model.body_name(body);
+  };
+  const auto& elements = boundary.elements();
+  const std::size_t element_count = elements.size() / static_cast<std::size_t>(corners);
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> ranges;
+  std::vector<std::string> owners;
+  for (std::size_t e = 0; e < element_count; ++e) {
+    const std::string element_owner = name_of(body_of(elements[e * corners]));
+    if (std::find(owners.begin(), owners.end(), element_owner) == owners.end())
+      owners.push_back(element_owner);
+    if (element_owner != owner) continue;
+    const auto index = static_cast<std::uint32_t>(e);
+    if (!ranges.empty() && ranges.back().second == index) {
+      ++ranges.back().second;
+    } else {
+      ranges.emplace_back(index, index + 1);
+    }
+  }
+  if (ranges.empty()) {
+    std::string known;
+    for (const std::string& candidate : owners)
+      known += (known.empty() ? "\"" : ", \"") + candidate + "\"";
+    builder.problem(block.location("mesh"),
+                    "wall pressure probe '" + name + "': '" + owner + "' has no mesh",
+                    known.empty() ? "give the scene a Mesh first"
+                                  : "write mesh = one of " + known +
+                                        " (\"ground\": every Ground "
+                                        "mesh; a body: its meshes)");
+    return;
+  }
+  const double radius = block.number("radius");
+  if (std::hypot((*side)[0], (*side)[1], (*side)[2]) == 0.0) {
+    builder.problem(block.location("fluid_side"),
+                    "wall pressure probe '" + name + "' has no fluid side (a zero vector)",
+                    "give a direction from the wall into the fluid, e.g. [1, 0] for a left wall");
+    return;
+  }
+  // The patch must reach the mesh where the run starts (the bodies' initial configuration).
+  std::vector<double> positions, velocities;
+  boundary_state(boundary, model, model.initial_configuration(), positions, velocities);
+  double nearest = std::numeric_limits<double>::infinity();
+  for (const auto& [first, end] : ranges) {
+    for (std::uint32_t e = first; e < end; ++e) {
+      const std::uint32_t* vertex = &elements[static_cast<std::size_t>(e) * corners];
+      const double* a = &positions[vertex[0] * static_cast<std::size_t>(corners)];
+      const double* b = &positions[vertex[1] * static_cast<std::size_t>(corners)];
+      nearest = std::min(
+          nearest, corners == 2 ? distance_to_segment(centre->data(), a, b, 2)
+                                : distance_to_triangle(centre->data(), a, b,
+                                                       &positions[vertex[2] * std::size_t{3}]));
+    }
+  }
+  if (!(nearest <= radius)) {
+    char text[320];
+    std::snprintf(text, sizeof text,
+                  "its patch (radius %.6g m) reaches no element of the mesh of '%s' in the "
+                  "initial configuration; the nearest element of its mesh lies %.6g m from the "
+                  "centre",
+                  radius, owner.c_str(), nearest);
+    builder.problem(block.location("centre"), "wall pressure probe '" + name + "': " + text,
+                    "put the centre on the mesh, or choose the mesh the centre lies on");
+    return;
+  }
+  add_probe(builder, block, probes::wall_pressure_probe(name, *centre, radius, *side, ranges));
 }
 
 void build_probes(SceneBuilder& builder) {
@@ -169,6 +319,8 @@ void build_probes(SceneBuilder& builder) {
                                   block.string("direction") == "increasing" ? 1 : -1,
                                   static_cast<int>(block.integer("min_neighbours"))));
   });
+  builder.each("WallPressureProbe",
+               [&](const View& block) { build_wall_pressure_probe(builder, block); });
 }
 
 }  // namespace

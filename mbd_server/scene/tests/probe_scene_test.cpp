@@ -111,6 +111,60 @@ TEST_P(ProbeScene, AFrontAlongZNeedsThreeDimensions) {
   }
 }
 
+// A wall pressure probe names whose mesh it reads (a body's or the ground's): the scene turns the
+// name into that mesh's element ranges of the boundary mesh, and refuses an unknown name and a
+// patch that reaches none of the mesh's elements, naming what to write instead.
+class WallPressureScene : public testing::FolderPerTestOf<::testing::Test> {
+ protected:
+  std::string build(const std::string& probes, Scene* built = nullptr) {
+    return mbd_only_outcome(
+        "w.scene",
+        "scene_language = 1\n"
+        "SolverOptions { end_time = 1; Timeint { step_size = 1e-3 } }\n"
+        "RigidBody2D { name = \"plate\"; mass = 1; inertia = 1; position = [0.5, 0.5]\n"
+        "  Mesh { points = [[-0.1, 0], [0.1, 0]] } }\n"
+        "Ground { Mesh { points = [[0, 1], [0, 0], [1, 0], [1, 1]] } }\n" +
+            probes,
+        built);
+  }
+};
+
+TEST_F(WallPressureScene, TheMeshNameBecomesItsElementRanges) {
+  Scene scene;
+  ASSERT_EQ(build("WallPressureProbe { name = \"left\"; mesh = \"ground\"; centre = [0, 0.4]; "
+                  "radius = 0.05; fluid_side = [1, 0] }\n"
+                  "WallPressureProbe { name = \"top\"; mesh = \"plate\"; centre = [0.5, 0.5]; "
+                  "radius = 0.01; fluid_side = [0, 1] }\n",
+                  &scene),
+            "(accepted)");
+  // The plate's segment comes first (bodies are built before the ground), then the ground's 3.
+  ASSERT_EQ(scene.probes.size(), 2u);
+  EXPECT_TRUE(scene.probes[0] == probes::wall_pressure_probe("left", {0.0, 0.4, 0.0}, 0.05,
+                                                             {1.0, 0.0, 0.0}, {{1u, 4u}}));
+  EXPECT_TRUE(scene.probes[1] == probes::wall_pressure_probe("top", {0.5, 0.5, 0.0}, 0.01,
+                                                             {0.0, 1.0, 0.0}, {{0u, 1u}}));
+}
+
+TEST_F(WallPressureScene, AnUnknownMeshAndAPatchOffTheMeshAreProblems) {
+  const std::string text = build(
+      "WallPressureProbe { name = \"a\"; mesh = \"tank\"; centre = [0, 0.4]; radius = 0.05; "
+      "fluid_side = [1, 0] }\n"
+      "WallPressureProbe { name = \"b\"; mesh = \"plate\"; centre = [0, 0.4]; radius = 0.05; "
+      "fluid_side = [1, 0] }\n"
+      "WallPressureProbe { name = \"c\"; mesh = \"ground\"; centre = [0, 0.4]; radius = 0.05; "
+      "fluid_side = [0, 0] }\n");
+  EXPECT_NE(text.find("w.scene:6:33: wall pressure probe 'a': 'tank' has no mesh; write mesh = "
+                      "one of \"plate\", \"ground\""),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("wall pressure probe 'b': its patch (radius 0.05 m) reaches no element of "
+                      "the mesh of 'plate' in the initial configuration; the nearest element of "
+                      "its mesh lies 0.412311 m from the centre; put the centre on the mesh"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("wall pressure probe 'c' has no fluid side"), std::string::npos) << text;
+}
+
 INSTANTIATE_TEST_SUITE_P(BothDimensions, ProbeScene, ::testing::Values(2, 3));
 
 }  // namespace

@@ -51,6 +51,26 @@ struct ContactDiagnostics {
   void merge(const ContactDiagnostics& other);  // sum/min of two partial results
 };
 
+// The force of the fluid on the wall at every sampling point of one evaluation, in the sampling's
+// order (element by element), for the wall-pressure probes (fsi::probes): an evaluation fills it
+// only when `enabled`, since it costs a few stores per sampling point. Every process holds every
+// sampling point, with the forces of the particles it owns (sums over the processes give the
+// total). `dimension` values per sample in positions, normals and forces.
+struct WallSampleRecord {
+  bool enabled = false;
+  int dimension = 2;
+  std::vector<double> positions;        // [m]
+  std::vector<double> normals;          // unit normal of the sample's element (2D: the segment's
+                                        // direction turned clockwise; 3D: the right-hand rule)
+  std::vector<double> forces;           // force of the particles on the wall [N; 2D N/m]
+  std::vector<double> measures;         // length (2D) or area (3D) the sample stands for
+  std::vector<std::uint32_t> elements;  // the sample's element in the mesh
+  std::vector<std::uint32_t> pairs;     // particles within the wall law's range of the sample
+  std::size_t count() const { return measures.size(); }
+  // Empties the arrays and keeps their capacity.
+  void clear();
+};
+
 // Marks (near[i] = 1) the particles of the group that lie within `range` of the bounding box of
 // the mesh vertices (`dimension` coordinates per vertex in vertex_positions): only they can
 // interact with the mesh, so only they enter the cell grid. Far-away particles (a large fluid

@@ -40,6 +40,8 @@ struct CouplingBoundary {
 
   // Results of the latest evaluation on this rank (not yet summed over ranks).
   std::vector<double> vertex_forces;
+  // The force at every sampling point, recorded while `samples.enabled` (wall-pressure probes).
+  WallSampleRecord samples;
   ContactDiagnostics diagnostics;
   std::uint64_t evaluations = 0;
   double seconds_in_fix = 0.0;  // accumulated on this rank

@@ -58,9 +58,10 @@ class WallContact2D {
   // Adds the contact forces to particles.forces, writes the vertex forces (2 per vertex, zeroed
   // first) and returns the diagnostics of this evaluation. Throws, before writing anything,
   // NonFiniteParticle for a particle with a non-finite position or velocity, and
-  // std::invalid_argument for a bad mesh or a wrong buffer size.
+  // std::invalid_argument for a bad mesh or a wrong buffer size. With an enabled `samples`, also
+  // records the force at every sampling point (WallSampleRecord).
   ContactDiagnostics compute(const BoundaryMesh2D& mesh, const ParticleArrays& particles,
-                             std::span<double> vertex_forces);
+                             std::span<double> vertex_forces, WallSampleRecord* samples = nullptr);
 
  private:
   ContactSettings settings_;
@@ -70,6 +71,7 @@ class WallContact2D {
 // All-pairs reference of WallContact2D::compute (same sampling, no cell grid), for tests.
 ContactDiagnostics compute_all_pairs(const ContactSettings& settings, const BoundaryMesh2D& mesh,
                                      const ParticleArrays& particles,
-                                     std::span<double> vertex_forces);
+                                     std::span<double> vertex_forces,
+                                     WallSampleRecord* samples = nullptr);
 
 }  // namespace fsi::contact

@@ -92,9 +92,10 @@ class WallContact3D {
   // first) and returns the diagnostics of this evaluation. Throws, before writing anything,
   // NonFiniteParticle for a particle with a non-finite position or velocity (naming it), and
   // std::invalid_argument for a bad mesh, a wrong buffer size, or a mesh whose triangle count
-  // differs from the prepared one.
+  // differs from the prepared one. With an enabled `samples`, also records the force at every
+  // sampling point (WallSampleRecord).
   ContactDiagnostics compute(const BoundaryMesh3D& mesh, const ParticleArrays& particles,
-                             std::span<double> vertex_forces);
+                             std::span<double> vertex_forces, WallSampleRecord* samples = nullptr);
 
   // The grid of the latest compute(), for tests and diagnostics.
   const CellGrid3D& grid() const { return buffers_.grid.geometry(); }
@@ -111,6 +112,7 @@ class WallContact3D {
 // options 2 and 3 it pre-refines from this mesh, like the first evaluation of a WallContact3D.
 ContactDiagnostics compute_all_pairs_3d(const ContactSettings3D& settings,
                                         const BoundaryMesh3D& mesh, const ParticleArrays& particles,
-                                        std::span<double> vertex_forces);
+                                        std::span<double> vertex_forces,
+                                        WallSampleRecord* samples = nullptr);
 
 }  // namespace fsi::contact

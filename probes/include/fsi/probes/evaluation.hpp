@@ -5,8 +5,10 @@
 // give the values of sensors.csv. docs/user-guide.md, "Probes", states each kind's rule.
 
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "fsi/probes/probe.hpp"
@@ -23,6 +25,21 @@ struct ParticleSet {
   std::span<const double> density;     // one per owned particle [kg/m^3]
   std::span<const double> pressure;    // one per owned particle [Pa]
   std::span<const double> mass;        // one per owned particle [kg; 2D kg/m]
+};
+
+// The force of the fluid on the boundary mesh at the sampling points of the wall law (fix
+// fsi/sph's quadrature points, thesis eq. 4.2) on one rank: what the wall-pressure probes read.
+// Every rank holds every sampling point, with the force of the particles it owns, so that the
+// forces sum over the ranks to the total. `dimension` values per sample in positions, normals,
+// forces.
+struct WallSamples {
+  std::size_t count = 0;
+  std::span<const double> positions;  // [m]
+  std::span<const double> normals;    // unit normal of the sample's element (either orientation)
+  std::span<const double> forces;     // force of the fluid on the wall [N; 2D N/m]
+  std::span<const double> measures;   // length (2D) or area (3D) the sample stands for [m; m^2]
+  std::span<const std::uint32_t> elements;  // the sample's element in the boundary mesh
+  std::span<const std::uint32_t> pairs;     // particles within the wall law's range
 };
 
 // The SPH kernel W(r) [1/m^dimension] the fluid uses and its support radius [m] (W = 0 beyond).
@@ -49,8 +66,15 @@ class ProbeSet {
   std::vector<Column> columns() const;
   std::size_t column_count() const { return column_count_; }
 
-  // This rank's partials; the same sizes on every rank.
-  Partials partials(const ParticleSet& particles, const Kernel& kernel) const;
+  // This rank's partials; the same sizes on every rank. `wall` is read by the wall-pressure
+  // probes only (needs_wall_samples()).
+  Partials partials(const ParticleSet& particles, const Kernel& kernel,
+                    const WallSamples& wall = {}) const;
+  // Does a probe of the set read the wall's sampling points?
+  bool needs_wall_samples() const;
+  // Empty when every probe that reads the wall finds sampling points in its patch; otherwise
+  // one line per probe whose patch holds none (fsi-client checks the first evaluation with it).
+  std::string wall_problems(const WallSamples& wall) const;
   // The probes' values from the partials reduced over all ranks, one per column.
   std::vector<double> values(const Partials& reduced) const;
 

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace fsi::probes {
@@ -18,7 +19,8 @@ enum class ProbeKind : std::uint32_t {
   Point = 2,
   FreeSurface = 3,
   Front = 4,
-  Flux = 5
+  Flux = 5,
+  WallPressure = 6
 };
 
 // One probe. `parameters` holds the kind's numbers in the kind's own order; build definitions
@@ -56,6 +58,18 @@ ProbeDefinition front_probe(std::string name, int axis, int direction, int min_n
 ProbeDefinition flux_probe(std::string name, const std::vector<std::array<double, 3>>& points,
                            int samples);
 
+// The normal force per length (2D) or area (3D) of the fluid on the patch of the boundary mesh
+// within `radius` of `centre`, among the elements of `element_ranges` ([first, end) pairs of
+// element indices of the boundary mesh: one body's or the ground's mesh); `fluid_side` points
+// from the wall into the fluid (positive: a pressure pushing on the wall).
+ProbeDefinition wall_pressure_probe(
+    std::string name, const std::array<double, 3>& centre, double radius,
+    const std::array<double, 3>& fluid_side,
+    const std::vector<std::pair<std::uint32_t, std::uint32_t>>& element_ranges);
+
+// Does the probe read the wall law's sampling points (WallSamples) rather than the particles?
+bool reads_wall_samples(const ProbeDefinition& probe);
+
 // A column of sensors.csv.
 struct Column {
   std::string name;
@@ -66,7 +80,8 @@ struct Column {
 // Units per unit depth in 2D.
 std::vector<Column> columns(const ProbeDefinition& probe, int dimension);
 
-// "fluid_energy", "point", "free_surface", "front", "flux"; "kind 42" for an unknown id.
+// "fluid_energy", "point", "free_surface", "front", "flux", "wall_pressure"; "kind 42" for an
+// unknown id.
 std::string kind_name(ProbeKind kind);
 bool is_known_kind(std::uint32_t kind);
 
