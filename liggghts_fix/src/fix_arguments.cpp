@@ -63,7 +63,9 @@ const std::vector<Keyword>& keywords() {
        "repulsion scale: force density at zero distance (thesis law; 2D: N/m^2 per unit depth)",
        kFromSpacing,
        [](auto& a, const auto& key, const auto& v) { a.law.repulsion_scale = number(key, v); }},
-      {"t", "number >= 0", "viscous (wall friction) scale; thesis eq. (6.4): t ~ nu rho / h",
+      {"t", "number >= 0",
+       "viscous (wall friction) scale; no slip for a fluid of nu: t = rho0 nu / r_v (r_v = "
+       "cutoff_visc; docs/theory.md)",
        nullptr,
        [](auto& a, const auto& key, const auto& v) { a.law.viscous_scale = number(key, v); }},
       {"r0", "0 < r0 <= cutoff",

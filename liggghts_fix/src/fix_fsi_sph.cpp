@@ -19,6 +19,7 @@
 
 #include "fsi/contact/fix_arguments.hpp"
 #include "fsi/contact/liggghts_fix.hpp"
+#include "fsi/contact/periodic_images.hpp"
 
 namespace fsi::contact {
 namespace {
@@ -66,20 +67,32 @@ class FixFsiSph : public LAMMPS_NS::Fix {
       particles.group_bit = groupbit;
     }
     boundary.vertex_forces.resize(boundary.positions().size());
+    // Along a periodic axis the particles meet the walls beyond the periodic boundary through
+    // their images (fsi/contact/periodic_images.hpp).
+    const Periodicity box = periodicity();
+    const double range = contact_.settings().law.range();
+    if (box.any() && !periodic_mesh_checked_) {
+      check_periodic_mesh(box, boundary.positions(), range);  // as drawn, at the set-up
+      periodic_mesh_checked_ = true;
+    }
+    const ParticleArrays evaluated =
+        box.any() ? images_.extend(particles, box, boundary.positions(), range) : particles;
     try {
       boundary.diagnostics =
           boundary.dimension == 3
-              ? contact3d_.compute(boundary.mesh3d, particles, boundary.vertex_forces)
-              : contact_.compute(boundary.mesh, particles, boundary.vertex_forces);
+              ? contact3d_.compute(boundary.mesh3d, evaluated, boundary.vertex_forces)
+              : contact_.compute(boundary.mesh, evaluated, boundary.vertex_forces);
+      if (box.any()) images_.fold_forces(particles);
     } catch (const NonFiniteParticle& bad) {
-      const double* x = atom->x[bad.index];
-      const double* v = atom->v[bad.index];
+      const std::size_t index = box.any() ? images_.origin(bad.index) : bad.index;
+      const double* x = atom->x[index];
+      const double* v = atom->v[index];
       char text[320];
       std::snprintf(text, sizeof text,
                     "fix fsi/sph: atom %d has a non-finite position (%g, %g, %g) or velocity "
                     "(%g, %g, %g) at step " BIGINT_FORMAT
                     ": the fluid has blown up; reduce the time step or raise the wall repulsion k",
-                    atom->tag[bad.index], x[0], x[1], x[2], v[0], v[1], v[2], update->ntimestep);
+                    atom->tag[index], x[0], x[1], x[2], v[0], v[1], v[2], update->ntimestep);
       throw std::runtime_error(text);
     }
     ++boundary.evaluations;
@@ -89,6 +102,17 @@ class FixFsiSph : public LAMMPS_NS::Fix {
   }
 
  private:
+  Periodicity periodicity() const {
+    Periodicity box;
+    box.dimension = domain->dimension;
+    for (int k = 0; k < 3; ++k) {
+      box.periodic[k] = domain->periodicity[k] != 0;
+      box.low[k] = domain->boxlo[k];
+      box.high[k] = domain->boxhi[k];
+    }
+    return box;
+  }
+
   // A particle closer to a wall than warn_fraction * r0 means the wall repulsion is losing:
   // warn on the rank that sees it, at most once per kWarnEvery steps.
   void warn_if_too_close(double closest) {
@@ -112,6 +136,8 @@ class FixFsiSph : public LAMMPS_NS::Fix {
   double warn_distance_;
   LAMMPS_NS::bigint last_warning_ = -1;
   std::shared_ptr<CouplingBoundary> boundary_;
+  PeriodicImages images_;
+  bool periodic_mesh_checked_ = false;
 };
 
 constexpr const char* kGhostSyncId = "fsi_ghost_sync";

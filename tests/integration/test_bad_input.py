@@ -24,10 +24,10 @@ physics = server(scene, "--check", "--set", "Resolution.time_step=3e-5", "--set"
                  "--set", "LIGGGHTS_SPH_parameters.SPH_wall_visc=10", "--set", "FluidRegion.lower=[0.0005, 0.0041]",
                  "--set", "LIGGGHTS_SPH_parameters.gravity=9.8")
 listed = [name for name in ("acoustic_time_step", "contact_time_step", "speed_of_sound", "wall_repulsion",
-                            "kernel_neighbours", "wall_viscosity", "fluid_overlap", "gravity")
+                            "kernel_neighbours", "wall_viscosity", "fluid_overlap", "gravity", "viscosity_match")
           if f"warning ({name})" in physics.stdout]
-check(physics.returncode == 0 and len(listed) == 8 and "8 warning(s)" in physics.stdout,
-      f"--check lists all 8 physics warnings and exits 0 ({physics.returncode}, {listed})")
+check(physics.returncode == 0 and len(listed) == 9 and "9 warning(s)" in physics.stdout,
+      f"--check lists all 9 physics warnings and exits 0 ({physics.returncode}, {listed})")
 
 bad_scene = os.path.join(output, "bad.scene")
 with open(bad_scene, "w") as handle:

@@ -63,6 +63,18 @@ with open(os.path.join(run_dir, "sensors.csv")) as handle:
 for name in header[1:]:
     check_png(os.path.join(run_dir, "plots", "sensors", f"{name}.png"), 10_000)
 check_png(os.path.join(run_dir, "plots", "sensors.png"), 30_000)
+# The energy audit of the coupled run (energy.csv): the works exchanged, in one figure, a row at
+# every sensor row; the static tank's coupling creates no energy (zero to round-off).
+check_png(os.path.join(run_dir, "plots", "energy.png"), 20_000)
+with open(os.path.join(run_dir, "energy.csv")) as handle:
+    energy_rows = [line.split(",")[0] for line in handle if not line.startswith("#")]
+with open(os.path.join(run_dir, "sensors.csv")) as handle:
+    sensor_rows = [line.split(",")[0] for line in handle if not line.startswith("#")]
+check(energy_rows == sensor_rows, f"energy.csv has a row at every sensor row ({len(energy_rows)} and {len(sensor_rows)})")
+audit = manifest(run_dir)["energy_audit"]
+check(audit["exchanges"] == manifest(run_dir)["steps"], f"run.json audits every exchange: {audit}")
+check(abs(audit["coupling_energy"]) <= 1e-12 and audit["injection_warning_step"] is None,
+      f"the static tank's coupling energy is zero to round-off: {audit['coupling_energy']:.3e} J/m")
 # The example's own figure, declared in examples/static_tank/fsi-plot.json (found through the scene
 # path in run.json), with N m g from this run's counts.
 check_png(os.path.join(run_dir, "plots", "static_tank.png"), 60_000)

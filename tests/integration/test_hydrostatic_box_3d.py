@@ -34,10 +34,12 @@ check(run["steps"] == steps, f"{steps} coupled steps (got {run['steps']})")
 check(run["mesh"] == {"vertices": 8, "dynamic_vertices": 0, "triangles": 12,
                       "refinement_resolution": run["mesh"]["refinement_resolution"]},
       f"run.json counts the box's 8 static vertices and 12 triangles: {run['mesh']}")
-# The physics checks run in 3D; the one warning is the example's deliberate 10x wall friction
-# (README.md); the 2D-only checks are skipped, not mis-reported.
+# The physics checks run in 3D; the two warnings are the example's deliberate 10x wall friction
+# (README.md), against the declared nu and against the fluid's alpha; the 2D-only checks are
+# skipped, not mis-reported.
 warnings = run.get("warnings", [])
-check(len(warnings) == 1 and "wall_viscosity" in warnings[0], f"run.json lists the scene's warning: {warnings}")
+check(len(warnings) == 2 and any("wall_viscosity" in w for w in warnings)
+      and any("viscosity_match" in w for w in warnings), f"run.json lists the scene's warnings: {warnings}")
 checks = run["checks"]
 check(checks["particles_initial"] == run["fluid"]["generated_particles"] > 500,
       f"LIGGGHTS holds the {run['fluid']['generated_particles']} generated particles")

@@ -179,6 +179,18 @@ json health_entry(const RunRecord& record) {
       {"warnings", worst.warnings}};
 }
 
+json energy_audit_entry(const std::optional<EnergyAuditSummary>& audit) {
+  if (!audit) return nullptr;
+  const EnergyTotals& totals = audit->totals;
+  return {{"work_fluid_on_structure", totals.work_fluid_on_structure},
+          {"work_structure_on_fluid", totals.work_structure_on_fluid},
+          {"coupling_energy", totals.coupling_energy},
+          {"max_coupling_energy", totals.max_coupling_energy},
+          {"traffic", totals.traffic},
+          {"exchanges", totals.exchanges},
+          {"injection_warning_step", audit->warned_at ? json(*audit->warned_at) : json(nullptr)}};
+}
+
 json release_entry(const std::optional<ReleaseCheck>& release) {
   if (!release) return nullptr;
   return {{"settling_drag", release->settling_drag},
@@ -227,6 +239,7 @@ void write_run_manifest(const fs::path& output_dir, const scene::Scene& scene,
                         {"substepped_steps", record.newton.substepped_steps}};
   manifest["checks"] = checks_entry(record);
   manifest["release"] = release_entry(record.release);
+  manifest["energy_audit"] = energy_audit_entry(record.energy_audit);
   manifest["health"] = health_entry(record);
   manifest["warnings"] = record.warnings;
   manifest["status"] = record.status;

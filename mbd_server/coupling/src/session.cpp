@@ -13,6 +13,7 @@
 
 #include "fsi/common/error.hpp"
 #include "fsi/common/stopwatch.hpp"
+#include "fsi/coupling/energy_audit.hpp"
 #include "fsi/coupling/fluid_health.hpp"
 #include "fsi/coupling/output.hpp"
 #include "fsi/coupling/progress.hpp"
@@ -103,6 +104,14 @@ class Session {
                                             scene_.probes, scene_.dimension);
     for (const auto& probe : scene_.probes)
       probe_columns_ += probes::columns(probe, scene_.dimension).size();
+    const std::string work_unit = scene_.dimension == 3 ? "J" : "J/m";
+    energy_ = std::make_unique<SensorFile>(
+        (fs::path(options_.output_dir) / "energy.csv").string(),
+        "fsi-server energy audit of the coupling of " + scene_.file +
+            " (docs/theory.md, \"The energy audit\")",
+        std::vector<std::string>{"work_fluid_on_structure", "work_structure_on_fluid",
+                                 "coupling_energy"},
+        std::vector<std::string>{work_unit, work_unit, work_unit});
     if (scene_.output.snapshot_every_steps > 0) {
       fs::create_directories(fs::path(options_.output_dir) / "snapshots");
       vtk_ = std::make_unique<VtkOutput>(fs::path(options_.output_dir) / "vtk");
@@ -130,6 +139,10 @@ class Session {
     FluidReady ready = fluid_.equilibrate();
     take_ready(ready);
     take_forces(ready.initial_forces, 0);
+    {
+      const BoundaryMotion start = structure_->boundary_motion(0, scene_.solver.step_size);
+      audit_.start(start.positions, start.velocities, ready.initial_forces.forces);
+    }
     if (ready.release) judge_release(*ready.release, ready.initial_forces.diagnostics);
     timings_.setup.stop();
     write_initial_output(ready.initial_forces.probe_values);
@@ -142,6 +155,7 @@ class Session {
       ScopedTimer timer(timings_.output);
       sensors_->write(0.0, with_probes(structure_->initial_sensor_readout(total_fluid_force_),
                                        probe_values, 0));
+      energy_->write(0.0, {0.0, 0.0, 0.0});
     }
     if (scene_.output.snapshot_every_steps > 0) take_snapshot(0);
   }
@@ -322,7 +336,24 @@ class Session {
       sensors_->write(structure_->time(), with_probes(std::move(*row), forces.probe_values, n));
     }
     take_forces(forces, n);
+    audit(motion, forces, n, dt,
+          n % static_cast<std::uint64_t>(scene_.output.sensor_every_steps) == 0);
     steps_done_ = n;
+  }
+
+  // The energy audit of this exchange (energy_audit.hpp); its totals go to energy.csv at the
+  // sensor rows, its warning to the log once.
+  void audit(const BoundaryMotion& motion, const FluidForces& forces, std::uint64_t n, double dt,
+             bool sensor_row) {
+    audit_.exchange(motion.positions, motion.velocities, dt, forces.forces, n);
+    if (const std::string warning = audit_.take_warning(); !warning.empty())
+      spdlog::warn("energy audit: {}", warning);
+    if (sensor_row) {
+      ScopedTimer timer(timings_.output);
+      const EnergyTotals& totals = audit_.totals();
+      energy_->write(structure_->time(), {totals.work_fluid_on_structure,
+                                          totals.work_structure_on_fluid, totals.coupling_energy});
+    }
   }
 
   // A sensor row followed by the probes' values of the same step (none without probes).
@@ -430,6 +461,7 @@ class Session {
     run.fluid = watch_.record;
     run.health =
         HealthSummary{health_.record(), health_.limits(), health_.allowed_lost_particles()};
+    if (coupling_) run.energy_audit = EnergyAuditSummary{audit_.totals(), audit_.warned_at()};
     run.fluid->peer = fluid_.peer();
     run.fluid->seconds_round_trip = timings_.round_trip.seconds();
     if (std::isfinite(watch_.closest_approach_over_r0))
@@ -447,6 +479,8 @@ class Session {
   ServerOptions options_;
   FluidSide& fluid_;
   std::unique_ptr<SensorFile> sensors_;
+  std::unique_ptr<SensorFile> energy_;  // energy.csv: the energy audit at the sensor rows
+  EnergyAudit audit_;
   std::unique_ptr<VtkOutput> vtk_;
   std::unique_ptr<StructureSide> structure_;
   std::array<double, 3> total_fluid_force_{};

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <map>
 #include <numbers>
 #include <optional>
 
@@ -15,6 +16,7 @@
 #include "fsi/contact/force_law.hpp"
 #include "fsi/contact/script_text.hpp"
 #include "fsi/scene/fluid_region.hpp"
+#include "viscosity_match.hpp"
 
 namespace fsi::scene {
 namespace {
@@ -660,22 +662,30 @@ void check_wall_viscosity(const Scene& scene, Report& report) {
   const auto rho = in.density();
   const auto h = in.sph("smoothinglength");
   if (!in.complete()) return report.skip(kCheck, kTitle, in.missing());
-  const double suggested = nu->value * rho->value / h->value;
+  // The friction's range r_v: the fix's cutoff_visc (default its cutoff), else the thesis' 2h.
+  double range = 2.0 * h->value;
+  std::string range_source = "2h";
+  if (const auto& fix = in.fix_line(); fix && fix->arguments) {
+    range = fix->arguments->law.effective_viscous_cutoff();
+    range_source = "the fix's cutoff_visc";
+  }
+  const double suggested = nu->value * rho->value / range;
   const auto t = in.wall("t", "SPH_wall_visc");
   if (!t) {
     std::vector<std::string> why = in.missing();
-    why.back() += " (thesis eq. 6.4 suggests t = nu rho / h = " + number(suggested) + " N s/m^3)";
+    why.back() += " (no slip at the wall needs t = rho0 nu / r_v = " + number(suggested) +
+                  " N s/m^3, docs/theory.md \"Viscosity\")";
     return report.skip(kCheck, kTitle, why);
   }
   const double ratio = t->value / suggested;
   if (!above(ratio, kWallViscosityFactor) && !below(ratio, 1.0 / kWallViscosityFactor)) return;
-  report.warn(
-      kCheck, t->location,
-      "wall viscosity t = " + number(t->value) + " N s/m^3 is " + number(ratio) +
-          "x the estimate t = nu rho / h = " + number(suggested) +
-          " N s/m^3 of thesis eq. (6.4) (nu = " + number(nu->value) + " m^2/s, rho = " +
-          number(rho->value) + " kg/m^3, h = " + number(h->value) + " m), more than a factor 3 off",
-      "set SPH_wall_visc = " + number(suggested) + " (SPHdensity*viscosity/smoothinglength)");
+  report.warn(kCheck, t->location,
+              "wall viscosity t = " + number(t->value) + " N s/m^3 is " + number(ratio) +
+                  "x the no-slip value t = rho0 nu / r_v = " + number(suggested) +
+                  " N s/m^3 (nu = " + number(nu->value) + " m^2/s, rho0 = " + number(rho->value) +
+                  " kg/m^3, r_v = " + number(range) + " m, " + range_source +
+                  "; measured, docs/theory.md \"Viscosity\"), more than a factor 3 off",
+              "set SPH_wall_visc = " + number(suggested) + " (SPHdensity*viscosity/r_v)");
 }
 
 // --- 7. fluid regions overlapping a mesh ------------------------------------------------------
@@ -857,7 +867,10 @@ std::string vector_text(const Eigen::Vector3d& vector) {
 
 // LIGGGHTS moves the fluid under its own `fix ... gravity`, the multibody system under the Gravity
 // block: a scene that gives them different accelerations weighs a fluid the structure does not
-// feel (thesis §6.3 measures the fluid weight through the structure).
+// feel (thesis §6.3 measures the fluid weight through the structure). What counts is the gravity
+// of the coupled run: the gravity fixes still defined after script 2 (a fix of the same ID
+// replaces one, `unfix ID` removes it), so an equilibration may settle the fluid under another
+// gravity on purpose (e.g. tilted, to start a U-tube's column displaced; examples/u_tube).
 void check_gravity(const Scene& scene, Report& report) {
   constexpr std::string_view kCheck = "gravity";
   const LiggghtsSetup& liggghts = scene.liggghts;
@@ -870,10 +883,23 @@ void check_gravity(const Scene& scene, Report& report) {
   std::vector<std::string> unreadable;
   bool fluid_gravity = false;
   bool any_command = false;  // placeholder scripts (no fluid at all) have none
+  struct FluidGravity {
+    SourceLocation where;
+    Eigen::Vector3d acceleration;
+  };
+  std::map<std::string, std::optional<FluidGravity>> active;  // by fix ID; nullopt: unreadable
   auto scan = [&](const std::string& script, const std::string& script_name) {
     for_each_command(script, [&](const std::vector<std::string>& tokens, int line) {
       any_command = true;
-      if (tokens.size() < 4 || tokens[0] != "fix" || tokens[3] != "gravity") return;
+      if (tokens.size() >= 2 && tokens[0] == "unfix") {
+        active.erase(tokens[1]);
+        return;
+      }
+      if (tokens.size() < 4 || tokens[0] != "fix") return;
+      if (tokens[3] != "gravity") {
+        active.erase(tokens[1]);  // the ID now names another fix
+        return;
+      }
       fluid_gravity = true;
       const SourceLocation where{script_name, line, 1};
       const auto magnitude = tokens.size() > 4 ? script_number(tokens[4], liggghts) : std::nullopt;
@@ -892,20 +918,26 @@ void check_gravity(const Scene& scene, Report& report) {
         }
         direction[k] = *component;
       }
-      if (!(direction.norm() > 0.0)) return;  // LIGGGHTS refuses a zero direction itself
-      const Eigen::Vector3d fluid = *magnitude * direction / direction.norm();
-      const double size = std::max(fluid.norm(), structure.norm());
-      if ((fluid - structure).norm() <= kTolerance * size) return;
-      report.warn(kCheck, where,
-                  "fix " + tokens[1] + " gives the fluid g = " + vector_text(fluid) +
-                      " m/s^2, but " + structure_text + " (" + block.text() +
-                      "): fluid and structure must fall alike, or the structure does not carry "
-                      "the fluid's weight (thesis §6.3)",
-                  "make Gravity.acceleration and the script's fix gravity the same vector");
+      if (!(direction.norm() > 0.0)) {  // LIGGGHTS refuses a zero direction itself
+        active[tokens[1]] = std::nullopt;
+        return;
+      }
+      active[tokens[1]] = FluidGravity{where, *magnitude * direction / direction.norm()};
     });
   };
   scan(liggghts.script1_text, liggghts.script1_name);
   scan(liggghts.script2_text, liggghts.script2_name);
+  for (const auto& [id, gravity] : active) {
+    if (!gravity) continue;
+    const double size = std::max(gravity->acceleration.norm(), structure.norm());
+    if ((gravity->acceleration - structure).norm() <= kTolerance * size) continue;
+    report.warn(kCheck, gravity->where,
+                "fix " + id + " gives the fluid g = " + vector_text(gravity->acceleration) +
+                    " m/s^2 in the coupled run, but " + structure_text + " (" + block.text() +
+                    "): fluid and structure must fall alike, or the structure does not carry "
+                    "the fluid's weight (thesis §6.3)",
+                "make Gravity.acceleration and the script's fix gravity the same vector");
+  }
   if (!any_command && !in.has_fluid_region()) {
     report.skip(kCheck, "gravity",
                 {"no FluidRegion and no command in the LIGGGHTS scripts (a scene without fluid, "
@@ -1002,7 +1034,9 @@ std::vector<Diagnostic> physics_checks(const Scene& scene) {
   check_fluid_overlap(scene, report);
   check_gravity(scene, report);
   check_liggghts_scripts(scene, report);
-  return report.take();
+  std::vector<Diagnostic> diagnostics = report.take();
+  check_viscosity_match(scene, diagnostics);
+  return diagnostics;
 }
 
 std::vector<Diagnostic> end_time_check(const Scene& scene) {

@@ -50,12 +50,21 @@ const std::string kSetUp =
     "fix fsi all fsi/sph k ${SPH_wall_rep} t ${SPH_wall_visc} r0 ${SPH_wall_equilibriumdist} &\n"
     "    cutoff ${SPH_wall_cutoff}\n";
 
+// Script 2 of the small scene: the fluid's artificial viscosity, alpha = 0.8 with c = 20 m/s and
+// h = 0.001 m, is nu = alpha c h / 16 = 1e-3 m^2/s, the `viscosity` of kGoodSph.
+const std::string kAfter =
+    "# after the equilibration\n"
+    "fix m1 all property/global speedOfSound peratomtype 20\n"
+    "fix m2 all property/global sl peratomtype 0.001\n"
+    "fix m3 all property/global artViscAlpha peratomtype 0.8\n"
+    "pair_style sph/artVisc/tensCorr spiky2d 0.001 artVisc\n";
+
 class SmallScene : public testing::FolderPerTest {
  protected:
   void SetUp() override {
     testing::FolderPerTest::SetUp();
     set_up_script(kSetUp);
-    std::ofstream(folder_ / "after.in") << "# after the equilibration\n";
+    std::ofstream(folder_ / "after.in") << kAfter;
   }
 
   void set_up_script(const std::string& text) { std::ofstream(folder_ / "setup.in") << text; }
@@ -228,11 +237,14 @@ TEST(PhysicsChecks, KernelNeighboursTooFewAndTooMany) {
 TEST(PhysicsChecks, TheThreeDimensionalBoxGetsThreeDimensionalChecks) {
   const std::string box3d = FSI_EXAMPLES_DIR "/hydrostatic_box_3d/hydrostatic_box_3d.scene";
   const auto checks = physics_checks(build_scene(box3d));
-  // Only the example's deliberate wall friction (its README).
+  // Only the example's deliberate wall friction (its README), against the declared nu and the
+  // fluid's alpha (3D: nu = alpha c h / 20).
   ASSERT_EQ(of(checks, "wall_viscosity").size(), 1u) << listing(checks);
+  ASSERT_EQ(of(checks, "viscosity_match").size(), 1u) << listing(checks);
+  EXPECT_CONTAINS(of(checks, "viscosity_match")[0].message, "nu = alpha c h / 20 = 0.001 m^2/s");
   EXPECT_EQ(std::count_if(checks.begin(), checks.end(),
                           [](const Diagnostic& d) { return d.severity == Severity::Warning; }),
-            1)
+            2)
       << listing(checks);
   for (const char* skipped : {"contact_time_step", "fluid_overlap"}) {
     const auto infos = of(checks, skipped, Severity::Info);
@@ -252,17 +264,18 @@ TEST(PhysicsChecks, TheThreeDimensionalBoxGetsThreeDimensionalChecks) {
 }
 
 TEST(PhysicsChecks, WallViscosityMoreThanAFactorThreeOff) {
-  // nu rho / h = 1e-3 * 1000 / 0.0016 = 625 N s/m^3.
+  // rho0 nu / r_v = 1000 * 1e-3 / 0.0032 = 312.5 N s/m^3 (r_v = the fix's cutoff 2h).
   const Diagnostic warning =
       coarse_warning("wall_viscosity", {{"LIGGGHTS_SPH_parameters.SPH_wall_visc", "5000"}});
   EXPECT_CONTAINS(warning.message,
-                  "t = 5000 N s/m^3 is 8x the estimate t = nu rho / h = 625 N s/m^3");
-  EXPECT_EQ(warning.fix, "set SPH_wall_visc = 625 (SPHdensity*viscosity/smoothinglength)");
-  EXPECT_EQ(coarse_warning("wall_viscosity", {{"LIGGGHTS_SPH_parameters.SPH_wall_visc", "200"}})
+                  "t = 5000 N s/m^3 is 16x the no-slip value t = rho0 nu / r_v = 312 N s/m^3");
+  EXPECT_CONTAINS(warning.message, "r_v = 0.0032 m, the fix's cutoff_visc");
+  EXPECT_EQ(warning.fix, "set SPH_wall_visc = 312 (SPHdensity*viscosity/r_v)");
+  EXPECT_EQ(coarse_warning("wall_viscosity", {{"LIGGGHTS_SPH_parameters.SPH_wall_visc", "80"}})
                 .message.substr(0, 40),
-            "wall viscosity t = 200 N s/m^3 is 0.32x ");
+            "wall viscosity t = 80 N s/m^3 is 0.256x ");
   EXPECT_TRUE(
-      of(coarse_diagnostics({{"LIGGGHTS_SPH_parameters.SPH_wall_visc", "1800"}}), "wall_viscosity")
+      of(coarse_diagnostics({{"LIGGGHTS_SPH_parameters.SPH_wall_visc", "900"}}), "wall_viscosity")
           .empty());
 }
 
@@ -382,8 +395,8 @@ TEST_F(SmallScene, AnUnsetWallViscosityGetsTheSuggestedValue) {
   diagnostics = of(diagnostics, "wall_viscosity", Severity::Info);
   ASSERT_EQ(diagnostics.size(), 1u) << listing(diagnostics);
   EXPECT_EQ(diagnostics[0].message,
-            "no 'SPH_wall_visc' in LIGGGHTS_SPH_parameters (thesis eq. 6.4 suggests t = nu rho / "
-            "h = 1000 N s/m^3): wall-viscosity check skipped");
+            "no 'SPH_wall_visc' in LIGGGHTS_SPH_parameters (no slip at the wall needs t = rho0 nu "
+            "/ r_v = 500 N s/m^3, docs/theory.md \"Viscosity\"): wall-viscosity check skipped");
 }
 
 TEST(PhysicsChecks, SeveralProblemsAreAllListed) {
@@ -396,9 +409,15 @@ TEST(PhysicsChecks, SeveralProblemsAreAllListed) {
       {"Gravity.acceleration", "[0, -9.8]"},                           // gravity
       {"LIGGGHTS.script1", "\"static_tank.in2\""},  // liggghts_scripts: twice (below)
   });
-  // Script 2 run as script 1 lacks the fix and uses ${alpha}, which script 1 defines.
-  for (std::string_view check : kPhysicsCheckNames)
-    EXPECT_EQ(of(diagnostics, check).size(), check == "liggghts_scripts" ? 2u : 1u) << check;
+  // Script 2 run as script 1 lacks the fix and uses ${alpha}, which script 1 defines. Without
+  // the fix there is no wall friction to match against the fluid: viscosity_match is skipped.
+  for (std::string_view check : kPhysicsCheckNames) {
+    const std::size_t expected = check == "liggghts_scripts"  ? 2u
+                                 : check == "viscosity_match" ? 0u
+                                                              : 1u;
+    EXPECT_EQ(of(diagnostics, check).size(), expected) << check;
+  }
+  EXPECT_EQ(of(diagnostics, "viscosity_match", Severity::Info).size(), 1u) << listing(diagnostics);
   EXPECT_EQ(diagnostics.size(), std::size(kPhysicsCheckNames) + 1) << listing(diagnostics);
 }
 
@@ -423,6 +442,28 @@ TEST_F(SmallScene, FluidGravityAlongAnotherDirectionIsFlagged) {
   EXPECT_CONTAINS(found[0].message, "fix down gives the fluid g = (9.81, 0, 0) m/s^2");
 }
 
+TEST_F(SmallScene, OnlyTheCoupledRunsGravityCounts) {
+  // An equilibration under a tilted gravity (examples/u_tube) that script 2 turns upright is no
+  // mismatch; a tilted fix left in place, or one script 2 defines, is.
+  set_up_script("fix gravity all gravity 9.81 vector 0.0871 -0.9962 0.0\n");
+  std::ofstream(folder_ / "after.in")
+      << "unfix gravity\nfix gravity all gravity 9.81 vector 0 -1 0\n";
+  EXPECT_TRUE(of(physics_checks(build(kGoodSph, kGoodFluid)), "gravity").empty());
+  std::ofstream(folder_ / "after.in") << "fix gravity all gravity 9.81 vector 0 -1 0  # replaces\n";
+  EXPECT_TRUE(of(physics_checks(build(kGoodSph, kGoodFluid)), "gravity").empty());
+  std::ofstream(folder_ / "after.in") << "# gravity stays tilted\n";
+  std::vector<Diagnostic> found = of(physics_checks(build(kGoodSph, kGoodFluid)), "gravity");
+  ASSERT_EQ(found.size(), 1u);
+  EXPECT_CONTAINS(found[0].location.text(), "setup.in:1:1");
+  EXPECT_CONTAINS(found[0].message, "in the coupled run");
+  std::ofstream(folder_ / "after.in")
+      << "unfix gravity\n\nfix tilt all gravity 9.81 vector 1 -1 0\n";
+  found = of(physics_checks(build(kGoodSph, kGoodFluid)), "gravity");
+  ASSERT_EQ(found.size(), 1u);
+  EXPECT_CONTAINS(found[0].location.text(), "after.in:3:1");
+  EXPECT_CONTAINS(found[0].message, "fix tilt gives the fluid g = (6.94, -6.94, 0) m/s^2");
+}
+
 TEST_F(SmallScene, AFluidWithoutGravityUnderAFallingStructureIsFlagged) {
   set_up_script("# no gravity for the fluid\n");
   const std::vector<Diagnostic> found = of(physics_checks(build(kGoodSph, kGoodFluid)), "gravity");
@@ -434,6 +475,7 @@ TEST_F(SmallScene, AFluidWithoutGravityUnderAFallingStructureIsFlagged) {
 TEST_F(SmallScene, ASceneWithoutFluidIsNotAskedForFluidGravity) {
   // --mbd-only scenes name two placeholder scripts and no FluidRegion.
   set_up_script("# placeholder: no LIGGGHTS here\n");
+  std::ofstream(folder_ / "after.in") << "# placeholder\n";
   const std::vector<Diagnostic> diagnostics = physics_checks(build(kGoodSph, ""));
   EXPECT_TRUE(of(diagnostics, "gravity").empty()) << listing(diagnostics);
   ASSERT_EQ(of(diagnostics, "gravity", Severity::Info).size(), 1u) << listing(diagnostics);
@@ -602,6 +644,68 @@ TEST(PhysicsChecks, TrueShapeContactTimeStepUsesTheStiffnessAtRest) {
          "contact_time_step");
   ASSERT_EQ(found.size(), 1u) << listing(found);
   EXPECT_CONTAINS(found[0].message, "of the true-shape wall at the first layer's rest distance");
+}
+
+// --- viscosity_match: the wall's t against the fluid's alpha (docs/theory.md, "Viscosity") ---
+
+const std::string kChannel = FSI_EXAMPLES_DIR "/channel_flows/poiseuille_coarse.scene";
+
+// The channel example sets both from nu: t = rho0 nu / r_v and alpha = 16 nu / (c h).
+TEST(ViscosityMatch, TheChannelFlowsWallAndFluidAgree) {
+  const auto diagnostics = physics_checks(build_scene(kChannel));
+  EXPECT_TRUE(of(diagnostics, "viscosity_match").empty()) << listing(diagnostics);
+  EXPECT_TRUE(of(diagnostics, "viscosity_match", Severity::Info).empty()) << listing(diagnostics);
+}
+
+// The thesis' t = rho0 nu / h with the user guide's old nu = alpha c h / 8 (issue 13): the wall
+// holds a fluid 4x as viscous as the fluid is.
+TEST(ViscosityMatch, TheOldMappingsAreFlaggedWithBothValues) {
+  const auto diagnostics = physics_checks(build_scene(
+      kChannel, {{"LIGGGHTS_SPH_parameters.SPH_wall_visc", "SPHdensity*viscosity/smoothinglength"},
+                 {"LIGGGHTS_SPH_parameters.artvisc_alpha", "8*viscosity/(cAB*smoothinglength)"}}));
+  const auto found = of(diagnostics, "viscosity_match");
+  ASSERT_EQ(found.size(), 1u) << listing(diagnostics);
+  // t = 1e-3/9.5e-5 = 10.5; nu_wall = t 2h / rho0 = 2e-6; alpha = 0.842 -> nu = 5e-7.
+  EXPECT_CONTAINS(found[0].message,
+                  "the wall friction t = 10.5 N s/m^3 holds without slip a fluid "
+                  "of nu = t r_v / rho0 = 2e-06 m^2/s");
+  EXPECT_CONTAINS(found[0].message,
+                  "alpha = 0.842 (channel.in1:24:1) gives nu = alpha c h / 16 = "
+                  "5e-07 m^2/s (c = 0.1 m/s, h = 9.5e-05 m): 4x");
+  EXPECT_CONTAINS(found[0].location.text(), "channel.in1:33:1");  // the fix fsi/sph line
+  EXPECT_EQ(found[0].fix,
+            "set t = 2.63 (rho0 nu / r_v) for this fluid, or alpha = 3.37 for the "
+            "fluid this wall holds");
+}
+
+// A factor 2 either way passes; beyond it warns, in both directions.
+TEST(ViscosityMatch, FactorTwoIsTheLimit) {
+  auto warnings = [](const std::string& t) {
+    return of(physics_checks(build_scene(kChannel, {{"LIGGGHTS_SPH_parameters.SPH_wall_visc", t}})),
+              "viscosity_match")
+        .size();
+  };
+  const std::string rule = "SPHdensity*viscosity/SPH_wall_cutoff_visc";
+  EXPECT_EQ(warnings("1.9*" + rule), 0u);
+  EXPECT_EQ(warnings(rule + "/1.9"), 0u);
+  EXPECT_EQ(warnings("2.1*" + rule), 1u);
+  EXPECT_EQ(warnings(rule + "/2.1"), 1u);
+}
+
+// The equal-style variables of the scripts are evaluated as LIGGGHTS would (v_name, ${name},
+// arithmetic), and the last artViscAlpha in force counts (script 2 replaces script 1's).
+TEST_F(SmallScene, ViscosityMatchReadsTheScriptsVariables) {
+  set_up_script(kSetUp +
+                "variable nu_fluid equal 5e-3\n"
+                "variable a equal 16*v_nu_fluid/(${cAB}*0.001)\n");
+  std::ofstream(folder_ / "after.in")
+      << kAfter << "fix m3 all property/global artViscAlpha peratomtype ${a}\n";
+  const auto found = of(physics_checks(build(kGoodSph, kGoodFluid)), "viscosity_match");
+  ASSERT_EQ(found.size(), 1u);
+  EXPECT_CONTAINS(found[0].message,
+                  "alpha = 4 (after.in:6:1) gives nu = alpha c h / 16 = "
+                  "0.005 m^2/s");
+  EXPECT_CONTAINS(found[0].message, "0.4x");
 }
 
 }  // namespace

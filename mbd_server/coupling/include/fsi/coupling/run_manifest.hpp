@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "fsi/coupling/energy_audit.hpp"
 #include "fsi/coupling/fluid_health.hpp"
 #include "fsi/coupling/fluid_side.hpp"
 #include "fsi/coupling/release_check.hpp"
@@ -21,7 +22,8 @@ namespace fsi::coupling {
 // Version 2: one shape for every mode ("mode", gravity with `dimension` components, bodies as a
 // list, null for what a mode does not have). Version 3: "release", the fluid at release.
 // Version 4: "health", the fluid health checks (limits, the worst values, the failed check).
-inline constexpr int kRunManifestFormatVersion = 4;
+// Version 5: "energy_audit", the works exchanged by the coupling (energy_audit.hpp).
+inline constexpr int kRunManifestFormatVersion = 5;
 
 enum class RunMode { Coupled, MbdOnly };
 
@@ -53,6 +55,12 @@ struct HealthSummary {
   std::uint64_t allowed_lost_particles = 0;
 };
 
+// The energy audit of a coupled run's exchanges.
+struct EnergyAuditSummary {
+  EnergyTotals totals;
+  std::optional<std::uint64_t> warned_at;  // the step of the injection warning, if any
+};
+
 struct RunRecord {
   RunMode mode = RunMode::Coupled;
   std::string command_line;
@@ -72,7 +80,8 @@ struct RunRecord {
   std::optional<FluidRecord> fluid;  // coupled runs only
   // Coupled runs whose client reported the fluid at release (protocol 1.2).
   std::optional<ReleaseCheck> release;
-  std::optional<HealthSummary> health;  // coupled runs only
+  std::optional<HealthSummary> health;             // coupled runs only
+  std::optional<EnergyAuditSummary> energy_audit;  // coupled runs that began their steps
 };
 
 // Writes DIR/run.json. Throws fsi::Error if it cannot.

@@ -43,10 +43,11 @@ inline constexpr std::string_view kPhysicsCheckNames[] = {
     "speed_of_sound",      // c >= 10 x the expected flow speed (thesis §6.2)
     "wall_repulsion",      // k within 2-20 rho0 g h_max (thesis §6.2)
     "kernel_neighbours",   // 30-100 particles within the support radius 2h (thesis §3.1.2)
-    "wall_viscosity",      // t within a factor 3 of nu rho / h (thesis eq. 6.4)
+    "wall_viscosity",      // t within a factor 3 of rho0 nu / r_v (no slip, measured)
     "fluid_overlap",       // fluid box or polygon clear of every mesh by r0 / 2
     "gravity",             // the scripts' fix gravity equals the Gravity block
     "liggghts_scripts",    // every ${variable} defined where used; script 1 has fix fsi/sph
+    "viscosity_match",     // the wall's t and the fluid's alpha within a factor 2 (no slip)
 };
 
 // Every check over `scene`: warnings for broken rules, infos for checks skipped. Pure: reads the

@@ -1,0 +1,75 @@
+#pragma once
+// The energy audit of the coupling (issue 15; docs/theory.md, "The energy audit"): at every
+// exchange, the work the fluid did on the structure and the work the structure did on the fluid
+// over the interval, from the vertex forces and the boundary motion both sides used. In the
+// staggered scheme (thesis Fig. 4.10) the structure moves from t(n-1) to t(n) under the forces
+// f(n-1), held as point loads, so the fluid's work on it is exactly
+//   W_fs(n) = sum_i f_i(n-1) . (x_i(n) - x_i(n-1));
+// the fluid takes its step with the wall at x(n) moving at v(n) and answers with f(n): the
+// structure's work on the fluid, as the fluid saw it, is
+//   W_sf(n) = -sum_i f_i(n) . v_i(n) dt.
+// The books pair the two works of the same force f(n): what the fluid got for it over its step n
+// and what the structure got for it over the next step, W_fs(n+1) + W_sf(n) = f(n) . (x(n+1) -
+// x(n) - v(n) dt): zero for a wall that moves as the fluid assumed, otherwise the energy the
+// coupling itself created (> 0) or destroyed (< 0). The signature of the added-mass instability
+// of explicit partitioned coupling is a coupling energy that grows positive. The latest force's
+// W_sf waits for the structure's answer (the totals hold the paired works only).
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace fsi::coupling {
+
+// The coupling injects energy when the accumulated coupling energy exceeds this fraction of the
+// energy the fluid moved into or out of the structure so far, sum |W_fs(n)| (and round-off,
+// kAuditRoundOff).
+inline constexpr double kInjectionWarningFraction = 0.1;
+// Below this [J; 2D J/m] a coupling energy is round-off.
+inline constexpr double kAuditRoundOff = 1e-12;
+
+struct EnergyTotals {
+  double work_fluid_on_structure = 0.0;  // sum of W_fs [J; 2D J/m]
+  double work_structure_on_fluid = 0.0;  // sum of W_sf
+  double coupling_energy = 0.0;          // their sum: created by the coupling
+  double max_coupling_energy = 0.0;      // the largest accumulated value (0 or more)
+  double traffic = 0.0;                  // sum |W_fs(n)|: the energy moved through the interface
+  std::uint64_t exchanges = 0;
+};
+
+class EnergyAudit {
+ public:
+  // The dynamic vertices at t = 0 and the fluid's forces on them (dimension values each).
+  void start(std::span<const double> positions, std::span<const double> velocities,
+             std::span<const double> forces);
+  // One exchange: the dynamic vertices at t(n) (positions, velocities), the step dt and the
+  // fluid's answer f(n). Throws fsi::Error when the sizes differ from start()'s.
+  void exchange(std::span<const double> positions, std::span<const double> velocities, double dt,
+                std::span<const double> forces, std::uint64_t step);
+
+  const EnergyTotals& totals() const { return totals_; }
+  // The last exchange's W_fs(n) and W_sf(n-1) (the works of the force f(n-1)).
+  double last_work_fluid_on_structure() const { return last_fs_; }
+  double last_work_structure_on_fluid() const { return last_sf_; }
+  // A warning, the first time the coupling has injected more than kInjectionWarningFraction of
+  // the largest exchanged work (and more than round-off): what it means and what to change.
+  // Empty otherwise, and after it was returned once.
+  std::string take_warning();
+  // The step at which the warning fired, if it did.
+  std::optional<std::uint64_t> warned_at() const { return warned_at_; }
+
+ private:
+  std::vector<double> positions_;
+  std::vector<double> velocities_;
+  std::vector<double> forces_;
+  EnergyTotals totals_;
+  double last_fs_ = 0.0;
+  double last_sf_ = 0.0;
+  bool started_ = false;
+  std::optional<std::uint64_t> warned_at_;
+  std::string pending_;
+};
+
+}  // namespace fsi::coupling

@@ -1,0 +1,98 @@
+// The energy audit of the coupling: the work each side did on the other over an exchange.
+#include "fsi/coupling/energy_audit.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "fsi/common/error.hpp"
+
+namespace fsi::coupling {
+namespace {
+
+TEST(EnergyAudit, AStructureAtRestExchangesNoEnergy) {
+  EnergyAudit audit;
+  const std::vector<double> x{0.0, 0.1, 0.2, 0.1};
+  const std::vector<double> v(4, 0.0);
+  const std::vector<double> f{1.0, -2.0, 0.5, -9.81};
+  audit.start(x, v, f);
+  for (std::uint64_t n = 1; n <= 100; ++n)
+    audit.exchange(x, v, 1e-4, f, n);
+  EXPECT_EQ(audit.totals().work_fluid_on_structure, 0.0);
+  EXPECT_EQ(audit.totals().work_structure_on_fluid, 0.0);
+  EXPECT_EQ(audit.totals().coupling_energy, 0.0);
+  EXPECT_EQ(audit.totals().exchanges, 100u);
+  EXPECT_TRUE(audit.take_warning().empty());
+}
+
+TEST(EnergyAudit, AConstantForceOnAUniformMotionIsExchangedExactly) {
+  // A vertex moving at 0.3 m/s under a constant 2 N: each side gets what the other gives.
+  EnergyAudit audit;
+  const double dt = 1e-3;
+  const std::vector<double> f{2.0, -1.0};
+  const std::vector<double> v{0.3, 0.0};
+  audit.start(std::vector<double>{0.0, 1.0}, v, f);
+  for (std::uint64_t n = 1; n <= 1000; ++n)
+    audit.exchange(std::vector<double>{0.3 * dt * static_cast<double>(n), 1.0}, v, dt, f, n);
+  EXPECT_NEAR(audit.totals().work_fluid_on_structure, 2.0 * 0.3 * 1.0, 1e-12);
+  EXPECT_NEAR(audit.totals().work_structure_on_fluid, -2.0 * 0.3 * 1.0, 1e-12);
+  EXPECT_NEAR(audit.totals().traffic, 2.0 * 0.3 * 1.0, 1e-12);
+  EXPECT_NEAR(audit.totals().coupling_energy, 0.0, 1e-12);
+  EXPECT_TRUE(audit.take_warning().empty());
+}
+
+// A mass m on a spring k in a "fluid" that damps it, f = -c v, coupled the staggered way: the
+// structure moves under the force of the previous exchange, the fluid answers to the new motion.
+// Explicit coupling of a damper is stable for c dt / m < 2 and unstable above.
+EnergyAudit staggered_damper(double c_dt_over_m, int steps) {
+  const double m = 1.0, k = 100.0, dt = 1e-3, c = c_dt_over_m * m / dt;
+  double x = 0.01, v = 0.0, f = 0.0;
+  EnergyAudit audit;
+  audit.start(std::vector<double>{x}, std::vector<double>{v}, std::vector<double>{f});
+  for (int n = 1; n <= steps; ++n) {
+    v += dt * (-k * x + f) / m;  // symplectic Euler under the held force
+    x += dt * v;
+    f = -c * v;
+    audit.exchange(std::vector<double>{x}, std::vector<double>{v}, dt, std::vector<double>{f},
+                   static_cast<std::uint64_t>(n));
+  }
+  return audit;
+}
+
+TEST(EnergyAudit, ALightlyCoupledDamperTakesEnergyFromTheStructure) {
+  EnergyAudit audit = staggered_damper(0.05, 2000);
+  EXPECT_LT(audit.totals().work_fluid_on_structure, 0.0);  // the fluid damps the structure
+  EXPECT_GT(audit.totals().work_structure_on_fluid, 0.0);  // and receives what it takes
+  EXPECT_LT(std::abs(audit.totals().coupling_energy),
+            0.01 * std::abs(audit.totals().work_fluid_on_structure));
+  EXPECT_TRUE(audit.take_warning().empty());
+  EXPECT_FALSE(audit.warned_at());
+}
+
+TEST(EnergyAudit, TheAddedMassInstabilityIsSeenAsCreatedEnergy) {
+  EnergyAudit audit = staggered_damper(2.5, 40);
+  ASSERT_TRUE(audit.warned_at());
+  EXPECT_LT(*audit.warned_at(), 40u);
+  EXPECT_GT(audit.totals().coupling_energy, 0.0);
+  const std::string warning = audit.take_warning();
+  EXPECT_NE(warning.find("the coupling has created energy: by step " +
+                         std::to_string(*audit.warned_at())),
+            std::string::npos)
+      << warning;
+  EXPECT_NE(warning.find("added-mass instability"), std::string::npos);
+  EXPECT_NE(warning.find("halve SolverOptions.Timeint.step_size"), std::string::npos);
+  EXPECT_TRUE(audit.take_warning().empty());  // once
+}
+
+TEST(EnergyAudit, MismatchedSizesAreABug) {
+  EnergyAudit audit;
+  const std::vector<double> two(2, 0.0);
+  audit.start(two, two, two);
+  EXPECT_THROW(audit.exchange(std::vector<double>{0.0}, std::vector<double>{0.0}, 1e-3,
+                              std::vector<double>{0.0}, 1),
+               Error);
+}
+
+}  // namespace
+}  // namespace fsi::coupling
