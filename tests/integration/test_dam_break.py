@@ -1,0 +1,43 @@
+#!/usr/bin/python3
+"""The dam break of Martin & Moyce (1952), n^2 = 2, a = 1.125 in, at the coarse resolution
+(examples/dam_break/martin_moyce_coarse.scene: 10 particles across the column, 200 particles,
+fsi-run with 1 rank): the surge front Z(T) of the front probe against the experiment's Fig. 3.
+
+The run judges itself: completed, no particle lost (the scene allows none), no health warning,
+the column at rest against its gate at release (the release check). Then analyze.py compares
+Z = (x_front + d/2)/a with the experiment at its ten points and fails when the RMS of
+(Z_sim - Z_exp)/Z_exp over the seven points with T > 2 exceeds this test's tolerance, 8 % (the
+acceptance of issue 13, which every resolution meets: docs/validation.md, "Dam break").
+
+The ten experimental points (T = t sqrt(2g/a), Z = z/a) are typed into analyze.py: Martin & Moyce
+(1952), Phil. Trans. R. Soc. Lond. A 244, 312-324, Fig. 3, as digitised by PySPH
+(pysph/examples/db_exp_data.py)."""
+import json
+import os
+import subprocess
+
+from fsi_test import binary, check, cleanup, example, manifest, work_dir, ENV
+
+TOLERANCE = 0.08
+
+output = work_dir("dam_break")
+run_dir = os.path.join(output, "run")
+result = subprocess.run([binary("fsi-run"), example("dam_break", "martin_moyce_coarse.scene"), "--np", "1",
+                         "--output", run_dir], env=ENV, capture_output=True, text=True, timeout=900)
+print(result.stderr[-3000:])
+check(result.returncode == 0, f"fsi-run exits 0 (got {result.returncode})")
+run = manifest(run_dir)
+check(run["status"] == "completed", "run.json says completed")
+check(run["checks"]["particles_final"] == run["checks"]["particles_initial"], "no particle lost")
+check(run["health"]["warnings"] == [], f"no health warning: {run['health']['warnings']}")
+check(run["release"]["at_rest"], f"the column is at rest against its gate at release: {run['release'].get('warning')}")
+analysis = subprocess.run(["/usr/bin/python3", example("dam_break", "analyze.py"), run_dir,
+                           "--tolerance", str(TOLERANCE)], capture_output=True, text=True)
+print(analysis.stdout, analysis.stderr)
+check(analysis.returncode == 0, f"RMS of the surge front's relative error over T > 2 within {TOLERANCE:.0%} (analyze.py)")
+with open(os.path.join(run_dir, "analysis.json")) as handle:
+    measured = json.load(handle)
+# The front must have run: a gate that stayed, or a front probe that reads the column's edge,
+# leaves Z at about 1 and fails above; this states the measured value in the log.
+print(f"measured RMS {measured['rms_relative_error_T_above_2']:.4f}")
+cleanup(output)
