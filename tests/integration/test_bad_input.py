@@ -21,7 +21,7 @@ check(ok.returncode == 0 and "particles" in ok.stdout, "--check accepts the exam
 # Physics warnings (thesis §6.2 rules of thumb) are listed, all of them, and do not fail --check.
 physics = server(scene, "--check", "--set", "Resolution.time_step=3e-5", "--set", "LIGGGHTS_SPH_parameters.cAB=7",
                  "--set", "LIGGGHTS_SPH_parameters.particlespacing=smoothinglength",
-                 "--set", "LIGGGHTS_SPH_parameters.SPH_wall_visc=10", "--set", "FluidRegion.lower=[0.0005, 0.0041]",
+                 "--set", "LIGGGHTS_SPH_parameters.SPH_wall_visc=10000", "--set", "FluidRegion.lower=[0.0005, 0.0041]",
                  "--set", "LIGGGHTS_SPH_parameters.gravity=9.8")
 listed = [name for name in ("acoustic_time_step", "contact_time_step", "speed_of_sound", "wall_repulsion",
                             "kernel_neighbours", "wall_viscosity", "fluid_overlap", "gravity", "viscosity_match")

@@ -241,7 +241,7 @@ TEST(PhysicsChecks, TheThreeDimensionalBoxGetsThreeDimensionalChecks) {
   // fluid's alpha (3D: nu = alpha c h / 20).
   ASSERT_EQ(of(checks, "wall_viscosity").size(), 1u) << listing(checks);
   ASSERT_EQ(of(checks, "viscosity_match").size(), 1u) << listing(checks);
-  EXPECT_CONTAINS(of(checks, "viscosity_match")[0].message, "nu = alpha c h / 20 = 0.001 m^2/s");
+  EXPECT_CONTAINS(of(checks, "viscosity_match")[0].message, "nu = alpha c h / 20 = 5e-05 m^2/s");
   EXPECT_EQ(std::count_if(checks.begin(), checks.end(),
                           [](const Diagnostic& d) { return d.severity == Severity::Warning; }),
             2)
