@@ -42,7 +42,7 @@ run_dir = os.path.join(output, "run")
 server_status, client_status = run_pair(
     example("static_tank", "static_tank_coarse.scene"), run_dir, 2,
     overrides=["Resolution.end_time=1000*1e-5", "Resolution.equilibration_steps=500",
-               "Resolution.snapshot_every_steps=250"], timeout=120)
+               "Resolution.snapshot_every_steps=250"], timeout=280)  # a hang guard under ctest's 300 s
 if server_status != 0 or client_status != 0:
     fail(f"the run failed ({server_status}, {client_status}):\n{read(run_dir, 'server.stderr')[-3000:]}")
 
