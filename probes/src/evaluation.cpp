@@ -36,6 +36,36 @@ ProbeSet::ProbeSet(std::vector<ProbeDefinition> probes, ProbeContext context)
   }
 }
 
+void ProbeSet::move(std::size_t index, std::vector<double> parameters) {
+  if (index >= probes_.size()) {
+    throw Error("a placement names probe " + std::to_string(index) + ", the set has " +
+                    std::to_string(probes_.size()),
+                "probe placement", "use matching fsi-server and fsi-client releases");
+  }
+  ProbeDefinition moved = probes_[index];
+  moved.parameters = std::move(parameters);
+  const detail::KindRules& rules = *detail::rules_of(moved.kind);
+  std::string problem;
+  if (!rules.place) {
+    problem = "probe '" + moved.name + "' (" + std::string(rules.name) + ") cannot move";
+  } else if (moved.parameters.size() != probes_[index].parameters.size()) {
+    problem = "probe '" + moved.name + "' is placed with " +
+              std::to_string(moved.parameters.size()) + " parameters, it has " +
+              std::to_string(probes_[index].parameters.size());
+  } else {
+    problem = definition_problem(moved, context_.dimension);
+  }
+  const Slots& slots = slots_[index];
+  if (problem.empty() && (rules.sum_count(moved, context_.dimension) != slots.sums ||
+                          rules.maximum_count(moved, context_.dimension) != slots.maxima ||
+                          rules.columns(moved, context_.dimension).size() != slots.columns)) {
+    problem = "probe '" + moved.name + "' would change its partials or columns when placed";
+  }
+  if (!problem.empty())
+    throw Error(problem, "probe placement", "use matching fsi-server and fsi-client releases");
+  probes_[index] = std::move(moved);
+}
+
 std::vector<Column> ProbeSet::columns() const {
   std::vector<Column> all;
   for (const ProbeDefinition& probe : probes_) {

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <utility>
 
+#include "fsi/common/error.hpp"
+
 #include "probe_kind.hpp"
 
 namespace fsi::probes {
@@ -51,6 +53,38 @@ ProbeDefinition wall_pressure_probe(
     probe.parameters.push_back(static_cast<double>(end));
   }
   return probe;
+}
+
+std::array<double, 3> RigidPlacement::point(const std::array<double, 3>& x) const {
+  std::array<double, 3> moved = direction(x);
+  for (int i = 0; i < 3; ++i)
+    moved[i] += translation[i];
+  return moved;
+}
+
+std::array<double, 3> RigidPlacement::direction(const std::array<double, 3>& v) const {
+  std::array<double, 3> turned{};
+  for (int i = 0; i < 3; ++i)
+    turned[i] = rotation[3 * i] * v[0] + rotation[3 * i + 1] * v[1] + rotation[3 * i + 2] * v[2];
+  return turned;
+}
+
+bool can_move(ProbeKind kind) {
+  const detail::KindRules* rules = detail::rules_of(kind);
+  return rules && rules->place;
+}
+
+ProbeDefinition placed(const ProbeDefinition& initial, const RigidPlacement& placement) {
+  const detail::KindRules* rules = detail::rules_of(initial.kind);
+  if (!rules || !rules->place) {
+    throw Error(
+        "probe '" + initial.name + "' (" + kind_name(initial.kind) + ") cannot move with a body",
+        "probe placement",
+        "attach only point, free_surface, flux and wall_pressure probes to a body");
+  }
+  ProbeDefinition moved = initial;
+  rules->place(moved.parameters, placement);
+  return moved;
 }
 
 std::vector<Column> columns(const ProbeDefinition& probe, int dimension) {

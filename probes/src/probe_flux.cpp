@@ -169,10 +169,18 @@ void values(const ProbeDefinition&, const ProbeContext&, std::span<const double>
   values[0] = sums[0];
 }
 
+// Every vertex of the section moves with a body.
+void place(std::span<double> parameters, const RigidPlacement& placement) {
+  const auto vertices = static_cast<std::size_t>(parameters[0]);
+  for (std::size_t k = 0; k < vertices; ++k)
+    move_point(parameters, 1 + 3 * k, placement);
+}
+
 }  // namespace
 
 KindRules flux_probe_rules() {
-  return {ProbeKind::Flux, "flux", problem, columns, one_partial, no_partials, partials, values};
+  return {ProbeKind::Flux, "flux",   problem, columns, one_partial,
+          no_partials,     partials, values,  nullptr, place};
 }
 
 }  // namespace fsi::probes::detail

@@ -87,6 +87,11 @@ void values(const ProbeDefinition& probe, const ProbeContext& context, std::span
   values[1] = 0.0;
 }
 
+// The line's bottom moves with a body; the line stays vertical (along gravity's axis).
+void place(std::span<double> parameters, const RigidPlacement& placement) {
+  move_point(parameters, 0, placement);
+}
+
 }  // namespace
 
 KindRules free_surface_probe_rules() {
@@ -97,7 +102,9 @@ KindRules free_surface_probe_rules() {
           sum_count,
           no_partials,
           partials,
-          values};
+          values,
+          nullptr,
+          place};
 }
 
 }  // namespace fsi::probes::detail

@@ -38,6 +38,9 @@ struct KindRules {
                  std::span<double> values);
   // Only kinds that read the wall's sampling points; nullptr otherwise.
   WallPatchCount wall_patch_samples = nullptr;
+  // Only kinds with a place in space (can_move): moves their points and turns their directions
+  // in `parameters` (the kind's layout) by `placement`; nullptr otherwise.
+  void (*place)(std::span<double> parameters, const RigidPlacement& placement) = nullptr;
 };
 
 // Every kind of probe_kinds.inc.
@@ -52,6 +55,11 @@ std::string per_depth(int dimension, const std::string& planar, const std::strin
 // The expected parameter count, as a problem text when it differs.
 std::string count_problem(const ProbeDefinition& probe, std::size_t expected);
 double squared_distance(const double* a, const double* b, int dimension);
+// Moves the point parameters[first .. first + 2] (x, y, z) by `placement`; turns the direction
+// there likewise.
+void move_point(std::span<double> parameters, std::size_t first, const RigidPlacement& placement);
+void turn_direction(std::span<double> parameters, std::size_t first,
+                    const RigidPlacement& placement);
 // Fixed partial counts (KindRules::sum_count, maximum_count) for kinds that need none or one.
 inline std::size_t no_partials(const ProbeDefinition&, int) {
   return 0;

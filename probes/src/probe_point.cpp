@@ -61,10 +61,16 @@ void values(const ProbeDefinition&, const ProbeContext& context, std::span<const
   values[dimension + 2] = wet ? 1.0 : 0.0;
 }
 
+// The point moves with a body.
+void place(std::span<double> parameters, const RigidPlacement& placement) {
+  move_point(parameters, 0, placement);
+}
+
 }  // namespace
 
 KindRules point_probe_rules() {
-  return {ProbeKind::Point, "point", problem, columns, sum_count, no_partials, partials, values};
+  return {ProbeKind::Point, "point",  problem, columns, sum_count,
+          no_partials,      partials, values,  nullptr, place};
 }
 
 }  // namespace fsi::probes::detail

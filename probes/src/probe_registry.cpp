@@ -3,6 +3,8 @@
 
 #include "probe_kind.hpp"
 
+#include <algorithm>
+
 namespace fsi::probes::detail {
 
 #define FSI_PROBE_KIND(kind) KindRules kind##_probe_rules();
@@ -44,6 +46,19 @@ double squared_distance(const double* a, const double* b, int dimension) {
   for (int k = 0; k < dimension; ++k)
     sum += (a[k] - b[k]) * (a[k] - b[k]);
   return sum;
+}
+
+void move_point(std::span<double> parameters, std::size_t first, const RigidPlacement& placement) {
+  const auto moved =
+      placement.point({parameters[first], parameters[first + 1], parameters[first + 2]});
+  std::copy(moved.begin(), moved.end(), parameters.begin() + static_cast<std::ptrdiff_t>(first));
+}
+
+void turn_direction(std::span<double> parameters, std::size_t first,
+                    const RigidPlacement& placement) {
+  const auto turned =
+      placement.direction({parameters[first], parameters[first + 1], parameters[first + 2]});
+  std::copy(turned.begin(), turned.end(), parameters.begin() + static_cast<std::ptrdiff_t>(first));
 }
 
 }  // namespace fsi::probes::detail

@@ -119,6 +119,12 @@ void values(const ProbeDefinition&, const ProbeContext&, std::span<const double>
   values[2] = sums[1];
 }
 
+// The patch's centre moves with a body and its fluid side turns with it; the elements stay.
+void place(std::span<double> parameters, const RigidPlacement& placement) {
+  move_point(parameters, 0, placement);
+  turn_direction(parameters, 4, placement);
+}
+
 }  // namespace
 
 KindRules wall_pressure_probe_rules() {
@@ -130,7 +136,8 @@ KindRules wall_pressure_probe_rules() {
           one_partial,
           partials,
           values,
-          patch_samples};
+          patch_samples,
+          place};
 }
 
 }  // namespace fsi::probes::detail

@@ -76,5 +76,28 @@ TEST(ProbeDefinitionCheck, ProbeSetRefusesABadDefinitionAndAFrontWithoutSpacing)
   EXPECT_THROW(ProbeSet({front_probe("f", 0, 1, 3)}, {2, {}, 0.0}), Error);
 }
 
+// Placement by a body's rigid motion (protocol 1.4): points move, directions turn, the rest stays.
+TEST(ProbePlacement, MovesPointsTurnsDirectionsAndKeepsTheRest) {
+  RigidPlacement quarter_turn;  // 90 degrees about z, then 1 m along x
+  quarter_turn.rotation = {0.0, -1.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0};
+  quarter_turn.translation = {1.0, 0.0, 0.0};
+  EXPECT_EQ(placed(point_probe("p", {2.0, 3.0, 0.0}), quarter_turn).parameters,
+            (std::vector<double>{-2.0, 2.0, 0.0}));
+  EXPECT_EQ(placed(free_surface_probe("s", {2.0, 0.0, 0.0}, 0.5, 20), quarter_turn).parameters,
+            (std::vector<double>{1.0, 2.0, 0.0, 0.5, 20.0}));
+  EXPECT_EQ(placed(flux_probe("q", {{0, 0, 0}, {0, 1, 0}}, 10), quarter_turn).parameters,
+            (std::vector<double>{2.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 10.0}));
+  const ProbeDefinition wall =
+      wall_pressure_probe("w", {0.0, 2.0, 0.0}, 0.1, {1.0, 0.0, 0.0}, {{4, 9}});
+  EXPECT_EQ(placed(wall, quarter_turn).parameters,
+            (std::vector<double>{-1.0, 0.0, 0.0, 0.1, 0.0, 1.0, 0.0, 1.0, 4.0, 9.0}));
+  EXPECT_TRUE(can_move(ProbeKind::Point));
+  EXPECT_FALSE(can_move(ProbeKind::Front));
+  EXPECT_FALSE(can_move(ProbeKind::FluidEnergy));
+  EXPECT_THROW(placed(front_probe("f", 0, 1, 3), quarter_turn), Error);
+  const RigidPlacement identity;
+  EXPECT_EQ(placed(wall, identity), wall);
+}
+
 }  // namespace
 }  // namespace fsi::probes

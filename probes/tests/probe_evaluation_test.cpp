@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "fsi/common/error.hpp"
 #include "fsi/probes/evaluation.hpp"
 
 namespace fsi::probes {
@@ -258,6 +259,44 @@ TEST(ProbeReduction, TwoRanksGiveWhatOneRankGives) {
   const std::size_t front = two_ranks.size() - 3;
   EXPECT_DOUBLE_EQ(two_ranks[front] * two_ranks[front + 1], 0.0302);
   EXPECT_GT(two_ranks.back(), 0.0);  // the flux sees flow through the split
+}
+
+// A probe that moves with a body (protocol 1.4): placed, it reads the field where the body took it.
+TEST(MovingProbe, APlacedPointProbeReadsTheFieldWhereTheBodyTookIt) {
+  const Particles block = water_block(0.0, 0.04, 0.03);
+  ProbeSet set({point_probe("on_body", {0.010, 0.005, 0.0})}, {2, kGravity, kSpacing});
+  // The body turned by 90 degrees about z and moved: (0.010, 0.005) -> (0.025 - 0.005, 0.010).
+  RigidPlacement placement;
+  placement.rotation = {0.0, -1.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0};
+  placement.translation = {0.025, 0.0, 0.0};
+  set.move(0, placed(set.probes()[0], placement).parameters);
+  const auto values = set.values(set.partials(block.set(), spiky2d(kSmoothing)));
+  EXPECT_NEAR(values[0], 0.2 + 3.0 * 0.010, 1e-12);
+  EXPECT_NEAR(values[1], -1.5 * 0.020, 1e-12);
+  EXPECT_NEAR(values[2], kRho0 * 9.81 * (0.03 - 0.010), 1e-9);
+}
+
+TEST(MovingProbe, APlacedFreeSurfaceLineStaysVerticalAndFindsTheSurfaceBesideIt) {
+  // Water only over x in [0, 0.02]: the line at x = 0.03 is dry until the body carries it in.
+  const Particles block = water_block(0.0, 0.02, 0.02);
+  ProbeSet set({free_surface_probe("gauge", {0.03, 0.0, 0.0}, 0.05, 201)}, {2, kGravity, kSpacing});
+  EXPECT_EQ(set.values(set.partials(block.set(), spiky2d(kSmoothing)))[1], 0.0);
+  RigidPlacement placement;
+  placement.translation = {-0.02, 0.0, 0.0};
+  set.move(0, placed(set.probes()[0], placement).parameters);
+  const auto values = set.values(set.partials(block.set(), spiky2d(kSmoothing)));
+  EXPECT_NEAR(values[0], 0.02, 0.25 * kSpacing);
+  EXPECT_EQ(values[1], 1.0);
+}
+
+TEST(MovingProbe, AMoveThatDoesNotFitIsRefusedAndTheProbeStaysWhereItWas) {
+  ProbeSet set({point_probe("p", {0.01, 0.01, 0.0}), fluid_energy_probe("e", {})},
+               {2, kGravity, kSpacing});
+  EXPECT_THROW(set.move(0, {0.01, 0.01}), Error);               // too few numbers
+  EXPECT_THROW(set.move(0, {0.01, std::nan(""), 0.0}), Error);  // not finite
+  EXPECT_THROW(set.move(1, {0.0, 0.0, 0.0}), Error);            // cannot move
+  EXPECT_THROW(set.move(2, {0.0, 0.0, 0.0}), Error);            // no such probe
+  EXPECT_EQ(set.probes()[0].parameters, (std::vector<double>{0.01, 0.01, 0.0}));
 }
 
 }  // namespace

@@ -84,6 +84,9 @@ ProbeSetup seed(std::type_identity<ProbeSetup>) {
 ProbeValues seed(std::type_identity<ProbeValues>) {
   return {40, {0.1, -0.0, 196.2, 12.0, 1.0}};
 }
+ProbePlacement seed(std::type_identity<ProbePlacement>) {
+  return {40, {{0, {0.05, 0.0, -0.0, 0.6, 200.0}}, {3, {kSubnormal, 1.0, 0.0}}}};
+}
 Step seed(std::type_identity<Step>) {
   return {7, 7e-5, 1e-5, {1.0, -0.0, kInf, -kInf}, {kNaN, kSubnormal, -kSubnormal, 0.0}};
 }

@@ -133,6 +133,15 @@ void layout(auto& io, MessageOf<ProbeSetup> auto& m) {
   });
 }
 
+void layout(auto& io, MessageOf<ProbePlacement> auto& m) {
+  io.scalar("step", m.step);
+  // A record is an index and a parameter count: at least 12 bytes.
+  io.records("probes", m.probes, 12, [](auto& record_io, auto& probe) {
+    record_io.scalar("index", probe.index);
+    record_io.array("parameters", probe.parameters);
+  });
+}
+
 void layout(auto& io, MessageOf<Step> auto& m) {
   io.scalar("step", m.step);
   io.scalar("time", m.time);
@@ -679,6 +688,18 @@ void check(const Reader& in, const ProbeSetup& m) {
     // Each name starts the names of sensors.csv columns.
     if (m.probes[i].name.empty())
       in.fail("probes", "entry " + std::to_string(i) + " has an empty name");
+    for (const double parameter : m.probes[i].parameters)
+      check_finite(in, "probes", parameter);
+  }
+}
+
+void check(const Reader& in, const ProbePlacement& m) {
+  for (std::size_t i = 0; i < m.probes.size(); ++i) {
+    for (std::size_t j = 0; j < i; ++j) {
+      if (m.probes[j].index == m.probes[i].index)
+        in.fail("probes", "entry " + std::to_string(i) + " places probe " +
+                              std::to_string(m.probes[i].index) + " a second time");
+    }
     for (const double parameter : m.probes[i].parameters)
       check_finite(in, "probes", parameter);
   }

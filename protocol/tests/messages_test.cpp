@@ -89,6 +89,10 @@ ProbeValues sample_probe_values() {
   return {40, {0.1, -0.0, 196.2, 12.0, 1.0}};
 }
 
+ProbePlacement sample_probe_placement() {
+  return {40, {{0, {0.05, 0.0, 0.0, 0.6, 200.0}}, {3, {0.1, 0.2, 0.0}}}};
+}
+
 std::vector<Message> all_samples() {
   return {sample_hello(),
           sample_welcome(),
@@ -107,6 +111,7 @@ std::vector<Message> all_samples() {
           sample_step(),
           sample_forces(),
           sample_probe_values(),
+          sample_probe_placement(),
           sample_fluid_health(),
           sample_snapshot_request(),
           sample_snapshot(),
@@ -156,6 +161,8 @@ TEST(ProtocolMessages, PayloadSizesFollowTheSpecTables) {
   EXPECT_EQ(encode(sample_probe_setup()).size(),
             8u + 3 * 8 + 8 + 8 + (4 + 4 + 5 + 8 + 3 * 8) + (4 + 4 + 5 + 8));
   EXPECT_EQ(encode(sample_probe_values()).size(), 8u + 8 + 5 * 8);
+  // Each placed probe: index, parameter count and parameters.
+  EXPECT_EQ(encode(sample_probe_placement()).size(), 8u + 8 + (4 + 8 + 5 * 8) + (4 + 8 + 3 * 8));
   EXPECT_EQ(encode(sample_fluid_health()).size(), 3u * 8 + 3 * 8);
 }
 
@@ -510,6 +517,22 @@ TEST(ProtocolMessages, SettlingAndReleaseStateContentIsChecked) {
   release = sample_release_state();
   release.drag_rate = -1;
   EXPECT_NE(decode_error(release).find("'drag_rate' is -1"), std::string::npos);
+}
+
+TEST(ProtocolMessages, ProbePlacementContentIsChecked) {
+  ProbePlacement placement = sample_probe_placement();
+  placement.probes[1].index = 0;
+  EXPECT_NE(decode_error(placement).find("'probes' entry 1 places probe 0 a second time"),
+            std::string::npos);
+  placement = sample_probe_placement();
+  placement.probes[0].parameters[1] = Limits::infinity();
+  EXPECT_NE(decode_error(placement).find("'probes' is inf"), std::string::npos);
+  std::vector<std::byte> payload = encode(sample_probe_placement());
+  const std::uint64_t huge = 1u << 30;
+  std::memcpy(payload.data() + 8, &huge, sizeof huge);
+  EXPECT_NE(decode_error(MessageType::ProbePlacement, payload)
+                .find("announces 1073741824 entries of at least 12 bytes"),
+            std::string::npos);
 }
 
 TEST(ProtocolMessages, ProbeSetupContentIsChecked) {

@@ -74,9 +74,9 @@ server_case("wrong_crc", lambda c: c.sendall(frame(READY, READY_PAYLOAD, crc_err
 server_case("oversize_length", lambda c: c.sendall(frame(READY, b"", length=0xFFFFFFF0)),
             "Ready frame announces a payload of 4294967280 bytes, more than the 1073741824 bytes")
 server_case("unknown_type", lambda c: c.sendall(frame(0x99, READY_PAYLOAD)),
-            "frame of unknown type 0x0099, which protocol 1.3 does not define")
+            "frame of unknown type 0x0099, which protocol 1.4 does not define")
 server_case("other_major", lambda c: c.sendall(frame(READY, READY_PAYLOAD, major=2, minor=0)),
-            "Ready frame of protocol 2.0, but this side speaks 1.3", answered="VersionMismatch")
+            "Ready frame of protocol 2.0, but this side speaks 1.4", answered="VersionMismatch")
 server_case("bad_payload", lambda c: c.sendall(frame(READY, READY_PAYLOAD[:-3])),
             "malformed Ready message: field 'seconds_equilibration' is truncated")
 

@@ -66,7 +66,8 @@ void EnergyAudit::exchange(std::span<const double> positions, std::span<const do
   forces_.assign(forces.begin(), forces.end());
 
   const double limit = std::max(kInjectionWarningFraction * totals_.traffic, kAuditRoundOff);
-  if (!warned_at_ && totals_.coupling_energy > limit) {
+  if (!warned_at_ && totals_.exchanges >= kAuditFirstJudgedExchange &&
+      totals_.coupling_energy > limit) {
     warned_at_ = step;
     pending_ = "the coupling has created energy: by step " + std::to_string(step) +
                " the fluid did " + number(totals_.work_fluid_on_structure) +

@@ -194,6 +194,15 @@ BoundaryMotion StructureSide::boundary_motion(std::uint64_t step, double step_si
       static_cast<std::size_t>(scene_.dimension) * scene_.boundary.dynamic_vertex_count;
   motion.positions.resize(dynamic_values);
   motion.velocities.resize(dynamic_values);
+  // The probes are evaluated after the steps that are multiples of the sensor interval.
+  if (!scene_.attached_probes.empty() &&
+      step % static_cast<std::uint64_t>(scene_.output.sensor_every_steps) == 0) {
+    const std::vector<probes::ProbeDefinition> placed = scene::placed_probes(scene_, state_);
+    for (std::size_t k = 0; k < placed.size(); ++k) {
+      motion.probe_placements.push_back(
+          {static_cast<std::uint32_t>(scene_.attached_probes[k].probe), placed[k].parameters});
+    }
+  }
   return motion;
 }
 

@@ -52,7 +52,8 @@ void TcpFluidSide::connect() {
   handshake.run_name = fs::path(options_.output_dir).filename().string();
   handshake.timeout = options_.handshake_timeout;
   handshake.session_capabilities = protocol::kCapabilitySettling |
-                                   protocol::kCapabilityFluidHealth | protocol::kCapabilityProbes;
+                                   protocol::kCapabilityFluidHealth | protocol::kCapabilityProbes |
+                                   protocol::kCapabilityMovingProbes;
   const protocol::ServerHandshakeResult opened = protocol::accept_client(*channel_, handshake);
   const protocol::Hello& hello = opened.hello;
   client_ = hello;
@@ -122,6 +123,17 @@ void TcpFluidSide::set_up(const scene::Scene& scene, const std::vector<double>& 
 }
 
 void TcpFluidSide::refuse_client_without_probes(const scene::Scene& scene) const {
+  if (probes_agreed() && !scene.attached_probes.empty() &&
+      (capabilities_ & protocol::kCapabilityMovingProbes) == 0) {
+    throw Error("the scene's probe '" + scene.probes[scene.attached_probes.front().probe].name +
+                    "' moves with a body, and fsi-client " + client_->software_version +
+                    " (protocol " +
+                    protocol::version_text(channel_->peer_major(), channel_->peer_minor()) +
+                    ") lacks probes that move (capability 'moving probes' of protocol 1.4)",
+                "set-up of " + scene.file + " with fsi-client at " + channel_->peer_description(),
+                "use an fsi-client of protocol 1.4 or later, or fix the probe in space (leave "
+                "out its `body`)");
+  }
   if (probes_agreed() || scene.probes.empty()) return;
   throw Error("the scene declares " + std::to_string(scene.probes.size()) +
                   " probe(s) (the first: '" + scene.probes.front().name + "'), and fsi-client " +
@@ -200,6 +212,9 @@ FluidForces TcpFluidSide::exchange(const BoundaryMotion& motion) {
   step.time_step = motion.time_step;
   step.positions = motion.positions;
   step.velocities = motion.velocities;
+  // The probes that move with a body, placed at the end of the step, ahead of it (1.4).
+  if (!motion.probe_placements.empty())
+    channel_->send(protocol::ProbePlacement{motion.step, motion.probe_placements});
   channel_->send(step);
   return expect_forces(motion.step);
 }

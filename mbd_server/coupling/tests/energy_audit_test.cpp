@@ -42,6 +42,24 @@ TEST(EnergyAudit, AConstantForceOnAUniformMotionIsExchangedExactly) {
   EXPECT_TRUE(audit.take_warning().empty());
 }
 
+TEST(EnergyAudit, AWallDrivenFromRestIsNotMistakenForTheInstability) {
+  // A prescribed motion x = a t^2 / 2 under a constant force: the staggered scheme's lag makes a
+  // coupling energy of 1/n of the traffic after n exchanges, which is no instability.
+  EnergyAudit audit;
+  const double a = 0.5, dt = 1e-4;
+  const std::vector<double> f{3.0};  // along the acceleration: the created energy is positive
+  audit.start(std::vector<double>{0.0}, std::vector<double>{0.0}, f);
+  for (std::uint64_t n = 1; n <= 200; ++n) {
+    const double t = dt * static_cast<double>(n);
+    audit.exchange(std::vector<double>{0.5 * a * t * t}, std::vector<double>{a * t}, dt, f, n);
+    if (n == 4) {
+      EXPECT_NEAR(audit.totals().coupling_energy, 0.25 * audit.totals().traffic, 1e-18);
+    }
+  }
+  EXPECT_NEAR(audit.totals().coupling_energy, audit.totals().traffic / 200.0, 1e-15);
+  EXPECT_FALSE(audit.warned_at());
+}
+
 // A mass m on a spring k in a "fluid" that damps it, f = -c v, coupled the staggered way: the
 // structure moves under the force of the previous exchange, the fluid answers to the new motion.
 // Explicit coupling of a damper is stable for c dt / m < 2 and unstable above.

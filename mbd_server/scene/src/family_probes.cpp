@@ -20,6 +20,15 @@ ParameterSpec probe_name_spec() {
   return text("name", "the probe's name: its columns of sensors.csv start with it");
 }
 
+// Probes with a place in space may move with a rigid body (protocol 1.4).
+ParameterSpec probe_body_spec() {
+  return text("body",
+              "a RigidBody2D or RigidBody3D the probe moves with: its coordinates are given where "
+              "the body starts (the initial configuration) and follow the body's translation and "
+              "rotation; absent: fixed in space")
+      .optional();
+}
+
 std::vector<BlockSpec> probe_blocks() {
   return {
       block_spec("FluidEnergyProbe",
@@ -37,7 +46,8 @@ std::vector<BlockSpec> probe_blocks() {
           "LIGGGHTS' kernel and smoothing length: columns NAME_vx, NAME_vy (3D NAME_vz) "
           "[m/s], NAME_pressure [Pa], NAME_particles (within the kernel's support) and "
           "NAME_wet (0: no particle there; velocity and pressure then read 0).",
-          {probe_name_spec(), per_dimension(vector("point", 2, "m", "where (3D: [x, y, z])"))})
+          {probe_name_spec(), per_dimension(vector("point", 2, "m", "where (3D: [x, y, z])")),
+           probe_body_spec()})
           .as_list()
           .for_coupled_runs(),
       block_spec("FreeSurfaceProbe",
@@ -51,7 +61,8 @@ std::vector<BlockSpec> probe_blocks() {
                   number("length", "m", "the line's length above its bottom").positive(),
                   integer("samples", "points scanned on the line (resolution length/(samples-1))")
                       .with_default(200.0)
-                      .between(2.0, 100000.0)})
+                      .between(2.0, 100000.0),
+                  probe_body_spec()})
           .as_list()
           .for_coupled_runs(),
       block_spec("FrontProbe",
@@ -83,14 +94,16 @@ std::vector<BlockSpec> probe_blocks() {
                           "midpoint-rule pieces of the segment (3D: per side of each triangle of "
                           "the polygon's fan)")
                       .with_default(40.0)
-                      .between(1.0, 1000.0)})
+                      .between(1.0, 1000.0),
+                  probe_body_spec()})
           .as_list()
           .for_coupled_runs(),
       block_spec(
           "WallPressureProbe",
           "The normal force per length (3D: per area) of the fluid on a patch of a boundary mesh, "
           "from the wall law's forces at its sampling points (fix fsi/sph): the sampling points of "
-          "the mesh's elements within `radius` of `centre` (a patch fixed in space), each "
+          "the mesh's elements within `radius` of `centre` (a patch fixed in space, or moving "
+          "with `body`), each "
           "element's normal turned to `fluid_side`: columns NAME_pressure [Pa] (positive: the "
           "fluid pushes on the wall), NAME_force [N/m; 3D N] (the normal force on the patch) and "
           "NAME_pairs (particle-sampling point pairs within the wall law's range; 0: the patch "
@@ -104,7 +117,8 @@ std::vector<BlockSpec> probe_blocks() {
                   "wall, the half-length of the patch)")
                .positive(),
            per_dimension(vector("fluid_side", 2, "",
-                                "a direction from the wall into the fluid (3D: [x, y, z])"))})
+                                "a direction from the wall into the fluid (3D: [x, y, z])")),
+           probe_body_spec()})
           .as_list()
           .for_coupled_runs(),
   };
@@ -135,6 +149,18 @@ void add_probe(SceneBuilder& builder, const View& block, probes::ProbeDefinition
                       "rename the probe");
       return;
     }
+  }
+  if (block.has("body")) {
+    const mbd::BodyId body = builder.find_body(block, "body");
+    const std::string kind = builder.model.body_kind(body);
+    if (kind != "rigid_body_2d" && kind != "rigid_body_3d") {
+      builder.problem(block.location("body"),
+                      "probe '" + probe.name + "' cannot move with '" + block.string("body") +
+                          "' (" + kind + "): a probe moves rigidly, with a rigid body only",
+                      "attach it to a RigidBody2D or RigidBody3D, or leave `body` out");
+      return;
+    }
+    builder.scene.attached_probes.push_back({builder.scene.probes.size(), body});
   }
   builder.scene.probes.push_back(std::move(probe));
 }

@@ -3,6 +3,7 @@
 // the wrong length or an axis the dimension lacks are problems at their place.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <string>
 
 #include "fsi/common/error.hpp"
@@ -166,6 +167,52 @@ TEST_F(WallPressureScene, AnUnknownMeshAndAPatchOffTheMeshAreProblems) {
 }
 
 INSTANTIATE_TEST_SUITE_P(BothDimensions, ProbeScene, ::testing::Values(2, 3));
+
+// A probe with `body` moves with that rigid body (protocol 1.4): declared where the body starts,
+// placed by the body's translation and rotation.
+TEST_F(WallPressureScene, AProbeWithABodyIsPlacedWhereTheBodyTookIt) {
+  Scene scene;
+  ASSERT_EQ(build("PointProbe { name = \"rider\"; point = [0.6, 0.5]; body = \"plate\" }\n"
+                  "PointProbe { name = \"fixed\"; point = [0.6, 0.5] }\n"
+                  "WallPressureProbe { name = \"under\"; mesh = \"plate\"; centre = [0.55, 0.5]; "
+                  "radius = 0.02; fluid_side = [0, -1]; body = \"plate\" }\n",
+                  &scene),
+            "(accepted)");
+  ASSERT_EQ(scene.attached_probes.size(), 2u);
+  EXPECT_EQ(scene.probes[scene.attached_probes[0].probe].name, "rider");
+  EXPECT_EQ(scene.probes[scene.attached_probes[1].probe].name, "under");
+  // Where it starts, every probe is as declared.
+  const std::vector<probes::ProbeDefinition> at_start =
+      placed_probes(scene, scene.model.initial_configuration());
+  EXPECT_EQ(at_start[0], scene.probes[scene.attached_probes[0].probe]);
+  // The plate moved to (1.5, 0.25) and turned by 90 degrees: its point 0.1 m along its x axis
+  // is at (1.5, 0.35), the wall's fluid side [0, -1] is [1, 0].
+  mbd::State moved = scene.model.initial_configuration();
+  moved.q(0) = 1.5;
+  moved.q(1) = 0.25;
+  moved.q(2) = std::acos(-1.0) / 2.0;
+  const std::vector<probes::ProbeDefinition> placed = placed_probes(scene, moved);
+  ASSERT_EQ(placed.size(), 2u);
+  const std::vector<double>& point = placed[0].parameters;
+  EXPECT_NEAR(point[0], 1.5, 1e-12);
+  EXPECT_NEAR(point[1], 0.35, 1e-12);
+  const std::vector<double>& wall = placed[1].parameters;
+  EXPECT_NEAR(wall[0], 1.5, 1e-12);  // the patch's centre, 0.05 m along the plate
+  EXPECT_NEAR(wall[1], 0.30, 1e-12);
+  EXPECT_NEAR(wall[4], 1.0, 1e-12);  // the fluid side turned with the plate
+  EXPECT_NEAR(wall[5], 0.0, 1e-12);
+  EXPECT_EQ(wall[7], scene.probes[scene.attached_probes[1].probe].parameters[7]);  // elements
+}
+
+TEST_F(WallPressureScene, AProbeMovesWithANamedBodyOnly) {
+  const std::string text = build(
+      "PointProbe { name = \"a\"; point = [0.6, 0.5]; body = \"ground\" }\n"
+      "PointProbe { name = \"b\"; point = [0.6, 0.5]; body = \"plank\" }\n");
+  EXPECT_NE(text.find("w.scene:6:46: no body named 'ground'; known bodies: plate"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("w.scene:7:46: no body named 'plank'"), std::string::npos) << text;
+}
 
 }  // namespace
 }  // namespace fsi::scene

@@ -66,6 +66,12 @@ class ProbeSet {
   std::vector<Column> columns() const;
   std::size_t column_count() const { return column_count_; }
 
+  // Gives probe `index` the parameters `parameters` (protocol 1.4, ProbePlacement: a probe that
+  // moves with a body, placed where the body is): of the same count, fitting the kind, with the
+  // same partials and columns. Throws fsi::Error naming what does not fit; the probe keeps its
+  // parameters then.
+  void move(std::size_t index, std::vector<double> parameters);
+
   // This rank's partials; the same sizes on every rank. `wall` is read by the wall-pressure
   // probes only (needs_wall_samples()).
   Partials partials(const ParticleSet& particles, const Kernel& kernel,

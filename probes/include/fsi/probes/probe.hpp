@@ -67,6 +67,25 @@ ProbeDefinition wall_pressure_probe(
     const std::array<double, 3>& fluid_side,
     const std::vector<std::pair<std::uint32_t, std::uint32_t>>& element_ranges);
 
+// A rigid motion of a body from its initial configuration to its current one, x -> R x + b: a
+// probe declared with `body = "NAME"` is placed by it at every probe step (protocol 1.4,
+// ProbePlacement).
+struct RigidPlacement {
+  std::array<double, 9> rotation{1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0};  // R, row by row
+  std::array<double, 3> translation{};                                          // b [m]
+  std::array<double, 3> point(const std::array<double, 3>& x) const;            // R x + b
+  std::array<double, 3> direction(const std::array<double, 3>& v) const;        // R v
+};
+
+// Can a probe of this kind move with a body? Those with a place in space can: point,
+// free_surface, flux, wall_pressure; fluid_energy and front measure all the fluid.
+bool can_move(ProbeKind kind);
+// The probe declared as `initial` (world coordinates in the bodies' initial configuration) where
+// `placement` carries it: its points moved, its directions turned; the free-surface probe's line
+// stays vertical (its bottom moves), the wall pressure probe keeps its elements. Throws
+// fsi::Error for a kind that cannot move.
+ProbeDefinition placed(const ProbeDefinition& initial, const RigidPlacement& placement);
+
 // Does the probe read the wall law's sampling points (WallSamples) rather than the particles?
 bool reads_wall_samples(const ProbeDefinition& probe);
 

@@ -26,6 +26,7 @@
   X(Forces, Forces, 0x21)                   \
   X(ProbeValues, ProbeValues, 0x22)         \
   X(FluidHealth, FluidHealth, 0x23)         \
+  X(ProbePlacement, ProbePlacement, 0x24)   \
   X(SnapshotRequest, SnapshotRequest, 0x30) \
   X(Snapshot, Snapshot, 0x31)               \
   X(Shutdown, Shutdown, 0x40)               \

@@ -36,6 +36,9 @@ inline constexpr std::uint32_t kCapabilityProbes = 1u << 3;
 // can stop a run whose fluid is failing before it writes NaN (docs/user-guide.md, "When a run
 // stops: the health checks").
 inline constexpr std::uint32_t kCapabilityFluidHealth = 1u << 4;
+// 1.4: the sender places (server) or moves (client) probes that move with a body
+// (ProbePlacement; docs/user-guide.md, "Probes that move with a body").
+inline constexpr std::uint32_t kCapabilityMovingProbes = 1u << 5;
 
 // The codes of an Error message (docs/protocol.md §7) as X(enumerator, value); AuthenticationFailed
 // came with 1.1.
@@ -230,6 +233,22 @@ struct ProbeSetup {  // server -> client, after Settling, whenever both sides ag
   double particle_spacing = 0.0;    // d [m]; 0: the client derives it from the particles
   std::vector<ProbeRecord> probes;  // may be empty
   bool operator==(const ProbeSetup&) const = default;
+};
+
+// 1.4, capability kCapabilityMovingProbes: where the probes that move with a body are at the end
+// of a probe step. Each record gives a probe (its index in ProbeSetup) its whole parameter list
+// in its kind's layout, placed by its body's motion; the others stay as they are.
+struct PlacedProbe {
+  std::uint32_t index = 0;
+  std::vector<double> parameters;
+  bool operator==(const PlacedProbe&) const = default;
+};
+
+struct ProbePlacement {  // server -> client, right before the Step of a probe step
+  static constexpr MessageType kType = MessageType::ProbePlacement;
+  std::uint64_t step = 0;  // the step of the Step that follows
+  std::vector<PlacedProbe> probes;
+  bool operator==(const ProbePlacement&) const = default;
 };
 
 struct Step {  // server -> client: the dynamic vertices at the end of the step

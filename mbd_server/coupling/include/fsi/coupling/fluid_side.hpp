@@ -31,13 +31,17 @@ struct FluidForces {
   std::optional<protocol::FluidHealth> health;
 };
 
-// Where the dynamic boundary vertices are at the end of a step.
+// Where the dynamic boundary vertices are at the end of a step, and, on a probe step, the probes
+// that move with a body.
 struct BoundaryMotion {
   std::uint64_t step = 0;
   double time = 0.0;  // end of the step
   double time_step = 0.0;
   std::vector<double> positions;   // dynamic vertices only, dimension values each
   std::vector<double> velocities;  // as positions
+  // Scene::attached_probes placed at the end of the step (index into Scene::probes, parameters);
+  // empty on other steps and in scenes without them.
+  std::vector<protocol::PlacedProbe> probe_placements;
 };
 
 // The fluid after its set-up and equilibration, with its forces on the initial configuration.

@@ -51,7 +51,8 @@ class StructureSide {
   // cross (scene::CrossingWatch; the pairs touching at the start are logged and not watched).
   void advance(std::uint64_t step, double step_size);
 
-  // The dynamic vertices at the current state, for the fluid.
+  // The dynamic vertices at the current state, for the fluid, and on a probe step the probes that
+  // move with a body.
   BoundaryMotion boundary_motion(std::uint64_t step, double step_size) const;
   // Every boundary vertex (static ones too), dimension values each.
   void boundary_state(std::vector<double>& positions, std::vector<double>& velocities) const;

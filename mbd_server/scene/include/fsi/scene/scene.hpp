@@ -87,6 +87,22 @@ struct BoundaryMesh {
 void boundary_state(const BoundaryMesh& boundary, const mbd::Model& model, const mbd::State& state,
                     std::vector<double>& positions, std::vector<double>& velocities);
 
+// A probe that moves with a rigid body: its index in Scene::probes and its body.
+struct AttachedProbe {
+  std::size_t probe = 0;
+  mbd::BodyId body = mbd::kGround;
+};
+
+// The rigid motion of a rigid body (2D or 3D) from the model's initial configuration to
+// `state`: x -> R x + b carries a point fixed to the body from where it started to where it is.
+probes::RigidPlacement rigid_placement(const mbd::Model& model, const mbd::State& state,
+                                       mbd::BodyId body);
+
+struct Scene;
+// Every attached probe of the scene placed where its body is at `state` (fsi::probes::placed),
+// in the order of Scene::attached_probes.
+std::vector<probes::ProbeDefinition> placed_probes(const Scene& scene, const mbd::State& state);
+
 struct FluidParticles {
   int dimension = 2;
   int atom_type = 1;
@@ -173,7 +189,11 @@ struct Scene {
   FluidHealthLimits health;
   std::vector<SensorSpec> sensors;
   // The probes of the fluid (coupled runs): their columns follow the sensors' in sensors.csv.
+  // Each is declared where it is in the initial configuration.
   std::vector<probes::ProbeDefinition> probes;
+  // The probes that move with a rigid body (`body = "NAME"`), placed at every probe step
+  // (placed_probes below; protocol 1.4).
+  std::vector<AttachedProbe> attached_probes;
   // What the Assembly block's initial assembly did (absent without the block); the model's
   // initial configuration is then the assembled one.
   std::optional<mbd::AssemblyReport> assembly;
