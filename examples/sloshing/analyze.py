@@ -1,0 +1,201 @@
+#!/usr/bin/python3
+"""Sloshing tank: the wave at the gauge 0.05 m from the left wall against Faltinsen et al. (2000)
+Fig. 7 (a forced run), or the first natural period from a free decay against linear theory.
+
+  analyze.py RUN_DIR [--case faltinsen|free_decay] [--tolerance F] [--reference FILE]
+             [--figure PNG]
+
+The elevation eta(t) is the left gauge's reading less its reading at t = 0 (the settled water
+level, so that the probe's own offset of up to d/4 cancels); the gauges move with the tank
+(FreeSurfaceProbe with body = "tank").
+
+faltinsen (a run of faltinsen*.scene): the experiment's points with t up to the run's end are
+compared with eta at their times (linear interpolation between sensor rows). Printed: the range
+max - min of both over that window, the simulated maximum and minimum against the experiment's,
+and the RMS of eta_sim - eta_exp; each relative to the experiment's range over the window.
+--tolerance F fails the run when the RMS deviation or the deviation of the maximum or of the
+minimum exceeds F times the experiment's range (issue 13: 0.15).
+
+free_decay (a run of free_decay*.scene): after the pulse (t > T1 + 0.25 s) the first mode rings
+down; its damped period T_d is twice the mean time between successive zero crossings of eta, its
+damping ratio zeta comes from the logarithmic decrement of successive extrema of |eta|, and the
+natural period T_n = T_d sqrt(1 - zeta^2) is compared with linear theory,
+T1 = 2 pi / sqrt(g k1 tanh(k1 h)), k1 = pi / L. --tolerance F fails the run when |T_n / T1 - 1|
+exceeds F (issue 13: 0.03)."""
+import argparse
+import math
+import os
+import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from fsi_results import read_run, write_analysis  # noqa: E402
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+# Faltinsen, Rognebakke, Lukovsky & Timokha (2000) J. Fluid Mech. 407, Fig. 7, as digitised by
+# PySPH (pysph/examples/st_exp_data.py); ../shared/reference-data/README.md names the source.
+DEFAULT_REFERENCE = os.path.join(HERE, "..", "..", "..", "shared", "reference-data",
+                                 "faltinsen_2000_sloshing_fig7.dat")
+
+
+def read_reference(path):
+    if not os.path.exists(path):
+        raise SystemExit(f"analyze: the reference data {path} is missing; give --reference FILE "
+                         "(the faltinsen_2000_sloshing_fig7.dat of the project's shared reference data)")
+    points = []
+    with open(path) as handle:
+        for line in handle:
+            if line.strip() and not line.startswith("#"):
+                t, eta = (float(v) for v in line.split()[:2])
+                points.append((t, eta))
+    return points
+
+
+def interpolate(xs, ys, x):
+    if x <= xs[0]:
+        return ys[0]
+    for i in range(1, len(xs)):
+        if xs[i] >= x:
+            return ys[i - 1] + (ys[i] - ys[i - 1]) * (x - xs[i - 1]) / (xs[i] - xs[i - 1])
+    return ys[-1]
+
+
+def zero_crossings(time, values):
+    crossings = []
+    for i in range(1, len(values)):
+        a, b = values[i - 1], values[i]
+        if (a < 0.0 <= b) or (a > 0.0 >= b):
+            crossings.append(time[i - 1] + (time[i] - time[i - 1]) * a / (a - b))
+    return crossings
+
+
+def elevation(sensors, name):
+    if not all(sensors[name + "_wet"]):
+        raise SystemExit(f"analyze: the gauge '{name}' found no water at some row; see sensors.csv")
+    base = sensors[name + "_elevation"][0]
+    return [e - base for e in sensors[name + "_elevation"]]
+
+
+def faltinsen(run, sensors, args):
+    time = sensors["time"]
+    eta = elevation(sensors, "left")
+    reference = [p for p in read_reference(args.reference) if p[0] <= time[-1]]
+    if len(reference) < 5:
+        raise SystemExit(f"analyze: the run ends at t = {time[-1]:.3g} s, before the experiment's record; run longer")
+    t_first, t_last = reference[0][0], reference[-1][0]
+    exp_eta = [p[1] for p in reference]
+    sim_at = [interpolate(time, eta, t) for t, _ in reference]
+    window = [e for t, e in zip(time, eta) if t_first <= t <= t_last]
+    exp_range = max(exp_eta) - min(exp_eta)
+    sim_max, sim_min = max(window), min(window)
+    rms = math.sqrt(sum((s - e) ** 2 for s, e in zip(sim_at, exp_eta)) / len(exp_eta))
+    result = {
+        "case": "faltinsen",
+        "window": [t_first, t_last],
+        "experiment_points": len(reference),
+        "experiment_max": max(exp_eta), "experiment_min": min(exp_eta), "experiment_range": exp_range,
+        "sim_max": sim_max, "sim_min": sim_min, "sim_range": sim_max - sim_min,
+        "max_deviation_over_range": (sim_max - max(exp_eta)) / exp_range,
+        "min_deviation_over_range": (sim_min - min(exp_eta)) / exp_range,
+        "rms_over_range": rms / exp_range,
+        "spacing": run["parameters_flat"]["LIGGGHTS_SPH_parameters.particlespacing"],
+    }
+    print(f"Faltinsen et al. (2000) Fig. 7, gauge 0.05 m from the left wall, d = {result['spacing']} m, "
+          f"window {t_first:.3f}-{t_last:.3f} s ({len(reference)} points of the experiment):")
+    print(f"  experiment: max {1000 * max(exp_eta):+.1f} mm, min {1000 * min(exp_eta):+.1f} mm, range {1000 * exp_range:.1f} mm")
+    print(f"  SPH:        max {1000 * sim_max:+.1f} mm, min {1000 * sim_min:+.1f} mm, range {1000 * (sim_max - sim_min):.1f} mm")
+    print(f"  deviation of the maximum {100 * result['max_deviation_over_range']:+.1f} %, of the minimum "
+          f"{100 * result['min_deviation_over_range']:+.1f} %, RMS of eta_sim - eta_exp {100 * result['rms_over_range']:.1f} % "
+          f"of the experiment's range")
+    if args.figure:
+        draw(time, eta, reference, result, args.figure)
+    failed = []
+    if args.tolerance is not None:
+        for key in ("rms_over_range", "max_deviation_over_range", "min_deviation_over_range"):
+            if abs(result[key]) > args.tolerance:
+                failed.append(f"{key} {100 * result[key]:+.1f} % outside +-{100 * args.tolerance:g} %")
+    return result, failed
+
+
+def free_decay(run, sensors, args):
+    params = run["parameters_flat"]
+    g = math.hypot(*run["model"]["gravity"])
+    length, depth = params["Geometry.length"], params["Geometry.depth"]
+    k1 = math.pi / length
+    period_theory = 2.0 * math.pi / math.sqrt(g * k1 * math.tanh(k1 * depth))
+    time = sensors["time"]
+    eta = elevation(sensors, "left")
+    start = period_theory + 0.25
+    ringing = [(t, e) for t, e in zip(time, eta) if t >= start]
+    crossings = zero_crossings([p[0] for p in ringing], [p[1] for p in ringing])
+    if len(crossings) < 3:
+        raise SystemExit(f"analyze: only {len(crossings)} zero crossings after t = {start:.2f} s; run longer")
+    damped = 2.0 * (crossings[-1] - crossings[0]) / (len(crossings) - 1)
+    extrema = []
+    for a, b in zip(crossings, crossings[1:]):
+        extrema.append(max(abs(e) for t, e in ringing if a <= t <= b))
+    decrements = [2.0 * math.log(x / y) for x, y in zip(extrema, extrema[1:]) if x > 0 and y > 0]
+    delta = sum(decrements) / len(decrements) if decrements else 0.0
+    zeta = delta / math.sqrt(4.0 * math.pi ** 2 + delta ** 2)
+    natural = damped * math.sqrt(1.0 - zeta ** 2)
+    error = natural / period_theory - 1.0
+    result = {
+        "case": "free_decay", "period_theory": period_theory, "damped_period": damped,
+        "natural_period": natural, "relative_error": error, "damping_ratio": zeta,
+        "zero_crossings": len(crossings), "amplitudes": extrema,
+        "spacing": params["LIGGGHTS_SPH_parameters.particlespacing"],
+    }
+    print(f"free decay, L = {length} m, h = {depth} m, d = {result['spacing']} m: first natural period "
+          f"{natural:.4f} s (damped {damped:.4f} s, {len(crossings)} zero crossings after t = {start:.2f} s) "
+          f"against linear theory {period_theory:.4f} s: {100 * error:+.2f} %")
+    print(f"  amplitudes per half period [mm]: {', '.join(f'{1000 * a:.2f}' for a in extrema)}; "
+          f"damping ratio {zeta:.4f}")
+    if args.figure:
+        draw(time, eta, [], result, args.figure)
+    failed = []
+    if args.tolerance is not None and abs(error) > args.tolerance:
+        failed.append(f"period error {100 * error:+.2f} % outside +-{100 * args.tolerance:g} %")
+    return result, failed
+
+
+def draw(time, eta, reference, result, path):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    figure, axes = plt.subplots(figsize=(7.2, 3.8))
+    axes.plot(time, [1000 * e for e in eta], label=f"SPH, d = {1000 * result['spacing']:g} mm")
+    if reference:
+        axes.plot([p[0] for p in reference], [1000 * p[1] for p in reference], "ko", ms=3,
+                  label="Faltinsen et al. (2000), Fig. 7")
+        axes.set_title("Sloshing, forced: wave 0.05 m from the left wall")
+    else:
+        axes.set_title(f"Sloshing, free decay: T_n {result['natural_period']:.3f} s, "
+                       f"linear theory {result['period_theory']:.3f} s")
+    axes.set_xlabel("t [s]")
+    axes.set_ylabel("η [mm]")
+    axes.grid(True, alpha=0.3)
+    axes.legend(loc="upper left", fontsize=8)
+    figure.tight_layout()
+    figure.savefig(path, dpi=120)
+    print(f"figure: {path}")
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("run_dir")
+    parser.add_argument("--case", choices=["faltinsen", "free_decay"],
+                        help="default: from the scene's file name (free_decay* or faltinsen*)")
+    parser.add_argument("--tolerance", type=float, help="fail beyond this (see above)")
+    parser.add_argument("--reference", default=DEFAULT_REFERENCE, help="the experiment's data file")
+    parser.add_argument("--figure", help="write a figure of eta(t) here (PNG)")
+    args = parser.parse_args()
+    run, sensors = read_run(args.run_dir)
+    case = args.case or ("free_decay" if "free_decay" in os.path.basename(run["scene"]["file"]) else "faltinsen")
+    result, failed = (free_decay if case == "free_decay" else faltinsen)(run, sensors, args)
+    write_analysis(args.run_dir, result)
+    for line in failed:
+        print("FAIL: " + line)
+    return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,63 @@
+#!/usr/bin/python3
+"""Sloshing tank (issue 13, examples/sloshing): the tank is a rigid body moved sideways by the
+experiment's forcing (Faltinsen et al. 2000: amplitude 0.032 m, period 1.3 s), its wave gauges
+are probes that move with it (protocol 1.4, ProbePlacement). Coarse: d = 20 mm, 2 ranks, the
+first 3 s of the record. Checked:
+- a client of protocol 1.3 (probes, but none that move) is refused by name before any set-up;
+- the run judges itself: completed, no particle lost, no physics warning, water at rest at release;
+- the probes move with the tank: the point probe 0.01 m inside the right wall sees at least 10
+  particles at every row (24 measured; with fsi-server's placement switched off it stays in space,
+  5.4 cm outside the wall when the tank is at its left end, and saw 5: measured on 2026-12-02);
+- the tank moved as prescribed (its x sensor spans 2 A = 0.064 m);
+- the wave at the left gauge against the experiment (analyze.py): the deviation of the maximum,
+  of the minimum and the RMS of eta_sim - eta_exp each within 25 % of the experiment's range over
+  the window (issue 13 asks 15 % at the resolutions of docs/validation.md; this coarse run's own,
+  looser bound: measured on 2026-12-02, see docs/validation.md "Sloshing")."""
+import os
+import subprocess
+
+from fsi_test import (binary, check, cleanup, example, fail, kill_group, load_sensors, manifest, start_server, wait,
+                      work_dir, ENV)
+
+output = work_dir("sloshing")
+scene = example("sloshing", "faltinsen_coarse.scene")
+
+# A client of protocol 1.3 evaluates probes but cannot move them: the server refuses it by name
+# before any set-up data.
+old_dir = os.path.join(output, "old_client")
+server, port = start_server(scene, old_dir)
+fake = subprocess.run([binary("fake_peer"), "client-capabilities", "127.0.0.1", str(port), str(0x1C)],
+                      capture_output=True, text=True, timeout=60, env=ENV)
+status = wait(server, 30)
+if status is None:
+    kill_group(server)
+    fail("fsi-server still runs after refusing a client without moving probes")
+print(fake.stdout)
+check("received Setup" not in fake.stdout, "no set-up data before the refusal")
+check("error: [SetupFailed]" in fake.stdout
+      and "lacks probes that move (capability 'moving probes' of protocol 1.4)" in fake.stdout
+      and "use an fsi-client of protocol 1.4 or later, or fix the probe in space" in fake.stdout,
+      "a client without moving probes is told what it lacks and how to fix it")
+check(status != 0 and manifest(old_dir)["status"] == "failed", f"the server exits non-zero ({status}), run.json says failed")
+
+run_dir = os.path.join(output, "run")
+result = subprocess.run([binary("fsi-run"), scene, "--np", "2",
+                         "--output", run_dir], env=ENV, capture_output=True, text=True, timeout=1200)
+print(result.stderr[-3000:])
+check(result.returncode == 0, f"fsi-run exits 0 (got {result.returncode})")
+run = manifest(run_dir)
+check(run["status"] == "completed", "run.json says completed")
+check(run["checks"]["particles_final"] == run["checks"]["particles_initial"], "no particle lost")
+check(run.get("warnings", []) == [], f"no physics warning: {run.get('warnings')}")
+check(run["release"]["at_rest"], f"the water is at rest at release: {run['release'].get('warning')}")
+sensors = load_sensors(run_dir)
+travel = max(sensors["tank_x"]) - min(sensors["tank_x"])
+check(abs(travel - 0.064) < 0.002, f"the tank travels 2 A = 0.064 m (got {travel:.4f} m)")
+fewest = min(sensors["right_wall_particles"])
+check(fewest >= 10, f"the probe inside the right wall moves with the tank: it sees >= 10 particles at every row "
+                    f"(fewest {fewest:.0f})")
+analysis = subprocess.run(["/usr/bin/python3", example("sloshing", "analyze.py"), run_dir, "--tolerance", "0.25"],
+                          capture_output=True, text=True)
+print(analysis.stdout, analysis.stderr)
+check(analysis.returncode == 0, "the wave at the gauge within 25 % of the experiment's range (analyze.py)")
+cleanup(output)
