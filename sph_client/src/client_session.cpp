@@ -220,8 +220,9 @@ class ClientSession {
     handshake.hello.host = host_name();
     handshake.hello.mpi_ranks = static_cast<std::uint32_t>(mpi_.size());
     handshake.timeout = options_.connect_timeout;
-    handshake.session_capabilities = protocol::kCapabilitySettling |
-                                     protocol::kCapabilityFluidHealth | protocol::kCapabilityProbes;
+    handshake.session_capabilities =
+        protocol::kCapabilitySettling | protocol::kCapabilityFluidHealth |
+        protocol::kCapabilityProbes | protocol::kCapabilityMovingProbes;
     const protocol::ClientHandshakeResult opened = protocol::open_session(*channel_, handshake);
     capabilities_ = opened.capabilities;
     heartbeat_ = std::make_unique<protocol::HeartbeatSender>(
@@ -654,6 +655,8 @@ class ClientSession {
         computing = {};
         send_forces(step->step, liggghts.seconds() - contact, contact);
         ++steps;
+      } else if (auto* placement = std::get_if<protocol::ProbePlacement>(&message)) {
+        move_probes(*placement);
       } else if (auto* request = std::get_if<protocol::SnapshotRequest>(&message)) {
         auto gathering = busy();
         Snapshot snapshot = driver_->gather_snapshot(dimension_);
@@ -691,10 +694,29 @@ class ClientSession {
                                           "fsi-server, during the coupled steps");
       } else {
         throw protocol::UnexpectedMessageError(
-            "expected a Step, SnapshotRequest or Shutdown message but received " +
+            "expected a Step, ProbePlacement, SnapshotRequest or Shutdown message but received " +
                 protocol::name(protocol::type_of(message)),
             "fsi-client, during the coupled steps",
             "use matching fsi-server and fsi-client releases");
+      }
+    }
+  }
+
+  // The probes that move with a body, placed by the server for the step that follows (1.4).
+  void move_probes(const protocol::ProbePlacement& placement) {
+    const std::string where = "ProbePlacement of step " + std::to_string(placement.step);
+    if ((capabilities_ & protocol::kCapabilityMovingProbes) == 0 || !probes_) {
+      throw protocol::UnexpectedMessageError(
+          "fsi-server placed probes that this session does not have (" +
+              std::string(probes_ ? "moving probes were not agreed" : "no probes were set up") +
+              ")",
+          "fsi-client, " + where, "use matching fsi-server and fsi-client releases");
+    }
+    for (const protocol::PlacedProbe& placed : placement.probes) {
+      try {
+        probes_->move(placed.index, placed.parameters);
+      } catch (const Error& error) {
+        throw Error(error.fault(), where, error.remedy());
       }
     }
   }

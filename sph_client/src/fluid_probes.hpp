@@ -27,6 +27,10 @@ class FluidProbes {
               int fluid_atom_type);
 
   const probes::ProbeSet& probes() const { return probes_; }
+  // Places probe `index` anew (protocol 1.4, ProbePlacement; probes::ProbeSet::move).
+  void move(std::size_t index, std::vector<double> parameters) {
+    probes_.move(index, std::move(parameters));
+  }
   double smoothing_length() const { return smoothing_length_; }
   double kernel_support() const { return kernel_.support; }
   const std::string& kernel_name() const { return kernel_name_; }
