@@ -297,10 +297,7 @@ class Inputs {
   }
 
  private:
-  const Parameter* find_sph(std::string_view key) const {
-    const Block* block = root_.child(kSphBlock);
-    return block ? block->find(key) : nullptr;
-  }
+  const Parameter* find_sph(std::string_view key) const { return sph_parameter(scene_, key); }
 
   const Scene& scene_;
   const Block& root_;

@@ -148,8 +148,7 @@ class ScriptReader {
 };
 
 std::optional<double> sph_number(const Scene& scene, std::string_view key) {
-  const Block* block = scene.parameters.child("LIGGGHTS_SPH_parameters");
-  const Parameter* parameter = block ? block->find(key) : nullptr;
+  const Parameter* parameter = sph_parameter(scene, key);
   if (parameter == nullptr || parameter->value.kind != ValueKind::Number ||
       !(parameter->value.number > 0.0))
     return std::nullopt;
