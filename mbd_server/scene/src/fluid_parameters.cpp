@@ -75,13 +75,16 @@ std::vector<FluidQuantity> make_quantities() {
   input("speed", "", "U", "m/s",
         "largest flow speed expected besides free fall (a moving wall, an inflow, a paddle)", 0.0,
         true);
-  input("", "gravity", "g", "m/s^2", "|g| of the Gravity block (0 without one)", 0.0, true);
+  input("", "gravity", "g", "m/s^2", "the magnitude of the Gravity block's acceleration", 0.0, true);
   // Rules, each after the values it uses.
   rule("smoothing_length", "smoothinglength", "h", "m", "SPH smoothing length (kernel support 2h)",
        "1.9 d (3D: 1.2 d)",
        "every 2D example (~45 neighbours), examples/hydrostatic_box_3d (~58); check "
        "kernel_neighbours: 30-100",
        {"d"}, [](const FluidValues& v, int dim) { return kernel_ratio(dim) * at(v, "d"); });
+  rule("box_half_thickness", "zhalf", "z_half", "m",
+       "2D: half the thickness of LIGGGHTS' periodic z-range around z = 0", "h / 2",
+       "every 2D example", {"h"}, [](const FluidValues& v, int) { return 0.5 * at(v, "h"); });
   rule("particle_mass", "SPHparticlemass", "m", "kg/m (3D: kg)",
        "particle mass (2D: per unit depth)", "rho0 d^2 (3D: rho0 d^3)", "the lattice's cell",
        {"rho0", "d"},
@@ -239,6 +242,31 @@ std::string explain(const FluidDerivation& derivation, const FluidValue& value) 
   }
   if (!inputs.empty()) line += " with " + inputs;
   return line + " (" + std::string(q.source) + ")";
+}
+
+std::string fluid_rules_markdown() {
+  std::string table =
+      "| key in `Fluid` | LIGGGHTS variable | symbol | unit | rule (when not given) | source |\n"
+      "|---|---|---|---|---|---|\n";
+  for (const FluidQuantity& q : fluid_quantities()) {
+    auto cell = [](std::string_view text, std::string_view wrap = "") {
+      return text.empty() ? std::string("—")
+                          : std::string(wrap) + std::string(text) + std::string(wrap);
+    };
+    std::string rule;
+    if (q.is_input()) {
+      rule = q.key.empty()     ? "input: \\|g\\| of the Gravity block (0 without one)"
+             : q.input_default ? "input, default " + number(*q.input_default)
+                               : std::string("input, required");
+    } else {
+      rule = std::string(q.rule);
+    }
+    table += "| " + cell(q.key, "`") + " | " +
+             cell(q.variable.empty() ? "" : "${" + std::string(q.variable) + "}", "`") + " | " +
+             std::string(q.symbol) + " | " + cell(q.unit) + " | " + rule + " | " +
+             (q.is_input() ? std::string(q.meaning) : std::string(q.source)) + " |\n";
+  }
+  return table;
 }
 
 namespace {

@@ -7,6 +7,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
+#include <map>
+#include <sstream>
 #include <string>
 
 #include "fsi/common/error.hpp"
@@ -38,6 +41,7 @@ TEST(FluidRules, KnownInputsGiveKnownValues2D) {
   const FluidDerivation fluid = derive_fluid(tank(), 2);
   EXPECT_DOUBLE_EQ(fluid.value("h"), 0.0038);                     // 1.9 d
   EXPECT_DOUBLE_EQ(fluid.value("m"), 4e-3);                       // rho0 d^2
+  EXPECT_DOUBLE_EQ(fluid.value("z_half"), 0.0019);                // h/2
   EXPECT_NEAR(fluid.value("c"), 10.0 * std::sqrt(1.962), 1e-12);  // 10 sqrt(2 g H) = 14.007
   EXPECT_DOUBLE_EQ(fluid.value("alpha"), 0.02);
   EXPECT_DOUBLE_EQ(fluid.value("alpha_eq"), 0.5);
@@ -160,7 +164,7 @@ class FluidBlock : public testing::FolderPerTest {
 
 TEST_F(FluidBlock, ItsValuesBecomeTheExamplesLiggghtsVariables) {
   const Scene built = build_scene(
-      scene(inputs() + "\n  speed_of_sound = 20", "LIGGGHTS_SPH_parameters { zhalf = 0.001 }\n")
+      scene(inputs() + "\n  speed_of_sound = 20", "LIGGGHTS_SPH_parameters { xmin = -0.005 }\n")
           .string());
   EXPECT_EQ(variable(built, "SPHdensity"), "1000");
   EXPECT_EQ(variable(built, "particlespacing"), "0.002");
@@ -169,7 +173,8 @@ TEST_F(FluidBlock, ItsValuesBecomeTheExamplesLiggghtsVariables) {
   EXPECT_EQ(variable(built, "gravity"), "9.81");
   EXPECT_EQ(variable(built, "SPH_wall_pressure"), "490.5");
   EXPECT_EQ(variable(built, "SPH_wall_cutoff_visc"), "0.0076");
-  EXPECT_EQ(variable(built, "zhalf"), "0.001");  // the block's own entries stay
+  EXPECT_EQ(variable(built, "zhalf"), "0.0019");
+  EXPECT_EQ(variable(built, "xmin"), "-0.005");  // the block's own entries stay
   ASSERT_TRUE(built.fluid_parameters.has_value());
   // The physics checks find them under the examples' names, at the Fluid block's lines.
   EXPECT_EQ(smoothing_length(built), 0.0038);
@@ -220,6 +225,55 @@ TEST_F(FluidBlock, BadInputsAreProblemsAtTheirLines) {
                   "FluidRegion.spacing = 0.001 differs from the Fluid block's "
                   "spacing = 0.002");
   EXPECT_CONTAINS(different, "write spacing = Fluid.spacing here");
+}
+
+// examples/hydrostatic_pressure uses the Fluid block: its variables are those of its former
+// hand-written LIGGGHTS_SPH_parameters (the values below, coarse: d = 2 mm), except the wall
+// friction, which follows the documented no-slip rule rho0 nu / r_v (docs/theory.md,
+// "Viscosity"): half the former rho0 nu / h, on water at rest.
+TEST(FluidExample, TheHydrostaticTankKeepsItsHandWrittenVariables) {
+  const Scene built =
+      build_scene(FSI_EXAMPLES_DIR "/hydrostatic_pressure/hydrostatic_pressure_coarse.scene");
+  std::map<std::string, double> variables;
+  for (const auto& [name, value] : built.liggghts.variables)
+    variables[name] = std::stod(value);
+  const std::map<std::string, double> by_hand = {{"SPHdensity", 1000.0},
+                                                 {"particlespacing", 0.002},
+                                                 {"smoothinglength", 1.9 * 0.002},
+                                                 {"cAB", 20.0},
+                                                 {"viscosity", 1e-3},
+                                                 {"highviscosity", 1e-3},
+                                                 {"SPHparticlemass", 1000.0 * 0.002 * 0.002},
+                                                 {"gravity", 9.81},
+                                                 {"rest_drag", 2.0 * M_PI * std::sqrt(9.81 / 0.1)},
+                                                 {"xmin", -0.005},
+                                                 {"xmax", 0.055},
+                                                 {"ymin", -0.005},
+                                                 {"ymax", 0.155},
+                                                 {"zhalf", 0.5 * 1.9 * 0.002},
+                                                 {"SPH_wall_pressure", 0.5 * 1000.0 * 9.81 * 0.1},
+                                                 {"SPH_wall_cutoff_visc", 2.0 * 1.9 * 0.002}};
+  for (const auto& [name, value] : by_hand) {
+    ASSERT_EQ(variables.count(name), 1u) << name;
+    EXPECT_NEAR(variables[name], value, 1e-12 * std::abs(value)) << name;
+  }
+  EXPECT_NEAR(variables["SPH_wall_visc"], 1000.0 * 1e-3 / (2.0 * 1.9 * 0.002), 1e-9);
+  EXPECT_NEAR(variables["SPH_wall_visc"] / (1000.0 * 1e-3 / (1.9 * 0.002)), 0.5, 1e-12);
+  // The lattice starts at the Tait density of the Fluid block's c (20 m/s, set there).
+  EXPECT_EQ(built.fluid.spacing, 0.002);
+  ASSERT_FALSE(built.fluid.densities.empty());
+  EXPECT_GT(built.fluid.densities.front(), 1000.0);
+}
+
+// The user guide's table is the declarations' (regenerate it from the failure message).
+TEST(FluidExample, TheUserGuidesTableIsTheDeclarations) {
+  std::ifstream in(FSI_EXAMPLES_DIR "/../docs/user-guide.md");
+  ASSERT_TRUE(in) << "docs/user-guide.md";
+  std::stringstream guide;
+  guide << in.rdbuf();
+  EXPECT_NE(guide.str().find(fluid_rules_markdown()), std::string::npos)
+      << "docs/user-guide.md, \"The Fluid block\", should hold this table:\n"
+      << fluid_rules_markdown();
 }
 
 }  // namespace

@@ -66,6 +66,10 @@ FluidDerivation derive_fluid(const FluidValues& given, int dimension);
 // replaces.
 std::string explain(const FluidDerivation& derivation, const FluidValue& value);
 
+// The table of docs/user-guide.md, "The Fluid block": one row per quantity (key, LIGGGHTS
+// variable, symbol, unit, rule or "input", source); a unit test keeps the guide's copy equal.
+std::string fluid_rules_markdown();
+
 // The largest stable time step of the rules of thumb, min(0.125 h/c, 0.125 h^2/nu_max,
 // 0.25 sqrt(h/g)), nu_max the larger of nu and the artificial viscosity's alpha c h / 16 (3D: 20);
 // `explain_time_step` names each limit and the scene's step.
