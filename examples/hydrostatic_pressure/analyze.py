@@ -37,7 +37,8 @@ def main():
     parameters = run["parameters_flat"]
     width = parameters["Geometry.width"]
     patch_radius = parameters["Geometry.patch_radius"]
-    h = parameters["LIGGGHTS_SPH_parameters.smoothinglength"]
+    # The Fluid block's h (run.json lists its derived values too); a hand-written block's otherwise.
+    h = parameters.get("Fluid.smoothing_length", parameters.get("LIGGGHTS_SPH_parameters.smoothinglength"))
     fluid = run["fluid"]
     rho0, spacing = fluid["density"], fluid["spacing"]
     g = math.hypot(*run["model"]["gravity"])

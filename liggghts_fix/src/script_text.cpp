@@ -88,4 +88,29 @@ std::vector<std::string> referenced_variables(std::string_view code) {
   return names;
 }
 
+std::optional<std::string> substitute_variables(std::string_view word,
+                                                const VariableLookup& value_of) {
+  std::string result;
+  for (std::size_t i = 0; i < word.size(); ++i) {
+    if (word[i] != '$' || i + 1 == word.size()) {
+      result += word[i];
+      continue;
+    }
+    std::string name;
+    if (word[i + 1] == '{') {
+      const std::size_t close = word.find('}', i + 2);
+      if (close == std::string_view::npos) return std::nullopt;
+      name = std::string(word.substr(i + 2, close - i - 2));
+      i = close;
+    } else {
+      name = std::string(1, word[i + 1]);
+      ++i;
+    }
+    const std::optional<std::string> value = value_of(name);
+    if (!value) return std::nullopt;
+    result += *value;
+  }
+  return result;
+}
+
 }  // namespace fsi::contact

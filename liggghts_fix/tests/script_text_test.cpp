@@ -39,5 +39,31 @@ TEST(ScriptText, ReferencedVariablesOutsideQuotes) {
   EXPECT_EQ(referenced_variables("print ${unterminated"), Words{});
 }
 
+TEST(ScriptText, SubstituteVariablesReplacesBracedAndOneCharacterNames) {
+  const VariableLookup value_of = [](const std::string& name) -> std::optional<std::string> {
+    if (name == "h") return "0.0038";
+    if (name == "c") return "20";
+    if (name == "rho0") return "1000.";
+    return std::nullopt;
+  };
+  EXPECT_EQ(substitute_variables("${rho0}*${h}", value_of), "1000.*0.0038");
+  EXPECT_EQ(substitute_variables("$c/2", value_of), "20/2");
+  EXPECT_EQ(substitute_variables("plain", value_of), "plain");
+  EXPECT_EQ(substitute_variables("", value_of), "");
+  // A '$' at the end of a word stays (LIGGGHTS has nothing to substitute there).
+  EXPECT_EQ(substitute_variables("cost$", value_of), "cost$");
+}
+
+TEST(ScriptText, SubstituteVariablesRefusesUnknownNamesAndOpenBraces) {
+  const VariableLookup value_of = [](const std::string& name) -> std::optional<std::string> {
+    if (name == "h") return "0.0038";
+    return std::nullopt;
+  };
+  EXPECT_EQ(substitute_variables("${undefined}", value_of), std::nullopt);
+  EXPECT_EQ(substitute_variables("2*$x", value_of), std::nullopt);  // $x: the variable "x"
+  EXPECT_EQ(substitute_variables("${h", value_of), std::nullopt);
+  EXPECT_EQ(substitute_variables("${h}${h}", value_of), "0.00380.0038");
+}
+
 }  // namespace
 }  // namespace fsi::contact

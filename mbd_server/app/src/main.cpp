@@ -97,6 +97,20 @@ std::shared_ptr<TerminalSink> configure_logging(const std::string& level,
   return terminal;
 }
 
+// The Fluid block's values, one line each with its rule and inputs (docs/user-guide.md, "The
+// Fluid block"); empty without the block.
+std::vector<std::string> fluid_block_lines(const fsi::scene::Scene& scene) {
+  if (!scene.fluid_parameters) return {};
+  const fsi::scene::FluidDerivation& fluid = *scene.fluid_parameters;
+  std::vector<std::string> lines = {
+      "Fluid block: each value, its rule and inputs (a value set in the block wins over its "
+      "rule; docs/user-guide.md, \"The Fluid block\"):"};
+  for (const fsi::scene::FluidValue& value : fluid.values)
+    lines.push_back("  " + fsi::scene::explain(fluid, value));
+  lines.push_back("  " + fsi::scene::explain_time_step(fluid, scene.solver.step_size));
+  return lines;
+}
+
 void print_summary(const fsi::scene::Scene& scene) {
   std::printf("scene %s is valid:\n", scene.file.c_str());
   std::printf("  %d bodies, %d constraints, %zu sensors\n", scene.model.body_count(),
@@ -117,6 +131,8 @@ void print_summary(const fsi::scene::Scene& scene) {
     for (const std::string& line : scene.assembly->lines())
       std::printf("  %s\n", line.c_str());
   }
+  for (const std::string& line : fluid_block_lines(scene))
+    std::printf("  %s\n", line.c_str());
 }
 
 std::size_t count(const std::vector<fsi::scene::Diagnostic>& diagnostics,
@@ -419,6 +435,8 @@ int run(fsi::scene::Scene& scene, const CommandLine& line, const SceneNotes& not
   }
   for (const fsi::scene::Diagnostic& warning : notes.run_warnings)
     spdlog::warn("{}", warning.text());
+  for (const std::string& fluid_line : fluid_block_lines(scene))
+    spdlog::info("{}", fluid_line);
   log_diagnostics(scene, notes.diagnostics);
   if (scene.assembly) {
     for (const std::string& text : scene.assembly->lines())

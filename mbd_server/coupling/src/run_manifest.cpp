@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <ctime>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -234,7 +235,15 @@ void write_run_manifest(const fs::path& output_dir, const scene::Scene& scene,
   manifest["started_utc"] = record.started_utc.empty() ? json(nullptr) : json(record.started_utc);
   manifest["scene"] = scene_entry(scene);
   manifest["parameters"] = scene::to_json(scene.parameters);
-  manifest["parameters_flat"] = scene::flatten_numbers(scene.parameters);
+  // With every value of a Fluid block, the derived ones too (Fluid.smoothing_length, ...).
+  std::map<std::string, double> flat = scene::flatten_numbers(scene.parameters);
+  if (scene.fluid_parameters) {
+    for (const scene::FluidValue& value : scene.fluid_parameters->values) {
+      if (!value.quantity->key.empty())
+        flat["Fluid." + std::string(value.quantity->key)] = value.value;
+    }
+  }
+  manifest["parameters_flat"] = flat;
   manifest["dimension"] = scene.dimension;
   manifest["model"] = model_entry(scene, record.mode);
   manifest["fluid"] = record.fluid ? fluid_entry(scene, *record.fluid) : json(nullptr);

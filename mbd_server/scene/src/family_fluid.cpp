@@ -53,7 +53,7 @@ BlockSpec fluid_region_spec() {
            .with_default(0),
        number("speed_of_sound", "m/s",
               "hydrostatic: c of the Tait equation, B = rho0 c^2 / gamma (as script 1's fix "
-              "sph/pressure)")
+              "sph/pressure); absent: the Fluid block's c")
            .positive()
            .optional(),
        number("tait_exponent", "", "hydrostatic: gamma of the Tait equation")
@@ -133,6 +133,8 @@ std::vector<BlockSpec> fluid_blocks() {
   };
 }
 
+std::string format_exact(double value);
+
 // Writes the fluid region's lattice into `fluid`; a mistake becomes a problem at its key.
 void build_fluid_region(SceneBuilder& builder, const View& region) {
   const int dimension = builder.dimension;
@@ -146,6 +148,19 @@ void build_fluid_region(SceneBuilder& builder, const View& region) {
   fluid.density = region.number("density");
   fluid.mass = lattice_particle_mass(fluid.density, options.spacing, dimension);
   fluid.atom_type = static_cast<int>(region.integer("atom_type"));
+  if (const std::optional<FluidDerivation>& derived = builder.scene.fluid_parameters) {
+    // One spacing and one density: the Fluid block's (its LIGGGHTS variables) and the lattice's.
+    for (const auto& [key, symbol] : {std::pair{"spacing", "d"}, std::pair{"density", "rho0"}}) {
+      const double own = region.number(key), fluid_value = derived->value(symbol);
+      if (std::abs(own - fluid_value) > 1e-12 * std::abs(fluid_value)) {
+        builder.problem(region.location(key),
+                        std::string("FluidRegion.") + key + " = " + format_exact(own) +
+                            " differs from the Fluid block's " + key + " = " +
+                            format_exact(fluid_value),
+                        std::string("write ") + key + " = Fluid." + key + " here");
+      }
+    }
+  }
   const std::optional<std::vector<double>> velocity =
       builder.dimension_vector(region, "velocity", dimension);
   const std::string shape = region.string("shape");
@@ -232,17 +247,19 @@ void build_fluid_region(SceneBuilder& builder, const View& region) {
   fluid.column_height =
       lattice_column_height(fluid.positions, dimension, fluid.spacing, builder.scene.gravity);
   fluid.densities.clear();
+  const std::optional<FluidDerivation>& derived = builder.scene.fluid_parameters;
   if (region.integer("hydrostatic") == 1) {
-    if (!region.has("speed_of_sound")) {
+    if (!region.has("speed_of_sound") && !derived) {
       builder.problem({region.location("hydrostatic"),
                        "a hydrostatic fluid region needs the speed of sound of its Tait equation",
                        "add speed_of_sound = ... to FluidRegion (the c of script 1's fix "
-                       "sph/pressure, e.g. LIGGGHTS_SPH_parameters.cAB)"});
+                       "sph/pressure, e.g. LIGGGHTS_SPH_parameters.cAB), or a Fluid block"});
       return;
     }
     TaitEquation tait;
     tait.rest_density = fluid.density;
-    tait.speed_of_sound = region.number("speed_of_sound");
+    tait.speed_of_sound =
+        region.has("speed_of_sound") ? region.number("speed_of_sound") : derived->value("c");
     tait.exponent = region.number("tait_exponent");
     fluid.densities = hydrostatic_densities(fluid.positions, dimension, fluid.spacing,
                                             builder.scene.gravity, tait);
@@ -297,6 +314,9 @@ void build_liggghts(SceneBuilder& builder) {
     setup.allowed_lost_particles =
         static_cast<std::uint64_t>(liggghts.integer("allowed_lost_particles"));
   });
+  // The Fluid block's values first (a LIGGGHTS_SPH_parameters entry of the same name is refused).
+  for (const Parameter& p : builder.scene.fluid_variables)
+    setup.variables.emplace_back(p.key, format_exact(p.value.number));
   const Block* sph = builder.scene.parameters.child("LIGGGHTS_SPH_parameters");
   if (sph == nullptr) return;
   for (const Parameter& p : sph->parameters) {

@@ -73,33 +73,12 @@ void for_each_command(const std::string& script, Visit visit) {
 // A script word with LIGGGHTS' ${name} and $c replaced by the LIGGGHTS_SPH_parameters values the
 // server puts in front of script 1; nullopt when it names another variable.
 std::optional<std::string> substitute(const std::string& word, const LiggghtsSetup& liggghts) {
-  auto value_of = [&](const std::string& name) -> std::optional<std::string> {
+  return contact::substitute_variables(word, [&](const std::string& name) {
     for (const auto& [key, value] : liggghts.variables) {
-      if (key == name) return value;
+      if (key == name) return std::optional<std::string>(value);
     }
-    return std::nullopt;
-  };
-  std::string result;
-  for (std::size_t i = 0; i < word.size(); ++i) {
-    if (word[i] != '$' || i + 1 == word.size()) {
-      result += word[i];
-      continue;
-    }
-    std::string name;
-    if (word[i + 1] == '{') {
-      const auto close = word.find('}', i + 2);
-      if (close == std::string::npos) return std::nullopt;
-      name = word.substr(i + 2, close - i - 2);
-      i = close;
-    } else {
-      name = word.substr(i + 1, 1);
-      ++i;
-    }
-    const auto value = value_of(name);
-    if (!value) return std::nullopt;
-    result += *value;
-  }
-  return result;
+    return std::optional<std::string>();
+  });
 }
 
 std::optional<double> script_number(const std::string& word, const LiggghtsSetup& liggghts) {
@@ -318,10 +297,7 @@ class Inputs {
   }
 
  private:
-  const Parameter* find_sph(std::string_view key) const {
-    const Block* block = root_.child(kSphBlock);
-    return block ? block->find(key) : nullptr;
-  }
+  const Parameter* find_sph(std::string_view key) const { return sph_parameter(scene_, key); }
 
   const Scene& scene_;
   const Block& root_;

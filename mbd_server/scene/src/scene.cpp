@@ -142,6 +142,16 @@ const BlockSpec& scene_schema() {
   return schema;
 }
 
+const Parameter* sph_parameter(const Scene& scene, std::string_view name) {
+  if (const Block* block = scene.parameters.child("LIGGGHTS_SPH_parameters")) {
+    if (const Parameter* parameter = block->find(name)) return parameter;
+  }
+  for (const Parameter& parameter : scene.fluid_variables) {
+    if (parameter.key == name) return &parameter;
+  }
+  return nullptr;
+}
+
 std::string blocks_needed(const Scene& scene, SceneMode mode) {
   const bool coupled = mode == SceneMode::Coupled;
   std::vector<std::string> needed;

@@ -52,27 +52,10 @@ class ScriptReader {
   std::string unreadable;  // the first fix fsi/sph word that could not be substituted
 
   std::optional<std::string> substitute(const std::string& word) const {
-    std::string result;
-    for (std::size_t i = 0; i < word.size(); ++i) {
-      if (word[i] != '$' || i + 1 == word.size()) {
-        result += word[i];
-        continue;
-      }
-      std::string name;
-      if (word[i + 1] == '{') {
-        const auto close = word.find('}', i + 2);
-        if (close == std::string::npos) return std::nullopt;
-        name = word.substr(i + 2, close - i - 2);
-        i = close;
-      } else {
-        name = word.substr(i + 1, 1);
-        ++i;
-      }
+    return contact::substitute_variables(word, [&](const std::string& name) {
       const auto found = variables_.find(name);
-      if (found == variables_.end()) return std::nullopt;
-      result += found->second;
-    }
-    return result;
+      return found == variables_.end() ? std::nullopt : std::optional<std::string>(found->second);
+    });
   }
 
   // A word (or an equal-style expression) as a number: ${name} and v_name replaced, then
@@ -165,8 +148,7 @@ class ScriptReader {
 };
 
 std::optional<double> sph_number(const Scene& scene, std::string_view key) {
-  const Block* block = scene.parameters.child("LIGGGHTS_SPH_parameters");
-  const Parameter* parameter = block ? block->find(key) : nullptr;
+  const Parameter* parameter = sph_parameter(scene, key);
   if (parameter == nullptr || parameter->value.kind != ValueKind::Number ||
       !(parameter->value.number > 0.0))
     return std::nullopt;

@@ -4,7 +4,8 @@
 // stop a run (a scene may have its reasons to break a rule of thumb); `fsi-server --check` prints
 // them and a run logs them at start-up. The formulas are in docs/user-guide.md ("Physics checks").
 //
-// LIGGGHTS_SPH_parameters has no schema. Declared values are used where the schema has them
+// LIGGGHTS_SPH_parameters has no schema (a Fluid block's values are read like its entries,
+// through sph_parameter). Declared values are used where the schema has them
 // (FluidRegion spacing, density and particle mass, Gravity, SolverOptions.Timeint.step_size,
 // VelocityConstraint); everything else is read under the variable names of thesis §5.6 and the
 // examples: smoothinglength, cAB, viscosity, SPH_wall_rep, SPH_wall_visc,

@@ -13,6 +13,7 @@
 #include "fsi/mbd/integrator.hpp"
 #include "fsi/mbd/model.hpp"
 #include "fsi/probes/probe.hpp"
+#include "fsi/scene/fluid_parameters.hpp"
 #include "fsi/scene/parameter_file.hpp"
 #include "fsi/scene/schema.hpp"
 
@@ -200,7 +201,17 @@ struct Scene {
   // The pairs of bodies (mbd::kGround for the ground) whose meshes have a Contact block between
   // them; the run's crossing check (mesh_crossing.hpp) watches the other pairs.
   std::vector<std::pair<mbd::BodyId, mbd::BodyId>> contact_pairs;
+  // The Fluid block's values (absent without one; docs/user-guide.md, "The Fluid block"): they
+  // become LIGGGHTS variables next to the LIGGGHTS_SPH_parameters, and --check explains each.
+  std::optional<FluidDerivation> fluid_parameters;
+  // The same values as parameters named by their LIGGGHTS variable, each at the Fluid key that
+  // sets it (or the Fluid block for a derived one): what sph_parameter finds.
+  std::vector<Parameter> fluid_variables;
 };
+
+// A LIGGGHTS variable the scene defines by name: an entry of LIGGGHTS_SPH_parameters, else a value
+// of the Fluid block; nullptr when neither has it. The physics checks read variables through it.
+const Parameter* sph_parameter(const Scene& scene, std::string_view name);
 
 // The declaration of every scene parameter, block by block in the order of the element families
 // (src/family_registry.cpp).

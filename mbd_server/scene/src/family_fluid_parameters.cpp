@@ -1,0 +1,111 @@
+// The Fluid block: the fluid's parameters from a few physical inputs
+// (fsi/scene/fluid_parameters.hpp holds the rules); every value becomes the LIGGGHTS variable the
+// examples' hand-written LIGGGHTS_SPH_parameters used, so their scripts read it unchanged.
+
+#include <cmath>
+
+#include "fsi/common/error.hpp"
+#include "scene_builder.hpp"
+
+namespace fsi::scene::detail {
+namespace {
+
+constexpr std::string_view kSphBlock = "LIGGGHTS_SPH_parameters";
+
+// The block's keys, one per quantity of the table: inputs required (or with their default),
+// derived values optional (given: it wins over the rule).
+std::vector<BlockSpec> fluid_parameter_blocks() {
+  std::vector<ParameterSpec> keys;
+  for (const FluidQuantity& q : fluid_quantities()) {
+    if (q.key.empty()) continue;  // g: the Gravity block's
+    std::string doc = std::string(q.meaning);
+    if (!q.is_input())
+      doc += "; absent: " + std::string(q.rule) + " (" + std::string(q.source) + ")";
+    if (!q.variable.empty()) doc += "; LIGGGHTS ${" + std::string(q.variable) + "}";
+    ParameterSpec spec = number(std::string(q.key), std::string(q.unit), doc);
+    spec = q.may_be_zero ? spec.at_least(0.0) : spec.positive();
+    if (q.input_default) {
+      spec = spec.with_default(*q.input_default);
+    } else if (!q.is_input()) {
+      spec = spec.optional();
+    }
+    keys.push_back(spec);
+  }
+  return {block_spec("Fluid",
+                     "The fluid's parameters from a few physical inputs (docs/user-guide.md, \"The "
+                     "Fluid block\"): each value not given is derived by its rule and defined as "
+                     "a LIGGGHTS variable before script 1; fsi-server --check explains each.",
+                     keys)
+              .for_coupled_runs()};
+}
+
+// A LIGGGHTS_SPH_parameters entry that the Fluid block defines too: one place per value.
+void refuse_duplicates(SceneBuilder& builder, const View& fluid) {
+  const Block* sph = builder.scene.parameters.child(kSphBlock);
+  if (sph == nullptr) return;
+  for (const Parameter& p : sph->parameters) {
+    for (const FluidQuantity& q : fluid_quantities()) {
+      if (q.variable.empty() || q.variable != p.key) continue;
+      const std::string owner =
+          q.key.empty() ? std::string("the Gravity block") : "Fluid." + std::string(q.key);
+      builder.problem(p.location,
+                      "'" + p.key + "' is given both here and by the Fluid block at " +
+                          fluid.location().text() + " (" + owner + ", " + std::string(q.symbol) +
+                          (q.is_input() ? "" : " = " + std::string(q.rule)) + ")",
+                      q.key.empty() ? "remove it here: the Fluid block defines ${gravity} as |g| "
+                                      "of the Gravity block"
+                                    : "remove it here; to set it yourself, write " +
+                                          std::string(q.key) + " = ... in the Fluid block");
+    }
+  }
+}
+
+void build_fluid_parameters(SceneBuilder& builder) {
+  if (builder.mode != SceneMode::Coupled || !builder.root.has_block("Fluid")) return;
+  const View fluid = builder.root.block("Fluid");
+  refuse_duplicates(builder, fluid);
+  for (const FluidQuantity& q : fluid_quantities()) {
+    // A missing input is the schema's problem, reported already.
+    if (q.is_input() && !q.key.empty() && !q.input_default && !fluid.has(q.key)) return;
+  }
+  builder.guard(fluid.location(), [&] {
+    FluidValues given;
+    for (const FluidQuantity& q : fluid_quantities()) {
+      if (!q.key.empty() && fluid.has(q.key)) given[std::string(q.key)] = fluid.number(q.key);
+    }
+    const auto& g = builder.scene.gravity;
+    given["g"] = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+    FluidDerivation derivation;
+    try {
+      derivation = derive_fluid(given, builder.dimension);
+    } catch (const AlreadyReported&) {
+      throw;
+    } catch (const Error& error) {
+      const std::string& key = error.location();
+      const bool is_key = key != "g" && fluid.spec().parameter(key) != nullptr;
+      builder.problem(is_key ? fluid.location(key) : fluid.location(), error.fault(),
+                      error.remedy());
+      return;
+    }
+    for (const FluidValue& value : derivation.values) {
+      const FluidQuantity& q = *value.quantity;
+      if (q.variable.empty()) continue;
+      Parameter parameter;
+      parameter.key = std::string(q.variable);
+      parameter.value.kind = ValueKind::Number;
+      parameter.value.number = value.value;
+      parameter.location =
+          !q.key.empty() && fluid.has(q.key) ? fluid.location(q.key) : fluid.location();
+      builder.scene.fluid_variables.push_back(parameter);
+    }
+    builder.scene.fluid_parameters = derivation;
+  });
+}
+
+}  // namespace
+
+ElementFamily fluid_parameters_family() {
+  return {"fluid parameters", fluid_parameter_blocks, {build_fluid_parameters}};
+}
+
+}  // namespace fsi::scene::detail
