@@ -1,33 +1,24 @@
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <filesystem>
-#include <fstream>
 #include <map>
-#include <sstream>
 #include <string>
 
 #include "fsi/common/error.hpp"
 #include "fsi/output/run_folder.hpp"
+#include "fsi/test_support/folder_per_test.hpp"
 
 namespace fsi::output {
 namespace {
 
 namespace fs = std::filesystem;
 
-void write(const fs::path& path, const std::string& text) {
-  fs::create_directories(path.parent_path());
-  std::ofstream(path) << text;
-}
-
 // Every file under the folder with its content: "nothing changed" compares two of these.
 std::map<std::string, std::string> contents(const fs::path& folder) {
   std::map<std::string, std::string> files;
   for (const auto& entry : fs::recursive_directory_iterator(folder)) {
-    std::ifstream in(entry.path(), std::ios::binary);
-    std::stringstream text;
-    if (entry.is_regular_file()) text << in.rdbuf();
-    files[fs::relative(entry.path(), folder).string()] = text.str();
+    files[fs::relative(entry.path(), folder).string()] =
+        entry.is_regular_file() ? test_support::file_text(entry.path()) : "";
   }
   return files;
 }
@@ -36,37 +27,28 @@ const char* kCompleted = R"({"format": "fsi-run-manifest", "format_version": 5,
   "scene": {"file": "/examples/static_tank/static_tank_coarse.scene"},
   "started_utc": "2026-12-02T11:40:12Z", "status": "completed", "steps": 400})";
 
-class RunFolderTest : public ::testing::Test {
+class RunFolderTest : public test_support::FolderPerTest {
  protected:
-  void SetUp() override {
-    folder_ = fs::temp_directory_path() /
-              ("fsi_run_folder_test_" + std::to_string(::getpid()) + "_" +
-               ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(folder_);
-    fs::create_directories(folder_);
-  }
-  void TearDown() override { fs::remove_all(folder_); }
   // What a coupled run leaves, and a file of the user's own.
   void write_run(const std::string& manifest) {
-    write(folder_ / "run.json", manifest);
-    write(folder_ / "sensors.csv", "# sensors\n# units: time [s]\ntime,F\n0,1\n1e-05,2\n");
-    write(folder_ / "energy.csv", "# energy\ntime,coupling_energy\n0,0\n");
-    write(folder_ / "fsi-server.log", "log\n");
-    write(folder_ / "fsi-client.log", "log\n");
-    write(folder_ / "snapshots" / "particles_000000000.csv", "id,x,y\n");
-    write(folder_ / "vtk" / "fluid.pvd", "<VTKFile/>\n");
-    write(folder_ / "vtk" / "fluid_000000000.vtu", "vtu");
-    write(folder_ / "plots" / "sensors.png", "png");
-    write(folder_ / "notes.txt", "my own notes");
+    write("run.json", manifest);
+    write("sensors.csv", "# sensors\n# units: time [s]\ntime,F\n0,1\n1e-05,2\n");
+    write("energy.csv", "# energy\ntime,coupling_energy\n0,0\n");
+    write("fsi-server.log", "log\n");
+    write("fsi-client.log", "log\n");
+    write("snapshots/particles_000000000.csv", "id,x,y\n");
+    write("vtk/fluid.pvd", "<VTKFile/>\n");
+    write("vtk/fluid_000000000.vtu", "vtu");
+    write("plots/sensors.png", "png");
+    write("notes.txt", "my own notes");
   }
-  fs::path folder_;
 };
 
 TEST_F(RunFolderTest, NothingOfOursIsNoEarlierRun) {
   EXPECT_FALSE(inspect_run_folder(folder_ / "absent"));
   EXPECT_FALSE(inspect_run_folder(folder_));
-  write(folder_ / "notes.txt", "mine");
-  write(folder_ / "server.port", "5000");  // fsi-run's, written before the server starts
+  write("notes.txt", "mine");
+  write("server.port", "5000");  // fsi-run's, written before the server starts
   EXPECT_FALSE(inspect_run_folder(folder_));
   EXPECT_FALSE(claim_run_folder(folder_, false));
 }
@@ -103,27 +85,27 @@ TEST_F(RunFolderTest, OverwriteRemovesOurFilesAndKeepsTheUsers) {
 
 TEST_F(RunFolderTest, OtherFilesInOurFoldersStay) {
   write_run(kCompleted);
-  write(folder_ / "vtk" / "my_view.pvsm", "paraview state");
+  write("vtk/my_view.pvsm", "paraview state");
   remove_earlier_run(folder_);
   EXPECT_TRUE(fs::exists(folder_ / "vtk" / "my_view.pvsm"));
   EXPECT_FALSE(fs::exists(folder_ / "vtk" / "fluid.pvd"));
 }
 
 TEST_F(RunFolderTest, ARunThatFailedBeforeItsFirstStepHasNoResults) {
-  write(folder_ / "run.json", R"({"status": "failed", "steps": 0, "scene": {"file": "s"}})");
-  write(folder_ / "fsi-server.log", "error: the client never came\n");
+  write("run.json", R"({"status": "failed", "steps": 0, "scene": {"file": "s"}})");
+  write("fsi-server.log", "error: the client never came\n");
   const auto earlier = claim_run_folder(folder_, false);
   ASSERT_TRUE(earlier);
   EXPECT_FALSE(earlier->has_results());
 }
 
 TEST_F(RunFolderTest, AFailedRunWithStepsIsKept) {
-  write(folder_ / "run.json", R"({"status": "failed", "steps": 12})");
+  write("run.json", R"({"status": "failed", "steps": 12})");
   EXPECT_THROW(claim_run_folder(folder_, false), fsi::Error);
 }
 
 TEST_F(RunFolderTest, ARunWithoutEndIsStillRunningOrKilled) {
-  write(folder_ / "run.json", R"({"status": "started", "steps": 0, "started_utc": "x"})");
+  write("run.json", R"({"status": "started", "steps": 0, "started_utc": "x"})");
   try {
     claim_run_folder(folder_, false);
     FAIL() << "a run without a recorded end was replaced";
@@ -134,10 +116,10 @@ TEST_F(RunFolderTest, ARunWithoutEndIsStillRunningOrKilled) {
 }
 
 TEST_F(RunFolderTest, WithoutRunJsonTheSensorRowsDecide) {
-  write(folder_ / "sensors.csv", "# sensors\ntime,F\n");
+  write("sensors.csv", "# sensors\ntime,F\n");
   ASSERT_TRUE(inspect_run_folder(folder_));
   EXPECT_FALSE(inspect_run_folder(folder_)->has_results());
-  write(folder_ / "sensors.csv", "# sensors\ntime,F\n0,1\n");
+  write("sensors.csv", "# sensors\ntime,F\n0,1\n");
   const auto earlier = inspect_run_folder(folder_);
   ASSERT_TRUE(earlier);
   EXPECT_TRUE(earlier->has_results());
@@ -145,7 +127,7 @@ TEST_F(RunFolderTest, WithoutRunJsonTheSensorRowsDecide) {
 }
 
 TEST_F(RunFolderTest, AnUnreadableRunJsonIsKeptAndNamed) {
-  write(folder_ / "run.json", "{\"status\": \"comp");
+  write("run.json", "{\"status\": \"comp");
   try {
     claim_run_folder(folder_, false);
     FAIL() << "a folder with a broken run.json was claimed";

@@ -9,6 +9,7 @@ import subprocess
 import sys
 import tempfile
 import time
+from collections import namedtuple
 
 BIN = os.environ.get("FSI_BIN_DIR", "")
 EXAMPLES = os.environ.get("FSI_EXAMPLES_DIR", "")
@@ -185,6 +186,43 @@ def run_pair(scene, output, ranks, overrides=(), timeout=1200):
         kill_group(client)
         fail("fsi-client did not end within 30 s after the server")
     return server_status, client_status
+
+
+ExampleRun = namedtuple("ExampleRun", "work run_dir run analysis")
+
+
+def run_example_checked(scene, ranks, timeout, analyze_args=None, analyze_claim="", own_checks=None,
+                        at_rest=None, label="", tail=3000):
+    """Runs the example `scene` (its folder and file under examples/, e.g. ("u_tube",
+    "u_tube_coarse.scene")) with fsi-run on `ranks` ranks into "run" of a fresh work folder, and
+    checks what every example test checks: fsi-run exits 0 (the last `tail` characters of its
+    output printed), run.json says completed, no particle lost. Then the test's `own_checks(run)`
+    of run.json (warnings, health, ...), then, with `at_rest` (its claim, e.g. "the column is at
+    rest at release"), the release check. With `analyze_args`, the example's analyze.py
+    runs on the run with them and must exit 0 (`analyze_claim` says what that means). `label`
+    starts every message of these checks. Returns ExampleRun(work folder, run folder, run.json,
+    analyze.py's completed process or None); the test calls cleanup(work) at its end."""
+    folder, name = scene
+    work = work_dir(os.path.splitext(name)[0])
+    run_dir = os.path.join(work, "run")
+    result = subprocess.run([binary("fsi-run"), example(folder, name), "--np", str(ranks), "--output", run_dir],
+                            env=ENV, capture_output=True, text=True, timeout=timeout)
+    print(result.stderr[-tail:])
+    check(result.returncode == 0, f"{label}fsi-run exits 0 (got {result.returncode})")
+    run = manifest(run_dir)
+    check(run["status"] == "completed", f"{label}run.json says completed")
+    check(run["checks"]["particles_final"] == run["checks"]["particles_initial"], f"{label}no particle lost")
+    if own_checks:
+        own_checks(run)
+    if at_rest:
+        check(run["release"]["at_rest"], f"{label}{at_rest}: {run['release'].get('warning')}")
+    analysis = None
+    if analyze_args is not None:
+        analysis = subprocess.run(["/usr/bin/python3", example(folder, "analyze.py"), run_dir] + list(analyze_args),
+                                  capture_output=True, text=True, timeout=300)
+        print(analysis.stdout, analysis.stderr)
+        check(analysis.returncode == 0, f"{label}{analyze_claim}")
+    return ExampleRun(work, run_dir, run, analysis)
 
 
 def cleanup(path):

@@ -7,25 +7,15 @@ it comes to rest within 2 d of the floor (a layer of particles stays trapped und
 A run whose meshes cross without contact is tested in --mbd-only (test_contact_mbd_only.py); the
 same check runs in coupled runs (StructureSide::advance). """
 import math
-import os
-import subprocess
 
-from fsi_test import binary, check, cleanup, example, load_sensors, manifest, work_dir, ENV
+from fsi_test import check, cleanup, load_sensors, run_example_checked
 
-output = work_dir("falling_block")
 side = 0.02          # the block's side (immersed_block_model.inc)
 tolerance = 1e-4     # the scene's penetration tolerance
 spacing = 0.002      # d
 
-run_dir = os.path.join(output, "contact")
-result = subprocess.run([binary("fsi-run"), example("immersed_block", "falling_block_coarse.scene"), "--np", "2",
-                         "--output", run_dir], env=ENV, capture_output=True, text=True, timeout=1500)
-print(result.stderr[-3000:])
-check(result.returncode == 0, f"with contact: fsi-run exits 0 (got {result.returncode})")
-run = manifest(run_dir)
-check(run["status"] == "completed", "with contact: run.json says completed")
-check(run["checks"]["particles_final"] == run["checks"]["particles_initial"], "with contact: no particle lost")
-sensors = load_sensors(run_dir)
+example_run = run_example_checked(("immersed_block", "falling_block_coarse.scene"), 2, 1500, label="with contact: ")
+sensors = load_sensors(example_run.run_dir)
 
 
 def lowest_corner(y, angle):
@@ -45,4 +35,4 @@ check(final >= -2 * tolerance, f"it ends within 2 tolerances of the floor: {fina
 print(f"measured: lowest corner {lowest * 1e3:.4f} mm, final {final * 1e3:.4f} mm, "
       f"final angle {sensors['block_angle'][-1]:.4f} rad", flush=True)
 
-cleanup(output)
+cleanup(example_run.work)

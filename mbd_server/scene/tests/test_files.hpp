@@ -6,11 +6,11 @@
 
 #include <array>
 #include <filesystem>
-#include <fstream>
 #include <string>
 
 #include "fsi/common/error.hpp"
 #include "fsi/scene/scene.hpp"
+#include "fsi/test_support/folder_per_test.hpp"
 #include "fsi/test_support/thrown.hpp"
 
 namespace fsi::scene::testing {
@@ -25,31 +25,12 @@ std::string listing(const auto& reports) {
   return text;
 }
 
-// A fresh folder for each test, named after it (ctest runs the tests of a suite in parallel, each
-// test and each parameter its own process), removed afterwards. Base: ::testing::Test, or
-// ::testing::TestWithParam<T> for parameterised suites.
+// The shared folder per test (fsi/test_support/folder_per_test.hpp) with the scene tests' own
+// writers. Base: ::testing::Test, or ::testing::TestWithParam<T> for parameterised suites.
 template <class Base = ::testing::Test>
-class FolderPerTestOf : public Base {
+class FolderPerTestOf : public test_support::FolderPerTestOf<Base> {
  protected:
-  void SetUp() override {
-    const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
-    std::string name = "fsi_" + std::string(test->test_suite_name()) + "_" + test->name();
-    for (char& c : name) {
-      if (c == '/') c = '_';  // "Dimensions/Suite" and "Test/0" of parameterised suites
-    }
-    folder_ = std::filesystem::temp_directory_path() / name;
-    std::filesystem::remove_all(folder_);
-    std::filesystem::create_directories(folder_);
-  }
-  void TearDown() override { std::filesystem::remove_all(folder_); }
-
-  // Writes `text` to `name` in the folder (making sub-folders); the file's path.
-  std::string write(const std::string& name, const std::string& text) const {
-    const std::filesystem::path file = folder_ / name;
-    std::filesystem::create_directories(file.parent_path());
-    std::ofstream(file) << text;
-    return file.string();
-  }
+  using test_support::FolderPerTestOf<Base>::write;
 
   // Writes the scene `text` to `name` and builds it for --mbd-only: "(accepted)", or the problems
   // it was refused with; the scene in `built` when given and accepted.
@@ -75,8 +56,6 @@ class FolderPerTestOf : public Base {
                            "Coupling { " +
                            coupling + " }\n");
   }
-
-  std::filesystem::path folder_;
 };
 using FolderPerTest = FolderPerTestOf<>;
 
