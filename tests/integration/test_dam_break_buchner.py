@@ -22,34 +22,27 @@ The experiment's 86 points are typed into analyze.py: Buchner (2002), PhD thesis
 digitised by PySPH (pysph/examples/db_exp_data.py, buchner_exp_data)."""
 import json
 import os
-import subprocess
 
-from fsi_test import binary, check, cleanup, example, manifest, work_dir, ENV
+from fsi_test import check, cleanup, run_example_checked
 
 IMPACT_TOLERANCE = 0.30
 PLATEAU_TOLERANCE = 0.40
 
-output = work_dir("dam_break_buchner")
-run_dir = os.path.join(output, "run")
-result = subprocess.run([binary("fsi-run"), example("dam_break", "buchner_coarse.scene"), "--np", "1",
-                         "--output", run_dir], env=ENV, capture_output=True, text=True, timeout=900)
-print(result.stderr[-3000:])
-check(result.returncode == 0, f"fsi-run exits 0 (got {result.returncode})")
-run = manifest(run_dir)
-check(run["status"] == "completed", "run.json says completed")
-check(run["checks"]["particles_final"] == run["checks"]["particles_initial"], "no particle lost")
-check(run["health"]["failed_check"] is None, f"no health check failed: {run['health']['failed_check']}")
-check(run["release"]["at_rest"], f"the column is at rest against its gate at release: {run['release'].get('warning')}")
-analysis = subprocess.run(["/usr/bin/python3", example("dam_break", "analyze.py"), run_dir,
-                           "--impact-tolerance", str(IMPACT_TOLERANCE), "--plateau-tolerance", str(PLATEAU_TOLERANCE)],
-                          capture_output=True, text=True)
-print(analysis.stdout, analysis.stderr)
-check(analysis.returncode == 0, f"impact time within {IMPACT_TOLERANCE:.0%} and plateau within {PLATEAU_TOLERANCE:.0%} "
-      "of the experiment's (analyze.py)")
-with open(os.path.join(run_dir, "analysis.json")) as handle:
+
+def own_checks(run):
+    check(run["health"]["failed_check"] is None, f"no health check failed: {run['health']['failed_check']}")
+
+
+example_run = run_example_checked(
+    ("dam_break", "buchner_coarse.scene"), 1, 900,
+    analyze_args=["--impact-tolerance", str(IMPACT_TOLERANCE), "--plateau-tolerance", str(PLATEAU_TOLERANCE)],
+    analyze_claim=f"impact time within {IMPACT_TOLERANCE:.0%} and plateau within {PLATEAU_TOLERANCE:.0%} "
+                  "of the experiment's (analyze.py)",
+    own_checks=own_checks, at_rest="the column is at rest against its gate at release")
+with open(os.path.join(example_run.run_dir, "analysis.json")) as handle:
     measured = json.load(handle)
 # A gate that stayed, or a probe on the wrong wall or side, never reaches the impact level and fails
 # above; this states the measured values in the log.
 print(f"measured impact {measured['impact']:.3f} ({measured['impact_error']:+.4f}), "
       f"plateau {measured['plateau']:.4f} ({measured['plateau_error']:+.4f})")
-cleanup(output)
+cleanup(example_run.work)

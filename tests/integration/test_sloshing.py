@@ -16,8 +16,8 @@ first 3 s of the record. Checked:
 import os
 import subprocess
 
-from fsi_test import (binary, check, cleanup, example, fail, kill_group, load_sensors, manifest, start_server, wait,
-                      work_dir, ENV)
+from fsi_test import (binary, check, cleanup, example, fail, kill_group, load_sensors, manifest, run_example_checked,
+                      start_server, wait, work_dir, ENV)
 
 output = work_dir("sloshing")
 scene = example("sloshing", "faltinsen_coarse.scene")
@@ -40,24 +40,20 @@ check("error: [SetupFailed]" in fake.stdout
       "a client without moving probes is told what it lacks and how to fix it")
 check(status != 0 and manifest(old_dir)["status"] == "failed", f"the server exits non-zero ({status}), run.json says failed")
 
-run_dir = os.path.join(output, "run")
-result = subprocess.run([binary("fsi-run"), scene, "--np", "2",
-                         "--output", run_dir], env=ENV, capture_output=True, text=True, timeout=1200)
-print(result.stderr[-3000:])
-check(result.returncode == 0, f"fsi-run exits 0 (got {result.returncode})")
-run = manifest(run_dir)
-check(run["status"] == "completed", "run.json says completed")
-check(run["checks"]["particles_final"] == run["checks"]["particles_initial"], "no particle lost")
-check(run.get("warnings", []) == [], f"no physics warning: {run.get('warnings')}")
-check(run["release"]["at_rest"], f"the water is at rest at release: {run['release'].get('warning')}")
-sensors = load_sensors(run_dir)
+cleanup(output)
+
+
+def own_checks(run):
+    check(run.get("warnings", []) == [], f"no physics warning: {run.get('warnings')}")
+
+
+example_run = run_example_checked(("sloshing", "faltinsen_coarse.scene"), 2, 1200, analyze_args=["--tolerance", "0.25"],
+                                  analyze_claim="the wave at the gauge within 25 % of the experiment's range (analyze.py)",
+                                  own_checks=own_checks, at_rest="the water is at rest at release")
+sensors = load_sensors(example_run.run_dir)
 travel = max(sensors["tank_x"]) - min(sensors["tank_x"])
 check(abs(travel - 0.064) < 0.002, f"the tank travels 2 A = 0.064 m (got {travel:.4f} m)")
 fewest = min(sensors["right_wall_particles"])
 check(fewest >= 10, f"the probe inside the right wall moves with the tank: it sees >= 10 particles at every row "
                     f"(fewest {fewest:.0f})")
-analysis = subprocess.run(["/usr/bin/python3", example("sloshing", "analyze.py"), run_dir, "--tolerance", "0.25"],
-                          capture_output=True, text=True)
-print(analysis.stdout, analysis.stderr)
-check(analysis.returncode == 0, "the wave at the gauge within 25 % of the experiment's range (analyze.py)")
-cleanup(output)
+cleanup(example_run.work)
