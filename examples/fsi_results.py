@@ -26,6 +26,16 @@ def read_run(run_dir):
     return run, read_sensors(os.path.join(run_dir, "sensors.csv"))
 
 
+def zero_crossings(time, values):
+    """Times where `values` changes sign, linearly interpolated between samples."""
+    crossings = []
+    for i in range(1, len(values)):
+        a, b = values[i - 1], values[i]
+        if (a < 0.0 <= b) or (a > 0.0 >= b):
+            crossings.append(time[i - 1] + (time[i] - time[i - 1]) * a / (a - b))
+    return crossings
+
+
 def write_analysis(run_dir, result):
     """Writes an analysis script's figures as DIR/analysis.json."""
     with open(os.path.join(run_dir, "analysis.json"), "w") as handle:

@@ -30,7 +30,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
-from fsi_results import read_run, write_analysis  # noqa: E402
+from fsi_results import read_run, write_analysis, zero_crossings  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 # Faltinsen, Rognebakke, Lukovsky & Timokha (2000) J. Fluid Mech. 407, Fig. 7, as digitised by
@@ -59,15 +59,6 @@ def interpolate(xs, ys, x):
         if xs[i] >= x:
             return ys[i - 1] + (ys[i] - ys[i - 1]) * (x - xs[i - 1]) / (xs[i] - xs[i - 1])
     return ys[-1]
-
-
-def zero_crossings(time, values):
-    crossings = []
-    for i in range(1, len(values)):
-        a, b = values[i - 1], values[i]
-        if (a < 0.0 <= b) or (a > 0.0 >= b):
-            crossings.append(time[i - 1] + (time[i] - time[i - 1]) * a / (a - b))
-    return crossings
 
 
 def elevation(sensors, name):

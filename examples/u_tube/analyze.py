@@ -19,17 +19,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
-from fsi_results import read_run, write_analysis  # noqa: E402
-
-
-def zero_crossings(time, values):
-    """Times where `values` changes sign, linearly interpolated between samples."""
-    crossings = []
-    for i in range(1, len(values)):
-        a, b = values[i - 1], values[i]
-        if (a < 0.0 <= b) or (a > 0.0 >= b):
-            crossings.append(time[i - 1] + (time[i] - time[i - 1]) * a / (a - b))
-    return crossings
+from fsi_results import read_run, write_analysis, zero_crossings  # noqa: E402
 
 
 def main():

@@ -225,6 +225,25 @@ def run_example_checked(scene, ranks, timeout, analyze_args=None, analyze_claim=
     return ExampleRun(work, run_dir, run, analysis)
 
 
+def refused_client(scene, output, capabilities):
+    """Opens a session with `scene`'s fsi-server from a fake client offering only `capabilities`
+    (session bits, e.g. 4: a client of protocol 1.2), checks that the server sends no set-up data,
+    exits non-zero and records a failed run in `output`, and returns what the fake client printed
+    (the server's Error text among it) for the test's own checks."""
+    server, port = start_server(scene, output)
+    fake = subprocess.run([binary("fake_peer"), "client-capabilities", "127.0.0.1", str(port), str(capabilities)],
+                          capture_output=True, text=True, timeout=60, env=ENV)
+    status = wait(server, 30)
+    if status is None:
+        kill_group(server)
+        fail(f"fsi-server still runs after refusing a client of session capabilities {capabilities}")
+    print(fake.stdout)
+    check("received Setup" not in fake.stdout, "no set-up data before the refusal")
+    check(status != 0 and manifest(output)["status"] == "failed",
+          f"the server exits non-zero ({status}), run.json says failed")
+    return fake.stdout
+
+
 def cleanup(path):
     if os.environ.get("FSI_KEEP_TEST_OUTPUT"):
         print(f"kept {path}")
