@@ -214,5 +214,33 @@ TEST_F(WallPressureScene, AProbeMovesWithANamedBodyOnly) {
   EXPECT_NE(text.find("w.scene:7:46: no body named 'plank'"), std::string::npos) << text;
 }
 
+class MovingProbeScene : public testing::FolderPerTest {};
+
+TEST_F(MovingProbeScene, InThreeDimensionsAProbeTurnsWithItsBody) {
+  Scene scene;
+  ASSERT_EQ(
+      mbd_only_outcome("p3.scene",
+                       "scene_language = 1\ndimension = 3\n"
+                       "SolverOptions { end_time = 1; Timeint { step_size = 1e-3 } }\n"
+                       "RigidBody3D { name = \"lid\"; mass = 2; inertia = [0.2, 0.3, 0.4]; "
+                       "position = [1, 0, 0] }\n"
+                       "PointProbe { name = \"rider\"; point = [1.1, 0, 0.2]; body = \"lid\" }\n",
+                       &scene),
+      "(accepted)");
+  ASSERT_EQ(scene.attached_probes.size(), 1u);
+  // The lid moved to (2, 0, 0) and turned by 90 degrees about z: its axes e1 = y, e2 = -x, e3 = z
+  // (natural coordinates r, e1, e2, e3). Its point (0.1, 0, 0.2) off the centre is at (2, 0.1,
+  // 0.2).
+  mbd::State moved = scene.model.initial_configuration();
+  const double q[12] = {2, 0, 0, 0, 1, 0, -1, 0, 0, 0, 0, 1};
+  for (int k = 0; k < 12; ++k)
+    moved.q(k) = q[k];
+  const std::vector<probes::ProbeDefinition> placed = placed_probes(scene, moved);
+  const std::vector<double>& point = placed[0].parameters;
+  EXPECT_NEAR(point[0], 2.0, 1e-12);
+  EXPECT_NEAR(point[1], 0.1, 1e-12);
+  EXPECT_NEAR(point[2], 0.2, 1e-12);
+}
+
 }  // namespace
 }  // namespace fsi::scene
