@@ -166,6 +166,16 @@ def compare(surge):
     return surge
 
 
+def finish_figure(figure, axes, title, legend_size, path):
+    """What every figure of this script ends with: grid, legend, title, saved to `path`."""
+    axes.grid(True, alpha=0.3)
+    axes.legend(loc="upper left", fontsize=legend_size)
+    axes.set_title(title)
+    figure.tight_layout()
+    figure.savefig(path, dpi=120)
+    print(f"figure: {path}")
+
+
 def draw(surges, path):
     import matplotlib
     matplotlib.use("Agg")
@@ -181,12 +191,7 @@ def draw(surges, path):
     axes.set_ylabel("Z = z/a (surge front)")
     axes.set_xlim(0, max(s["T"][-1] for s in surges))
     axes.set_ylim(0.8, None)
-    axes.grid(True, alpha=0.3)
-    axes.legend(loc="upper left", fontsize=8)
-    axes.set_title("Dam break, surge front against Martin & Moyce (1952)")
-    figure.tight_layout()
-    figure.savefig(path, dpi=120)
-    print(f"figure: {path}")
+    finish_figure(figure, axes, "Dam break, surge front against Martin & Moyce (1952)", 8, path)
 
 
 # --- Buchner (2002): the downstream-wall pressure ----------------------------------------------
@@ -275,12 +280,7 @@ def draw_buchner(runs, experiment, path):
     axes.set_ylabel("p / (ρ0 g H) on the downstream wall, y = 0.2 H")
     axes.set_xlim(0, max(run["series"][-1][0] for run in runs))
     axes.set_ylim(-0.3, 2.0)
-    axes.grid(True, alpha=0.3)
-    axes.legend(loc="upper left", fontsize=7)
-    axes.set_title("Dam break, wall pressure against Buchner (2002)")
-    figure.tight_layout()
-    figure.savefig(path, dpi=120)
-    print(f"figure: {path}")
+    finish_figure(figure, axes, "Dam break, wall pressure against Buchner (2002)", 7, path)
 
 
 def main_buchner(args):
