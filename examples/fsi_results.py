@@ -36,6 +36,40 @@ def zero_crossings(time, values):
     return crossings
 
 
+def damped_fit(time, values, omega_guess):
+    """Least-squares fit of c + exp(-s (t - t0)) (a cos(w t) + b sin(w t)) to the samples (t0 the
+    first sample's time): a grid over w in [0.5, 1.5] omega_guess and s in [0, 0.3 omega_guess]
+    (damping ratios up to about 0.29), linear least squares for (c, a, b) at each, then a grid 50
+    times finer around the best. The constant c absorbs an offset of the signal's mean, which
+    biases zero crossings counted over an odd number of half periods.
+    Returns {"omega", "sigma", "damped_period", "natural_period", "damping_ratio", "rms_residual"};
+    the natural period 2 pi / sqrt(w^2 + s^2) is the undamped oscillator's."""
+    import numpy as np
+    t = np.asarray(time, dtype=float)
+    y = np.asarray(values, dtype=float)
+
+    def residual(w, s):
+        decay = np.exp(-s * (t - t[0]))
+        basis = np.column_stack([np.ones_like(t), decay * np.cos(w * t), decay * np.sin(w * t)])
+        coefficients = np.linalg.lstsq(basis, y, rcond=None)[0]
+        r = y - basis @ coefficients
+        return float(r @ r)
+
+    omegas = np.linspace(0.5 * omega_guess, 1.5 * omega_guess, 401)
+    sigmas = np.linspace(0.0, 0.3 * omega_guess, 61)
+    _, w0, s0 = min((residual(w, s), w, s) for w in omegas for s in sigmas)
+    if w0 in (omegas[0], omegas[-1]) or s0 == sigmas[-1]:
+        raise SystemExit(f"damped_fit: the best fit (w = {w0:.4g} rad/s, s = {s0:.4g} 1/s) lies on the edge "
+                         f"of the searched range (w {omegas[0]:.4g}-{omegas[-1]:.4g}, s 0-{sigmas[-1]:.4g}): "
+                         "the signal is not a damped oscillation near the expected frequency; plot it")
+    dw, ds = 1.2 * (omegas[1] - omegas[0]), 1.2 * (sigmas[1] - sigmas[0])
+    best, w, s = min((residual(w, s), w, s) for w in np.linspace(w0 - dw, w0 + dw, 121)
+                     for s in np.linspace(max(0.0, s0 - ds), s0 + ds, 61))
+    return {"omega": float(w), "sigma": float(s), "damped_period": 2.0 * math.pi / w,
+            "natural_period": 2.0 * math.pi / math.hypot(w, s), "damping_ratio": s / math.hypot(w, s),
+            "rms_residual": math.sqrt(best / len(t))}
+
+
 def write_analysis(run_dir, result):
     """Writes an analysis script's figures as DIR/analysis.json."""
     with open(os.path.join(run_dir, "analysis.json"), "w") as handle:

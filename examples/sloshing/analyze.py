@@ -30,7 +30,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
-from fsi_results import read_run, write_analysis, zero_crossings  # noqa: E402
+from fsi_results import damped_fit, read_run, write_analysis, zero_crossings  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 # Faltinsen, Rognebakke, Lukovsky & Timokha (2000) J. Fluid Mech. 407, Fig. 7, as digitised by
@@ -109,28 +109,6 @@ def faltinsen(run, sensors, args):
     return result, failed
 
 
-def damped_fit(time, values):
-    """Least-squares fit of c + exp(-s (t - t0)) (a cos(w t) + b sin(w t)) to the samples: a grid
-    over (w, s), linear least squares for (c, a, b) at each, then a finer grid around the best.
-    Returns (w, s, rms residual)."""
-    import numpy as np
-    t = np.asarray(time)
-    y = np.asarray(values)
-
-    def residual(w, s):
-        decay = np.exp(-s * (t - t[0]))
-        basis = np.column_stack([np.ones_like(t), decay * np.cos(w * t), decay * np.sin(w * t)])
-        coefficients = np.linalg.lstsq(basis, y, rcond=None)[0]
-        r = y - basis @ coefficients
-        return float(r @ r)
-
-    best = min((residual(w, s), w, s) for w in np.linspace(2.0, 6.0, 401) for s in np.linspace(0.0, 0.6, 31))
-    _, w0, s0 = best
-    best = min((residual(w, s), w, s) for w in np.linspace(w0 - 0.012, w0 + 0.012, 121)
-               for s in np.linspace(max(0.0, s0 - 0.025), s0 + 0.025, 51))
-    return best[1], best[2], math.sqrt(best[0] / len(t))
-
-
 def free_decay(run, sensors, args):
     params = run["parameters_flat"]
     g = math.hypot(*run["model"]["gravity"])
@@ -143,10 +121,8 @@ def free_decay(run, sensors, args):
     ringing = [(t, e) for t, e in zip(time, eta) if t >= start]
     if len(ringing) < 20 or ringing[-1][0] - start < 2.0 * period_theory:
         raise SystemExit(f"analyze: less than two periods of ringing after t = {start:.2f} s; run longer")
-    omega, sigma, misfit = damped_fit([p[0] for p in ringing], [p[1] for p in ringing])
-    damped = 2.0 * math.pi / omega
-    natural = 2.0 * math.pi / math.hypot(omega, sigma)
-    zeta = sigma / math.hypot(omega, sigma)
+    fit = damped_fit([p[0] for p in ringing], [p[1] for p in ringing], 2.0 * math.pi / period_theory)
+    damped, natural, zeta, misfit = (fit[k] for k in ("damped_period", "natural_period", "damping_ratio", "rms_residual"))
     error = natural / period_theory - 1.0
     # The cross-check: zero crossings about the wave's mean level over whole periods.
     offset = sum(e for _, e in ringing) / len(ringing)

@@ -1,8 +1,8 @@
 #!/usr/bin/python3
 """U-tube liquid column (issue 13, examples/u_tube): the coarse column (d = 5 mm, 8 particles across
 the tube, fsi-run with 2 ranks), released displaced by 25 mm per leg, swings with the natural
-period of linear theory 2 pi sqrt(L / (2 g)) = 1.042 s within 3 % (analyze.py: -2.2 % measured on
-2026-12-02 with 2 ranks; docs/validation.md "U-tube" has the finer resolutions). The run judges
+period of linear theory 2 pi sqrt(L / (2 g)) = 1.042 s within 3 % (analyze.py's fit of a damped sinusoid:
+-1.77 % measured on 2026-12-02 with 1 rank; docs/validation.md "U-tube" has the finer resolutions). The run judges
 itself: completed, no particle lost, no physics warning, the column at rest at release (held by
 script 1's body force, which script 2 removes), and the decay reported."""
 from fsi_test import check, cleanup, run_example_checked

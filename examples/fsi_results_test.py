@@ -1,0 +1,63 @@
+#!/usr/bin/python3
+"""Unit tests of the analysis helpers the examples share (examples/fsi_results.py), on made-up
+signals with known answers. Run: /usr/bin/python3 examples/fsi_results_test.py"""
+import math
+import os
+import sys
+import unittest
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from fsi_results import damped_fit, zero_crossings  # noqa: E402
+
+
+def damped_signal(period_natural, zeta, offset, amplitude=0.025, end=4.0, dt=0.005):
+    """c + A exp(-s t) cos(w t) with natural period T_n and damping ratio zeta."""
+    omega_n = 2.0 * math.pi / period_natural
+    sigma = zeta * omega_n
+    omega = omega_n * math.sqrt(1.0 - zeta ** 2)
+    time = [i * dt for i in range(int(end / dt) + 1)]
+    return time, [offset + amplitude * math.exp(-sigma * t) * math.cos(omega * t) for t in time]
+
+
+class DampedFit(unittest.TestCase):
+    def test_recovers_natural_period_and_damping(self):
+        for zeta in (0.0, 0.06, 0.1, 0.2):
+            time, values = damped_signal(1.02, zeta, 0.0)
+            fit = damped_fit(time, values, 2.0 * math.pi / 1.0424)
+            self.assertAlmostEqual(fit["natural_period"], 1.02, delta=2e-4, msg=f"zeta {zeta}")
+            self.assertAlmostEqual(fit["damping_ratio"], zeta, delta=2e-3, msg=f"zeta {zeta}")
+            self.assertLess(fit["rms_residual"], 1e-3 * 0.025)  # 0.1 % of the amplitude: the grid's step
+
+    def test_an_offset_does_not_move_the_period(self):
+        # A mean level 3 % of the amplitude off zero: the zero crossings over an odd number of
+        # half periods are biased by it (asserted, so that the test shows what the fit is for),
+        # the fit is not.
+        time, values = damped_signal(1.02, 0.08, 0.03 * 0.025)
+        crossings = zero_crossings(time, values)
+        odd = len(crossings) - 1 if (len(crossings) - 1) % 2 else len(crossings) - 2
+        damped = 1.02 / math.sqrt(1.0 - 0.08 ** 2)
+        from_crossings = 2.0 * (crossings[odd] - crossings[0]) / odd
+        self.assertGreater(abs(from_crossings / damped - 1.0), 2e-3)
+        fit = damped_fit(time, values, 2.0 * math.pi / 1.0424)
+        self.assertAlmostEqual(fit["natural_period"], 1.02, delta=2e-4)
+
+    def test_noise_costs_little(self):
+        time, values = damped_signal(1.6, 0.03, 0.0, end=8.0)
+        noisy = [v + 0.001 * math.sin(37.0 * t) * math.cos(91.0 * t) for t, v in zip(time, values)]
+        fit = damped_fit(time, noisy, 2.0 * math.pi / 1.6678)
+        self.assertAlmostEqual(fit["natural_period"], 1.6, delta=2e-3)
+
+    def test_a_signal_far_from_the_guess_is_refused(self):
+        time, values = damped_signal(0.3, 0.05, 0.0)
+        with self.assertRaises(SystemExit) as raised:
+            damped_fit(time, values, 2.0 * math.pi / 1.0424)
+        self.assertIn("edge of the searched range", str(raised.exception))
+
+
+class ZeroCrossings(unittest.TestCase):
+    def test_interpolates_between_samples(self):
+        self.assertEqual(zero_crossings([0.0, 1.0, 2.0, 3.0], [1.0, -1.0, -3.0, 1.0]), [0.5, 2.75])
+
+
+if __name__ == "__main__":
+    unittest.main()
