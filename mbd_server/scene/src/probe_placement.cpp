@@ -8,10 +8,12 @@
 #include "fsi/scene/scene.hpp"
 
 namespace fsi::scene {
+namespace {
 
-probes::RigidPlacement rigid_placement(const mbd::Model& model, const mbd::State& state,
-                                       mbd::BodyId body) {
-  const mbd::State initial = model.initial_configuration();
+// The placement of `body` in `state` relative to `initial`, the model's initial configuration
+// (copied once per placed_probes call, not once per probe).
+probes::RigidPlacement placement_since(const mbd::Model& model, const mbd::State& initial,
+                                       const mbd::State& state, mbd::BodyId body) {
   Eigen::Matrix3d turn = Eigen::Matrix3d::Identity();
   Eigen::Vector3d origin_then, origin_now;
   if (model.dimension() == 2) {
@@ -43,12 +45,21 @@ probes::RigidPlacement rigid_placement(const mbd::Model& model, const mbd::State
   return placement;
 }
 
+}  // namespace
+
+probes::RigidPlacement rigid_placement(const mbd::Model& model, const mbd::State& state,
+                                       mbd::BodyId body) {
+  return placement_since(model, model.initial_configuration(), state, body);
+}
+
 std::vector<probes::ProbeDefinition> placed_probes(const Scene& scene, const mbd::State& state) {
   std::vector<probes::ProbeDefinition> placed;
   placed.reserve(scene.attached_probes.size());
+  if (scene.attached_probes.empty()) return placed;
+  const mbd::State initial = scene.model.initial_configuration();
   for (const AttachedProbe& attached : scene.attached_probes) {
     placed.push_back(probes::placed(scene.probes[attached.probe],
-                                    rigid_placement(scene.model, state, attached.body)));
+                                    placement_since(scene.model, initial, state, attached.body)));
   }
   return placed;
 }
