@@ -35,34 +35,34 @@ std::string number(double value) {
 
 std::vector<FluidQuantity> make_quantities() {
   std::vector<FluidQuantity> q;
-  auto input = [&](std::string_view key, std::string_view variable, std::string_view symbol,
-                   std::string_view unit, std::string_view meaning,
-                   std::optional<double> fallback = std::nullopt, bool may_be_zero = false) {
+  // What every quantity has, input or rule: its names, unit and meaning.
+  auto described = [](std::string_view key, std::string_view variable, std::string_view symbol,
+                      std::string_view unit, std::string_view meaning, bool may_be_zero) {
     FluidQuantity quantity;
     quantity.key = key;
     quantity.variable = variable;
     quantity.symbol = symbol;
     quantity.unit = unit;
     quantity.meaning = meaning;
-    quantity.input_default = fallback;
     quantity.may_be_zero = may_be_zero;
+    return quantity;
+  };
+  auto input = [&](std::string_view key, std::string_view variable, std::string_view symbol,
+                   std::string_view unit, std::string_view meaning,
+                   std::optional<double> fallback = std::nullopt, bool may_be_zero = false) {
+    FluidQuantity quantity = described(key, variable, symbol, unit, meaning, may_be_zero);
+    quantity.input_default = fallback;
     q.push_back(quantity);
   };
   auto rule = [&](std::string_view key, std::string_view variable, std::string_view symbol,
                   std::string_view unit, std::string_view meaning, std::string_view text,
                   std::string_view source, std::vector<std::string_view> uses,
                   double (*derive)(const FluidValues&, int), bool may_be_zero = false) {
-    FluidQuantity quantity;
-    quantity.key = key;
-    quantity.variable = variable;
-    quantity.symbol = symbol;
-    quantity.unit = unit;
-    quantity.meaning = meaning;
+    FluidQuantity quantity = described(key, variable, symbol, unit, meaning, may_be_zero);
     quantity.rule = text;
     quantity.source = source;
     quantity.uses = std::move(uses);
     quantity.derive = derive;
-    quantity.may_be_zero = may_be_zero;
     q.push_back(quantity);
   };
   // Inputs.
@@ -75,7 +75,8 @@ std::vector<FluidQuantity> make_quantities() {
   input("speed", "", "U", "m/s",
         "largest flow speed expected besides free fall (a moving wall, an inflow, a paddle)", 0.0,
         true);
-  input("", "gravity", "g", "m/s^2", "the magnitude of the Gravity block's acceleration", 0.0, true);
+  input("", "gravity", "g", "m/s^2", "the magnitude of the Gravity block's acceleration", 0.0,
+        true);
   // Rules, each after the values it uses.
   rule("smoothing_length", "smoothinglength", "h", "m", "SPH smoothing length (kernel support 2h)",
        "1.9 d (3D: 1.2 d)",
