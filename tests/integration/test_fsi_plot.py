@@ -128,6 +128,18 @@ check(result.returncode == 2 and f"{bad}: figures[0].panels[0].references[0].val
       "unknown name 'gravity'" in result.stderr and "how to fix" in result.stderr,
       "an unknown name in a declared reference: exit 2 with file, entry and the names to use")
 
+# "change": true plots the change since the first row; anything but a boolean is refused.
+for change, status in ((True, 0), ("yes", 2)):
+    declared = os.path.join(output, "change.json")
+    with open(declared, "w") as handle:
+        json.dump({"format": "fsi-plot-figures", "version": 1, "figures": [{"file": "change.png", "panels": [
+            {"series": [{"sensor": "bottom_fluid_force_y", "change": change}]}]}]}, handle)
+    result = fsi_plot(run_dir, "--no-frames", "--figures", declared, "--output", os.path.join(output, "change"))
+    print(result.stderr)
+    check(result.returncode == status, f"\"change\": {change!r} exits {status} (got {result.returncode})")
+check("figures[0].panels[0].series[0]" in result.stderr and "not true or false" in result.stderr,
+      "a \"change\" that is not a boolean: the entry and what it must be")
+
 empty = os.path.join(output, "empty")
 os.makedirs(empty)
 result = fsi_plot(empty)
