@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <csignal>
 #include <cstdio>
@@ -386,9 +387,7 @@ class ClientSession {
     const AppliedDrag drag =
         data.settling ? settling_drag(*data.settling, data.setup) : AppliedDrag{};
     if (drag.rate > 0.0) driver_->add_velocity_drag(drag.rate);
-    if (data.setup.equilibration_steps > 0) {
-      driver_->run_with_setup(data.setup.equilibration_steps);
-    }
+    if (data.setup.equilibration_steps > 0) equilibrate(data.setup.equilibration_steps);
     // The drag belongs to the equilibration only: the coupled run starts without it.
     if (drag.rate > 0.0) driver_->remove_velocity_drag();
     driver_->run_script(data.setup.script2_name, data.setup.script2_text);
@@ -471,6 +470,36 @@ class ClientSession {
           "{:.6g} m)",
           setup.probes.size(), probe_every_steps_, probes_->probes().column_count(),
           probes_->kernel_name(), probes_->kernel_support(), probes_->smoothing_length());
+    }
+  }
+
+  // The LIGGGHTS-only equilibration in chunks (equilibration_chunk), rank 0 logging its progress
+  // at most every kEquilibrationReportSeconds: a long settling is not a silent wait.
+  void equilibrate(std::uint64_t steps) {
+    constexpr double kEquilibrationReportSeconds = 10.0;
+    const std::uint64_t chunk = equilibration_chunk(steps);
+    const auto start = std::chrono::steady_clock::now();
+    auto last_report = start;
+    for (std::uint64_t done = 0; done < steps;) {
+      const std::uint64_t now_steps = std::min(chunk, steps - done);
+      if (done == 0) {
+        driver_->run_with_setup(now_steps);
+      } else {
+        driver_->run_continued(now_steps);
+      }
+      done += now_steps;
+      const auto now = std::chrono::steady_clock::now();
+      if (!mpi_.root() || done == steps ||
+          std::chrono::duration<double>(now - last_report).count() < kEquilibrationReportSeconds) {
+        continue;
+      }
+      last_report = now;
+      const double elapsed = std::chrono::duration<double>(now - start).count();
+      const double rate = static_cast<double>(done) / elapsed;
+      const auto left = static_cast<long>(static_cast<double>(steps - done) / rate);
+      spdlog::info("equilibration: step {}/{} ({:.1f} %), {:.0f} steps/s, ETA {}:{:02}:{:02}", done,
+                   steps, 100.0 * static_cast<double>(done) / static_cast<double>(steps), rate,
+                   left / 3600, left / 60 % 60, left % 60);
     }
   }
 

@@ -227,8 +227,12 @@ void LiggghtsDriver::run_with_setup(std::uint64_t steps) {
   command("run " + std::to_string(steps));
 }
 
+void LiggghtsDriver::run_continued(std::uint64_t steps) {
+  command("run " + std::to_string(steps) + " pre no post no");
+}
+
 void LiggghtsDriver::step() {
-  command("run 1 pre no post no");
+  run_continued(1);
 }
 
 namespace {

@@ -104,6 +104,8 @@ class LiggghtsDriver {
   // A run with set-up: re-initialises styles and fixes (needed after changed settings, and for a
   // newly added fix), evaluates forces at the current state.
   void run_with_setup(std::uint64_t steps);
+  // Continues the last run by `steps` steps without set-up (nothing changed since).
+  void run_continued(std::uint64_t steps);
   // The coupled step: one LIGGGHTS step without set-up.
   void step();
 

@@ -17,4 +17,10 @@ SettlingDrag automatic_settling_drag(double column_height, double gravity, doubl
   return drag;
 }
 
+std::uint64_t equilibration_chunk(std::uint64_t total_steps) {
+  constexpr std::uint64_t kSmallest = 1000;
+  constexpr std::uint64_t kMostChunks = 100;
+  return std::max(kSmallest, (total_steps + kMostChunks - 1) / kMostChunks);
+}
+
 }  // namespace fsi::client

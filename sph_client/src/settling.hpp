@@ -3,6 +3,8 @@
 // -lambda m v on every particle while the structure is held, removed before script 2. Pure
 // arithmetic, no LIGGGHTS: the client resolves the scene's choice with it.
 
+#include <cstdint>
+
 namespace fsi::client {
 
 // The drag takes at most this fraction of a particle's velocity per step (lambda dt <= 0.1): well
@@ -22,5 +24,11 @@ struct SettlingDrag {
 // critical damping of the column's slowest gravity mode, omega = pi sqrt(|g| / H), bounded by the
 // time step. No drag (rate 0) without gravity or without height.
 SettlingDrag automatic_settling_drag(double column_height, double gravity, double time_step);
+
+// The equilibration runs in chunks of this many steps (the last one shorter), so that rank 0 can
+// report its progress between them: at least 1 000 steps (LIGGGHTS' per-run overhead stays
+// small), at most about 100 chunks. The same on every rank (each rank issues the same runs); a
+// chunk after the first continues without set-up, as one long run would.
+std::uint64_t equilibration_chunk(std::uint64_t total_steps);
 
 }  // namespace fsi::client

@@ -42,5 +42,13 @@ TEST(SettlingDrag, NothingToSettleWithoutGravityOrHeight) {
   EXPECT_EQ(automatic_settling_drag(std::nan(""), 9.81, 1e-5).rate, 0.0);
 }
 
+TEST(EquilibrationChunk, AtMostAboutAHundredChunksOfAtLeastAThousandSteps) {
+  EXPECT_EQ(equilibration_chunk(1), 1000u);       // one short run
+  EXPECT_EQ(equilibration_chunk(7500), 1000u);    // 8 chunks
+  EXPECT_EQ(equilibration_chunk(125000), 1250u);  // 100 chunks
+  EXPECT_EQ(equilibration_chunk(125001), 1251u);  // 100 chunks, the last shorter
+  EXPECT_EQ(equilibration_chunk(10000000), 100000u);
+}
+
 }  // namespace
 }  // namespace fsi::client
