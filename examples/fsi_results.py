@@ -70,6 +70,16 @@ def damped_fit(time, values, omega_guess):
             "rms_residual": math.sqrt(best / len(t))}
 
 
+def finish_figure(figure, axes, title, path, legend_size=8, legend_location="upper left"):
+    """What every analysis figure ends with: grid, legend, title, saved to `path` (and said)."""
+    axes.grid(True, alpha=0.3)
+    axes.legend(loc=legend_location, fontsize=legend_size)
+    axes.set_title(title)
+    figure.tight_layout()
+    figure.savefig(path, dpi=120)
+    print(f"figure: {path}")
+
+
 def write_analysis(run_dir, result):
     """Writes an analysis script's figures as DIR/analysis.json."""
     with open(os.path.join(run_dir, "analysis.json"), "w") as handle:

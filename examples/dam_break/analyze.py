@@ -41,7 +41,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
-from fsi_results import read_run, write_analysis  # noqa: E402
+from fsi_results import finish_figure, read_run, write_analysis  # noqa: E402
 
 # Martin & Moyce (1952), Phil. Trans. R. Soc. Lond. A 244, 312-324, Fig. 3: the surge front of the
 # column n^2 = 2, a = 1.125 in, as (T, Z). Digitised by PySPH (pypr/pysph @a57e6534,
@@ -166,16 +166,6 @@ def compare(surge):
     return surge
 
 
-def finish_figure(figure, axes, title, legend_size, path):
-    """What every figure of this script ends with: grid, legend, title, saved to `path`."""
-    axes.grid(True, alpha=0.3)
-    axes.legend(loc="upper left", fontsize=legend_size)
-    axes.set_title(title)
-    figure.tight_layout()
-    figure.savefig(path, dpi=120)
-    print(f"figure: {path}")
-
-
 def draw(surges, path):
     import matplotlib
     matplotlib.use("Agg")
@@ -191,7 +181,7 @@ def draw(surges, path):
     axes.set_ylabel("Z = z/a (surge front)")
     axes.set_xlim(0, max(s["T"][-1] for s in surges))
     axes.set_ylim(0.8, None)
-    finish_figure(figure, axes, "Dam break, surge front against Martin & Moyce (1952)", 8, path)
+    finish_figure(figure, axes, "Dam break, surge front against Martin & Moyce (1952)", path, 8)
 
 
 # --- Buchner (2002): the downstream-wall pressure ----------------------------------------------
@@ -280,7 +270,7 @@ def draw_buchner(runs, experiment, path):
     axes.set_ylabel("p / (ρ0 g H) on the downstream wall, y = 0.2 H")
     axes.set_xlim(0, max(run["series"][-1][0] for run in runs))
     axes.set_ylim(-0.3, 2.0)
-    finish_figure(figure, axes, "Dam break, wall pressure against Buchner (2002)", 7, path)
+    finish_figure(figure, axes, "Dam break, wall pressure against Buchner (2002)", path, 7)
 
 
 def main_buchner(args):

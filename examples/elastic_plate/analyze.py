@@ -19,7 +19,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
-from fsi_results import read_run, write_analysis  # noqa: E402
+from fsi_results import finish_figure, read_run, write_analysis  # noqa: E402
 
 
 def mean_over(time, values, start):
@@ -84,12 +84,7 @@ def draw(time, deflection, result, path):
                  f"({100 * result['relative_error']:+.2f} %)")
     axes.set_xlabel("t [s]")
     axes.set_ylabel("mid-span deflection [µm]")
-    axes.set_title("Elastic plate under a 2 m water column")
-    axes.grid(True, alpha=0.3)
-    axes.legend(loc="lower right", fontsize=8)
-    figure.tight_layout()
-    figure.savefig(path, dpi=120)
-    print(f"figure: {path}")
+    finish_figure(figure, axes, "Elastic plate under a 2 m water column", path, legend_location="lower right")
 
 
 if __name__ == "__main__":

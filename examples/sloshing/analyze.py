@@ -30,7 +30,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
-from fsi_results import damped_fit, read_run, write_analysis, zero_crossings  # noqa: E402
+from fsi_results import damped_fit, finish_figure, read_run, write_analysis, zero_crossings  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 # Faltinsen, Rognebakke, Lukovsky & Timokha (2000) J. Fluid Mech. 407, Fig. 7, as digitised by
@@ -161,17 +161,13 @@ def draw(time, eta, reference, result, path):
     if reference:
         axes.plot([p[0] for p in reference], [1000 * p[1] for p in reference], "ko", ms=3,
                   label="Faltinsen et al. (2000), Fig. 7")
-        axes.set_title("Sloshing, forced: wave 0.05 m from the left wall")
+        title = "Sloshing, forced: wave 0.05 m from the left wall"
     else:
-        axes.set_title(f"Sloshing, free decay: T_n {result['natural_period']:.3f} s, "
-                       f"linear theory {result['period_theory']:.3f} s")
+        title = (f"Sloshing, free decay: T_n {result['natural_period']:.3f} s, "
+                 f"linear theory {result['period_theory']:.3f} s")
     axes.set_xlabel("t [s]")
     axes.set_ylabel("η [mm]")
-    axes.grid(True, alpha=0.3)
-    axes.legend(loc="upper left", fontsize=8)
-    figure.tight_layout()
-    figure.savefig(path, dpi=120)
-    print(f"figure: {path}")
+    finish_figure(figure, axes, title, path)
 
 
 def main():

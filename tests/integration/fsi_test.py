@@ -188,6 +188,21 @@ def run_pair(scene, output, ranks, overrides=(), timeout=1200):
     return server_status, client_status
 
 
+# An --mbd-only scene of two bodies, a revolute joint and a spring (no fluid, no mesh): a link
+# pivoting about the origin, a bob on a spring at its end, released horizontal; the energy
+# sensors show how well the integrator keeps kinetic + potential. A test appends its own
+# SolverOptions block (END_TIME, STEP) and sensors.
+SPRING_PENDULUM = """scene_language = 1
+Gravity { acceleration = [0, -9.81] }
+RigidBody2D { name = "link"; mass = 1; inertia = 0.1; position = [0.5, 0] }
+RigidBody2D { name = "bob"; mass = 0.5; inertia = 0.01; position = [1.5, 0] }
+RevoluteJoint { name = "pivot"; body_a = "link"; point_a = [-0.5, 0] }
+SpringDamper { name = "spring"; body_a = "link"; point_a = [0.5, 0]; body_b = "bob"; stiffness = 200; rest_length = 0.5 }
+Sensor { name = "kinetic"; type = "kinetic_energy" }
+Sensor { name = "potential"; type = "potential_energy" }
+"""
+
+
 ExampleRun = namedtuple("ExampleRun", "work run_dir run analysis")
 
 

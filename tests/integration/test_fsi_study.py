@@ -13,18 +13,9 @@ import json
 import os
 import subprocess
 
-from fsi_test import ENV, binary, check, cleanup, work_dir
+from fsi_test import SPRING_PENDULUM, ENV, binary, check, cleanup, work_dir
 
-SCENE = """scene_language = 1
-SolverOptions { end_time = 1.0; Timeint { step_size = 1e-3 } }
-Gravity { acceleration = [0, -9.81] }
-RigidBody2D { name = "link"; mass = 1; inertia = 0.1; position = [0.5, 0] }
-RigidBody2D { name = "bob"; mass = 0.5; inertia = 0.01; position = [1.5, 0] }
-RevoluteJoint { name = "pivot"; body_a = "link"; point_a = [-0.5, 0] }
-SpringDamper { name = "spring"; body_a = "link"; point_a = [0.5, 0]; body_b = "bob"; stiffness = 200; rest_length = 0.5 }
-Sensor { name = "kinetic"; type = "kinetic_energy" }
-Sensor { name = "potential"; type = "potential_energy" }
-"""
+SCENE = SPRING_PENDULUM + "SolverOptions { end_time = 1.0; Timeint { step_size = 1e-3 } }\n"
 
 ANALYZE = '''import csv, json, os, sys
 run = sys.argv[1]
