@@ -78,6 +78,17 @@ for cost, error in by_cost:
 check("error <= 0.001: cheapest" in first.stdout, "the cheapest point meeting 1e-3 is printed")
 check(os.path.getsize(os.path.join(study_dir, "pareto.png")) > 10_000, "pareto.png written")
 
+# The grid of two parameters as a map: a row per step, a column per stage count, each cell the
+# point's error as in study.csv.
+with open(os.path.join(study_dir, "map.md")) as handle:
+    table = [line.strip().strip("|").split("|") for line in handle if line.strip()]
+check(len(table) == 2 + 4 and [c.strip() for c in table[0][1:]] == ["2", "3"],
+      f"map.md: a header with the stages 2 and 3, a rule and 4 rows: {table}")
+for row in table[2:]:
+    step = float(row[0])
+    for stages, cell in zip((2, 3), row[1:]):
+        check(cell.strip() == f"{errors[(step, stages)]:.3g}", f"map.md cell dt = {step}, {stages} stages: {cell.strip()}")
+
 again = fsi_study("--target", "1e-30")
 check(again.returncode == 3, f"a target no point meets: exit 3 (got {again.returncode})")
 check("9 kept, 0 to run" in again.stdout and "no point of the study meets it" in again.stdout,
