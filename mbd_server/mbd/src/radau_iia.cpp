@@ -66,6 +66,7 @@ struct RadauIIA::Workspace {
   ButcherTableau tableau;
   NewtonOptions options;
   IntegratorStatistics statistics;
+  StepStages last_stages;
   detail::RadauStageEquations equations;
   Eigen::VectorXd unknowns, residual, increment, previous_increment, solve_rounding;
   Eigen::MatrixXd jacobian;
@@ -314,8 +315,26 @@ struct RadauIIA::Workspace {
                     : attempt.advice);
   }
 
+  // The step's start and its stages, for the dense output (last_step_stages).
+  void record_stages(const State& start, double h) {
+    StepStages& r = last_stages;
+    r.start_time = start.time;
+    r.step_size = h;
+    r.nodes.assign(1, 0.0);
+    r.positions.assign(1, start.q);
+    r.velocities.assign(1, start.v);
+    for (int i = 0; i < equations.stages(); ++i) {
+      const double c = tableau.c(i);
+      if (c == 0.0) continue;  // Lobatto IIIA's first stage is the start
+      r.nodes.push_back(c);
+      r.positions.push_back(equations.position(unknowns, i));
+      r.velocities.push_back(equations.velocity(unknowns, i));
+    }
+  }
+
   // --- finalise: the last stage is the solution (stiffly accurate) ---
   void finalise(State& state, double h, const StepStatistics& stats) {
+    record_stages(state, h);
     const int last = equations.stages() - 1;
     state.q = equations.position(unknowns, last);
     state.v = equations.velocity(unknowns, last);
@@ -394,6 +413,9 @@ void RadauIIA::reset() {
   work_->factorised = false;
 }
 
+const StepStages& RadauIIA::last_step_stages() const {
+  return work_->last_stages;
+}
 const ButcherTableau& RadauIIA::tableau() const {
   return work_->tableau;
 }

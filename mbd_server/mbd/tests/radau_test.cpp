@@ -9,29 +9,15 @@
 #include "fsi/mbd/integrator.hpp"
 #include "fsi/mbd/model.hpp"
 #include "fsi/mbd/readouts.hpp"
+#include "reference_problems.hpp"
 #include "test_elements.hpp"
 
 namespace fsi::mbd {
 namespace {
 
-constexpr NewtonOptions kTight{.relative_tolerance = 1e-13, .max_iterations = 20};
+using reference::fitted_order;
 
-// Least-squares slope of log(error) over log(step size).
-double fitted_order(const std::vector<double>& steps, const std::vector<double>& errors) {
-  const int count = static_cast<int>(steps.size());
-  double mean_x = 0.0, mean_y = 0.0;
-  for (int k = 0; k < count; ++k) {
-    mean_x += std::log(steps[k]) / count;
-    mean_y += std::log(errors[k]) / count;
-  }
-  double numerator = 0.0, denominator = 0.0;
-  for (int k = 0; k < count; ++k) {
-    const double dx = std::log(steps[k]) - mean_x;
-    numerator += dx * (std::log(errors[k]) - mean_y);
-    denominator += dx * dx;
-  }
-  return numerator / denominator;
-}
+constexpr NewtonOptions kTight{.relative_tolerance = 1e-13, .max_iterations = 20};
 
 // x'' = -x, x(0) = 1: error of (x, v) at t = 1 against (cos 1, -sin 1).
 double oscillator_error(int stages, int steps) {

@@ -27,10 +27,28 @@
 #include <cmath>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "fsi/mbd/model.hpp"
 
 namespace fsi::mbd::reference {
+
+// Least-squares slope of log(error) over log(step size).
+inline double fitted_order(const std::vector<double>& steps, const std::vector<double>& errors) {
+  const int count = static_cast<int>(steps.size());
+  double mean_x = 0.0, mean_y = 0.0;
+  for (int k = 0; k < count; ++k) {
+    mean_x += std::log(steps[k]) / count;
+    mean_y += std::log(errors[k]) / count;
+  }
+  double numerator = 0.0, denominator = 0.0;
+  for (int k = 0; k < count; ++k) {
+    const double dx = std::log(steps[k]) - mean_x;
+    numerator += dx * (std::log(errors[k]) - mean_y);
+    denominator += dx * dx;
+  }
+  return numerator / denominator;
+}
 
 // --- pendulum ---
 inline constexpr double kPendulumLength = 1.0;

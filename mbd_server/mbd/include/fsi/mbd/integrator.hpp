@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "fsi/mbd/constrained_system.hpp"
 
@@ -90,6 +91,19 @@ struct IntegratorStatistics {
   void add(const StepStatistics& step);
 };
 
+// One step's stage values (dense output; docs/theory.md, "Multi-rate coupling"): the state at
+// the step's start and at its collocation nodes t0 + c_i h. Multi-rate coupling sends the
+// boundary vertices at these nodes to the fluid, which interpolates between them
+// (fsi/protocol/step_motion.hpp).
+struct StepStages {
+  double start_time = 0.0;
+  double step_size = 0.0;  // 0 before the first step
+  // 0, then the tableau's c_i (Lobatto IIIA's c_1 = 0 only once): distinct, ascending, the last 1.
+  std::vector<double> nodes;
+  std::vector<Eigen::VectorXd> positions;   // q at each node
+  std::vector<Eigen::VectorXd> velocities;  // v at each node
+};
+
 class RadauIIA {
  public:
   // Throws fsi::Error for an unavailable stage count or invalid Newton options.
@@ -108,6 +122,11 @@ class RadauIIA {
 
   // Drops the kept factorisation; needed only after changing the model's structure in place.
   void reset();
+
+  // The stage values of the last step taken; of its last part when a release split it (the
+  // parts' start_time then lies inside the step). The last node's values are the step's end
+  // state exactly (stiffly accurate).
+  const StepStages& last_step_stages() const;
 
   const ButcherTableau& tableau() const;
   const NewtonOptions& options() const;
