@@ -87,6 +87,15 @@ ProbeValues seed(std::type_identity<ProbeValues>) {
 ProbePlacement seed(std::type_identity<ProbePlacement>) {
   return {40, {{0, {0.05, 0.0, -0.0, 0.6, 200.0}}, {3, {kSubnormal, 1.0, 0.0}}}};
 }
+StepMotion seed(std::type_identity<StepMotion>) {
+  return {8,
+          8e-5,
+          1e-5,
+          4,
+          {0.0, 0.5, 1.0},
+          {1.0, -0.0, kInf, 0.5, kSubnormal, 2.0},
+          {kNaN, 0.0, -kSubnormal, 1.0, 2.0, 3.0}};
+}
 Step seed(std::type_identity<Step>) {
   return {7, 7e-5, 1e-5, {1.0, -0.0, kInf, -kInf}, {kNaN, kSubnormal, -kSubnormal, 0.0}};
 }

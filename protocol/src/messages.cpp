@@ -150,6 +150,16 @@ void layout(auto& io, MessageOf<Step> auto& m) {
   io.array("velocities", m.velocities);
 }
 
+void layout(auto& io, MessageOf<StepMotion> auto& m) {
+  io.scalar("step", m.step);
+  io.scalar("time", m.time);
+  io.scalar("time_step", m.time_step);
+  io.scalar("substeps", m.substeps);
+  io.array("nodes", m.nodes);
+  io.array("positions", m.positions);
+  io.array("velocities", m.velocities);
+}
+
 void layout(auto& io, MessageOf<Forces> auto& m) {
   io.scalar("step", m.step);
   io.array("forces", m.forces);
@@ -707,6 +717,25 @@ void check(const Reader& in, const ProbePlacement& m) {
 
 void check(const Reader& in, const Step& m) {
   check_positive_finite(in, "time_step", m.time_step);
+  check_count(in, "velocities", m.velocities.size(), m.positions.size(), "one per position value");
+}
+
+void check(const Reader& in, const StepMotion& m) {
+  check_positive_finite(in, "time_step", m.time_step);
+  if (m.substeps < 2)
+    in.fail("substeps", "is " + std::to_string(m.substeps) + "; a StepMotion has at least 2");
+  if (m.nodes.size() < 2 || m.nodes.size() > 8)
+    in.fail("nodes", "has " + std::to_string(m.nodes.size()) + " entries, not 2 to 8");
+  for (std::size_t i = 0; i < m.nodes.size(); ++i) {
+    if (!(m.nodes[i] >= 0.0 && m.nodes[i] <= 1.0) || (i > 0 && !(m.nodes[i] > m.nodes[i - 1])))
+      in.fail("nodes", "entry " + std::to_string(i) + " breaks 0 <= theta_0 < ... <= 1");
+  }
+  if (m.nodes.back() != 1.0) in.fail("nodes", "the last is not 1 (the end of the step)");
+  if (m.positions.size() % m.nodes.size() != 0) {
+    in.fail("positions", "has " + std::to_string(m.positions.size()) +
+                             " values, not a multiple of the " + std::to_string(m.nodes.size()) +
+                             " nodes");
+  }
   check_count(in, "velocities", m.velocities.size(), m.positions.size(), "one per position value");
 }
 

@@ -93,6 +93,17 @@ ProbePlacement sample_probe_placement() {
   return {40, {{0, {0.05, 0.0, 0.0, 0.6, 200.0}}, {3, {0.1, 0.2, 0.0}}}};
 }
 
+StepMotion sample_step_motion() {
+  // Two dynamic vertices in 2D at the nodes 0, 0.5, 1 of a step of 4 fluid steps.
+  return {48,
+          4.8e-3,
+          1e-4,
+          4,
+          {0.0, 0.5, 1.0},
+          {0.0, 1.0, 2.0, 3.0, 0.1, 1.1, 2.1, 3.1, 0.2, 1.2, 2.2, 3.2},
+          {1.0, 0.0, 1.0, 0.0, 1.0, 0.0, 1.0, 0.0, 1.0, 0.0, 1.0, 0.0}};
+}
+
 std::vector<Message> all_samples() {
   return {sample_hello(),
           sample_welcome(),
@@ -112,6 +123,7 @@ std::vector<Message> all_samples() {
           sample_forces(),
           sample_probe_values(),
           sample_probe_placement(),
+          sample_step_motion(),
           sample_fluid_health(),
           sample_snapshot_request(),
           sample_snapshot(),
@@ -533,6 +545,35 @@ TEST(ProtocolMessages, ProbePlacementContentIsChecked) {
   EXPECT_NE(decode_error(MessageType::ProbePlacement, payload)
                 .find("announces 1073741824 entries of at least 12 bytes"),
             std::string::npos);
+}
+
+TEST(ProtocolMessages, StepMotionContentIsChecked) {
+  StepMotion motion = sample_step_motion();
+  motion.substeps = 1;
+  EXPECT_NE(decode_error(motion).find("'substeps' is 1; a StepMotion has at least 2"),
+            std::string::npos);
+  motion = sample_step_motion();
+  motion.nodes = {0.0};
+  motion.positions.resize(4);
+  motion.velocities.resize(4);
+  EXPECT_NE(decode_error(motion).find("'nodes' has 1 entries, not 2 to 8"), std::string::npos);
+  motion = sample_step_motion();
+  motion.nodes = {0.0, 0.5, 0.5};
+  EXPECT_NE(decode_error(motion).find("'nodes' entry 2 breaks"), std::string::npos);
+  motion = sample_step_motion();
+  motion.nodes = {0.0, 0.5, 0.9};
+  EXPECT_NE(decode_error(motion).find("the last is not 1"), std::string::npos);
+  motion = sample_step_motion();
+  motion.positions.pop_back();
+  motion.velocities.pop_back();
+  EXPECT_NE(decode_error(motion).find("'positions' has 11 values, not a multiple of the 3 nodes"),
+            std::string::npos);
+  motion = sample_step_motion();
+  motion.velocities.pop_back();
+  EXPECT_NE(decode_error(motion).find("'velocities'"), std::string::npos);
+  motion = sample_step_motion();
+  motion.time_step = 0.0;
+  EXPECT_NE(decode_error(motion).find("'time_step' is 0"), std::string::npos);
 }
 
 TEST(ProtocolMessages, ProbeSetupContentIsChecked) {

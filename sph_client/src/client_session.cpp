@@ -28,6 +28,7 @@
 #include "fsi/protocol/auth.hpp"
 #include "fsi/protocol/channel.hpp"
 #include "fsi/protocol/messages.hpp"
+#include "fsi/protocol/step_motion.hpp"
 #include "liggghts_driver.hpp"
 #include "liggghts_errors.hpp"
 #include "settling.hpp"
@@ -223,7 +224,8 @@ class ClientSession {
     handshake.timeout = options_.connect_timeout;
     handshake.session_capabilities =
         protocol::kCapabilitySettling | protocol::kCapabilityFluidHealth |
-        protocol::kCapabilityProbes | protocol::kCapabilityMovingProbes;
+        protocol::kCapabilityProbes | protocol::kCapabilityMovingProbes |
+        protocol::kCapabilityMultiRate;
     const protocol::ClientHandshakeResult opened = protocol::open_session(*channel_, handshake);
     capabilities_ = opened.capabilities;
     heartbeat_ = std::make_unique<protocol::HeartbeatSender>(
@@ -684,6 +686,13 @@ class ClientSession {
         computing = {};
         send_forces(step->step, liggghts.seconds() - contact, contact);
         ++steps;
+      } else if (auto* motion = std::get_if<protocol::StepMotion>(&message)) {
+        auto computing = busy();
+        slow_step_for_tests(motion->step);
+        const SubstepTimes times = take_step_motion(*motion);
+        computing = {};
+        send_forces(motion->step, times.liggghts, times.contact);
+        steps += motion->substeps;
       } else if (auto* placement = std::get_if<protocol::ProbePlacement>(&message)) {
         move_probes(*placement);
       } else if (auto* request = std::get_if<protocol::SnapshotRequest>(&message)) {
@@ -723,12 +732,88 @@ class ClientSession {
                                           "fsi-server, during the coupled steps");
       } else {
         throw protocol::UnexpectedMessageError(
-            "expected a Step, ProbePlacement, SnapshotRequest or Shutdown message but received " +
+            "expected a Step, StepMotion, ProbePlacement, SnapshotRequest or Shutdown message but "
+            "received " +
                 protocol::name(protocol::type_of(message)),
             "fsi-client, during the coupled steps",
             "use matching fsi-server and fsi-client releases");
       }
     }
+  }
+
+  struct SubstepTimes {
+    double liggghts = 0.0;  // LIGGGHTS without our fix
+    double contact = 0.0;   // our fix
+  };
+
+  // Multi-rate coupling (1.5, docs/theory.md): `substeps` LIGGGHTS steps, the walls in substep j
+  // at theta = j / substeps of the interpolant through the server's nodes (the last substep at
+  // the last node exactly). Leaves in the boundary what send_forces reduces: this rank's vertex
+  // forces and force sums averaged over the substeps (the impulse over the structure step
+  // divided by its length) and the closest approach of all substeps.
+  SubstepTimes take_step_motion(const protocol::StepMotion& motion) {
+    const std::size_t values = boundary_->dynamic_vertex_count * dimension_;
+    const std::string where = "StepMotion of step " + std::to_string(motion.step);
+    if ((capabilities_ & protocol::kCapabilityMultiRate) == 0) {
+      throw protocol::UnexpectedMessageError(
+          "fsi-server sent a StepMotion, but multi-rate coupling was not agreed",
+          "fsi-client, " + where, "use matching fsi-server and fsi-client releases");
+    }
+    if (motion.positions.size() != motion.nodes.size() * values) {
+      throw Error("StepMotion message carries " +
+                      std::to_string(motion.positions.size() / dimension_) +
+                      " vertex values over " + std::to_string(motion.nodes.size()) +
+                      " nodes, the mesh has " + std::to_string(boundary_->dynamic_vertex_count) +
+                      " dynamic vertices",
+                  where, "use matching server and client releases");
+    }
+    if (motion.time_step != time_step_) {
+      driver_->set_time_step(motion.time_step);
+      driver_->run_with_setup(0);
+      time_step_ = motion.time_step;
+    }
+    const std::uint32_t k = motion.substeps;
+    const double structure_step = static_cast<double>(k) * motion.time_step;
+    std::vector<double> force_sum(values, 0.0);
+    contact::ContactDiagnostics sums;
+    sums.closest_distance = std::numeric_limits<double>::infinity();
+    std::vector<double> positions(values), velocities(values);
+    SubstepTimes times;
+    for (std::uint32_t j = 1; j <= k; ++j) {
+      const double theta = j == k ? 1.0 : static_cast<double>(j) / static_cast<double>(k);
+      protocol::evaluate_step_motion(
+          protocol::step_motion_weights(motion.nodes, structure_step, theta), motion.positions,
+          motion.velocities, values, positions, velocities);
+      std::copy(positions.begin(), positions.end(), boundary_->positions().begin());
+      std::copy(velocities.begin(), velocities.end(), boundary_->velocities().begin());
+      last_time_ = motion.time - static_cast<double>(k - j) * motion.time_step;
+      // The probes read the wall forces of the last substep only.
+      boundary_->samples.enabled = j == k && probes_ && probes_->probes().needs_wall_samples() &&
+                                   motion.step % probe_every_steps_ == 0;
+      const double fix_before = boundary_->seconds_in_fix;
+      Stopwatch liggghts;
+      liggghts.start();
+      driver_->step();
+      seconds_stepping_ += liggghts.stop();
+      const double contact = boundary_->seconds_in_fix - fix_before;
+      times.liggghts += liggghts.seconds() - contact;
+      times.contact += contact;
+      for (std::size_t i = 0; i < values && i < boundary_->vertex_forces.size(); ++i)
+        force_sum[i] += boundary_->vertex_forces[i];
+      sums.merge(boundary_->diagnostics);
+    }
+    const double share = 1.0 / static_cast<double>(k);
+    for (std::size_t i = 0; i < values && i < boundary_->vertex_forces.size(); ++i)
+      boundary_->vertex_forces[i] = force_sum[i] * share;
+    contact::ContactDiagnostics& average = boundary_->diagnostics;
+    for (int c = 0; c < 3; ++c) {
+      average.force_on_particles[c] = sums.force_on_particles[c] * share;
+      average.force_on_structure[c] = sums.force_on_structure[c] * share;
+    }
+    average.pair_force_magnitude_sum = sums.pair_force_magnitude_sum * share;
+    average.particles_in_range = sums.particles_in_range / k;
+    average.closest_distance = sums.closest_distance;
+    return times;
   }
 
   // The probes that move with a body, placed by the server for the step that follows (1.4).

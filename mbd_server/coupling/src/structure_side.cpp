@@ -159,6 +159,13 @@ mbd::IntegratorStatistics StructureSide::statistics() const {
 }
 
 void StructureSide::advance(std::uint64_t step, double step_size) {
+  const bool multi_rate = scene_.solver.substeps > 1;
+  StepStart start;
+  if (multi_rate) {
+    start.time = state_.time;
+    boundary_state(start.positions, start.velocities);
+    trim_to_dynamic(start.positions, start.velocities);
+  }
   // A model without bodies (a static 3D container) has nothing to integrate.
   if (scene_.model.coordinate_count() > 0) {
     try {
@@ -175,12 +182,55 @@ void StructureSide::advance(std::uint64_t step, double step_size) {
     }
   }
   state_.time = static_cast<double>(step) * step_size;
+  if (multi_rate) record_step_motion(start, step_size);
   try {
     crossing_.check(state_);
   } catch (const Error& crossing) {
     throw Error(crossing.fault(),
                 step_and_time(step, state_.time) + ", " + std::string(crossing.location()),
                 crossing.remedy());
+  }
+}
+
+void StructureSide::trim_to_dynamic(std::vector<double>& positions,
+                                    std::vector<double>& velocities) const {
+  const std::size_t dynamic_values =
+      static_cast<std::size_t>(scene_.dimension) * scene_.boundary.dynamic_vertex_count;
+  positions.resize(dynamic_values);
+  velocities.resize(dynamic_values);
+}
+
+void StructureSide::record_step_motion(const StepStart& start, double step_size) {
+  StepMotionData& motion = step_motion_;
+  motion.nodes.clear();
+  motion.positions.clear();
+  motion.velocities.clear();
+  const mbd::StepStages& stages = integrator_.last_step_stages();
+  // The stages cover the whole step unless it was taken in Newton substeps or split at a
+  // release (their start then lies inside it): then the step's two ends only (cubic Hermite).
+  const bool whole_step =
+      scene_.model.coordinate_count() > 0 && method_ == scene::IntegrationMethod::FixedStep &&
+      stages.step_size == step_size && stages.start_time == start.time && stages.nodes.size() >= 2;
+  if (!whole_step) ++two_node_steps_;
+  const std::vector<double> theta = whole_step ? stages.nodes : std::vector<double>{0.0, 1.0};
+  std::vector<double> positions, velocities;
+  for (std::size_t i = 0; i < theta.size(); ++i) {
+    if (i == 0) {
+      positions = start.positions;
+      velocities = start.velocities;
+    } else if (i + 1 == theta.size()) {
+      // The end exactly as boundary_motion() gives it.
+      boundary_state(positions, velocities);
+      trim_to_dynamic(positions, velocities);
+    } else {
+      const mbd::State node{start.time + theta[i] * step_size, stages.positions[i],
+                            stages.velocities[i], state_.lambda};
+      scene::boundary_state(scene_.boundary, scene_.model, node, positions, velocities);
+      trim_to_dynamic(positions, velocities);
+    }
+    motion.nodes.push_back(theta[i]);
+    motion.positions.insert(motion.positions.end(), positions.begin(), positions.end());
+    motion.velocities.insert(motion.velocities.end(), velocities.begin(), velocities.end());
   }
 }
 
@@ -194,6 +244,12 @@ BoundaryMotion StructureSide::boundary_motion(std::uint64_t step, double step_si
       static_cast<std::size_t>(scene_.dimension) * scene_.boundary.dynamic_vertex_count;
   motion.positions.resize(dynamic_values);
   motion.velocities.resize(dynamic_values);
+  if (scene_.solver.substeps > 1 && step > 0) {
+    motion.substeps = static_cast<std::uint32_t>(scene_.solver.substeps);
+    motion.nodes = step_motion_.nodes;
+    motion.node_positions = step_motion_.positions;
+    motion.node_velocities = step_motion_.velocities;
+  }
   // The probes are evaluated after the steps that are multiples of the sensor interval.
   if (!scene_.attached_probes.empty() &&
       step % static_cast<std::uint64_t>(scene_.output.sensor_every_steps) == 0) {

@@ -53,7 +53,8 @@ void TcpFluidSide::connect() {
   handshake.timeout = options_.handshake_timeout;
   handshake.session_capabilities = protocol::kCapabilitySettling |
                                    protocol::kCapabilityFluidHealth | protocol::kCapabilityProbes |
-                                   protocol::kCapabilityMovingProbes;
+                                   protocol::kCapabilityMovingProbes |
+                                   protocol::kCapabilityMultiRate;
   const protocol::ServerHandshakeResult opened = protocol::accept_client(*channel_, handshake);
   const protocol::Hello& hello = opened.hello;
   client_ = hello;
@@ -71,7 +72,7 @@ void TcpFluidSide::set_up(const scene::Scene& scene, const std::vector<double>& 
                           const std::vector<double>& boundary_velocities) {
   connect();
   // Before any set-up data: an older client would otherwise run its whole set-up first.
-  refuse_client_without_probes(scene);
+  refuse_client_lacking(scene);
   protocol::Setup setup;
   setup.dimension = static_cast<std::uint32_t>(scene.dimension);
   setup.time_step = scene.solver.step_size;
@@ -122,7 +123,16 @@ void TcpFluidSide::set_up(const scene::Scene& scene, const std::vector<double>& 
   send_probes(scene);
 }
 
-void TcpFluidSide::refuse_client_without_probes(const scene::Scene& scene) const {
+void TcpFluidSide::refuse_client_lacking(const scene::Scene& scene) const {
+  if (scene.solver.substeps > 1 && (capabilities_ & protocol::kCapabilityMultiRate) == 0) {
+    throw Error("the scene couples with SolverOptions.Timeint.substeps = " +
+                    std::to_string(scene.solver.substeps) + ", and fsi-client " +
+                    client_->software_version + " (protocol " +
+                    protocol::version_text(channel_->peer_major(), channel_->peer_minor()) +
+                    ") lacks multi-rate coupling (capability 'multi-rate' of protocol 1.5)",
+                "set-up of " + scene.file + " with fsi-client at " + channel_->peer_description(),
+                "use an fsi-client of protocol 1.5 or later, or couple with substeps = 1");
+  }
   if (probes_agreed() && !scene.attached_probes.empty() &&
       (capabilities_ & protocol::kCapabilityMovingProbes) == 0) {
     throw Error("the scene's probe '" + scene.probes[scene.attached_probes.front().probe].name +
@@ -215,7 +225,14 @@ FluidForces TcpFluidSide::exchange(const BoundaryMotion& motion) {
   // The probes that move with a body, placed at the end of the step, ahead of it (1.4).
   if (!motion.probe_placements.empty())
     channel_->send(protocol::ProbePlacement{motion.step, motion.probe_placements});
-  channel_->send(step);
+  if (motion.substeps > 1) {
+    // Multi-rate (1.5): the stage values instead of the end, the fluid interpolates.
+    channel_->send(protocol::StepMotion{motion.step, motion.time, motion.time_step, motion.substeps,
+                                        motion.nodes, motion.node_positions,
+                                        motion.node_velocities});
+  } else {
+    channel_->send(step);
+  }
   return expect_forces(motion.step);
 }
 

@@ -146,6 +146,66 @@ TEST_F(SessionLoop, SetsUpEquilibratesAndCouplesOneHundredSteps) {
   EXPECT_TRUE(fs::exists(output_ / "vtk" / "boundary.pvd"));
 }
 
+// Multi-rate coupling: one structure step and one exchange per 4 fluid steps; each exchange
+// carries the structure step's start and stages, whose last block is the end the fluid sees.
+TEST_F(SessionLoop, MultiRateStepsTheStructureOncePerSubstepsAndSendsItsStages) {
+  scene::Scene scene = static_tank();
+  constexpr int k = 4;
+  scene.solver.substeps = k;
+  scene.output.sensor_every_steps = k;
+  scene.output.snapshot_every_steps = 20;
+  FakeFluidSide fluid(2, FakeFluidSide::constant({0.0, -0.25}));
+
+  ASSERT_EQ(run_session(scene, options_, fluid), 0);
+
+  ASSERT_EQ(fluid.exchanges.size(), static_cast<std::size_t>(kSteps / k));
+  const std::vector<double> radau_nodes = {0.0, (4.0 - std::sqrt(6.0)) / 10.0,
+                                           (4.0 + std::sqrt(6.0)) / 10.0, 1.0};
+  std::vector<double> previous_end;
+  for (std::size_t e = 0; e < fluid.exchanges.size(); ++e) {
+    const BoundaryMotion& motion = fluid.exchanges[e];
+    const std::size_t values = motion.positions.size();
+    EXPECT_EQ(motion.step, k * (e + 1));
+    EXPECT_EQ(motion.time_step, kStep);
+    EXPECT_EQ(motion.substeps, static_cast<std::uint32_t>(k));
+    ASSERT_EQ(motion.nodes.size(), radau_nodes.size());
+    for (std::size_t i = 0; i < radau_nodes.size(); ++i)
+      EXPECT_NEAR(motion.nodes[i], radau_nodes[i], 1e-15);
+    ASSERT_EQ(motion.node_positions.size(), radau_nodes.size() * values);
+    ASSERT_EQ(motion.node_velocities.size(), radau_nodes.size() * values);
+    // The last node is the end of the step, the first the previous step's end, bit for bit.
+    const std::vector<double> last(motion.node_positions.end() - static_cast<long>(values),
+                                   motion.node_positions.end());
+    EXPECT_EQ(last, motion.positions);
+    if (!previous_end.empty()) {
+      const std::vector<double> first(motion.node_positions.begin(),
+                                      motion.node_positions.begin() + static_cast<long>(values));
+      EXPECT_EQ(first, previous_end);
+    }
+    previous_end = motion.positions;
+  }
+  // The piston descends at its prescribed constant speed: its stages lie on that line.
+  const BoundaryMotion& some = fluid.exchanges[10];
+  const std::size_t values = some.positions.size();
+  for (std::size_t v = 1; v < values; v += 2) {
+    const double start = some.node_positions[v], end = some.positions[v];
+    for (std::size_t i = 1; i + 1 < some.nodes.size(); ++i) {
+      EXPECT_NEAR(some.node_positions[i * values + v], start + some.nodes[i] * (end - start), 1e-12)
+          << "value " << v << ", node " << i;
+    }
+  }
+  EXPECT_EQ(fluid.snapshot_steps, (std::vector<std::uint64_t>{0, 20, 40, 60, 80, 100}));
+  const auto run = manifest();
+  EXPECT_EQ(run["status"], "completed");
+  EXPECT_EQ(run["steps"], kSteps);
+  EXPECT_EQ(run["newton"]["steps"], kSteps / k);  // one structure step per k fluid steps
+  EXPECT_EQ(run["energy_audit"]["exchanges"], kSteps / k);
+  EXPECT_EQ(run["model"]["integrator"], "Radau IIA, 3 stages, 4 fluid steps per structure step");
+  const auto columns = sensors();
+  ASSERT_EQ(columns.at("time").size(), static_cast<std::size_t>(kSteps / k) + 1);
+  EXPECT_NEAR(columns.at("time")[1], k * kStep, 1e-18);
+}
+
 TEST_F(SessionLoop, KeepsTheFixedCoupledStepWhateverMethodTheSceneChooses) {
   scene::Scene scene = static_tank();
   scene.solver.method = scene::IntegrationMethod::Ida;

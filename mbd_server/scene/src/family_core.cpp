@@ -25,6 +25,13 @@ BlockSpec timeint_spec() {
                       "Radau IIA: 1, 2, 3 (orders 1, 3, 5); Lobatto IIIA: 2, 3 (orders 2, 4)")
                   .with_default(3)
                   .between(1, 3),
+              integer("substeps",
+                      "multi-rate coupling: fluid steps of step_size per structure step; the "
+                      "structure steps k * step_size and the walls move on its stage values in "
+                      "between (docs/theory.md, \"Multi-rate coupling\"); coupled runs only, "
+                      "--mbd-only steps at step_size")
+                  .with_default(1)
+                  .between(1, 1000),
               text("constraint_form",
                    "index3: position constraints C = 0 at the stages (no drift); index2: their "
                    "rates G v + dC/dt = 0 (positions drift by the integration error; HOTINT's "
@@ -94,6 +101,8 @@ void build_solver(SceneBuilder& builder) {
   builder.end_time = solver.end_time;
   solver.step_size = timeint.number("step_size");
   solver.stages = static_cast<int>(timeint.integer("stages"));
+  solver.substeps = static_cast<int>(timeint.integer("substeps"));
+  solver.substeps_location = timeint.location("substeps");
   const bool lobatto = timeint.string("tableau") == "LobattoIIIA";
   solver.constraint_form = timeint.string("constraint_form") == "index2"
                                ? mbd::ConstraintForm::Index2
@@ -122,6 +131,39 @@ void build_solver(SceneBuilder& builder) {
   solver.newton.absolute_tolerance = newton.number("absolute_tolerance");
 }
 
+// Multi-rate coupling: the structure's state exists at the ends of its steps only, so the rows,
+// snapshots and the end fall there.
+void check_substeps(SceneBuilder& builder) {
+  const Scene& scene = builder.scene;
+  const long k = scene.solver.substeps;
+  if (k <= 1) return;
+  const std::string fix_hint = " (SolverOptions.Timeint.substeps = " + std::to_string(k) + ")";
+  if (scene.output.sensor_every_steps % k != 0) {
+    builder.problem(
+        scene.solver.substeps_location,
+        "Output.sensor_every_steps = " + std::to_string(scene.output.sensor_every_steps) +
+            " is not a multiple of the substeps" + fix_hint +
+            ": sensor rows are written at the ends of structure steps",
+        "make sensor_every_steps a multiple of substeps");
+  }
+  if (scene.output.snapshot_every_steps % k != 0) {
+    builder.problem(
+        scene.solver.substeps_location,
+        "Output.snapshot_every_steps = " + std::to_string(scene.output.snapshot_every_steps) +
+            " is not a multiple of the substeps" + fix_hint,
+        "make snapshot_every_steps a multiple of substeps (or 0)");
+  }
+  const std::uint64_t steps = scene.solver.step_count();
+  if (steps % static_cast<std::uint64_t>(k) != 0) {
+    builder.problem(scene.solver.substeps_location,
+                    "the run's " + std::to_string(steps) +
+                        " steps (SolverOptions.end_time / step_size) are not a multiple of the "
+                        "substeps" +
+                        fix_hint,
+                    "choose end_time as a multiple of substeps * step_size");
+  }
+}
+
 void build_core(SceneBuilder& builder) {
   const View& root = builder.root;
   Scene& scene = builder.scene;
@@ -129,6 +171,7 @@ void build_core(SceneBuilder& builder) {
   builder.guard(root.location(), [&] {
     scene.output.sensor_every_steps = root.block("Output").integer("sensor_every_steps");
     scene.output.snapshot_every_steps = root.block("Output").integer("snapshot_every_steps");
+    check_substeps(builder);
   });
   builder.guard(root.location(), [&] {
     const View gravity_block = root.block("Gravity");

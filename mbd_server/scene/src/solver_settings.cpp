@@ -20,7 +20,11 @@ std::string SolverSettings::integrator_description(bool coupled) const {
   const std::string tableau =
       mbd::butcher_tableau(family, stages).name + ", " + std::to_string(stages) + " stages" +
       (constraint_form == mbd::ConstraintForm::Index2 ? ", index-2 constraints" : "");
-  if (coupled) return tableau;
+  if (coupled) {
+    return substeps > 1
+               ? tableau + ", " + std::to_string(substeps) + " fluid steps per structure step"
+               : tableau;
+  }
   switch (method) {
     case IntegrationMethod::FixedStep:
       return tableau;

@@ -145,6 +145,51 @@ Coupling { refinement_resolution = 0.001 }
   fs::remove_all(folder);
 }
 
+// Multi-rate coupling: rows, snapshots and the end must fall on structure steps.
+TEST(Scene, SubstepsMustDivideTheRunTheRowsAndTheSnapshots) {
+  const fs::path folder = fs::temp_directory_path() / "fsi_scene_substeps_test";
+  fs::create_directories(folder);
+  std::ofstream(folder / "a.in") << "# script 1\n";
+  std::ofstream(folder / "b.in") << "# script 2\n";
+  const std::string rest = R"(
+LIGGGHTS { script1 = "a.in"; script2 = "b.in" }
+Coupling { refinement_resolution = 0.001 }
+)";
+  std::ofstream(folder / "substeps.scene") << R"(scene_language = 1
+SolverOptions { end_time = 1e-4; Timeint { step_size = 1e-5; substeps = 4 } }
+Output { sensor_every_steps = 2; snapshot_every_steps = 6 }
+RigidBody2D { name = "a"; mass = 1; inertia = 1; Mesh { points = [[0, 0], [1, 0]] } }
+)" << rest;
+  try {
+    build_scene((folder / "substeps.scene").string());
+    FAIL() << "substeps that divide nothing accepted";
+  } catch (const fsi::Error& error) {
+    const std::string text = error.what();
+    EXPECT_NE(text.find("3 problem(s)"), std::string::npos) << text;
+    EXPECT_NE(text.find("substeps.scene:2:"), std::string::npos) << text;
+    EXPECT_NE(text.find("Output.sensor_every_steps = 2 is not a multiple of the substeps "
+                        "(SolverOptions.Timeint.substeps = 4)"),
+              std::string::npos)
+        << text;
+    EXPECT_NE(text.find("Output.snapshot_every_steps = 6 is not a multiple"), std::string::npos)
+        << text;
+    EXPECT_NE(text.find("the run's 10 steps (SolverOptions.end_time / step_size) are not a "
+                        "multiple of the substeps"),
+              std::string::npos)
+        << text;
+  }
+  std::ofstream(folder / "good.scene") << R"(scene_language = 1
+SolverOptions { end_time = 8e-5; Timeint { step_size = 1e-5; substeps = 4 } }
+Output { sensor_every_steps = 4; snapshot_every_steps = 8 }
+RigidBody2D { name = "a"; mass = 1; inertia = 1; Mesh { points = [[0, 0], [1, 0]] } }
+)" << rest;
+  const Scene scene = build_scene((folder / "good.scene").string());
+  EXPECT_EQ(scene.solver.substeps, 4);
+  EXPECT_EQ(scene.solver.integrator_description(true),
+            "Radau IIA, 3 stages, 4 fluid steps per structure step");
+  fs::remove_all(folder);
+}
+
 // Issue 6 acceptance: one file with six different mistakes; every one is reported in the same
 // run, at its line and column, with a fix, and nothing else is reported.
 TEST(Scene, ReportsSixDifferentMistakesAtOnceWithLineAndColumn) {

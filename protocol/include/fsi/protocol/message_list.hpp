@@ -27,6 +27,7 @@
   X(ProbeValues, ProbeValues, 0x22)         \
   X(FluidHealth, FluidHealth, 0x23)         \
   X(ProbePlacement, ProbePlacement, 0x24)   \
+  X(StepMotion, StepMotion, 0x25)           \
   X(SnapshotRequest, SnapshotRequest, 0x30) \
   X(Snapshot, Snapshot, 0x31)               \
   X(Shutdown, Shutdown, 0x40)               \

@@ -39,6 +39,9 @@ inline constexpr std::uint32_t kCapabilityFluidHealth = 1u << 4;
 // 1.4: the sender places (server) or moves (client) probes that move with a body
 // (ProbePlacement; docs/user-guide.md, "Probes that move with a body").
 inline constexpr std::uint32_t kCapabilityMovingProbes = 1u << 5;
+// 1.5: the sender sends (server) or takes (client) structure steps of several fluid steps with
+// the boundary's stage values (StepMotion; docs/theory.md, "Multi-rate coupling").
+inline constexpr std::uint32_t kCapabilityMultiRate = 1u << 6;
 
 // The codes of an Error message (docs/protocol.md §7) as X(enumerator, value); AuthenticationFailed
 // came with 1.1.
@@ -259,6 +262,26 @@ struct Step {  // server -> client: the dynamic vertices at the end of the step
   std::vector<double> positions;   // dynamic vertices only, dimension values each
   std::vector<double> velocities;  // as positions
   bool operator==(const Step&) const = default;
+};
+
+// 1.5, capability kCapabilityMultiRate: one structure step of `substeps` fluid steps (multi-rate
+// coupling, SolverOptions.Timeint.substeps). The fluid takes `substeps` steps of `time_step`,
+// the last ending at `step` and `time`; in substep j the dynamic vertices are where the Hermite
+// interpolant through the nodes puts them at theta = j / substeps (fsi/protocol/step_motion.hpp),
+// so the last substep sees the nodes' last block (theta = 1) exactly. The client answers with one
+// Forces: the vertex forces and force sums averaged over the substeps (the impulse over the
+// structure step divided by its length), the closest approach of all substeps, and its health
+// and probes at the end.
+struct StepMotion {  // server -> client, in place of a Step
+  static constexpr MessageType kType = MessageType::StepMotion;
+  std::uint64_t step = 0;          // the last fluid step of the structure step
+  double time = 0.0;               // its end
+  double time_step = 0.0;          // the fluid step, > 0, finite
+  std::uint32_t substeps = 0;      // >= 2
+  std::vector<double> nodes;       // theta: 2 to 8, distinct, ascending in [0, 1], the last 1
+  std::vector<double> positions;   // dynamic vertices at each node, node-major
+  std::vector<double> velocities;  // as positions
+  bool operator==(const StepMotion&) const = default;
 };
 
 struct ForceDiagnostics {

@@ -42,6 +42,15 @@ struct BoundaryMotion {
   // Scene::attached_probes placed at the end of the step (index into Scene::probes, parameters);
   // empty on other steps and in scenes without them.
   std::vector<protocol::PlacedProbe> probe_placements;
+  // Multi-rate coupling (SolverOptions.Timeint.substeps > 1, docs/theory.md): the fluid takes
+  // `substeps` steps of time_step up to `time`, the walls moving on the interpolant
+  // (fsi/protocol/step_motion.hpp) through the dynamic vertices at the structure step's nodes
+  // (theta in [0, 1], the last 1; node-major, dimension values per vertex). positions and
+  // velocities above are the last node's. Empty with substeps = 1.
+  std::uint32_t substeps = 1;
+  std::vector<double> nodes;
+  std::vector<double> node_positions;
+  std::vector<double> node_velocities;
 };
 
 // The fluid after its set-up and equilibration, with its forces on the initial configuration.

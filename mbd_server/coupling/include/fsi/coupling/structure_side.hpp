@@ -52,8 +52,13 @@ class StructureSide {
   void advance(std::uint64_t step, double step_size);
 
   // The dynamic vertices at the current state, for the fluid, and on a probe step the probes that
-  // move with a body.
+  // move with a body. With SolverOptions.Timeint.substeps > 1 (multi-rate coupling; `step` is
+  // then the fluid step at the end of the last structure step and `step_size` the fluid's step)
+  // also the dynamic vertices at that structure step's nodes: its start and its stages
+  // (RadauIIA::last_step_stages), or its two ends when Newton substeps or a release split it.
   BoundaryMotion boundary_motion(std::uint64_t step, double step_size) const;
+  // Multi-rate structure steps whose motion had only their two ends (see above).
+  std::uint64_t two_node_steps() const { return two_node_steps_; }
   // Every boundary vertex (static ones too), dimension values each.
   void boundary_state(std::vector<double>& positions, std::vector<double>& velocities) const;
 
@@ -82,6 +87,12 @@ class StructureSide {
 
  private:
   void integrate_to(double end_time, double step_size);
+  struct StepStart {
+    double time = 0.0;
+    std::vector<double> positions, velocities;  // dynamic vertices
+  };
+  void record_step_motion(const StepStart& start, double step_size);
+  void trim_to_dynamic(std::vector<double>& positions, std::vector<double>& velocities) const;
   std::vector<double> readout(const mbd::State& state,
                               const std::array<double, 3>& total_fluid_force) const;
 
@@ -94,6 +105,12 @@ class StructureSide {
   std::vector<double> loads_;
   scene::CrossingWatch crossing_;
   std::uint64_t substepped_steps_ = 0;
+  // The last structure step's nodes and dynamic vertices there (multi-rate coupling).
+  struct StepMotionData {
+    std::vector<double> nodes, positions, velocities;
+  };
+  StepMotionData step_motion_;
+  std::uint64_t two_node_steps_ = 0;
 };
 
 }  // namespace fsi::coupling

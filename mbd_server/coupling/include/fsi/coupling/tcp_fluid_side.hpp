@@ -36,7 +36,8 @@ class TcpFluidSide final : public FluidSide {
   FluidForces expect_forces(std::uint64_t step);
   bool settling_agreed() const { return (capabilities_ & protocol::kCapabilitySettling) != 0; }
   bool probes_agreed() const { return (capabilities_ & protocol::kCapabilityProbes) != 0; }
-  void refuse_client_without_probes(const scene::Scene& scene) const;
+  // Refuses a client that lacks what the scene needs (probes, moving probes, multi-rate).
+  void refuse_client_lacking(const scene::Scene& scene) const;
   void send_probes(const scene::Scene& scene);
 
   ServerOptions options_;

@@ -30,8 +30,12 @@ enum class IntegrationMethod {
 
 struct SolverSettings {
   double end_time = 0.0;
-  double step_size = 0.0;
+  double step_size = 0.0;  // the coupled (fluid) step
   int stages = 3;
+  // Multi-rate coupling: fluid steps per structure step (the structure steps substeps *
+  // step_size; 1: both step together).
+  int substeps = 1;
+  SourceLocation substeps_location;
   mbd::TableauFamily family = mbd::TableauFamily::RadauIIA;
   mbd::NewtonOptions newton;
   mbd::ConstraintForm constraint_form = mbd::ConstraintForm::Index3;
