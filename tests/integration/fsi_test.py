@@ -240,12 +240,12 @@ def run_example_checked(scene, ranks, timeout, analyze_args=None, analyze_claim=
     return ExampleRun(work, run_dir, run, analysis)
 
 
-def refused_client(scene, output, capabilities):
-    """Opens a session with `scene`'s fsi-server from a fake client offering only `capabilities`
-    (session bits, e.g. 4: a client of protocol 1.2), checks that the server sends no set-up data,
+def refused_client(scene, output, capabilities, overrides=()):
+    """Opens a session with `scene`'s fsi-server (with `overrides`, KEY=EXPR) from a fake client
+    offering only `capabilities` (session bits, e.g. 4: a client of protocol 1.2), checks that the server sends no set-up data,
     exits non-zero and records a failed run in `output`, and returns what the fake client printed
     (the server's Error text among it) for the test's own checks."""
-    server, port = start_server(scene, output)
+    server, port = start_server(scene, output, overrides)
     fake = subprocess.run([binary("fake_peer"), "client-capabilities", "127.0.0.1", str(port), str(capabilities)],
                           capture_output=True, text=True, timeout=60, env=ENV)
     status = wait(server, 30)
