@@ -673,18 +673,9 @@ class ClientSession {
         auto computing = busy();
         slow_step_for_tests(step->step);
         apply_step(*step);
-        // The fix records the forces at its sampling points only for a step whose probes read
-        // them.
-        boundary_->samples.enabled = probes_ && probes_->probes().needs_wall_samples() &&
-                                     step->step % probe_every_steps_ == 0;
-        const double fix_before = boundary_->seconds_in_fix;
-        Stopwatch liggghts;
-        liggghts.start();
-        driver_->step();
-        seconds_stepping_ += liggghts.stop();
-        const double contact = boundary_->seconds_in_fix - fix_before;
+        const SubstepTimes times = liggghts_step(step->step % probe_every_steps_ == 0);
         computing = {};
-        send_forces(step->step, liggghts.seconds() - contact, contact);
+        send_forces(step->step, times.liggghts, times.contact);
         ++steps;
       } else if (auto* motion = std::get_if<protocol::StepMotion>(&message)) {
         auto computing = busy();
@@ -746,6 +737,19 @@ class ClientSession {
     double contact = 0.0;   // our fix
   };
 
+  // One LIGGGHTS step with the walls as they are; the fix records the forces at its sampling
+  // points only for a step whose probes read them (`probe_step`).
+  SubstepTimes liggghts_step(bool probe_step) {
+    boundary_->samples.enabled = probe_step && probes_ && probes_->probes().needs_wall_samples();
+    const double fix_before = boundary_->seconds_in_fix;
+    Stopwatch liggghts;
+    liggghts.start();
+    driver_->step();
+    seconds_stepping_ += liggghts.stop();
+    const double contact = boundary_->seconds_in_fix - fix_before;
+    return {liggghts.seconds() - contact, contact};
+  }
+
   // Multi-rate coupling (1.5, docs/theory.md): `substeps` LIGGGHTS steps, the walls in substep j
   // at theta = j / substeps of the interpolant through the server's nodes (the last substep at
   // the last node exactly). Leaves in the boundary what send_forces reduces: this rank's vertex
@@ -788,16 +792,9 @@ class ClientSession {
       std::copy(velocities.begin(), velocities.end(), boundary_->velocities().begin());
       last_time_ = motion.time - static_cast<double>(k - j) * motion.time_step;
       // The probes read the wall forces of the last substep only.
-      boundary_->samples.enabled = j == k && probes_ && probes_->probes().needs_wall_samples() &&
-                                   motion.step % probe_every_steps_ == 0;
-      const double fix_before = boundary_->seconds_in_fix;
-      Stopwatch liggghts;
-      liggghts.start();
-      driver_->step();
-      seconds_stepping_ += liggghts.stop();
-      const double contact = boundary_->seconds_in_fix - fix_before;
-      times.liggghts += liggghts.seconds() - contact;
-      times.contact += contact;
+      const SubstepTimes step = liggghts_step(j == k && motion.step % probe_every_steps_ == 0);
+      times.liggghts += step.liggghts;
+      times.contact += step.contact;
       for (std::size_t i = 0; i < values && i < boundary_->vertex_forces.size(); ++i)
         force_sum[i] += boundary_->vertex_forces[i];
       sums.merge(boundary_->diagnostics);
