@@ -78,7 +78,8 @@ void EnergyAudit::exchange(std::span<const double> positions, std::span<const do
                " % of the energy moved through the interface), the signature of the added-mass "
                "instability of "
                "explicit partitioned coupling (a structure light against the fluid it moves); "
-               "halve SolverOptions.Timeint.step_size, or make the structure heavier or stiffer "
+               "halve SolverOptions.Timeint.step_size (with substeps > 1: lower the substeps "
+               "first), or make the structure heavier or stiffer "
                "(docs/theory.md, \"The energy audit\")";
   }
 }
