@@ -211,7 +211,13 @@ void StructureSide::record_step_motion(const StepStart& start, double step_size)
   const bool whole_step =
       scene_.model.coordinate_count() > 0 && method_ == scene::IntegrationMethod::FixedStep &&
       stages.step_size == step_size && stages.start_time == start.time && stages.nodes.size() >= 2;
-  if (!whole_step) ++two_node_steps_;
+  if (!whole_step && two_node_steps_++ == 0 && scene_.model.coordinate_count() > 0) {
+    spdlog::info(
+        "t = {:.9g} s: the structure step was taken in Newton substeps or split at a release; "
+        "the fluid's walls follow its two ends (cubic Hermite) instead of its stages (later "
+        "such steps likewise, not logged)",
+        state_.time);
+  }
   const std::vector<double> theta = whole_step ? stages.nodes : std::vector<double>{0.0, 1.0};
   std::vector<double> positions, velocities;
   for (std::size_t i = 0; i < theta.size(); ++i) {
