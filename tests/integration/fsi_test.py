@@ -2,6 +2,7 @@
 import glob
 import json
 import os
+import re
 import shutil
 import signal
 import socket
@@ -15,6 +16,19 @@ BIN = os.environ.get("FSI_BIN_DIR", "")
 EXAMPLES = os.environ.get("FSI_EXAMPLES_DIR", "")
 ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
            OMPI_MCA_rmaps_base_oversubscribe="1")
+
+
+def protocol_version():
+    """The protocol version this source tree speaks ("1.5"), read from protocol/version.hpp, for
+    the tests that check a message naming it."""
+    header = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "protocol", "include", "fsi",
+                          "protocol", "version.hpp")
+    with open(header) as handle:
+        text = handle.read()
+    numbers = [re.search(rf"k{part}Version = (\d+);", text) for part in ("Major", "Minor")]
+    if not all(numbers):
+        fail(f"no kMajorVersion/kMinorVersion in {header}")
+    return f"{numbers[0].group(1)}.{numbers[1].group(1)}"
 
 
 def binary(name):

@@ -10,7 +10,7 @@ import os
 import socket
 import struct
 
-from fsi_test import (check, cleanup, example, fail, read, start_client_for_fake_server, start_server, wait_for_exit,
+from fsi_test import (check, cleanup, example, fail, protocol_version, read, start_client_for_fake_server, start_server, wait_for_exit,
                       work_dir)
 from wire import ERROR, HELLO, MESH, PARTICLES, READY, SETUP, WELCOME, error_of, frame, receive_frame, text
 
@@ -74,9 +74,9 @@ server_case("wrong_crc", lambda c: c.sendall(frame(READY, READY_PAYLOAD, crc_err
 server_case("oversize_length", lambda c: c.sendall(frame(READY, b"", length=0xFFFFFFF0)),
             "Ready frame announces a payload of 4294967280 bytes, more than the 1073741824 bytes")
 server_case("unknown_type", lambda c: c.sendall(frame(0x99, READY_PAYLOAD)),
-            "frame of unknown type 0x0099, which protocol 1.4 does not define")
+            f"frame of unknown type 0x0099, which protocol {protocol_version()} does not define")
 server_case("other_major", lambda c: c.sendall(frame(READY, READY_PAYLOAD, major=2, minor=0)),
-            "Ready frame of protocol 2.0, but this side speaks 1.4", answered="VersionMismatch")
+            f"Ready frame of protocol 2.0, but this side speaks {protocol_version()}", answered="VersionMismatch")
 server_case("bad_payload", lambda c: c.sendall(frame(READY, READY_PAYLOAD[:-3])),
             "malformed Ready message: field 'seconds_equilibration' is truncated")
 

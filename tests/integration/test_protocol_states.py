@@ -9,7 +9,7 @@ import os
 import socket
 import struct
 
-from fsi_test import (check, cleanup, example, fail, read, start_client_for_fake_server, start_server, wait_for_exit,
+from fsi_test import (check, cleanup, example, fail, protocol_version, read, start_client_for_fake_server, start_server, wait_for_exit,
                       work_dir)
 from wire import (ERROR, MESH, PARTICLES, READY, SETUP, STEP, WELCOME, error, error_of, forces, frame, hello,
                   receive_frame, ready, step, welcome)
@@ -83,7 +83,7 @@ server_state("silence_instead_of_ready", "setup", lambda c: None,
              "PeerAborted", "timed out after 2 s while waiting for Ready")
 server_state("other_major_instead_of_ready", "setup",
              lambda c: c.sendall(frame(READY, ready()[20:], major=2, minor=0)),
-             "VersionMismatch", "Ready frame of protocol 2.0, but this side speaks 1.4")
+             "VersionMismatch", f"Ready frame of protocol 2.0, but this side speaks {protocol_version()}")
 server_state("broken_ready", "setup", lambda c: c.sendall(frame(READY, ready()[20:], crc_error=1)),
              "MalformedMessage", "CRC-32C mismatch in Ready frame")
 server_state("client_error_instead_of_ready", "setup",
