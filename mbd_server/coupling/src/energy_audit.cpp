@@ -65,22 +65,44 @@ void EnergyAudit::exchange(std::span<const double> positions, std::span<const do
   velocities_.assign(velocities.begin(), velocities.end());
   forces_.assign(forces.begin(), forces.end());
 
-  const double limit = std::max(kInjectionWarningFraction * totals_.traffic, kAuditRoundOff);
-  if (!warned_at_ && totals_.exchanges >= kAuditFirstJudgedExchange &&
-      totals_.coupling_energy > limit) {
+  const bool judged =
+      totals_.exchanges >= kAuditFirstJudgedExchange && totals_.coupling_energy > kAuditRoundOff;
+  if (!judged) return;
+  const double fraction = totals_.coupling_energy / std::max(totals_.traffic, kAuditRoundOff);
+  totals_.max_coupling_fraction = std::max(totals_.max_coupling_fraction, fraction);
+  // The texts are made only when the warning or the stop needs them.
+  const auto books = [&] {
+    return "by step " + std::to_string(step) + " the fluid did " +
+           number(totals_.work_fluid_on_structure) +
+           " J on the structure (2D: J/m) and the structure " +
+           number(totals_.work_structure_on_fluid) + " J on the fluid, so the exchange made " +
+           number(totals_.coupling_energy) + " J, " + number(100.0 * fraction) +
+           " % of the energy moved through the interface";
+  };
+  const char* const remedy =
+      "halve SolverOptions.Timeint.step_size (with substeps > 1: lower the substeps first), or "
+      "make the structure heavier or stiffer (docs/theory.md, \"The energy audit\")";
+  if (!warned_at_ && fraction > kInjectionWarningFraction) {
     warned_at_ = step;
-    pending_ = "the coupling has created energy: by step " + std::to_string(step) +
-               " the fluid did " + number(totals_.work_fluid_on_structure) +
-               " J on the structure (2D: J/m) and the structure " +
-               number(totals_.work_structure_on_fluid) + " J on the fluid, so the exchange made " +
-               number(totals_.coupling_energy) + " J (more than " +
+    energy_at_warning_ = totals_.coupling_energy;
+    pending_ = "the coupling has created energy: " + books() + " (more than " +
                number(100.0 * kInjectionWarningFraction) +
-               " % of the energy moved through the interface), the signature of the added-mass "
-               "instability of "
-               "explicit partitioned coupling (a structure light against the fluid it moves); "
-               "halve SolverOptions.Timeint.step_size (with substeps > 1: lower the substeps "
-               "first), or make the structure heavier or stiffer "
-               "(docs/theory.md, \"The energy audit\")";
+               " %), the signature of the added-mass instability of explicit partitioned "
+               "coupling (a structure light against the fluid it moves); " +
+               remedy;
+  }
+  if (stop_growth_ > 0.0 && warned_at_ && !stopped_at_ &&
+      totals_.coupling_energy > stop_growth_ * energy_at_warning_) {
+    stopped_at_ = step;
+    stop_ = "the coupling keeps creating energy: " + books() + "; it has grown " +
+            number(totals_.coupling_energy / energy_at_warning_) +
+            " times since the warning at step " + std::to_string(*warned_at_) + " (" +
+            number(energy_at_warning_) +
+            " J), more than FluidHealth.max_coupling_energy_growth = " + number(stop_growth_) +
+            ": the added-mass instability of explicit partitioned coupling (a structure light "
+            "against the fluid it moves), which grows until the fluid breaks through a wall or "
+            "blows up; " +
+            remedy;
   }
 }
 

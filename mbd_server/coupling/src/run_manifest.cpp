@@ -169,6 +169,7 @@ json health_entry(const RunRecord& record) {
         {"max_mach", health.limits.max_mach},
         {"warn_mach", health.limits.warn_mach},
         {"min_wall_distance", health.limits.min_wall_distance},
+        {"max_coupling_energy_growth", health.limits.max_coupling_energy_growth},
         {"allowed_lost_particles", health.allowed_lost_particles}}},
       {"steps_checked", worst.steps_checked},
       {"max_density_deviation", reported ? json(worst.max_density_deviation) : json(nullptr)},
@@ -191,7 +192,9 @@ json energy_audit_entry(const std::optional<EnergyAuditSummary>& audit) {
           {"max_coupling_energy", totals.max_coupling_energy},
           {"traffic", totals.traffic},
           {"exchanges", totals.exchanges},
-          {"injection_warning_step", audit->warned_at ? json(*audit->warned_at) : json(nullptr)}};
+          {"max_coupling_fraction", totals.max_coupling_fraction},
+          {"injection_warning_step", audit->warned_at ? json(*audit->warned_at) : json(nullptr)},
+          {"stop_step", audit->stopped_at ? json(*audit->stopped_at) : json(nullptr)}};
 }
 
 json release_entry(const std::optional<ReleaseCheck>& release) {

@@ -56,6 +56,7 @@ class Session {
       : scene_(scene),
         options_(options),
         fluid_(fluid),
+        audit_(scene.health.max_coupling_energy_growth),
         health_(scene.health, scene.liggghts.allowed_lost_particles, fluid_scales(scene)),
         progress_logger_(spdlog::get("progress") ? spdlog::get("progress")
                                                  : spdlog::default_logger()) {
@@ -171,10 +172,11 @@ class Session {
     const scene::FluidHealthLimits& limits = health_.limits();
     spdlog::info(
         "fluid health checks at every exchange: stop at NaN, a particle closer than {:.3g} r0 "
-        "to a wall, |rho/rho0 - 1| > {:.3g}, |v| > {:.3g} c, more than {} particle(s) lost "
-        "(scene block FluidHealth, LIGGGHTS.allowed_lost_particles)",
+        "to a wall, |rho/rho0 - 1| > {:.3g}, |v| > {:.3g} c, more than {} particle(s) lost, "
+        "a coupling energy grown {:.3g} times after the energy audit's warning (0: not checked; "
+        "scene block FluidHealth, LIGGGHTS.allowed_lost_particles)",
         limits.min_wall_distance, limits.max_density_deviation, limits.max_mach,
-        health_.allowed_lost_particles());
+        health_.allowed_lost_particles(), limits.max_coupling_energy_growth);
     record.liggghts_version = ready.liggghts_version;
     record.seconds_client_setup = ready.seconds_setup;
     record.seconds_client_equilibration = ready.seconds_equilibration;
@@ -374,11 +376,19 @@ class Session {
     }
     if (const std::string warning = audit_.take_warning(); !warning.empty())
       spdlog::warn("energy audit: {}", warning);
-    if (sensor_row) {
+    if (sensor_row || !audit_.stop().empty()) {
       ScopedTimer timer(timings_.output);
       const EnergyTotals& totals = audit_.totals();
       energy_->write(structure_->time(), {totals.work_fluid_on_structure,
                                           totals.work_structure_on_fluid, totals.coupling_energy});
+    }
+    if (!audit_.stop().empty()) {
+      health_.record_failed_check(kCheckCouplingEnergy);
+      throw Error(std::string("health check '") + kCheckCouplingEnergy +
+                      "' failed (energy audit): " + audit_.stop(),
+                  "step " + std::to_string(n),
+                  "set FluidHealth.max_coupling_energy_growth = 0 to let the run go on (not "
+                  "advised: the energy keeps growing)");
     }
   }
 
@@ -488,7 +498,10 @@ class Session {
     run.fluid = watch_.record;
     run.health =
         HealthSummary{health_.record(), health_.limits(), health_.allowed_lost_particles()};
-    if (coupling_) run.energy_audit = EnergyAuditSummary{audit_.totals(), audit_.warned_at()};
+    if (coupling_) {
+      run.energy_audit =
+          EnergyAuditSummary{audit_.totals(), audit_.warned_at(), audit_.stopped_at()};
+    }
     run.fluid->peer = fluid_.peer();
     run.fluid->seconds_round_trip = timings_.round_trip.seconds();
     if (std::isfinite(watch_.closest_approach_over_r0))

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -63,17 +64,20 @@ TEST(EnergyAudit, AWallDrivenFromRestIsNotMistakenForTheInstability) {
 // A mass m on a spring k in a "fluid" that damps it, f = -c v, coupled the staggered way: the
 // structure moves under the force of the previous exchange, the fluid answers to the new motion.
 // Explicit coupling of a damper is stable for c dt / m < 2 and unstable above.
-EnergyAudit staggered_damper(double c_dt_over_m, int steps) {
+// With stop_growth > 0 it ends where the audit says stop, as the session does.
+EnergyAudit staggered_damper(double c_dt_over_m, int steps, double stop_growth = 0.0,
+                             double* largest_speed = nullptr) {
   const double m = 1.0, k = 100.0, dt = 1e-3, c = c_dt_over_m * m / dt;
   double x = 0.01, v = 0.0, f = 0.0;
-  EnergyAudit audit;
+  EnergyAudit audit(stop_growth);
   audit.start(std::vector<double>{x}, std::vector<double>{v}, std::vector<double>{f});
-  for (int n = 1; n <= steps; ++n) {
+  for (int n = 1; n <= steps && audit.stop().empty(); ++n) {
     v += dt * (-k * x + f) / m;  // symplectic Euler under the held force
     x += dt * v;
     f = -c * v;
     audit.exchange(std::vector<double>{x}, std::vector<double>{v}, dt, std::vector<double>{f},
                    static_cast<std::uint64_t>(n));
+    if (largest_speed) *largest_speed = std::max(*largest_speed, std::abs(v));
   }
   return audit;
 }
@@ -101,6 +105,53 @@ TEST(EnergyAudit, TheAddedMassInstabilityIsSeenAsCreatedEnergy) {
   EXPECT_NE(warning.find("added-mass instability"), std::string::npos);
   EXPECT_NE(warning.find("halve SolverOptions.Timeint.step_size"), std::string::npos);
   EXPECT_TRUE(audit.take_warning().empty());  // once
+}
+
+TEST(EnergyAudit, TheInstabilityIsStoppedSoonAfterTheWarningAndNamesTheLimit) {
+  // Unstable (c dt/m = 2.5): the speed grows by 1.5 per step; unchecked it overflows in about
+  // 1 800 steps. The audit with a stop growth of 3 ends it a few steps after its warning.
+  double largest_speed = 0.0;
+  EnergyAudit audit = staggered_damper(2.5, 5000, 3.0, &largest_speed);
+  ASSERT_TRUE(audit.warned_at());
+  ASSERT_TRUE(audit.stopped_at());
+  EXPECT_GT(*audit.stopped_at(), *audit.warned_at());
+  EXPECT_LE(*audit.stopped_at(), *audit.warned_at() + 5);
+  EXPECT_LT(largest_speed, 1e3);  // the initial speed scale is 0.1 m/s
+  EXPECT_GT(audit.totals().max_coupling_fraction, 0.1);
+  const std::string& stop = audit.stop();
+  EXPECT_NE(stop.find("by step " + std::to_string(*audit.stopped_at())), std::string::npos) << stop;
+  EXPECT_NE(stop.find("since the warning at step " + std::to_string(*audit.warned_at())),
+            std::string::npos)
+      << stop;
+  EXPECT_NE(stop.find("FluidHealth.max_coupling_energy_growth = 3"), std::string::npos) << stop;
+  EXPECT_NE(stop.find("lower the substeps"), std::string::npos) << stop;
+}
+
+TEST(EnergyAudit, AStableDamperIsNeverStoppedAndAZeroGrowthNeverStops) {
+  EnergyAudit stable = staggered_damper(0.05, 2000, 3.0);
+  EXPECT_FALSE(stable.stopped_at());
+  EXPECT_TRUE(stable.stop().empty());
+  EXPECT_LT(stable.totals().max_coupling_fraction, 0.01);
+  EnergyAudit unchecked = staggered_damper(2.5, 100, 0.0);
+  EXPECT_FALSE(unchecked.stopped_at());
+  EXPECT_EQ(unchecked.totals().exchanges, 100u);
+  EXPECT_TRUE(unchecked.warned_at());  // the warning still fires
+}
+
+TEST(EnergyAudit, AOneOffInjectionWarnsButDoesNotStop) {
+  // A release: the structure jumps once under a held force (a very light plate that sags in
+  // one step), then rests. The energy made at the jump is all of the traffic, so the audit warns
+  // at its first judged exchange; it does not grow, so the run goes on.
+  EnergyAudit audit(3.0);
+  const std::vector<double> v{0.0};
+  const std::vector<double> f{1.0};
+  audit.start(std::vector<double>{0.0}, v, f);
+  for (std::uint64_t n = 1; n <= 500; ++n)
+    audit.exchange(std::vector<double>{1e-3}, v, 1e-4, f, n);
+  EXPECT_NEAR(audit.totals().coupling_energy, 1e-3, 1e-18);
+  ASSERT_TRUE(audit.warned_at());
+  EXPECT_EQ(*audit.warned_at(), kAuditFirstJudgedExchange);
+  EXPECT_FALSE(audit.stopped_at());
 }
 
 TEST(EnergyAudit, MismatchedSizesAreABug) {

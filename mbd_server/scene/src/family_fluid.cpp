@@ -87,7 +87,14 @@ BlockSpec fluid_health_spec() {
        number("min_wall_distance", "",
               "stop when a particle comes closer to a wall than this fraction of r0 (0: never)")
            .between(0.0, 1.0)
-           .with_default(defaults.min_wall_distance)});
+           .with_default(defaults.min_wall_distance),
+       number("max_coupling_energy_growth", "",
+              "stop when the energy the coupling created has grown this many times over since "
+              "the energy audit warned (more than 10 % of the energy moved through the "
+              "interface): the added-mass instability feeds itself, a one-off injection at a "
+              "release stays put (docs/theory.md, \"The energy audit\"); 0: never")
+           .at_least(0.0)
+           .with_default(defaults.max_coupling_energy_growth)});
 }
 
 std::vector<BlockSpec> fluid_blocks() {
@@ -341,6 +348,7 @@ void build_fluid_health(SceneBuilder& builder) {
   limits.max_mach = health.number("max_mach");
   limits.warn_mach = health.number("warn_mach");
   limits.min_wall_distance = health.number("min_wall_distance");
+  limits.max_coupling_energy_growth = health.number("max_coupling_energy_growth");
   if (limits.warn_density_deviation > limits.max_density_deviation) {
     builder.problem(health.location("warn_density_deviation"),
                     "warn_density_deviation exceeds max_density_deviation: the run would stop "

@@ -41,10 +41,20 @@ struct EnergyTotals {
   double max_coupling_energy = 0.0;      // the largest accumulated value (0 or more)
   double traffic = 0.0;                  // sum |W_fs(n)|: the energy moved through the interface
   std::uint64_t exchanges = 0;
+  // The largest coupling_energy / traffic of the judged exchanges (from
+  // kAuditFirstJudgedExchange on, where the coupling energy exceeds round-off); 0 before.
+  double max_coupling_fraction = 0.0;
 };
 
 class EnergyAudit {
  public:
+  EnergyAudit() = default;
+  // stop_growth > 0: the audit stops the run (stop() returns its diagnosis) when, after its
+  // warning, the coupling energy has grown to more than stop_growth times its value at the
+  // warning: the instability feeds itself, where a one-off injection (a release, an impact)
+  // stays put; 0: it never stops.
+  explicit EnergyAudit(double stop_growth) : stop_growth_(stop_growth) {}
+
   // The dynamic vertices at t = 0 and the fluid's forces on them (dimension values each).
   void start(std::span<const double> positions, std::span<const double> velocities,
              std::span<const double> forces);
@@ -63,6 +73,11 @@ class EnergyAudit {
   std::string take_warning();
   // The step at which the warning fired, if it did.
   std::optional<std::uint64_t> warned_at() const { return warned_at_; }
+  // The diagnosis that ends the run, once the coupling energy has outgrown the stop growth
+  // (what it means and what to change, naming the parameters); empty while it has not.
+  const std::string& stop() const { return stop_; }
+  // The step at which the stop growth was exceeded, if it was.
+  std::optional<std::uint64_t> stopped_at() const { return stopped_at_; }
 
  private:
   std::vector<double> positions_;
@@ -74,6 +89,10 @@ class EnergyAudit {
   bool started_ = false;
   std::optional<std::uint64_t> warned_at_;
   std::string pending_;
+  double stop_growth_ = 0.0;
+  double energy_at_warning_ = 0.0;
+  std::optional<std::uint64_t> stopped_at_;
+  std::string stop_;
 };
 
 }  // namespace fsi::coupling

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "fsi/coupling/fluid_side.hpp"
@@ -20,6 +21,8 @@ inline constexpr const char* kCheckWallDistance = "wall_distance";
 inline constexpr const char* kCheckDensityDeviation = "density_deviation";
 inline constexpr const char* kCheckMach = "mach";
 inline constexpr const char* kCheckLostParticles = "lost_particles";
+// Judged by the energy audit (energy_audit.hpp), recorded here with the others.
+inline constexpr const char* kCheckCouplingEnergy = "coupling_energy";
 
 // What the checks compare the fluid against, and the names in the fix texts.
 struct FluidScales {
@@ -69,6 +72,8 @@ class FluidHealthMonitor {
   HealthVerdict judge(std::uint64_t step, const FluidForces& forces);
 
   const HealthRecord& record() const { return record_; }
+  // A check judged elsewhere (kCheckCouplingEnergy) that ends the run.
+  void record_failed_check(std::string check) { record_.failed_check = std::move(check); }
   const scene::FluidHealthLimits& limits() const { return limits_; }
   std::uint64_t allowed_lost_particles() const { return allowed_lost_; }
 

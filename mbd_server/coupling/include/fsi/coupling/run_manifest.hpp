@@ -63,7 +63,8 @@ struct HealthSummary {
 // The energy audit of a coupled run's exchanges.
 struct EnergyAuditSummary {
   EnergyTotals totals;
-  std::optional<std::uint64_t> warned_at;  // the step of the injection warning, if any
+  std::optional<std::uint64_t> warned_at;   // the step of the injection warning, if any
+  std::optional<std::uint64_t> stopped_at;  // the step whose coupling energy stopped the run
 };
 
 struct RunRecord {

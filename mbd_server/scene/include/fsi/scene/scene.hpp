@@ -142,6 +142,9 @@ struct FluidHealthLimits {
   double max_mach = 0.5;                 // stop above: max |v| / c
   double warn_mach = 0.1;                // warn above (c >= 10 v_max, thesis §6.2)
   double min_wall_distance = 0.1;        // stop below: closest particle-wall distance / r0
+  // stop above: the energy the coupling created / its value at the energy audit's warning
+  // (fsi/coupling/energy_audit.hpp); 0 = never
+  double max_coupling_energy_growth = 3.0;
 };
 
 // TotalFluidForce: the force of the fluid on every boundary, static walls included (no body).
