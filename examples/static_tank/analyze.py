@@ -82,6 +82,7 @@ def main():
         "particle_count": n, "particle_mass": m, "exact_weight": weight,
         "settled_interval": [args.settle_start, t_end], "samples": len(window),
         "mean_bottom_fluid_force_y": mean_force, "weight_ratio": weight_ratio,
+        "weight_error": weight_ratio - 1.0,
         "max_multiplier_force_relative_error": worst, "at_time": worst_time,
     }
     print(f"particles N = {n}, particle mass m = {m:.6g} kg/m, exact weight N m g = {weight:.6g} N/m")
