@@ -140,6 +140,32 @@ TEST(FluidHealth, ADensityDeviationWithATooLargeStepNamesTheStep) {
       << verdict.stop->fix;
 }
 
+TEST(FluidHealth, ADensityDeviationAboveTheImpactLimitNamesTheStepFirst) {
+  // dt c / h = 0.115: within the static tank's 0.125 but above the dam break's 0.092.
+  FluidScales scales = water_column_scales();
+  scales.time_step = 2.3e-5;
+  FluidHealthMonitor watch = monitor(scales);
+  FluidForces forces = healthy();
+  forces.health->max_density = 1040.0;
+  const HealthVerdict verdict = watch.judge(7, forces);
+  ASSERT_TRUE(verdict.stop);
+  EXPECT_TRUE(contains(verdict.stop->fix,
+                       "dt c / h = 0.115 is within the 0.125 measured stable for a fluid at rest "
+                       "but above 0.092"))
+      << verdict.stop->fix;
+  EXPECT_TRUE(contains(verdict.stop->fix,
+                       "first reduce SolverOptions.Timeint.step_size from 2.3e-05 s to at most "
+                       "1.84e-05 s; if the deviation persists"))
+      << verdict.stop->fix;
+  EXPECT_TRUE(contains(verdict.stop->fix, "raise cAB from 20 to at least 40 m/s"));
+  // Below 0.092 the step is not named first.
+  scales.time_step = 1.5e-5;  // dt c / h = 0.075
+  FluidHealthMonitor calm = monitor(scales);
+  const HealthVerdict at_rest = calm.judge(7, forces);
+  ASSERT_TRUE(at_rest.stop);
+  EXPECT_FALSE(contains(at_rest.stop->fix, "first reduce")) << at_rest.stop->fix;
+}
+
 TEST(FluidHealth, ADensityDeviationBetweenAimAndLimitWarnsOnce) {
   FluidHealthMonitor watch = monitor();
   FluidForces forces = healthy();
