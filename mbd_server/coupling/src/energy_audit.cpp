@@ -34,12 +34,14 @@ void EnergyAudit::start(std::span<const double> positions, std::span<const doubl
   positions_.assign(positions.begin(), positions.end());
   velocities_.assign(velocities.begin(), velocities.end());
   forces_.assign(forces.begin(), forces.end());
+  applied_ = forces_;
   totals_ = {};
   started_ = true;
 }
 
 void EnergyAudit::exchange(std::span<const double> positions, std::span<const double> velocities,
-                           double dt, std::span<const double> forces, std::uint64_t step) {
+                           double dt, std::span<const double> forces, std::uint64_t step,
+                           std::span<const double> applied) {
   if (!started_) {
     const std::vector<double> zero(positions.size(), 0.0);
     start(positions, velocities, zero);
@@ -47,10 +49,11 @@ void EnergyAudit::exchange(std::span<const double> positions, std::span<const do
   require_size(positions, positions_.size(), "positions", step);
   require_size(velocities, positions_.size(), "velocities", step);
   require_size(forces, positions_.size(), "forces", step);
+  if (!applied.empty()) require_size(applied, positions_.size(), "applied forces", step);
   double fs = 0.0;
   double sf = 0.0;
   for (std::size_t k = 0; k < positions.size(); ++k) {  // the works of f(n-1)
-    fs += forces_[k] * (positions[k] - positions_[k]);
+    fs += applied_[k] * (positions[k] - positions_[k]);
     sf -= forces_[k] * velocities_[k] * dt;
   }
   last_fs_ = fs;
@@ -64,6 +67,11 @@ void EnergyAudit::exchange(std::span<const double> positions, std::span<const do
   positions_.assign(positions.begin(), positions.end());
   velocities_.assign(velocities.begin(), velocities.end());
   forces_.assign(forces.begin(), forces.end());
+  if (applied.empty()) {
+    applied_ = forces_;
+  } else {
+    applied_.assign(applied.begin(), applied.end());
+  }
 
   const bool judged =
       totals_.exchanges >= kAuditFirstJudgedExchange && totals_.coupling_energy > kAuditRoundOff;

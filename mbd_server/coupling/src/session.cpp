@@ -15,6 +15,7 @@
 #include "fsi/common/stopwatch.hpp"
 #include "fsi/coupling/energy_audit.hpp"
 #include "fsi/coupling/fluid_health.hpp"
+#include "fsi/coupling/force_predictor.hpp"
 #include "fsi/coupling/output.hpp"
 #include "fsi/coupling/progress.hpp"
 #include "fsi/coupling/release_check.hpp"
@@ -231,7 +232,7 @@ class Session {
     watch_.closest_since_report = std::min(watch_.closest_since_report, d.closest_approach_over_r0);
     watch_.record.particles_final = d.particle_count;
     judge_health(forces, step);
-    structure_->apply_vertex_forces(forces.forces, step);
+    structure_->apply_vertex_forces(predicted(forces.forces, step), step);
     // Held for the sensors of the step these forces act in (like the point loads).
     total_fluid_force_ = d.force_on_structure;
     FluidRecord& record = watch_.record;
@@ -259,6 +260,19 @@ class Session {
                   "the fluid left the LIGGGHTS box: check the box in script 1, the time step "
                   "(fsi-server --check lists the physics warnings) and the wall forces");
     }
+  }
+
+  // The force the structure moves under: the fluid's (average) force, or with
+  // SolverOptions.Timeint.force_predictor = "linear" and substeps > 1 that force extrapolated
+  // over the fluid steps it lags (force_predictor.hpp), from the first averaged exchange on (the
+  // forces at release are no average). predicted_ is empty when the force is not predicted.
+  std::span<const double> predicted(const std::vector<double>& average, std::uint64_t step) {
+    predicted_.clear();
+    if (!scene_.solver.linear_force_predictor || scene_.solver.substeps == 1 || step == 0)
+      return average;
+    const std::span<const double> applied = predictor_.apply(average);
+    predicted_.assign(applied.begin(), applied.end());
+    return predicted_;
   }
 
   // The run judges its fluid (fluid_health.hpp): a failing check ends the run with its diagnosis
@@ -370,7 +384,7 @@ class Session {
       std::vector<double> mean_velocity(values);
       for (std::size_t i = 0; i < values; ++i)
         mean_velocity[i] = (motion.positions[i] - motion.node_positions[i]) / step;
-      audit_.exchange(motion.positions, mean_velocity, step, forces.forces, n);
+      audit_.exchange(motion.positions, mean_velocity, step, forces.forces, n, predicted_);
     } else {
       audit_.exchange(motion.positions, motion.velocities, dt, forces.forces, n);
     }
@@ -521,6 +535,8 @@ class Session {
   std::unique_ptr<SensorFile> sensors_;
   std::unique_ptr<SensorFile> energy_;  // energy.csv: the energy audit at the sensor rows
   EnergyAudit audit_;
+  ForcePredictor predictor_{scene_.solver.substeps};
+  std::vector<double> predicted_;  // the predictor's force; empty when the force is not predicted
   std::unique_ptr<VtkOutput> vtk_;
   std::unique_ptr<StructureSide> structure_;
   std::array<double, 3> total_fluid_force_{};

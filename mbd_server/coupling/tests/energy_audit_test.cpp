@@ -154,6 +154,25 @@ TEST(EnergyAudit, AOneOffInjectionWarnsButDoesNotStop) {
   EXPECT_FALSE(audit.stopped_at());
 }
 
+TEST(EnergyAudit, APredictedForceIsTheStructuresWorkAndTheDifferenceIsCreated) {
+  // A wall moving uniformly at v under a fluid force f while the structure moves under a
+  // predicted f_a: the fluid gets -f v dt, the structure f_a v dt, the coupling makes the rest.
+  EnergyAudit audit;
+  const double dt = 1e-3, v = 0.2, f = 2.0, f_a = 2.5;
+  audit.start(std::vector<double>{0.0}, std::vector<double>{v}, std::vector<double>{f});
+  for (std::uint64_t n = 1; n <= 10; ++n) {
+    audit.exchange(std::vector<double>{v * dt * static_cast<double>(n)}, std::vector<double>{v},
+                   dt, std::vector<double>{f}, n, std::vector<double>{f_a});
+  }
+  // The first exchange pairs the start's force (no prediction yet), the other nine f_a.
+  EXPECT_NEAR(audit.totals().work_fluid_on_structure, (f + 9 * f_a) * v * dt, 1e-15);
+  EXPECT_NEAR(audit.totals().work_structure_on_fluid, -10 * f * v * dt, 1e-15);
+  EXPECT_NEAR(audit.totals().coupling_energy, 9 * (f_a - f) * v * dt, 1e-15);
+  EXPECT_THROW(audit.exchange(std::vector<double>{0.0}, std::vector<double>{v}, dt,
+                              std::vector<double>{f}, 11, std::vector<double>{f, f}),
+               Error);
+}
+
 TEST(EnergyAudit, MismatchedSizesAreABug) {
   EnergyAudit audit;
   const std::vector<double> two(2, 0.0);

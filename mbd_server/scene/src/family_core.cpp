@@ -32,6 +32,13 @@ BlockSpec timeint_spec() {
                       "--mbd-only steps at step_size")
                   .with_default(1)
                   .between(1, 1000),
+              text("force_predictor",
+                   "multi-rate coupling: none holds the fluid's average force of the last k "
+                   "fluid steps over the structure step; linear extrapolates it over the k - 1 "
+                   "steps it lags, from the last two averages (docs/theory.md, \"Multi-rate "
+                   "coupling\"); no effect with substeps = 1")
+                  .one_of({"none", "linear"})
+                  .with_default("none"),
               text("constraint_form",
                    "index3: position constraints C = 0 at the stages (no drift); index2: their "
                    "rates G v + dC/dt = 0 (positions drift by the integration error; HOTINT's "
@@ -103,6 +110,7 @@ void build_solver(SceneBuilder& builder) {
   solver.stages = static_cast<int>(timeint.integer("stages"));
   solver.substeps = static_cast<int>(timeint.integer("substeps"));
   solver.substeps_location = timeint.location("substeps");
+  solver.linear_force_predictor = timeint.string("force_predictor") == "linear";
   const bool lobatto = timeint.string("tableau") == "LobattoIIIA";
   solver.constraint_form = timeint.string("constraint_form") == "index2"
                                ? mbd::ConstraintForm::Index2

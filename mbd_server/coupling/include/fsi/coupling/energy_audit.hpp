@@ -59,9 +59,13 @@ class EnergyAudit {
   void start(std::span<const double> positions, std::span<const double> velocities,
              std::span<const double> forces);
   // One exchange: the dynamic vertices at t(n) (positions, velocities), the step dt and the
-  // fluid's answer f(n). Throws fsi::Error when the sizes differ from start()'s.
+  // fluid's answer f(n). `applied`, if not empty, is the force the structure will move under
+  // instead of f(n) (a force predictor): the fluid's work on the structure W_fs(n+1) is then
+  // that force's, the structure's on the fluid W_sf(n) stays f(n)'s. Throws fsi::Error when the
+  // sizes differ from start()'s.
   void exchange(std::span<const double> positions, std::span<const double> velocities, double dt,
-                std::span<const double> forces, std::uint64_t step);
+                std::span<const double> forces, std::uint64_t step,
+                std::span<const double> applied = {});
 
   const EnergyTotals& totals() const { return totals_; }
   // The last exchange's W_fs(n) and W_sf(n-1) (the works of the force f(n-1)).
@@ -83,6 +87,7 @@ class EnergyAudit {
   std::vector<double> positions_;
   std::vector<double> velocities_;
   std::vector<double> forces_;
+  std::vector<double> applied_;  // the force the structure moves under (= forces_ by default)
   EnergyTotals totals_;
   double last_fs_ = 0.0;
   double last_sf_ = 0.0;

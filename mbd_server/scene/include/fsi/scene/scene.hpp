@@ -36,6 +36,9 @@ struct SolverSettings {
   // step_size; 1: both step together).
   int substeps = 1;
   SourceLocation substeps_location;
+  // Multi-rate: the structure moves under the fluid's average force extrapolated linearly over
+  // the (substeps - 1) fluid steps it lags (docs/theory.md, "Multi-rate coupling").
+  bool linear_force_predictor = false;
   mbd::TableauFamily family = mbd::TableauFamily::RadauIIA;
   mbd::NewtonOptions newton;
   mbd::ConstraintForm constraint_form = mbd::ConstraintForm::Index3;
