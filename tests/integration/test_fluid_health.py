@@ -7,6 +7,7 @@ and never "completed" in the log:
   the same run completes when the scene declares the loss (LIGGGHTS.allowed_lost_particles);
 - a time step four times the stable one: 'density_deviation' long before NaN, naming the step;
 - a far too soft wall (k 250 times smaller): 'wall_distance', naming SPH_wall_rep;
+- a wall law of too short a reach (r_c = h/4): 'wall_distance', naming SPH_wall_cutoff first;
 - water thrown at 0.6 c: 'mach', naming cAB;
 - a NaN from the client (a fake client of protocol 1.3, wire.py): 'non_finite', with the step."""
 import math
@@ -89,6 +90,12 @@ check(0 < run_json["steps"] < 500, f"large_step: stopped at step {run_json['step
 stopped("soft_wall", ["LIGGGHTS_SPH_parameters.SPH_wall_rep=50"],
         "wall_distance", ["r0 from a wall", "min_wall_distance = 0.1 r0",
                           "raise the wall repulsion SPH_wall_rep (k) by a factor of 10, from 50 to 500"])
+
+# The wall law's reach r_c = 0.25 h instead of 2 h (measured 2026-12-03: a particle breaks through
+# at step 785 of 800; 0.5 h holds): the advice names the reach before the stiffness.
+stopped("short_reach", ["LIGGGHTS_SPH_parameters.SPH_wall_cutoff=0.25*LIGGGHTS_SPH_parameters.smoothinglength"],
+        "wall_distance", ["r0 from a wall", "the wall's reach r_c = 0.001 m is only 0.25 h: raise SPH_wall_cutoff "
+                          "(the fix's cutoff) to 2h = 0.008 m first"])
 
 stopped("fast_water", ["FluidRegion.velocity=[0, -12]", "LIGGGHTS.equilibration_steps=0"], "mach",
         ["12 m/s = 0.6 c (c = cAB = 20 m/s)", "FluidHealth.max_mach = 0.5", "raise cAB from 20 to at least"])

@@ -108,6 +108,29 @@ TEST(FluidHealth, AParticleThroughTheWallLawStopsNamingTheWallStiffness) {
                        "SPH_wall_rep (k) by a factor of 10, from 1.28e+04 to "
                        "1.28e+05"))
       << verdict.stop->fix;
+  EXPECT_FALSE(contains(verdict.stop->fix, "SPH_wall_cutoff"));  // no reach known
+}
+
+TEST(FluidHealth, AWallWithAShortReachIsNamedBeforeItsStiffness) {
+  FluidScales scales = water_column_scales();
+  scales.wall_cutoff = 0.001;  // 0.25 h
+  FluidHealthMonitor watch = monitor(scales);
+  FluidForces forces = healthy();
+  forces.diagnostics.closest_approach_over_r0 = 0.05;
+  const HealthVerdict verdict = watch.judge(2, forces);
+  ASSERT_TRUE(verdict.stop);
+  EXPECT_TRUE(contains(verdict.stop->fix,
+                       "the wall's reach r_c = 0.001 m is only 0.25 h: raise SPH_wall_cutoff "
+                       "(the fix's cutoff) to 2h = 0.008 m first"))
+      << verdict.stop->fix;
+  EXPECT_TRUE(contains(verdict.stop->fix,
+                       "if the run still breaks through, raise the wall "
+                       "repulsion SPH_wall_rep"));
+  scales.wall_cutoff = 0.008;  // 2 h: the stiffness alone
+  FluidHealthMonitor usual = monitor(scales);
+  const HealthVerdict stiff = usual.judge(2, forces);
+  ASSERT_TRUE(stiff.stop);
+  EXPECT_FALSE(contains(stiff.stop->fix, "SPH_wall_cutoff")) << stiff.stop->fix;
 }
 
 TEST(FluidHealth, ADensityDeviationOverTheLimitStopsNamingTheSpeedOfSound) {

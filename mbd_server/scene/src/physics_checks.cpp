@@ -1062,4 +1062,13 @@ std::optional<double> smoothing_length(const Scene& scene) {
   return h->value;
 }
 
+std::optional<double> wall_cutoff(const Scene& scene) {
+  Inputs in(scene);
+  if (in.fix_line() && in.fix_line()->arguments && in.fix_line()->arguments->uses_true_shape)
+    return std::nullopt;
+  const auto rc = in.wall("cutoff", "SPH_wall_cutoff");
+  if (!rc) return std::nullopt;
+  return rc->value;
+}
+
 }  // namespace fsi::scene

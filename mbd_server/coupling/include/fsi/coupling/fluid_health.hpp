@@ -31,6 +31,7 @@ struct FluidScales {
   std::optional<double> smoothing_length;  // h [m]; absent: no dt c / h in the advice
   double time_step = 0.0;                  // the coupled step [s]
   std::optional<double> wall_repulsion;    // k (SPH_wall_rep) for the advice, if known
+  std::optional<double> wall_cutoff;       // r_c of the thesis' wall law, if known
   std::string box_description;             // where script 1 makes the LIGGGHTS box
 };
 

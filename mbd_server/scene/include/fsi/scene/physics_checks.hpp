@@ -67,5 +67,9 @@ std::optional<double> speed_of_sound(const Scene& scene);
 // The smoothing length h [m] (LIGGGHTS_SPH_parameters.smoothinglength), or nullopt; the health
 // checks' advice on the time step states dt c / h with it.
 std::optional<double> smoothing_length(const Scene& scene);
+// The reach r_c [m] of the thesis' wall law (the `cutoff` of fix fsi/sph, or
+// LIGGGHTS_SPH_parameters.SPH_wall_cutoff), or nullopt (also for the true-shape wall, whose reach
+// follows from its spacing); the wall-distance check's advice names it when it is short.
+std::optional<double> wall_cutoff(const Scene& scene);
 
 }  // namespace fsi::scene
