@@ -44,7 +44,7 @@ check(audit["coupling_energy"] > 0.0 and audit["max_coupling_fraction"] > 0.1,
       "of the traffic at most")
 for needle in ("health check 'coupling_energy' failed (energy audit)", "the coupling keeps creating energy",
                f"since the warning at step {warned}", "FluidHealth.max_coupling_energy_growth = 3",
-               "added-mass instability", "with substeps > 1: lower the substeps first"):
+               "added-mass instability", "lower SolverOptions.Timeint.substeps from 20 to at most 5"):
     check(needle in reason, f"the diagnosis says '{needle}'")
 check("energy audit: the coupling has created energy" in log, "the warning came first, in the log")
 check("run completed" not in log, "the log never says completed")
