@@ -186,7 +186,8 @@ std::optional<HealthFinding> FluidHealthMonitor::density(std::uint64_t step,
             : 0.0;
     if (courant > kImpactStableCourant) {
       fix = "dt c / h = " + number(courant) + " is within the " + number(kStableCourant) +
-            " measured stable for a fluid at rest but above " + number(kImpactStableCourant) +
+            " measured stable for the static tank under compression but above " +
+            number(kImpactStableCourant) +
             ", the largest measured stable through a dam break's impact (docs/validation.md, "
             "\"Stability maps\"): first reduce SolverOptions.Timeint.step_size from " +
             number(scales_.time_step) + " s to at most " +

@@ -172,9 +172,10 @@ TEST(FluidHealth, ADensityDeviationAboveTheImpactLimitNamesTheStepFirst) {
   forces.health->max_density = 1040.0;
   const HealthVerdict verdict = watch.judge(7, forces);
   ASSERT_TRUE(verdict.stop);
-  EXPECT_TRUE(contains(verdict.stop->fix,
-                       "dt c / h = 0.115 is within the 0.125 measured stable for a fluid at rest "
-                       "but above 0.092"))
+  EXPECT_TRUE(
+      contains(verdict.stop->fix,
+               "dt c / h = 0.115 is within the 0.125 measured stable for the static tank under "
+               "compression but above 0.092"))
       << verdict.stop->fix;
   EXPECT_TRUE(contains(verdict.stop->fix,
                        "first reduce SolverOptions.Timeint.step_size from 2.3e-05 s to at most "
