@@ -414,7 +414,7 @@ class Session {
     if (k > 1) {
       fix = "lower SolverOptions.Timeint.substeps from " + std::to_string(k) + " to at most " +
             std::to_string(std::max(1, k / 4)) +
-            " (the light box of examples/floating_box: " + "unstable at 20, stable at 5)";
+            " (the light box of examples/floating_box: unstable at 20, stable at 5)";
       if (scene_.solver.linear_force_predictor)
         fix += " and set SolverOptions.Timeint.force_predictor = \"none\"";
     } else {
