@@ -129,6 +129,11 @@ struct Channel::Impl {
   std::uint16_t peer_major = 0;
   std::uint16_t peer_minor = 0;
   std::uint64_t heartbeats_received = 0;
+  // The current wait for a frame (receive_header): when it began and the heartbeats it saw, for
+  // the timeout's message (a peer that fell silent against one that never sent any).
+  Clock::time_point wait_began{};
+  std::uint64_t wait_heartbeats = 0;
+  Clock::time_point last_heartbeat{};
   std::array<std::byte, kHeaderSize> header_bytes{};
   std::vector<std::byte> payload_buffer;  // reused from frame to frame
   std::vector<std::byte> staging;         // for decoding from the socket (FrameSource)
@@ -202,7 +207,8 @@ struct Channel::Impl {
     std::string fix;
     if (transfer.timed_out) {
       fault = "timed out after " + duration_text(timeout.value_or(Milliseconds{0})) +
-              " while waiting for " + std::string(waiting_for) + " from " + peer + in_frame;
+              " while waiting for " + std::string(waiting_for) + " from " + peer + in_frame +
+              heartbeat_history();
       fix =
           "the peer is stuck, overloaded or waiting for us; check its output, or allow a "
           "longer timeout";
@@ -218,6 +224,22 @@ struct Channel::Impl {
     if (!(transfer.timed_out && frame_bytes == 0)) unusable_because = fault;
     if (transfer.timed_out) throw PeerTimeoutError(fault, where, fix);
     throw ProtocolError(fault, where, fix);
+  }
+
+  // What the heartbeats said during the wait that timed out: none at all (the peer never told us
+  // it computes), or how many and how long before the timeout the last one came.
+  std::string heartbeat_history() const {
+    const auto seconds = [](Clock::duration span) {
+      char text[32];
+      std::snprintf(text, sizeof text, "%.2f s", std::chrono::duration<double>(span).count());
+      return std::string(text);
+    };
+    const auto now = Clock::now();
+    if (wait_heartbeats == 0)
+      return "; no heartbeat arrived in this wait of " + seconds(now - wait_began);
+    return "; " + std::to_string(wait_heartbeats) + " heartbeat(s) arrived in this wait of " +
+           seconds(now - wait_began) + ", the last " + seconds(now - last_heartbeat) +
+           " before the timeout";
   }
 
   // Adds the peer and the wait to a fault found in a received frame, and marks the stream
@@ -262,6 +284,8 @@ struct Channel::Impl {
     }
     // Heartbeats (1.1) say "still computing": each one starts the timeout again, so the timeout
     // measures the peer's silence rather than its compute time.
+    wait_began = Clock::now();
+    wait_heartbeats = 0;
     while (true) {
       const Incoming incoming = receive_one_header(timeout, waiting_for);
       const FrameHeader& header = incoming.header;
@@ -277,6 +301,8 @@ struct Channel::Impl {
             waiting_for);
       }
       ++heartbeats_received;
+      ++wait_heartbeats;
+      last_heartbeat = Clock::now();
     }
   }
 

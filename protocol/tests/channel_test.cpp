@@ -656,7 +656,35 @@ TEST(ProtocolHeartbeat, WithoutHeartbeatsTheSameComputationTimesOut) {
   std::uint64_t heartbeats = 0;
   const std::string outcome = wait_through_a_long_computation(false, &heartbeats);
   EXPECT_TRUE(contains(outcome, "timed out after 0.4 s while waiting for Goodbye")) << outcome;
+  // The message tells a silent peer from one whose heartbeats stopped.
+  EXPECT_TRUE(contains(outcome, "; no heartbeat arrived in this wait of 0.4")) << outcome;
   EXPECT_EQ(heartbeats, 0u);
+}
+
+TEST(ProtocolHeartbeat, ATimeoutSaysWhenTheHeartbeatsStopped) {
+  // The peer computes with heartbeats for 0.6 s, then falls silent without answering.
+  Listener listener("127.0.0.1", 0, quick_close());
+  auto peer = std::async(std::launch::async, [&, port = listener.port()] {
+    Channel channel = Channel::connect("127.0.0.1", port, 5s, quick_close());
+    HeartbeatSender heartbeat(channel, true, 100ms);
+    {
+      auto busy = heartbeat.busy();
+      std::this_thread::sleep_for(600ms);
+    }
+    std::this_thread::sleep_for(1000ms);
+  });
+  Channel receiver = listener.accept(5s);
+  std::string outcome;
+  try {
+    receiver.expect<Goodbye>(400ms);
+  } catch (const ProtocolError& error) {
+    outcome = error.what();
+  }
+  receiver.close();
+  peer.get();
+  EXPECT_TRUE(contains(outcome, "timed out after 0.4 s while waiting for Goodbye")) << outcome;
+  EXPECT_TRUE(contains(outcome, "heartbeat(s) arrived in this wait of")) << outcome;
+  EXPECT_TRUE(contains(outcome, " before the timeout")) << outcome;
 }
 
 TEST(ProtocolHeartbeat, NothingIsSentOutsideBusyScopesAndStopIsFinal) {
