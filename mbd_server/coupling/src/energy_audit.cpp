@@ -34,7 +34,7 @@ void EnergyAudit::start(std::span<const double> positions, std::span<const doubl
   positions_.assign(positions.begin(), positions.end());
   velocities_.assign(velocities.begin(), velocities.end());
   forces_.assign(forces.begin(), forces.end());
-  applied_ = forces_;
+  applied_.clear();
   totals_ = {};
   started_ = true;
 }
@@ -52,8 +52,10 @@ void EnergyAudit::exchange(std::span<const double> positions, std::span<const do
   if (!applied.empty()) require_size(applied, positions_.size(), "applied forces", step);
   double fs = 0.0;
   double sf = 0.0;
+  // The force the structure moved under: the predicted one if there was one, else f(n-1).
+  const std::vector<double>& moved_under = applied_.empty() ? forces_ : applied_;
   for (std::size_t k = 0; k < positions.size(); ++k) {  // the works of f(n-1)
-    fs += applied_[k] * (positions[k] - positions_[k]);
+    fs += moved_under[k] * (positions[k] - positions_[k]);
     sf -= forces_[k] * velocities_[k] * dt;
   }
   last_fs_ = fs;
@@ -67,11 +69,7 @@ void EnergyAudit::exchange(std::span<const double> positions, std::span<const do
   positions_.assign(positions.begin(), positions.end());
   velocities_.assign(velocities.begin(), velocities.end());
   forces_.assign(forces.begin(), forces.end());
-  if (applied.empty()) {
-    applied_ = forces_;
-  } else {
-    applied_.assign(applied.begin(), applied.end());
-  }
+  applied_.assign(applied.begin(), applied.end());  // empty: the structure moves under f(n)
 
   const bool judged =
       totals_.exchanges >= kAuditFirstJudgedExchange && totals_.coupling_energy > kAuditRoundOff;

@@ -84,9 +84,16 @@ HealthVerdict FluidHealthMonitor::judge(std::uint64_t step, const FluidForces& f
   return verdict;
 }
 
+std::optional<double> FluidHealthMonitor::courant_number() const {
+  if (!scales_.speed_of_sound || !scales_.smoothing_length || !(scales_.time_step > 0.0))
+    return std::nullopt;
+  return scales_.time_step * *scales_.speed_of_sound / *scales_.smoothing_length;
+}
+
 std::string FluidHealthMonitor::time_step_advice() const {
-  if (!scales_.speed_of_sound || !scales_.smoothing_length || !(scales_.time_step > 0.0)) return {};
-  const double courant = scales_.time_step * *scales_.speed_of_sound / *scales_.smoothing_length;
+  const std::optional<double> known = courant_number();
+  if (!known) return {};
+  const double courant = *known;
   std::string text = "dt c / h = " + number(courant);
   if (courant > kStableCourant) {
     text += " exceeds the " + number(kStableCourant) +
@@ -168,6 +175,9 @@ std::optional<HealthFinding> FluidHealthMonitor::density(std::uint64_t step,
     record_.max_density_deviation = deviation;
     record_.max_density_deviation_step = step;
   }
+  const bool stops = deviation > limits_.max_density_deviation;
+  const bool warns = deviation > limits_.warn_density_deviation && !density_warned_;
+  if (!stops && !warns) return std::nullopt;  // the texts below only for a finding
   const std::string what = "max |rho/rho0 - 1| = " + number(deviation) + " " + at_step(step) +
                            " (rho from " + number(health.min_density) + " to " +
                            number(health.max_density) + " kg/m^3, rho0 = " + number(rho0) + ")";
@@ -176,14 +186,10 @@ std::optional<HealthFinding> FluidHealthMonitor::density(std::uint64_t step,
   const double factor = std::sqrt(deviation / kDensityAim);
   std::string fix;
   const std::string advice = time_step_advice();
-  if (scales_.speed_of_sound && scales_.smoothing_length &&
-      scales_.time_step * *scales_.speed_of_sound / *scales_.smoothing_length > kStableCourant) {
+  const double courant = courant_number().value_or(0.0);
+  if (courant > kStableCourant) {
     fix = "the time step is too large for the speed of sound: " + advice;
   } else {
-    const double courant =
-        scales_.speed_of_sound && scales_.smoothing_length
-            ? scales_.time_step * *scales_.speed_of_sound / *scales_.smoothing_length
-            : 0.0;
     if (courant > kImpactStableCourant) {
       fix = "dt c / h = " + number(courant) + " is within the " + number(kStableCourant) +
             " measured stable for the static tank under compression but above " +
@@ -204,14 +210,14 @@ std::optional<HealthFinding> FluidHealthMonitor::density(std::uint64_t step,
     fix += " and reduce SolverOptions.Timeint.step_size by the same factor to keep dt c / h";
     if (!advice.empty()) fix += " (now " + advice + ")";
   }
-  if (deviation > limits_.max_density_deviation) {
+  if (stops) {
     return HealthFinding{kCheckDensityDeviation,
                          what + " exceeds FluidHealth.max_density_deviation = " +
                              number(limits_.max_density_deviation) +
                              " (weakly compressible SPH aims at " + number(kDensityAim) + ")",
                          fix};
   }
-  if (deviation > limits_.warn_density_deviation && !density_warned_) {
+  if (warns) {
     density_warned_ = true;
     warnings.push_back({kCheckDensityDeviation,
                         what + " exceeds FluidHealth.warn_density_deviation = " +

@@ -268,11 +268,10 @@ class Session {
   // over the fluid steps it lags (force_predictor.hpp), from the first averaged exchange on (the
   // forces at release are no average). predicted_ is empty when the force is not predicted.
   std::span<const double> predicted(const std::vector<double>& average, std::uint64_t step) {
-    predicted_.clear();
+    predicted_ = {};
     if (!scene_.solver.linear_force_predictor || scene_.solver.substeps == 1 || step == 0)
       return average;
-    const std::span<const double> applied = predictor_.apply(average);
-    predicted_.assign(applied.begin(), applied.end());
+    predicted_ = predictor_.apply(average);  // valid until the next exchange's call
     return predicted_;
   }
 
@@ -558,7 +557,8 @@ class Session {
   std::unique_ptr<SensorFile> energy_;  // energy.csv: the energy audit at the sensor rows
   EnergyAudit audit_;
   ForcePredictor predictor_{scene_.solver.substeps};
-  std::vector<double> predicted_;  // the predictor's force; empty when the force is not predicted
+  // The predictor's force (its buffer); empty when the force is not predicted.
+  std::span<const double> predicted_;
   std::unique_ptr<VtkOutput> vtk_;
   std::unique_ptr<StructureSide> structure_;
   std::array<double, 3> total_fluid_force_{};

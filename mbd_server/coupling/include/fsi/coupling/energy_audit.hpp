@@ -87,7 +87,7 @@ class EnergyAudit {
   std::vector<double> positions_;
   std::vector<double> velocities_;
   std::vector<double> forces_;
-  std::vector<double> applied_;  // the force the structure moves under (= forces_ by default)
+  std::vector<double> applied_;  // the predicted force the structure moves under; empty: forces_
   EnergyTotals totals_;
   double last_fs_ = 0.0;
   double last_sf_ = 0.0;

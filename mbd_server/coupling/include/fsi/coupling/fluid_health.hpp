@@ -90,6 +90,8 @@ class FluidHealthMonitor {
   // "dt c / h = 0.19" and the step that brings it to the measured stable 0.125, if h and c are
   // known; empty otherwise.
   std::string time_step_advice() const;
+  // dt c / h, if c and h are known.
+  std::optional<double> courant_number() const;
 
   scene::FluidHealthLimits limits_;
   std::uint64_t allowed_lost_;
