@@ -51,14 +51,14 @@ bool write_all(int descriptor, std::string_view bytes) {
   return true;
 }
 
-void sync_folder(const fs::path& folder) {
+}  // namespace
+
+void sync_folder(const fs::path& folder) noexcept {
   const int descriptor = ::open(folder.empty() ? "." : folder.c_str(), O_RDONLY | O_DIRECTORY);
   if (descriptor < 0) return;
   ::fsync(descriptor);
   ::close(descriptor);
 }
-
-}  // namespace
 
 void write_file_atomically(const fs::path& path, std::string_view bytes, Durability durability) {
   const fs::path temporary = fs::path(path.string() + ".tmp");

@@ -3,7 +3,7 @@
 // full disk"): a whole file is written under a temporary name and renamed over the old one, so
 // a reader, a crash or a full disk at any moment leaves the old file or the new one, never a
 // part. One helper for every whole-file write (run.json, snapshots, VTK files, .pvd indices;
-// later checkpoints).
+// checkpoint files).
 
 #include <filesystem>
 #include <string>
@@ -26,6 +26,9 @@ enum class Durability {
 // the system's reason (e.g. "No space left on device") and the fix.
 void write_file_atomically(const std::filesystem::path& path, std::string_view bytes,
                            Durability durability = Durability::ProcessCrash);
+
+// Syncs a folder's entries (created, renamed, removed files) to the disk; best effort.
+void sync_folder(const std::filesystem::path& folder) noexcept;
 
 // The error every output file reports when the system refuses a write: what (the action, the
 // file, strerror of `error_number`), where (`what_file`, e.g. "sensor output") and how to fix it
