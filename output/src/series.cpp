@@ -1,6 +1,8 @@
 #include "fsi/output/series.hpp"
 
 #include <cstdio>
+#include <set>
+#include <system_error>
 
 #include "fsi/output/atomic_file.hpp"
 
@@ -39,6 +41,36 @@ fs::path Series::write(std::uint64_t step, double time, const std::string& bytes
   entries_.push_back({time, file_name});
   write_file_atomically(index_path(), encode_collection(entries_));
   return path;
+}
+
+void Series::save_state(StateWriter& out) const {
+  out.section("series " + name_);
+  out.put(static_cast<std::uint64_t>(entries_.size()));
+  for (const CollectionEntry& entry : entries_) {
+    out.put(entry.time);
+    out.put(entry.file);
+  }
+}
+
+void Series::restore_state(StateReader& in) {
+  in.section("series " + name_);
+  entries_.resize(in.count("entries"));
+  std::set<std::string> kept;
+  for (CollectionEntry& entry : entries_) {
+    entry.time = in.f64("entry time");
+    entry.file = in.text("entry file");
+    kept.insert(entry.file);
+  }
+  std::error_code error;
+  const std::string prefix = name_ + "_";
+  const std::string suffix = "." + extension_;
+  for (const auto& file : fs::directory_iterator(directory_, error)) {
+    const std::string name = file.path().filename().string();
+    if (name.starts_with(prefix) && name.ends_with(suffix) && !kept.contains(name))
+      fs::remove(file.path(), error);
+  }
+  if (!entries_.empty() || fs::exists(index_path()))
+    write_file_atomically(index_path(), encode_collection(entries_));
 }
 
 }  // namespace fsi::output

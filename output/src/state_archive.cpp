@@ -149,6 +149,12 @@ std::uint64_t StateReader::u64(std::string_view what) {
   return value;
 }
 
+std::uint64_t StateReader::count(std::string_view what) {
+  const std::uint64_t value = u64(what);
+  if (value > bytes_.size() - offset_) cut_short(what);
+  return value;
+}
+
 double StateReader::f64(std::string_view what) {
   if (const auto found = tag(what); found != kDouble)
     wrong_tag(found, kDouble, what, section_, source_);

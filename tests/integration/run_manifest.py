@@ -1,9 +1,9 @@
-"""One reader for run.json (format_version 6) of every run mode: checks that the manifest has the
+"""One reader for run.json (format_version 7) of every run mode: checks that the manifest has the
 one shape fsi-server writes for coupled and --mbd-only runs, and returns it as a dict."""
 import json
 import os
 
-FORMAT_VERSION = 6
+FORMAT_VERSION = 7
 
 # Every key of the shape, with the keys of its objects; None marks a leaf.
 SHAPE = {
@@ -31,6 +31,7 @@ SHAPE = {
     "release": None,
     "health": None,
     "energy_audit": None,
+    "checkpoints": None, "resumes": None,
     "warnings": None, "status": None, "reason": None,
 }
 # Present in a coupled run, null in an --mbd-only run.

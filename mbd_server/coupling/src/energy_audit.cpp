@@ -116,4 +116,57 @@ std::string EnergyAudit::take_warning() {
   return std::exchange(pending_, std::string());
 }
 
+namespace {
+void put_optional(output::StateWriter& out, const std::optional<std::uint64_t>& value) {
+  out.put(value.has_value());
+  out.put(value.value_or(0));
+}
+std::optional<std::uint64_t> optional_u64(output::StateReader& in, std::string_view what) {
+  const bool present = in.boolean(what);
+  const std::uint64_t value = in.u64(what);
+  return present ? std::optional<std::uint64_t>(value) : std::nullopt;
+}
+}  // namespace
+
+void EnergyAudit::save_state(output::StateWriter& out) const {
+  out.section("energy audit");
+  out.put(positions_);
+  out.put(velocities_);
+  out.put(forces_);
+  out.put(applied_);
+  for (double value : {totals_.work_fluid_on_structure, totals_.work_structure_on_fluid,
+                       totals_.coupling_energy, totals_.max_coupling_energy, totals_.traffic,
+                       totals_.max_coupling_fraction, last_fs_, last_sf_, energy_at_warning_})
+    out.put(value);
+  out.put(totals_.exchanges);
+  out.put(started_);
+  put_optional(out, warned_at_);
+  out.put(pending_);
+  put_optional(out, stopped_at_);
+  out.put(stop_);
+}
+
+void EnergyAudit::restore_state(output::StateReader& in) {
+  in.section("energy audit");
+  positions_ = in.doubles("positions");
+  velocities_ = in.doubles("velocities");
+  forces_ = in.doubles("forces");
+  applied_ = in.doubles("applied forces");
+  totals_.work_fluid_on_structure = in.f64("work of the fluid");
+  totals_.work_structure_on_fluid = in.f64("work of the structure");
+  totals_.coupling_energy = in.f64("coupling energy");
+  totals_.max_coupling_energy = in.f64("largest coupling energy");
+  totals_.traffic = in.f64("traffic");
+  totals_.max_coupling_fraction = in.f64("largest coupling fraction");
+  last_fs_ = in.f64("last work of the fluid");
+  last_sf_ = in.f64("last work of the structure");
+  energy_at_warning_ = in.f64("energy at the warning");
+  totals_.exchanges = in.u64("exchanges");
+  started_ = in.boolean("started");
+  warned_at_ = optional_u64(in, "warning step");
+  pending_ = in.text("pending warning");
+  stopped_at_ = optional_u64(in, "stop step");
+  stop_ = in.text("stop");
+}
+
 }  // namespace fsi::coupling

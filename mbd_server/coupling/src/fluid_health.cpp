@@ -332,4 +332,45 @@ FluidScales fluid_scales(const scene::Scene& scene) {
   return scales;
 }
 
+void FluidHealthMonitor::save_state(output::StateWriter& out) const {
+  out.section("fluid health");
+  out.put(initial_particles_);
+  out.put(closest_over_r0_);
+  out.put(density_warned_);
+  out.put(mach_warned_);
+  out.put(lost_warned_);
+  out.put(record_.steps_checked);
+  out.put(record_.max_density_deviation);
+  out.put(record_.max_density_deviation_step);
+  out.put(record_.max_particle_speed);
+  out.put(record_.max_particle_speed_step);
+  out.put(record_.particles_lost);
+  out.put(record_.failed_check.has_value());
+  out.put(record_.failed_check.value_or(""));
+  out.put(static_cast<std::uint64_t>(record_.warnings.size()));
+  for (const std::string& warning : record_.warnings)
+    out.put(warning);
+}
+
+void FluidHealthMonitor::restore_state(output::StateReader& in) {
+  in.section("fluid health");
+  initial_particles_ = in.u64("initial particles");
+  closest_over_r0_ = in.f64("closest approach");
+  density_warned_ = in.boolean("density warned");
+  mach_warned_ = in.boolean("Mach warned");
+  lost_warned_ = in.boolean("loss warned");
+  record_.steps_checked = in.u64("steps checked");
+  record_.max_density_deviation = in.f64("largest density deviation");
+  record_.max_density_deviation_step = in.u64("its step");
+  record_.max_particle_speed = in.f64("largest speed");
+  record_.max_particle_speed_step = in.u64("its step");
+  record_.particles_lost = in.u64("particles lost");
+  const bool failed = in.boolean("failed check");
+  std::string check = in.text("failed check");
+  record_.failed_check = failed ? std::optional<std::string>(std::move(check)) : std::nullopt;
+  record_.warnings.resize(in.count("warnings"));
+  for (std::string& warning : record_.warnings)
+    warning = in.text("warning");
+}
+
 }  // namespace fsi::coupling

@@ -16,4 +16,14 @@ std::span<const double> ForcePredictor::apply(std::span<const double> average) {
   return predicted_;
 }
 
+void ForcePredictor::save_state(output::StateWriter& out) const {
+  out.section("force predictor");
+  out.put(previous_);
+}
+
+void ForcePredictor::restore_state(output::StateReader& in) {
+  in.section("force predictor");
+  previous_ = in.doubles("previous average force");
+}
+
 }  // namespace fsi::coupling

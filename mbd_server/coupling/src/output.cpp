@@ -23,10 +23,9 @@ void create_run_folder(const std::string& folder) {
 }
 
 SensorFile::SensorFile(const std::string& path, const std::string& title,
-                       const std::vector<std::string>& names, const std::vector<std::string>& units)
+                       const std::vector<std::string>& names, const std::vector<std::string>& units,
+                       std::optional<std::uint64_t> resume_at)
     : path_(path), last_flush_(std::chrono::steady_clock::now()) {
-  descriptor_ = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (descriptor_ < 0) throw output::file_error("cannot create", path, errno, "sensor output");
   std::string header = "# " + title + "\n# units: time [s]";
   for (std::size_t i = 0; i < names.size(); ++i)
     header += ", " + names[i] + " [" + units[i] + "]";
@@ -34,7 +33,46 @@ SensorFile::SensorFile(const std::string& path, const std::string& title,
   for (const auto& name : names)
     header += "," + name;
   header += "\n";
-  append(header);
+  if (!resume_at) {
+    descriptor_ = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    if (descriptor_ < 0) throw output::file_error("cannot create", path, errno, "sensor output");
+    append(header);
+    return;
+  }
+  // Resumed: the earlier run's file, its header unchanged, cut back to the checkpoint's length.
+  descriptor_ = ::open(path.c_str(), O_RDWR | O_CLOEXEC);
+  if (descriptor_ < 0) {
+    throw Error(std::string("cannot open ") + path + " to continue it: " + std::strerror(errno),
+                "resumed sensor output",
+                "resume in the folder of the run that wrote the checkpoint (--resume DIR)");
+  }
+  std::string start(header.size(), '\0');
+  const ssize_t read = ::pread(descriptor_, start.data(), start.size(), 0);
+  const off_t size = ::lseek(descriptor_, 0, SEEK_END);
+  if (read != static_cast<ssize_t>(header.size()) || start != header) {
+    ::close(descriptor_);
+    descriptor_ = -1;
+    throw Error(path + " has another header than this scene writes (its columns or title differ)",
+                "resumed sensor output",
+                "resume with the scene that wrote the checkpoint, unchanged in its sensors");
+  }
+  if (size < 0 || static_cast<std::uint64_t>(size) < *resume_at) {
+    ::close(descriptor_);
+    descriptor_ = -1;
+    throw Error(path + " holds " + std::to_string(size) + " bytes, the checkpoint recorded " +
+                    std::to_string(*resume_at) + " (the file was cut or replaced)",
+                "resumed sensor output",
+                "resume from a run folder whose files are as the run left them");
+  }
+  if (::ftruncate(descriptor_, static_cast<off_t>(*resume_at)) != 0)
+    throw output::file_error("cannot cut back", path, errno, "sensor output");
+}
+
+std::uint64_t SensorFile::length() {
+  flush();
+  const off_t end = ::lseek(descriptor_, 0, SEEK_END);
+  if (end < 0) throw output::file_error("cannot measure", path_, errno, "sensor output");
+  return static_cast<std::uint64_t>(end);
 }
 
 namespace {
@@ -77,9 +115,10 @@ std::vector<std::string> units_of(const std::vector<probes::Column>& columns) {
 
 SensorFile::SensorFile(const std::filesystem::path& path, const std::string& title,
                        const std::vector<scene::SensorSpec>& sensors,
-                       const std::vector<probes::ProbeDefinition>& probes, int dimension)
+                       const std::vector<probes::ProbeDefinition>& probes, int dimension,
+                       std::optional<std::uint64_t> resume_at)
     : SensorFile(path.string(), title, names_of(columns_of(sensors, probes, dimension)),
-                 units_of(columns_of(sensors, probes, dimension))) {}
+                 units_of(columns_of(sensors, probes, dimension)), resume_at) {}
 
 SensorFile::~SensorFile() {
   if (descriptor_ < 0) return;

@@ -264,6 +264,24 @@ void write_run_manifest(const fs::path& output_dir, const scene::Scene& scene,
   manifest["checks"] = checks_entry(record);
   manifest["release"] = release_entry(record.release);
   manifest["energy_audit"] = energy_audit_entry(record.energy_audit);
+  if (record.checkpoints) {
+    const CheckpointRecord& c = *record.checkpoints;
+    manifest["checkpoints"] = {{"every_steps", c.every_steps},
+                               {"every_seconds", c.every_seconds},
+                               {"written", c.written},
+                               {"last_step", c.last_step ? json(*c.last_step) : json(nullptr)},
+                               {"seconds_writing", c.seconds_writing}};
+  } else {
+    manifest["checkpoints"] = nullptr;
+  }
+  json resumes = json::array();
+  for (const ResumeRecord& resume : record.resumes) {
+    resumes.push_back({{"utc", resume.utc},
+                       {"step", resume.step},
+                       {"checkpoint", resume.checkpoint},
+                       {"client_ranks", resume.client_ranks}});
+  }
+  manifest["resumes"] = resumes;
   manifest["health"] = health_entry(record);
   manifest["warnings"] = record.warnings;
   manifest["status"] = record.status;

@@ -24,6 +24,8 @@
 #include "fsi/coupling/structure_side.hpp"
 #include "fsi/coupling/tcp_fluid_side.hpp"
 #include "fsi/coupling/vtk_output.hpp"
+#include "fsi/output/checkpoint_store.hpp"
+#include "fsi/output/state_archive.hpp"
 #include "fsi/scene/physics_checks.hpp"
 
 namespace fsi::coupling {
@@ -37,8 +39,23 @@ extern "C" void on_stop_signal(int signal) {
 }
 
 struct Timings {
-  Stopwatch total, setup, coupled, mbd, output, round_trip;
+  Stopwatch total, setup, coupled, mbd, output, round_trip, checkpoint;
 };
+
+// The checkpoint files of the two sides.
+constexpr const char* kServerStateFile = "server.state";
+constexpr const char* kFluidStateFile = "fluid.state";
+
+void put_optional(output::StateWriter& out, const std::optional<double>& value) {
+  out.put(value.has_value());
+  out.put(value.value_or(0.0));
+}
+
+std::optional<double> optional_f64(output::StateReader& in, std::string_view what) {
+  const bool present = in.boolean(what);
+  const double value = in.f64(what);
+  return present ? std::optional<double>(value) : std::nullopt;
+}
 
 // What the server learns of the fluid beyond its forces.
 struct FluidWatch {
@@ -70,10 +87,14 @@ class Session {
     started_utc_ = utc_now();
     int status = 0;
     try {
-      prepare_output();
-      // From now on the folder says which run it holds, also when this run is killed.
-      write_run_manifest(options_.output_dir, scene_, record());
-      set_up();
+      if (options_.resume) {
+        resume();
+      } else {
+        prepare_output();
+        // From now on the folder says which run it holds, also when this run is killed.
+        write_run_manifest(options_.output_dir, scene_, record());
+        set_up();
+      }
       couple();
       fluid_.finish();
       status_ = "completed";
@@ -87,7 +108,10 @@ class Session {
     timings_.total.stop();
     try {
       if (sensors_) sensors_->flush();
-      write_run_manifest(options_.output_dir, scene_, record());
+      // A resume that failed before it took the checkpoint's state leaves the earlier run's
+      // run.json as it was: the record of the run is still that one.
+      if (!options_.resume || resumed_state_)
+        write_run_manifest(options_.output_dir, scene_, record());
     } catch (const std::exception& failure) {
       spdlog::error("writing run.json failed: {}", failure.what());
       status = 1;
@@ -103,11 +127,13 @@ class Session {
   }
 
  private:
-  void prepare_output() {
+  // The output files: new ones, or (resumed) the earlier run's cut back to the checkpoint.
+  void prepare_output(std::optional<std::uint64_t> sensors_length = std::nullopt,
+                      std::optional<std::uint64_t> energy_length = std::nullopt) {
     create_run_folder(options_.output_dir);
     sensors_ = std::make_unique<SensorFile>(fs::path(options_.output_dir) / "sensors.csv",
                                             "fsi-server sensors of " + scene_.file, scene_.sensors,
-                                            scene_.probes, scene_.dimension);
+                                            scene_.probes, scene_.dimension, sensors_length);
     for (const auto& probe : scene_.probes)
       probe_columns_ += probes::columns(probe, scene_.dimension).size();
     const std::string work_unit = scene_.dimension == 3 ? "J" : "J/m";
@@ -117,7 +143,7 @@ class Session {
             " (docs/theory.md, \"The energy audit\")",
         std::vector<std::string>{"work_fluid_on_structure", "work_structure_on_fluid",
                                  "coupling_energy"},
-        std::vector<std::string>{work_unit, work_unit, work_unit});
+        std::vector<std::string>{work_unit, work_unit, work_unit}, energy_length);
     if (scene_.output.snapshot_every_steps > 0) {
       fs::create_directories(fs::path(options_.output_dir) / "snapshots");
       vtk_ = std::make_unique<VtkOutput>(fs::path(options_.output_dir) / "vtk");
@@ -313,8 +339,31 @@ class Session {
                    static_cast<double>(steps) * dt);
     }
     coupled_begin_ = std::chrono::steady_clock::now();
-    last_log_ = last_live_ = coupled_begin_;
-    for (std::uint64_t n = k; n <= steps; n += k) {
+    last_log_ = last_live_ = last_checkpoint_ = coupled_begin_;
+    first_step_ = steps_done_;
+    checkpoints_ =
+        scene_.output.checkpoint_every_steps > 0 || scene_.output.checkpoint_every_seconds > 0.0;
+    if (checkpoints_ && !fluid_.can_checkpoint()) {
+      if (scene_.output.checkpoint_every_steps > 0) {
+        throw Error("Output.checkpoint_every_steps = " +
+                        std::to_string(scene_.output.checkpoint_every_steps) +
+                        ", but the fluid side cannot write checkpoints (an fsi-client older "
+                        "than protocol 1.6)",
+                    "checkpoints",
+                    "use matching fsi-server and fsi-client releases, or set "
+                    "Output.checkpoint_every_steps = 0");
+      }
+      spdlog::warn(
+          "no checkpoints in this run: the fluid side cannot write them (an fsi-client "
+          "older than protocol 1.6)");
+      checkpoints_ = false;
+    }
+    if (steps_done_ >= steps) {
+      throw Error("the checkpoint is at step " + std::to_string(steps_done_) +
+                      ", the scene's run ends at step " + std::to_string(steps),
+                  "--resume", "raise SolverOptions.end_time to continue the run beyond it");
+    }
+    for (std::uint64_t n = steps_done_ + k; n <= steps; n += k) {
       if (g_stop_signal != 0) {
         throw Error("stopped by signal " + std::to_string(g_stop_signal.load()) + " at step " +
                         std::to_string(n),
@@ -325,6 +374,7 @@ class Session {
           n % static_cast<std::uint64_t>(scene_.output.snapshot_every_steps) == 0) {
         take_snapshot(n);
       }
+      if (checkpoint_due(n, steps)) write_checkpoint(n);
       report_progress(n, steps);
     }
     if (options_.live_status) options_.live_status("");
@@ -453,7 +503,7 @@ class Session {
     sample.step = n;
     sample.steps = steps;
     sample.steps_per_second =
-        static_cast<double>(n) /
+        static_cast<double>(n - first_step_) /
         std::max(1e-9, std::chrono::duration<double>(now - coupled_begin_).count());
     sample.closest_approach_over_r0 = watch_.closest_since_report;
     if (watch_.record.snapshots_checked > 0) {
@@ -512,6 +562,269 @@ class Session {
     record.max_particle_speed = std::max(record.max_particle_speed, watch_.last_max_speed);
   }
 
+  // --- Checkpoints and resume (issue 16; docs/user-guide.md, "Checkpoints and resume") ---
+
+  bool checkpoint_due(std::uint64_t n, std::uint64_t steps) const {
+    if (!checkpoints_ || n >= steps) return false;  // the end is the results, not a checkpoint
+    const long every_steps = scene_.output.checkpoint_every_steps;
+    const double every_seconds = scene_.output.checkpoint_every_seconds;
+    if (every_steps > 0 && n % static_cast<std::uint64_t>(every_steps) == 0) return true;
+    return every_seconds > 0.0 && std::chrono::steady_clock::now() - last_checkpoint_ >=
+                                      std::chrono::duration<double>(every_seconds);
+  }
+
+  output::CheckpointStore& checkpoint_store() {
+    if (!store_) store_.emplace(fs::path(options_.output_dir) / "checkpoints");
+    return *store_;
+  }
+
+  // Both sides' state at the end of step n, complete or not at all: the fluid's first (the
+  // client may fail), then the server's, then both files synced, hashed and renamed
+  // (checkpoint_store.hpp). A failure (a full disk) ends the run; the checkpoints before stay.
+  void write_checkpoint(std::uint64_t n) {
+    ScopedTimer timer(timings_.checkpoint);
+    const std::string fluid_state = fluid_.checkpoint(n);
+    const auto writing = fluid_.waiting();
+    output::StateWriter state;
+    save_state(state, n);
+    output::CheckpointStore& store = checkpoint_store();
+    try {
+      store.begin(n);
+      store.add(kServerStateFile, state.bytes());
+      store.add(kFluidStateFile, fluid_state);
+      const output::Checkpoint written = store.commit(structure_->time());
+      ++checkpoints_written_;
+      last_checkpoint_step_ = n;
+      last_checkpoint_ = std::chrono::steady_clock::now();
+      spdlog::info("checkpoint at step {} (t = {:.9g} s): {} ({:.3g} MB)", n, structure_->time(),
+                   written.folder.string(),
+                   static_cast<double>(state.bytes().size() + fluid_state.size()) / 1e6);
+    } catch (const Error& failure) {
+      store.abandon();
+      const auto kept = store.list();
+      throw Error(
+          std::string(failure.fault()), "checkpoint of step " + std::to_string(n),
+          std::string(failure.remedy()) +
+              (kept.empty() ? std::string("; no earlier checkpoint exists")
+                            : "; the checkpoint of step " + std::to_string(kept.back().step) +
+                                  " is intact: fsi-server --resume " + options_.output_dir +
+                                  " continues from it"));
+    }
+  }
+
+  // The server's half: the session's own state, then each part's, in a fixed order that
+  // restore_state reads back.
+  void save_state(output::StateWriter& out, std::uint64_t n) {
+    out.section("session");
+    out.put(scene_.file);
+    out.put(scene_.solver.step_size);
+    out.put(static_cast<std::uint64_t>(scene_.solver.substeps));
+    out.put(static_cast<std::uint64_t>(scene_.dimension));
+    out.put(static_cast<std::uint64_t>(scene_.boundary.dynamic_vertex_count));
+    out.put(n);
+    out.put(structure_->time());
+    out.put(sensors_->length());
+    out.put(energy_->length());
+    out.put(snapshots_);
+    for (double f : total_fluid_force_)
+      out.put(f);
+    out.put(started_utc_);
+    out.put(checkpoints_written_ + 1);
+    out.put(static_cast<std::uint64_t>(resumes_.size()));
+    for (const ResumeRecord& resume : resumes_) {
+      out.put(resume.utc);
+      out.put(resume.step);
+      out.put(resume.checkpoint);
+      out.put(static_cast<std::uint64_t>(resume.client_ranks));
+    }
+    for (const Stopwatch* watch :
+         {&timings_.total, &timings_.setup, &timings_.coupled, &timings_.mbd, &timings_.output,
+          &timings_.round_trip, &timings_.checkpoint}) {
+      out.put(watch->seconds());
+    }
+    const FluidRecord& fluid = watch_.record;
+    out.put(fluid.particle_count);
+    out.put(fluid.liggghts_version);
+    for (double value :
+         {fluid.seconds_client_setup, fluid.seconds_client_equilibration, fluid.seconds_liggghts,
+          fluid.seconds_contact, fluid.seconds_client_communication, fluid.max_action_reaction,
+          fluid.max_density_deviation, fluid.max_particle_speed, watch_.closest_approach_over_r0,
+          watch_.last_snapshot_time, watch_.last_density_deviation, watch_.last_max_speed}) {
+      out.put(value);
+    }
+    out.put(fluid.particles_initial);
+    out.put(fluid.particles_final);
+    out.put(fluid.snapshots_checked);
+    out.put(watch_.balance_warned);
+    out.put(release_.has_value());
+    if (release_) {
+      const ReleaseCheck& r = *release_;
+      for (double value : {r.settling_drag, r.column_height, r.fluid_mass, r.weight, r.carried,
+                           r.kinetic_energy, r.potential_energy})
+        out.put(value);
+      put_optional(out, r.weight_fraction);
+      put_optional(out, r.kinetic_over_potential);
+      out.put(r.at_rest);
+      out.put(r.warning);
+    }
+    structure_->save_state(out);
+    audit_.save_state(out);
+    predictor_.save_state(out);
+    health_.save_state(out);
+    out.put(vtk_ != nullptr);
+    if (vtk_) vtk_->save_state(out);
+  }
+
+  // fsi-server --resume: the newest complete checkpoint of the output folder, both sides set up
+  // from it, the output files cut back to it; couple() then goes on from its step.
+  void resume() {
+    timings_.setup.start();
+    if (!fs::is_directory(options_.output_dir)) {
+      throw Error("no run folder " + options_.output_dir, "--resume",
+                  "give --resume (or --output with --resume) the folder of the run to continue");
+    }
+    output::CheckpointStore& store = checkpoint_store();
+    std::vector<std::string> skipped;
+    const std::optional<output::Checkpoint> checkpoint = store.newest_valid(&skipped);
+    for (const std::string& reason : skipped)
+      spdlog::warn("checkpoint passed over: {}", reason);
+    if (!checkpoint) {
+      throw Error("no complete checkpoint in " + store.root().string(), "--resume",
+                  "a run writes checkpoints every Output.checkpoint_every_steps steps or "
+                  "checkpoint_every_seconds of wall time; without one, start the run afresh "
+                  "(--overwrite)");
+    }
+    const std::string source = std::string(kServerStateFile) + " of " + checkpoint->folder.string();
+    const std::string server_bytes = output::read_checkpoint_file(*checkpoint, kServerStateFile);
+    const std::string fluid_bytes = output::read_checkpoint_file(*checkpoint, kFluidStateFile);
+    output::StateReader in(server_bytes, source);
+    in.section("session");
+    const std::string scene_file = in.text("scene file");
+    const double step_size = in.f64("step size");
+    const std::uint64_t substeps = in.u64("substeps");
+    const std::uint64_t dimension = in.u64("dimension");
+    const std::uint64_t dynamic_vertices = in.u64("dynamic vertices");
+    auto differs = [&](const std::string& what, const std::string& then, const std::string& now) {
+      throw Error("the checkpoint was written with " + what + " " + then + ", the scene has " + now,
+                  source,
+                  "resume with the scene (and its parameters) that wrote the checkpoint; "
+                  "only SolverOptions.end_time and the Output block may change");
+    };
+    if (step_size != scene_.solver.step_size) {
+      differs("SolverOptions.Timeint.step_size", fmt::format("{:.17g}", step_size),
+              fmt::format("{:.17g}", scene_.solver.step_size));
+    }
+    if (substeps != static_cast<std::uint64_t>(scene_.solver.substeps))
+      differs("substeps", std::to_string(substeps), std::to_string(scene_.solver.substeps));
+    if (dimension != static_cast<std::uint64_t>(scene_.dimension))
+      differs("dimension", std::to_string(dimension), std::to_string(scene_.dimension));
+    if (dynamic_vertices != scene_.boundary.dynamic_vertex_count) {
+      differs("dynamic boundary vertices", std::to_string(dynamic_vertices),
+              std::to_string(scene_.boundary.dynamic_vertex_count));
+    }
+    if (scene_file != scene_.file) {
+      spdlog::warn("resuming the checkpoint of scene {} with scene {}", scene_file, scene_.file);
+    }
+    const std::uint64_t step = in.u64("step");
+    const double time = in.f64("time");
+    const std::uint64_t sensors_length = in.u64("sensors.csv length");
+    const std::uint64_t energy_length = in.u64("energy.csv length");
+    snapshots_ = in.u64("snapshots");
+    for (double& f : total_fluid_force_)
+      f = in.f64("total fluid force");
+    started_utc_ = in.text("start");
+    checkpoints_written_ = in.u64("checkpoints written");
+    resumes_.resize(in.count("resumes"));
+    for (ResumeRecord& resume : resumes_) {
+      resume.utc = in.text("resume time");
+      resume.step = in.u64("resume step");
+      resume.checkpoint = in.text("resume checkpoint");
+      resume.client_ranks = static_cast<std::uint32_t>(in.u64("resume ranks"));
+    }
+    for (Stopwatch* watch : {&timings_.total, &timings_.setup, &timings_.coupled, &timings_.mbd,
+                             &timings_.output, &timings_.round_trip, &timings_.checkpoint}) {
+      watch->add(in.f64("timing"));
+    }
+    FluidRecord& fluid = watch_.record;
+    fluid.particle_count = in.u64("particles");
+    fluid.liggghts_version = in.text("LIGGGHTS version");
+    for (double* value :
+         {&fluid.seconds_client_setup, &fluid.seconds_client_equilibration, &fluid.seconds_liggghts,
+          &fluid.seconds_contact, &fluid.seconds_client_communication, &fluid.max_action_reaction,
+          &fluid.max_density_deviation, &fluid.max_particle_speed, &watch_.closest_approach_over_r0,
+          &watch_.last_snapshot_time, &watch_.last_density_deviation, &watch_.last_max_speed}) {
+      *value = in.f64("fluid record");
+    }
+    fluid.particles_initial = in.u64("particles at the start");
+    fluid.particles_final = in.u64("particles at the checkpoint");
+    fluid.snapshots_checked = in.u64("snapshots checked");
+    watch_.balance_warned = in.boolean("balance warned");
+    if (in.boolean("release")) {
+      ReleaseCheck r;
+      for (double* value : {&r.settling_drag, &r.column_height, &r.fluid_mass, &r.weight,
+                            &r.carried, &r.kinetic_energy, &r.potential_energy})
+        *value = in.f64("release");
+      r.weight_fraction = optional_f64(in, "weight fraction");
+      r.kinetic_over_potential = optional_f64(in, "kinetic over potential");
+      r.at_rest = in.boolean("at rest");
+      r.warning = in.text("release warning");
+      release_ = r;
+    }
+    structure_ = std::make_unique<StructureSide>(scene_, scene::IntegrationMethod::FixedStep);
+    structure_->restore_state(in);
+    audit_.restore_state(in);
+    predictor_.restore_state(in);
+    health_.restore_state(in);
+    const bool had_vtk = in.boolean("VTK series");
+
+    resumed_state_ = true;
+    prepare_output(sensors_length, energy_length);
+    if (had_vtk != (vtk_ != nullptr)) {
+      throw Error(std::string("the checkpoint was written ") + (had_vtk ? "with" : "without") +
+                      " particle snapshots, the scene asks " + (had_vtk ? "for none" : "for them"),
+                  source, "keep Output.snapshot_every_steps 0 or non-zero as the run had it");
+    }
+    if (vtk_) vtk_->restore_state(in);
+    in.finish();
+    remove_snapshots_after(step);
+    steps_done_ = step;
+    resumes_.push_back({utc_now(), step, checkpoint->folder.filename().string(), 0});
+    spdlog::info(
+        "resuming from {} (step {}, t = {:.9g} s); sensors.csv and energy.csv cut back "
+        "to it",
+        checkpoint->folder.string(), step, time);
+    write_run_manifest(options_.output_dir, scene_, record());
+
+    std::vector<double> positions, velocities;
+    structure_->boundary_state(positions, velocities);
+    const FluidReady ready =
+        fluid_.resume(scene_, positions, velocities, step, structure_->time(), fluid_bytes);
+    if (const auto peer = fluid_.peer()) resumes_.back().client_ranks = peer->mpi_ranks;
+    spdlog::info("client resumed: {} particles in LIGGGHTS, set-up {:.2f} s", ready.particle_count,
+                 ready.seconds_setup);
+    if (ready.particle_count != fluid.particles_final) {
+      throw Error("the fluid holds " + std::to_string(ready.particle_count) +
+                      " particles after the resume, " + std::to_string(fluid.particles_final) +
+                      " at the checkpoint",
+                  "resume from " + checkpoint->folder.string(),
+                  "check that the scripts are those of the run that wrote the checkpoint");
+    }
+    timings_.setup.stop();
+  }
+
+  // Snapshots of steps after `step` belong to the run resumed from there and go.
+  void remove_snapshots_after(std::uint64_t step) {
+    const fs::path folder = fs::path(options_.output_dir) / "snapshots";
+    std::error_code error;
+    if (!fs::is_directory(folder, error)) return;
+    for (const auto& file : fs::directory_iterator(folder, error)) {
+      const std::string name = file.path().filename().string();
+      unsigned long long file_step = 0;
+      if (std::sscanf(name.c_str(), "particles_%llu.csv", &file_step) == 1 && file_step > step)
+        fs::remove(file.path(), error);
+    }
+  }
+
   RunRecord record() const {
     RunRecord run;
     run.mode = RunMode::Coupled;
@@ -538,6 +851,10 @@ class Session {
           EnergyAuditSummary{audit_.totals(), audit_.warned_at(), audit_.stopped_at()};
     }
     run.fluid->peer = fluid_.peer();
+    run.checkpoints = CheckpointRecord{scene_.output.checkpoint_every_steps,
+                                       scene_.output.checkpoint_every_seconds, checkpoints_written_,
+                                       last_checkpoint_step_, timings_.checkpoint.seconds()};
+    run.resumes = resumes_;
     run.fluid->seconds_round_trip = timings_.round_trip.seconds();
     if (std::isfinite(watch_.closest_approach_over_r0))
       run.fluid->closest_approach_over_r0 = watch_.closest_approach_over_r0;
@@ -574,7 +891,14 @@ class Session {
   std::string status_ = "started";
   std::string reason_;
   std::shared_ptr<spdlog::logger> progress_logger_;
-  std::chrono::steady_clock::time_point coupled_begin_, last_log_, last_live_;
+  std::chrono::steady_clock::time_point coupled_begin_, last_log_, last_live_, last_checkpoint_;
+  std::uint64_t first_step_ = 0;  // the step the coupled phase began at (a resume's checkpoint)
+  std::optional<output::CheckpointStore> store_;
+  bool checkpoints_ = false;    // the scene asks for them and the fluid side can write them
+  bool resumed_state_ = false;  // a resume has taken the checkpoint's state
+  std::uint64_t checkpoints_written_ = 0;
+  std::optional<std::uint64_t> last_checkpoint_step_;
+  std::vector<ResumeRecord> resumes_;
 };
 
 }  // namespace

@@ -319,6 +319,61 @@ std::vector<double> StructureSide::readout(const mbd::State& state,
   return values;
 }
 
+void StructureSide::save_state(output::StateWriter& out) {
+  if (method_ != scene::IntegrationMethod::FixedStep) {
+    throw Error("a checkpoint of an error-controlled integration (adaptive Radau IIA or IDA)",
+                "structure side", "checkpoints are taken in coupled runs (fixed step) only");
+  }
+  out.section("structure");
+  out.put(state_.time);
+  out.put(state_.q);
+  out.put(state_.v);
+  out.put(state_.lambda);
+  out.put(loads_);
+  out.put(step_motion_.nodes);
+  out.put(step_motion_.positions);
+  out.put(step_motion_.velocities);
+  out.put(two_node_steps_);
+  out.put(substepped_steps_);
+  const mbd::IntegratorStatistics& totals = integrator_.statistics();
+  for (std::uint64_t value : {totals.steps, totals.newton_iterations, totals.jacobian_evaluations,
+                              totals.factorisations, totals.retries})
+    out.put(value);
+  integrator_.reset();
+}
+
+void StructureSide::restore_state(output::StateReader& in) {
+  in.section("structure");
+  const auto n = static_cast<Eigen::Index>(scene_.model.coordinate_count());
+  const auto m = static_cast<Eigen::Index>(scene_.model.constraint_count());
+  state_.time = in.f64("time");
+  state_.q = in.vector("coordinates q", n);
+  state_.v = in.vector("velocities v", n);
+  state_.lambda = in.vector("multipliers", m);
+  loads_ = in.doubles("point loads");
+  const std::size_t markers = static_cast<std::size_t>(scene_.dimension) *
+                              static_cast<std::size_t>(scene_.model.marker_count());
+  if (!loads_.empty() && loads_.size() != markers) {
+    throw Error("the checkpoint holds " + std::to_string(loads_.size()) +
+                    " point load values, the scene's markers take " + std::to_string(markers),
+                "structure state", "resume with the scene that wrote the checkpoint");
+  }
+  if (!loads_.empty()) scene_.model.set_point_loads(loads_);
+  step_motion_.nodes = in.doubles("step nodes");
+  step_motion_.positions = in.doubles("step node positions");
+  step_motion_.velocities = in.doubles("step node velocities");
+  two_node_steps_ = in.u64("two-node steps");
+  substepped_steps_ = in.u64("substepped steps");
+  mbd::IntegratorStatistics totals;
+  totals.steps = in.u64("integrator steps");
+  totals.newton_iterations = in.u64("Newton iterations");
+  totals.jacobian_evaluations = in.u64("Jacobians");
+  totals.factorisations = in.u64("factorisations");
+  totals.retries = in.u64("retries");
+  integrator_.set_statistics(totals);
+  integrator_.reset();
+}
+
 std::optional<double> StructureSide::position_constraint_drift() const {
   if (!finite(state_)) return std::nullopt;
   return mbd::position_constraint_drift(scene_.model, state_);

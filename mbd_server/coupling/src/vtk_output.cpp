@@ -76,6 +76,24 @@ void VtkOutput::write(const ParticleSnapshot& particles, const mbd::Model& model
   write_centre_lines(particles.step, model, state);
 }
 
+void VtkOutput::save_state(output::StateWriter& out) const {
+  fluid_.save_state(out);
+  boundary_.save_state(out);
+  bodies_.save_state(out);
+  out.put(beams_.has_value());
+  if (beams_) beams_->save_state(out);
+}
+
+void VtkOutput::restore_state(output::StateReader& in) {
+  fluid_.restore_state(in);
+  boundary_.restore_state(in);
+  bodies_.restore_state(in);
+  if (in.boolean("beam series")) {
+    beams_.emplace(directory_, "beams", "vtp");
+    beams_->restore_state(in);
+  }
+}
+
 void VtkOutput::write_centre_lines(std::uint64_t step, const mbd::Model& model,
                                    const mbd::State& state) {
   output::CentreLineFrame lines;

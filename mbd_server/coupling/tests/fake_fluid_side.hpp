@@ -8,6 +8,8 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 #include "fsi/common/error.hpp"
@@ -56,6 +58,9 @@ class FakeFluidSide final : public FluidSide {
     set_up_vertex_values = positions.size();
     if (particle_count == 0) particle_count = scene.fluid.count();
     density_ = scene.fluid.density;
+    probe_columns_ = 0;
+    for (const auto& probe : scene.probes)
+      probe_columns_ += probes::columns(probe, scene.dimension).size();
     const auto dynamic_values =
         static_cast<long>(dimension_) * static_cast<long>(scene.boundary.dynamic_vertex_count);
     initial_.positions.assign(positions.begin(), positions.begin() + dynamic_values);
@@ -75,6 +80,12 @@ class FakeFluidSide final : public FluidSide {
 
   FluidForces exchange(const BoundaryMotion& motion) override {
     exchanges.push_back(motion);
+    // A fluid with a memory: the forces lag the boundary's motion by a first-order filter, so
+    // that a resume that lost the fluid's state would not continue the same way.
+    double sum = 0.0;
+    for (double x : motion.positions)
+      sum += x;
+    memory_ = 0.9 * memory_ + 0.1 * sum;
     if (fail_at_step && motion.step == *fail_at_step) {
       throw Error("the fake fluid fails at step " + std::to_string(motion.step), "fake fluid side",
                   "nothing to fix");
@@ -98,6 +109,35 @@ class FakeFluidSide final : public FluidSide {
 
   void finish() override { ++finish_calls; }
 
+  // Checkpoints: the fake fluid's state is its memory, bit for bit.
+  bool can_checkpoint() const override { return checkpoints_supported; }
+  std::string checkpoint(std::uint64_t step) override {
+    checkpoint_steps.push_back(step);
+    return std::string(reinterpret_cast<const char*>(&memory_), sizeof memory_);
+  }
+  FluidReady resume(const scene::Scene& scene, const std::vector<double>& positions,
+                    const std::vector<double>& velocities, std::uint64_t step, double time,
+                    std::string_view state) override {
+    ++resume_calls;
+    resumed_at = {step, time};
+    set_up(scene, positions, velocities);
+    --set_up_calls;
+    if (state.size() != sizeof memory_)
+      throw Error("the fake fluid's state has the wrong size", "fake fluid side", "none");
+    std::copy(state.begin(), state.end(), reinterpret_cast<char*>(&memory_));
+    FluidReady ready;
+    ready.particle_count = particle_count;
+    ready.liggghts_version = "fake";
+    return ready;
+  }
+  bool checkpoints_supported = true;
+  // How much the fluid's memory (a filtered sum of the boundary positions) adds to every force
+  // value; 0: a fluid without memory.
+  double memory_coupling = 0.0;
+  std::vector<std::uint64_t> checkpoint_steps;
+  int resume_calls = 0;
+  std::pair<std::uint64_t, double> resumed_at{};
+
   void report_fault(const std::exception& failure, bool during_coupled_steps) noexcept override {
     reported_faults.emplace_back(failure.what());
     faults_during_coupled_steps.push_back(during_coupled_steps);
@@ -107,6 +147,8 @@ class FakeFluidSide final : public FluidSide {
   FluidForces forces_for(const BoundaryMotion& motion) const {
     FluidForces result;
     result.forces = law_(motion);
+    for (double& f : result.forces)
+      f += memory_coupling * memory_;
     for (std::size_t i = 0; i < result.forces.size(); ++i) {
       result.diagnostics.force_on_structure[i % static_cast<std::size_t>(dimension_)] +=
           result.forces[i];
@@ -114,6 +156,7 @@ class FakeFluidSide final : public FluidSide {
     for (int k = 0; k < 3; ++k)
       result.diagnostics.force_on_fluid[k] = -result.diagnostics.force_on_structure[k];
     result.diagnostics.particle_count = particle_count;
+    result.probe_values.assign(probe_columns_, memory_);  // the probes read the memory
     result.diagnostics.closest_approach_over_r0 = 1.0;
     if (report_health) {
       protocol::FluidHealth health;
@@ -131,6 +174,8 @@ class FakeFluidSide final : public FluidSide {
   ForceLaw law_;
   BoundaryMotion initial_;  // the dynamic vertices at set-up (step 0)
   double density_ = 0.0;    // the scene's rho0
+  double memory_ = 0.0;     // the filtered sum of the boundary positions
+  std::size_t probe_columns_ = 0;
 };
 
 }  // namespace fsi::coupling::testing

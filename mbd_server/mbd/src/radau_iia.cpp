@@ -413,6 +413,10 @@ void RadauIIA::reset() {
   work_->factorised = false;
 }
 
+void RadauIIA::set_statistics(const IntegratorStatistics& statistics) {
+  work_->statistics = statistics;
+}
+
 const StepStages& RadauIIA::last_step_stages() const {
   return work_->last_stages;
 }

@@ -92,7 +92,18 @@ std::vector<BlockSpec> core_blocks() {
                   integer("snapshot_every_steps",
                           "request an SPH particle snapshot every N steps (0: never)")
                       .at_least(0)
-                      .with_default(0)}),
+                      .with_default(0),
+                  integer("checkpoint_every_steps",
+                          "write a checkpoint of both sides every N steps, the newest two kept "
+                          "in OUTPUT/checkpoints (0: not by steps; docs/user-guide.md, "
+                          "\"Checkpoints and resume\")")
+                      .at_least(0)
+                      .with_default(0),
+                  number("checkpoint_every_seconds", "s",
+                         "also write a checkpoint when this much wall-clock time has passed "
+                         "since the last one (0: not by time)")
+                      .at_least(0.0)
+                      .with_default(1800.0)}),
       block_spec("Gravity", "Uniform gravitational acceleration.",
                  {per_dimension(vector("acceleration", 2, "m/s^2",
                                        "acceleration vector ([x, y]; 3D: [x, y, z], default 0)"))
@@ -161,6 +172,14 @@ void check_substeps(SceneBuilder& builder) {
             " is not a multiple of the substeps" + fix_hint,
         "make snapshot_every_steps a multiple of substeps (or 0)");
   }
+  if (scene.output.checkpoint_every_steps % k != 0) {
+    builder.problem(
+        scene.solver.substeps_location,
+        "Output.checkpoint_every_steps = " + std::to_string(scene.output.checkpoint_every_steps) +
+            " is not a multiple of the substeps" + fix_hint +
+            ": checkpoints are taken at the ends of structure steps",
+        "make checkpoint_every_steps a multiple of substeps (or 0)");
+  }
   const std::uint64_t steps = scene.solver.step_count();
   if (steps % static_cast<std::uint64_t>(k) != 0) {
     builder.problem(scene.solver.substeps_location,
@@ -179,6 +198,8 @@ void build_core(SceneBuilder& builder) {
   builder.guard(root.location(), [&] {
     scene.output.sensor_every_steps = root.block("Output").integer("sensor_every_steps");
     scene.output.snapshot_every_steps = root.block("Output").integer("snapshot_every_steps");
+    scene.output.checkpoint_every_steps = root.block("Output").integer("checkpoint_every_steps");
+    scene.output.checkpoint_every_seconds = root.block("Output").number("checkpoint_every_seconds");
     check_substeps(builder);
   });
   builder.guard(root.location(), [&] {

@@ -17,6 +17,8 @@ class Stopwatch {
   }
   double seconds() const { return total_; }
   void reset() { total_ = 0.0; }
+  // Continues the total of an earlier process (a resumed run).
+  void add(double seconds) { total_ += seconds; }
 
  private:
   Clock::time_point started_{Clock::now()};

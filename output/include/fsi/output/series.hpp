@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "fsi/output/state_archive.hpp"
+
 namespace fsi::output {
 
 // The text of a .pvd collection: one DataSet per (time, file) with a timestep attribute.
@@ -28,6 +30,11 @@ class Series {
 
   std::filesystem::path index_path() const;
   const std::vector<CollectionEntry>& entries() const { return entries_; }
+
+  // Checkpoints: the entries so far. restore_state rewrites the index with them and removes the
+  // series' files that are not among them (written after the checkpoint by the run resumed).
+  void save_state(StateWriter& out) const;
+  void restore_state(StateReader& in);
 
  private:
   std::filesystem::path directory_;

@@ -39,6 +39,9 @@ class StateReader {
   // Throws unless the next section is `name`.
   void section(std::string_view name);
   std::uint64_t u64(std::string_view what);
+  // A number of values that follow (each at least one byte): refused when more than the bytes
+  // left, so that a damaged count never allocates.
+  std::uint64_t count(std::string_view what);
   double f64(std::string_view what);
   bool boolean(std::string_view what);
   std::string text(std::string_view what);

@@ -21,6 +21,8 @@
 #include <string>
 #include <vector>
 
+#include "fsi/output/state_archive.hpp"
+
 namespace fsi::coupling {
 
 // The coupling injects energy when the accumulated coupling energy exceeds this fraction of the
@@ -82,6 +84,10 @@ class EnergyAudit {
   const std::string& stop() const { return stop_; }
   // The step at which the stop growth was exceeded, if it was.
   std::optional<std::uint64_t> stopped_at() const { return stopped_at_; }
+
+  // Checkpoints: everything the audit carries from exchange to exchange, bit for bit.
+  void save_state(output::StateWriter& out) const;
+  void restore_state(output::StateReader& in);
 
  private:
   std::vector<double> positions_;

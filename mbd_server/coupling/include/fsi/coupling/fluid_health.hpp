@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "fsi/coupling/fluid_side.hpp"
+#include "fsi/output/state_archive.hpp"
 #include "fsi/scene/scene.hpp"
 
 namespace fsi::coupling {
@@ -77,6 +78,10 @@ class FluidHealthMonitor {
   void record_failed_check(std::string check) { record_.failed_check = std::move(check); }
   const scene::FluidHealthLimits& limits() const { return limits_; }
   std::uint64_t allowed_lost_particles() const { return allowed_lost_; }
+
+  // Checkpoints: the record, the warnings given and the particle count losses are counted from.
+  void save_state(output::StateWriter& out) const;
+  void restore_state(output::StateReader& in);
 
  private:
   std::optional<HealthFinding> non_finite(std::uint64_t step, const FluidForces& forces) const;

@@ -10,6 +10,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "fsi/coupling/output.hpp"
@@ -88,6 +89,23 @@ class FluidSide {
   virtual FluidForces exchange(const BoundaryMotion& motion) = 0;
   // Every particle at the end of `step`.
   virtual ParticleSnapshot snapshot(std::uint64_t step) = 0;
+  // Checkpoints (issue 16; docs/user-guide.md, "Checkpoints and resume"): the fluid's complete
+  // state at the end of the exchange of `step`, as bytes only the fluid side reads back
+  // (resume()). The fluid then goes on from exactly the state a resume from these bytes starts
+  // in, so a resumed run continues bit for bit. Throws fsi::Error when the fluid side cannot
+  // (the default: a fluid side without checkpoints).
+  virtual std::string checkpoint(std::uint64_t step);
+  // Whether checkpoint() and resume() work (a client of protocol 1.6 or later).
+  virtual bool can_checkpoint() const { return false; }
+  // A resumed run, in place of set_up() and equilibrate(): sets the fluid up from a checkpoint's
+  // bytes around the whole boundary (static vertices included) at the checkpoint's `step` and
+  // `time`. The returned Ready's initial forces and release are not used. Throws fsi::Error
+  // when the fluid side cannot (the default).
+  virtual FluidReady resume(const scene::Scene& scene,
+                            const std::vector<double>& boundary_positions,
+                            const std::vector<double>& boundary_velocities, std::uint64_t step,
+                            double time, std::string_view fluid_state);
+
   // The end time is reached: the fluid side closes its resources in good order.
   virtual void finish() = 0;
   // The run ends because of `failure` (during_coupled_steps: after equilibration). Never throws:

@@ -11,6 +11,8 @@
 #include <span>
 #include <vector>
 
+#include "fsi/output/state_archive.hpp"
+
 namespace fsi::coupling {
 
 class ForcePredictor {
@@ -21,6 +23,10 @@ class ForcePredictor {
   // average is returned as it is (there is no slope yet). The span stays valid until the next
   // call.
   std::span<const double> apply(std::span<const double> average);
+
+  // Checkpoints: the last average (the slope's start), bit for bit.
+  void save_state(output::StateWriter& out) const;
+  void restore_state(output::StateReader& in);
 
  private:
   int substeps_;

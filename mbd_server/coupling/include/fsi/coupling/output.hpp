@@ -3,7 +3,9 @@
 // and particle snapshots (snapshots/particles_<step>.csv, each written whole or not at all).
 
 #include <chrono>
+#include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -17,14 +19,18 @@ void create_run_folder(const std::string& folder);
 
 class SensorFile {
  public:
-  // names/units exclude the time column.
+  // names/units exclude the time column. resume_at: a resumed run continues the file of the run
+  // it resumes, cut back to the length it had at the checkpoint (rows written after it go); the
+  // file must exist with the same header and at least that length, else fsi::Error says so.
   SensorFile(const std::string& path, const std::string& title,
-             const std::vector<std::string>& names, const std::vector<std::string>& units);
+             const std::vector<std::string>& names, const std::vector<std::string>& units,
+             std::optional<std::uint64_t> resume_at = std::nullopt);
   // One column per sensor of the scene, named and united as declared, then the probes' columns
   // (fsi::probes::columns) in `dimension`.
   SensorFile(const std::filesystem::path& path, const std::string& title,
              const std::vector<scene::SensorSpec>& sensors,
-             const std::vector<probes::ProbeDefinition>& probes = {}, int dimension = 2);
+             const std::vector<probes::ProbeDefinition>& probes = {}, int dimension = 2,
+             std::optional<std::uint64_t> resume_at = std::nullopt);
   ~SensorFile();
   SensorFile(const SensorFile&) = delete;
   SensorFile& operator=(const SensorFile&) = delete;
@@ -33,6 +39,9 @@ class SensorFile {
   // naming the file when the system refuses the write (a full disk).
   void write(double time, const std::vector<double>& values);
   void flush();
+  // Flushes and returns the file's length: whole rows up to the last one written (a checkpoint
+  // records it, a resume cuts the file back to it).
+  std::uint64_t length();
 
  private:
   // The file holds whole rows only: rows are written whole, and a write the disk refuses is cut

@@ -25,7 +25,9 @@ namespace fsi::coupling {
 // Version 5: "energy_audit", the works exchanged by the coupling (energy_audit.hpp).
 // Version 6: "started_utc"; run.json is written when the run starts too ("status": "started"
 // until the end is recorded), always whole (a temporary name and a rename).
-inline constexpr int kRunManifestFormatVersion = 6;
+// Version 7: "checkpoints" (interval, how many written, the last step) and "resumes" (each resume
+// of the run: when, from which checkpoint).
+inline constexpr int kRunManifestFormatVersion = 7;
 
 // Now, as run.json's "started_utc" writes it: "2026-12-02T11:40:12Z".
 std::string utc_now();
@@ -67,6 +69,23 @@ struct EnergyAuditSummary {
   std::optional<std::uint64_t> stopped_at;  // the step whose coupling energy stopped the run
 };
 
+// A resume of the run (fsi-server --resume): when, and from which checkpoint.
+struct ResumeRecord {
+  std::string utc;
+  std::uint64_t step = 0;          // the checkpoint's
+  std::string checkpoint;          // its folder name
+  std::uint32_t client_ranks = 0;  // the fluid side's ranks after the resume (0: unknown)
+};
+
+// The run's checkpoints (OUTPUT/checkpoints).
+struct CheckpointRecord {
+  long every_steps = 0;
+  double every_seconds = 0.0;
+  std::uint64_t written = 0;  // by this run, resumed processes included
+  std::optional<std::uint64_t> last_step;
+  double seconds_writing = 0.0;  // both sides' time for them
+};
+
 struct RunRecord {
   RunMode mode = RunMode::Coupled;
   std::string command_line;
@@ -89,6 +108,8 @@ struct RunRecord {
   std::optional<ReleaseCheck> release;
   std::optional<HealthSummary> health;             // coupled runs only
   std::optional<EnergyAuditSummary> energy_audit;  // coupled runs that began their steps
+  std::optional<CheckpointRecord> checkpoints;     // coupled runs
+  std::vector<ResumeRecord> resumes;               // in order
 };
 
 // Writes DIR/run.json whole or not at all (a reader never sees a part of it). Throws fsi::Error

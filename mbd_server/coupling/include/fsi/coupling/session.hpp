@@ -35,6 +35,9 @@ struct ServerOptions {
   // times a second (a terminal's status line) and an empty string when the coupled phase ends.
   std::chrono::milliseconds progress_interval{std::chrono::seconds(10)};
   std::function<void(const std::string&)> live_status;
+  // fsi-server --resume: continue the run in output_dir from its newest complete checkpoint
+  // (docs/user-guide.md, "Checkpoints and resume").
+  bool resume = false;
   std::string command_line;           // recorded in run.json
   std::vector<std::string> warnings;  // the scene's physics warnings, recorded in run.json
 };

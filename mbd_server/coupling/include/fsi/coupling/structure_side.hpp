@@ -18,6 +18,7 @@
 #include "fsi/mbd/adaptive_radau.hpp"
 #include "fsi/mbd/ida.hpp"
 #include "fsi/mbd/integrator.hpp"
+#include "fsi/output/state_archive.hpp"
 #include "fsi/scene/mesh_crossing.hpp"
 #include "fsi/scene/scene.hpp"
 
@@ -75,6 +76,14 @@ class StructureSide {
   // applied by then (the fluid's forces on the initial configuration); the state the first step
   // starts from keeps its own.
   std::vector<double> initial_sensor_readout(const std::array<double, 3>& total_fluid_force) const;
+
+  // Checkpoints (issue 16; docs/user-guide.md, "Checkpoints and resume"): the state, the point
+  // loads held over the next step, the last step's motion and the statistics, bit for bit.
+  // save_state also drops the integrator's kept Newton matrix, so that the next step is the same
+  // whether this process goes on or a resumed one does. Only the fixed-step method of coupled
+  // runs is checkpointed; restore_state throws fsi::Error when the state does not fit the scene.
+  void save_state(output::StateWriter& out);
+  void restore_state(output::StateReader& in);
 
   const mbd::State& state() const { return state_; }
   double time() const { return state_.time; }

@@ -26,6 +26,10 @@ class VtkOutput {
   void write(const ParticleSnapshot& particles, const mbd::Model& model, const mbd::State& state,
              const scene::BoundaryMesh& boundary, std::span<const double> fluid_forces);
 
+  // Checkpoints: every series' entries (restore_state removes the files written after it).
+  void save_state(output::StateWriter& out) const;
+  void restore_state(output::StateReader& in);
+
   // Polyline segments per beam element in beams.pvd (each element's centre line is a cubic).
   static constexpr int kCentreLineSamplesPerElement = 8;
 

@@ -120,8 +120,12 @@ class RadauIIA {
   // the release time; the returned statistics sum the parts.
   StepStatistics step(const ConstrainedSystem& system, State& state, double step_size);
 
-  // Drops the kept factorisation; needed only after changing the model's structure in place.
+  // Drops the kept factorisation; needed after changing the model's structure in place, and at
+  // a checkpoint: the next step then starts from a fresh Newton matrix, as a resumed run's does
+  // (bit for bit the same steps afterwards).
   void reset();
+  // Continues the totals of an earlier process (a resumed run).
+  void set_statistics(const IntegratorStatistics& statistics);
 
   // The stage values of the last step taken; of its last part when a release split it (the
   // parts' start_time then lies inside the step). The last node's values are the step's end

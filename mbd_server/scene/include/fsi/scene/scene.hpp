@@ -63,6 +63,10 @@ struct SolverSettings {
 struct OutputSettings {
   long sensor_every_steps = 1;
   long snapshot_every_steps = 0;  // 0: no particle snapshots
+  // Checkpoints of both sides (issue 16): every N coupled steps (0: not by steps) and when this
+  // much wall-clock time has passed since the last one (0: not by time).
+  long checkpoint_every_steps = 0;
+  double checkpoint_every_seconds = 1800.0;
 };
 
 // The structure's surface as the fluid sees it. 2D: mesh vertex k is model marker k; dynamic
