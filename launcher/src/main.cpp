@@ -110,10 +110,16 @@ int main(int argc, char** argv) {
   app.add_option("--np", ranks, "Number of MPI ranks of fsi-client")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
-  app.add_option("--output", output,
-                 "Output folder of the run (created). A folder that holds an earlier run's "
-                 "results is refused, naming that run, unless --overwrite")
-      ->required();
+  auto* output_option = app.add_option(
+      "--output", output,
+      "Output folder of the run (created). A folder that holds an earlier run's results is "
+      "refused, naming that run, unless --overwrite");
+  std::string resume;
+  app.add_option("--resume", resume,
+                 "Continue the run in this folder from its newest complete checkpoint (the same "
+                 "scene and --set; --np may differ); in place of --output")
+      ->excludes(output_option)
+      ->check(CLI::ExistingDirectory);
   bool overwrite = false;
   app.add_flag("--overwrite", overwrite,
                "Replace the results of an earlier run in --output (its run.json, sensors.csv, "
@@ -145,6 +151,11 @@ int main(int argc, char** argv) {
                  "authenticate each other (default: none)")
       ->check(CLI::ExistingFile);
   CLI11_PARSE(app, argc, argv);
+  if (resume.empty() && output.empty()) {
+    std::fprintf(stderr, "fsi-run: --output DIR (a new run) or --resume DIR is required\n");
+    return 2;
+  }
+  if (!resume.empty()) output = resume;
 
   const fs::path bin = own_directory();
   const fs::path server = bin / "fsi-server";
@@ -159,7 +170,7 @@ int main(int argc, char** argv) {
   // Before anything is written into the folder (the port file below): the server refuses too,
   // but only after this launcher has touched the folder.
   try {
-    fsi::output::claim_run_folder(output, overwrite);
+    if (resume.empty()) fsi::output::claim_run_folder(output, overwrite);
   } catch (const fsi::Error& refused) {
     std::fprintf(stderr, "fsi-run: error: %s\n", refused.what());
     return 2;
@@ -179,8 +190,14 @@ int main(int argc, char** argv) {
   sigaction(SIGINT, &action, nullptr);
   sigaction(SIGTERM, &action, nullptr);
 
-  std::vector<std::string> server_command{
-      server.string(), scene, "--output", output, "--port", "0", "--port-file", port_file.string()};
+  std::vector<std::string> server_command{server.string(),
+                                          scene,
+                                          resume.empty() ? "--output" : "--resume",
+                                          output,
+                                          "--port",
+                                          "0",
+                                          "--port-file",
+                                          port_file.string()};
   for (const std::string& item : overrides) {
     server_command.push_back("--set");
     server_command.push_back(item);

@@ -78,12 +78,11 @@ class FixFsiSph : public LAMMPS_NS::Fix {
     const ParticleArrays evaluated =
         box.any() ? images_.extend(particles, box, boundary.positions(), range) : particles;
     try {
-      boundary.diagnostics =
-          boundary.dimension == 3
-              ? contact3d_.compute(boundary.mesh3d, evaluated, boundary.vertex_forces,
-                                   &boundary.samples)
-              : contact_.compute(boundary.mesh, evaluated, boundary.vertex_forces,
-                                 &boundary.samples);
+      boundary.diagnostics = boundary.dimension == 3
+                                 ? contact3d_.compute(boundary.mesh3d, evaluated,
+                                                      boundary.vertex_forces, &boundary.samples)
+                                 : contact_.compute(boundary.mesh, evaluated,
+                                                    boundary.vertex_forces, &boundary.samples);
       if (box.any()) images_.fold_forces(particles);
     } catch (const NonFiniteParticle& bad) {
       const std::size_t index = box.any() ? images_.origin(bad.index) : bad.index;
@@ -144,11 +143,25 @@ class FixFsiSph : public LAMMPS_NS::Fix {
 
 constexpr const char* kGhostSyncId = "fsi_ghost_sync";
 
+// The density's rate at a set-up: LIGGGHTS' set-up clears drho with the forces, and the
+// continuity fix computes it in pre_force only, which a set-up does not call, so the first step
+// after every set-up (a `run` with set-up, a new time step, a checkpoint) would leave the density
+// unchanged. Measured on the coarse static tank: 0.19 % of the largest speed after 500 steps
+// against a run without the set-up; with the rate recomputed here, round-off (1e-13).
+constexpr const char* kContinuityStyle = "sph/density/continuity";
+
 class FixGhostSync : public LAMMPS_NS::Fix {
  public:
   FixGhostSync(LAMMPS_NS::LAMMPS* lammps, int argc, char** argv) : Fix(lammps, argc, argv) {}
   int setmask() override { return LAMMPS_NS::FixConst::PRE_FORCE; }
-  void setup_pre_force(int /*vflag*/) override { comm->forward_comm(); }
+  void setup_pre_force(int vflag) override {
+    comm->forward_comm();
+    // Last in the fix list (ensure_ghost_sync_last): the ghosts are current for the rate.
+    for (int i = 0; i < modify->nfix; ++i) {
+      if (std::strcmp(modify->fix[i]->style, kContinuityStyle) == 0)
+        modify->fix[i]->pre_force(vflag);
+    }
+  }
   void pre_force(int /*vflag*/) override { comm->forward_comm(); }
 };
 

@@ -115,6 +115,15 @@ SnapshotRequest seed(std::type_identity<SnapshotRequest>) {
 Snapshot seed(std::type_identity<Snapshot>) {
   return {42, 4.2e-4, 2, {5, 9}, {0.1, 0.2, 0.3, 0.4}, {0, 0, 0, 0}, {1000, 1001}, {0.0, 12.5}};
 }
+CheckpointRequest seed(std::type_identity<CheckpointRequest>) {
+  return {420};
+}
+FluidState seed(std::type_identity<FluidState>) {
+  return {420, 2, std::string("FSIF\0\x01 records", 14)};
+}
+Resume seed(std::type_identity<Resume>) {
+  return {420, 4.2e-3, std::string("FSIF\0\x01 records", 14)};
+}
 Shutdown seed(std::type_identity<Shutdown>) {
   return {"end time reached"};
 }

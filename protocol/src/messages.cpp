@@ -206,6 +206,22 @@ void layout(auto& io, MessageOf<Snapshot> auto& m) {
   io.array("pressure", m.pressure);
 }
 
+void layout(auto& io, MessageOf<CheckpointRequest> auto& m) {
+  io.scalar("step", m.step);
+}
+
+void layout(auto& io, MessageOf<FluidState> auto& m) {
+  io.scalar("step", m.step);
+  io.scalar("particle_count", m.particle_count);
+  io.text("state", m.state);
+}
+
+void layout(auto& io, MessageOf<Resume> auto& m) {
+  io.scalar("step", m.step);
+  io.scalar("time", m.time);
+  io.text("state", m.state);
+}
+
 void layout(auto& io, MessageOf<Shutdown> auto& m) {
   io.text("reason", m.reason);
 }

@@ -67,6 +67,15 @@ SnapshotRequest sample_snapshot_request() {
 Snapshot sample_snapshot() {
   return {100, 0.0005, 2, {5, 9}, {0, 1, 2, 3}, {4, 5, 6, 7}, {1000, 1001}, {0, 12.5}};
 }
+CheckpointRequest sample_checkpoint_request() {
+  return {1200};
+}
+FluidState sample_fluid_state() {
+  return {1200, 3, std::string("state\0with zeros\xff", 17)};
+}
+Resume sample_resume() {
+  return {1200, 0.012, std::string("state\0with zeros\xff", 17)};
+}
 Shutdown sample_shutdown() {
   return {"end time reached"};
 }
@@ -127,6 +136,9 @@ std::vector<Message> all_samples() {
           sample_fluid_health(),
           sample_snapshot_request(),
           sample_snapshot(),
+          sample_checkpoint_request(),
+          sample_fluid_state(),
+          sample_resume(),
           sample_shutdown(),
           sample_goodbye()};
 }

@@ -21,6 +21,7 @@
 
 #include "fault_relay.hpp"
 #include "fluid_probes.hpp"
+#include "fluid_state.hpp"
 #include "fsi/common/error.hpp"
 #include "fsi/common/stopwatch.hpp"
 #include "fsi/common/version.hpp"
@@ -43,6 +44,7 @@ struct SetupData {
   protocol::Setup setup;
   protocol::Mesh mesh;
   protocol::Particles particles;
+  std::optional<protocol::Resume> resume;      // protocol 1.6: a resumed run, in place of Settling
   std::optional<protocol::Settling> settling;  // protocol 1.2, when both sides agreed
   std::optional<protocol::ProbeSetup> probes;  // protocol 1.3, when both sides agreed
 };
@@ -225,7 +227,7 @@ class ClientSession {
     handshake.session_capabilities =
         protocol::kCapabilitySettling | protocol::kCapabilityFluidHealth |
         protocol::kCapabilityProbes | protocol::kCapabilityMovingProbes |
-        protocol::kCapabilityMultiRate;
+        protocol::kCapabilityMultiRate | protocol::kCapabilityCheckpoint;
     const protocol::ClientHandshakeResult opened = protocol::open_session(*channel_, handshake);
     capabilities_ = opened.capabilities;
     heartbeat_ = std::make_unique<protocol::HeartbeatSender>(
@@ -308,8 +310,25 @@ class ClientSession {
     data.setup = expect_message<protocol::Setup>("set-up");
     data.mesh = expect_message<protocol::Mesh>("set-up (mesh)");
     data.particles = expect_message<protocol::Particles>("set-up (particles)");
-    if ((capabilities_ & protocol::kCapabilitySettling) != 0) {
-      data.settling = expect_message<protocol::Settling>("set-up (settling)");
+    // Settling for a new run (1.2); a Resume (1.6) for a run resumed from a checkpoint.
+    const bool settling = (capabilities_ & protocol::kCapabilitySettling) != 0;
+    const bool resumable = (capabilities_ & protocol::kCapabilityCheckpoint) != 0;
+    if (settling || resumable) {
+      protocol::Message next = next_message();
+      if (auto* resume = std::get_if<protocol::Resume>(&next); resume && resumable) {
+        data.resume = std::move(*resume);
+      } else if (auto* settled = std::get_if<protocol::Settling>(&next); settled && settling) {
+        data.settling = std::move(*settled);
+      } else if (auto* error = std::get_if<protocol::ErrorMessage>(&next)) {
+        throw protocol::PeerReportedError(error->code, error->text,
+                                          "fsi-server, during set-up (settling)");
+      } else {
+        throw protocol::UnexpectedMessageError(
+            std::string("expected a ") + (settling ? "Settling" : "Resume") +
+                " message but received " + protocol::name(protocol::type_of(next)),
+            "fsi-client, during set-up (settling)",
+            "use matching fsi-server and fsi-client releases");
+      }
     }
     if ((capabilities_ & protocol::kCapabilityProbes) != 0) {
       data.probes = expect_message<protocol::ProbeSetup>("set-up (probes)");
@@ -341,15 +360,13 @@ class ClientSession {
     initial_velocities_ = mesh.velocities;
   }
 
-  void prepare_fluid(const SetupData& data) {
-    Stopwatch setup_watch;
-    setup_watch.start();
+  // The scene's variables, then script 1 with the scene's particles created right after its
+  // create_box; checks that the particles and the fsi/sph fix exist.
+  void run_script1(const SetupData& data) {
     std::vector<std::pair<std::string, std::string>> variables;
-    for (const auto& variable : data.setup.liggghts_variables) {
+    for (const auto& variable : data.setup.liggghts_variables)
       variables.emplace_back(variable.name, variable.value);
-    }
     driver_->define_variables(variables);
-
     ParticleBlock particles;
     particles.dimension = static_cast<int>(data.particles.dimension);
     particles.atom_type = static_cast<int>(data.particles.atom_type);
@@ -378,6 +395,16 @@ class ClientSession {
           "structure",
           data.setup.script1_name, "add the fix (docs/fix_fsi_sph.md)");
     }
+  }
+
+  void prepare_fluid(const SetupData& data) {
+    if (data.resume) {
+      resume_fluid(data);
+      return;
+    }
+    Stopwatch setup_watch;
+    setup_watch.start();
+    run_script1(data);
     // Equilibration (thesis §5.4.2): the structure rests in its initial configuration.
     std::fill(boundary_->velocities().begin(), boundary_->velocities().end(), 0.0);
     driver_->set_time_step(data.setup.time_step);
@@ -435,6 +462,55 @@ class ClientSession {
     }
     if (data.probes && !data.probes->probes.empty()) prepare_probes(*data.probes, data.particles);
     send_forces(0, 0.0, 0.0);
+  }
+
+  // A resumed run (1.6; docs/user-guide.md, "Checkpoints and resume"): the scripts on the scene's
+  // particles as in a new run but no equilibration, then the fluid of the checkpoint in their
+  // place (fluid_state.hpp); the boundary is the Mesh's, at the checkpoint. The next run sets up.
+  void resume_fluid(const SetupData& data) {
+    Stopwatch setup_watch;
+    setup_watch.start();
+    run_script1(data);
+    driver_->set_time_step(data.setup.time_step);
+    driver_->run_script(data.setup.script2_name, data.setup.script2_text);
+    driver_->set_time_step(data.setup.time_step);
+    driver_->run_with_setup(0);
+    restore_fluid_state(driver_->lammps(), mpi_.communicator(), data.resume->state);
+    time_step_ = data.setup.time_step;
+    dimension_ = static_cast<int>(data.setup.dimension);
+    last_time_ = data.resume->time;
+    const double seconds_setup = setup_watch.stop();
+    const std::uint64_t count = driver_->particle_count();
+    setup_busy_ = {};
+    spdlog::info(
+        "resumed at step {} (t = {:.9g} s): {} of {} particles on this rank; set-up "
+        "{:.2f} s",
+        data.resume->step, data.resume->time, driver_->local_particle_count(), count,
+        seconds_setup);
+    if (mpi_.root()) {
+      protocol::Ready ready;
+      ready.particle_count = count;
+      ready.liggghts_version = "LIGGGHTS 3.8 (Debian libliggghts)";
+      ready.seconds_setup = seconds_setup;
+      send(ready);
+    }
+    if (data.probes && !data.probes->probes.empty()) prepare_probes(*data.probes, data.particles);
+  }
+
+  // A checkpoint (1.6): the fluid's state to the server, and this process continues from the
+  // very state a resume from it starts in (restored from its own bytes), so that a resumed run
+  // goes on bit for bit like this one (docs/user-guide.md, "Checkpoints and resume").
+  void write_checkpoint(const protocol::CheckpointRequest& request) {
+    if ((capabilities_ & protocol::kCapabilityCheckpoint) == 0) {
+      throw protocol::UnexpectedMessageError(
+          "fsi-server asked for a checkpoint, but checkpoints were not agreed",
+          "fsi-client, checkpoint of step " + std::to_string(request.step),
+          "use matching fsi-server and fsi-client releases");
+    }
+    std::string state = capture_fluid_state(driver_->lammps(), mpi_.communicator());
+    restore_fluid_state(driver_->lammps(), mpi_.communicator(), state);
+    const std::uint64_t count = driver_->particle_count();
+    if (mpi_.root()) send(protocol::FluidState{request.step, count, std::move(state)});
   }
 
   // The scene's probes over LIGGGHTS' particles, with the kernel and h of the scripts (collective).
@@ -686,6 +762,9 @@ class ClientSession {
         steps += motion->substeps;
       } else if (auto* placement = std::get_if<protocol::ProbePlacement>(&message)) {
         move_probes(*placement);
+      } else if (auto* checkpoint = std::get_if<protocol::CheckpointRequest>(&message)) {
+        auto writing = busy();
+        write_checkpoint(*checkpoint);
       } else if (auto* request = std::get_if<protocol::SnapshotRequest>(&message)) {
         auto gathering = busy();
         Snapshot snapshot = driver_->gather_snapshot(dimension_);
@@ -723,7 +802,8 @@ class ClientSession {
                                           "fsi-server, during the coupled steps");
       } else {
         throw protocol::UnexpectedMessageError(
-            "expected a Step, StepMotion, ProbePlacement, SnapshotRequest or Shutdown message but "
+            "expected a Step, StepMotion, ProbePlacement, SnapshotRequest, CheckpointRequest or "
+            "Shutdown message but "
             "received " +
                 protocol::name(protocol::type_of(message)),
             "fsi-client, during the coupled steps",

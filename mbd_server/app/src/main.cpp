@@ -68,7 +68,8 @@ class TerminalSink : public spdlog::sinks::base_sink<std::mutex> {
 // stderr is not a terminal, to stderr; on a terminal stderr gets the live status line instead.
 // Returns the terminal sink when stderr is a terminal (and live is wanted), else nullptr.
 std::shared_ptr<TerminalSink> configure_logging(const std::string& level,
-                                                const std::string& log_file, bool live) {
+                                                const std::string& log_file, bool live,
+                                                bool append = false) {
   std::shared_ptr<TerminalSink> terminal;
   spdlog::sink_ptr console;
   if (live && isatty(STDERR_FILENO)) {
@@ -81,7 +82,7 @@ std::shared_ptr<TerminalSink> configure_logging(const std::string& level,
   std::vector<spdlog::sink_ptr> progress_sinks;
   if (!terminal) progress_sinks.push_back(console);
   if (!log_file.empty()) {
-    sinks.push_back(std::make_shared<spdlog::sinks::basic_file_sink_mt>(log_file, true));
+    sinks.push_back(std::make_shared<spdlog::sinks::basic_file_sink_mt>(log_file, !append));
     progress_sinks.push_back(sinks.back());
   }
   auto logger = std::make_shared<spdlog::logger>("fsi-server", sinks.begin(), sinks.end());
@@ -197,6 +198,7 @@ struct CommandLine {
   std::string scene_file;
   std::string output;
   bool overwrite = false;
+  std::string resume;  // --resume DIR: the run folder to continue
   int port = 0;
   std::string port_file;
   std::string listen = "127.0.0.1";
@@ -229,6 +231,11 @@ void declare_run_options(CLI::App& app, CommandLine& line) {
   app.add_flag("--overwrite", line.overwrite,
                "Replace the results of an earlier run in --output (its run.json, sensors.csv, "
                "energy.csv, logs, snapshots/, vtk/, plots/; other files stay; default: off)");
+  app.add_option("--resume", line.resume,
+                 "Continue the run in this folder from its newest complete checkpoint "
+                 "(checkpoints/; Output.checkpoint_every_steps or checkpoint_every_seconds): the "
+                 "same scene and --set, a client started as usual (any rank count); sensors.csv "
+                 "and the series go on from the checkpoint. Takes the place of --output");
   app.add_option("--set", line.overrides,
                  "Override a scene parameter, KEY=EXPR (repeatable; default: none)");
   app.add_flag("--check", line.check_only,
@@ -379,6 +386,7 @@ fsi::coupling::ServerOptions server_options(const CommandLine& line, const Scene
   options.port = static_cast<std::uint16_t>(line.port);
   options.port_file = line.port_file;
   options.output_dir = line.output;
+  options.resume = !line.resume.empty();
   options.accept_timeout = milliseconds(line.accept_timeout);
   options.peer_timeout = milliseconds(line.peer_timeout);
   options.progress_interval = milliseconds(line.progress_interval);
@@ -410,13 +418,27 @@ int run(fsi::scene::Scene& scene, const CommandLine& line, const SceneNotes& not
                  scene.file.c_str());
     return 2;
   }
-  // Before anything is written: the folder must not hold another run's results.
+  // Before anything is written: the folder must not hold another run's results (a resume
+  // continues the run it holds).
   std::optional<fsi::output::EarlierRun> earlier;
-  try {
-    earlier = fsi::output::claim_run_folder(line.output, line.overwrite);
-    if (earlier) fsi::output::remove_earlier_run(line.output);
-  } catch (const fsi::Error& refused) {
-    spdlog::error("{}", refused.what());
+  if (line.resume.empty()) {
+    try {
+      earlier = fsi::output::claim_run_folder(line.output, line.overwrite);
+      if (earlier) fsi::output::remove_earlier_run(line.output);
+    } catch (const fsi::Error& refused) {
+      spdlog::error("{}", refused.what());
+      return 2;
+    }
+  } else if (!std::filesystem::is_directory(line.output)) {
+    spdlog::error(
+        "--resume {}: no such run folder\n  how to fix: give --resume the --output "
+        "folder of the run to continue",
+        line.output);
+    return 2;
+  } else if (line.mbd_only) {
+    spdlog::error(
+        "--resume continues coupled runs; an --mbd-only run has no checkpoints\n  how "
+        "to fix: run it again without --resume");
     return 2;
   }
   const std::filesystem::path log_file = std::filesystem::path(line.output) / "fsi-server.log";
@@ -428,7 +450,7 @@ int run(fsi::scene::Scene& scene, const CommandLine& line, const SceneNotes& not
     return 2;
   }
   const std::shared_ptr<TerminalSink> terminal =
-      configure_logging(line.log_level, log_file.string(), !line.no_live);
+      configure_logging(line.log_level, log_file.string(), !line.no_live, !line.resume.empty());
   if (earlier) {
     spdlog::info("replaced the files of an earlier run in {} ({}){}", line.output,
                  earlier->summary(), earlier->has_results() ? " (--overwrite)" : "");
@@ -474,6 +496,17 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
   for (int i = 0; i < argc; ++i)
     line.text += (i ? " " : "") + std::string(argv[i]);
+  if (!line.resume.empty()) {
+    if (!line.output.empty() && std::filesystem::path(line.output).lexically_normal() !=
+                                    std::filesystem::path(line.resume).lexically_normal()) {
+      std::fprintf(stderr,
+                   "fsi-server: --resume %s and --output %s name different folders\n  fix: give "
+                   "--resume the run folder alone (it is the output folder)\n",
+                   line.resume.c_str(), line.output.c_str());
+      return 2;
+    }
+    line.output = line.resume;
+  }
 
   if (line.help_params) {
     std::cout << fsi::scene::render_help(fsi::scene::scene_schema());

@@ -54,7 +54,7 @@ void TcpFluidSide::connect() {
   handshake.session_capabilities = protocol::kCapabilitySettling |
                                    protocol::kCapabilityFluidHealth | protocol::kCapabilityProbes |
                                    protocol::kCapabilityMovingProbes |
-                                   protocol::kCapabilityMultiRate;
+                                   protocol::kCapabilityMultiRate | protocol::kCapabilityCheckpoint;
   const protocol::ServerHandshakeResult opened = protocol::accept_client(*channel_, handshake);
   const protocol::Hello& hello = opened.hello;
   client_ = hello;
@@ -70,7 +70,84 @@ void TcpFluidSide::connect() {
 
 void TcpFluidSide::set_up(const scene::Scene& scene, const std::vector<double>& boundary_positions,
                           const std::vector<double>& boundary_velocities) {
+  send_setup_and_mesh(scene, boundary_positions, boundary_velocities);
+  send_particles(scene);
+  if (settling_agreed()) {
+    protocol::Settling settling;
+    settling.gravity = scene.gravity;
+    settling.column_height = scene.fluid.column_height;
+    settling.drag_rate = scene.liggghts.settling_drag.value_or(protocol::kAutomaticDragRate);
+    settling.initial_densities = scene.fluid.densities;
+    channel_->send(settling);
+  } else {
+    spdlog::warn(
+        "fsi-client speaks protocol {}: the fluid settles without the drag, starts at rho0 "
+        "everywhere (no hydrostatic start) and is not checked at release (use an fsi-client of "
+        "protocol 1.2 or later)",
+        protocol::version_text(channel_->peer_major(), channel_->peer_minor()));
+  }
+  send_probes(scene);
+}
+
+FluidReady TcpFluidSide::resume(const scene::Scene& scene,
+                                const std::vector<double>& boundary_positions,
+                                const std::vector<double>& boundary_velocities, std::uint64_t step,
+                                double time, std::string_view fluid_state) {
   connect();
+  if (!can_checkpoint()) {
+    throw Error("fsi-client " + client_->software_version + " (protocol " +
+                    protocol::version_text(channel_->peer_major(), channel_->peer_minor()) +
+                    ") cannot resume a run (capability 'checkpoint' of protocol 1.6)",
+                "resume of " + scene.file + " with fsi-client at " + channel_->peer_description(),
+                "use an fsi-client of protocol 1.6 or later (the release of this fsi-server)");
+  }
+  send_setup_and_mesh(scene, boundary_positions, boundary_velocities);
+  // The scene's particles as in a new run (its scripts may need them), then their state.
+  send_particles(scene);
+  channel_->send(protocol::Resume{step, time, std::string(fluid_state)});
+  send_probes(scene);
+  const protocol::Ready ready = expect_ready();
+  FluidReady result;
+  result.particle_count = ready.particle_count;
+  result.liggghts_version = ready.liggghts_version;
+  result.seconds_setup = ready.seconds_setup;
+  return result;
+}
+
+std::string TcpFluidSide::checkpoint(std::uint64_t step) {
+  channel_->send(protocol::CheckpointRequest{step});
+  auto reply = channel_->expect<protocol::FluidState>(options_.peer_timeout);
+  if (reply.step != step) {
+    throw Error("the FluidState of step " + std::to_string(reply.step) + " arrived, step " +
+                    std::to_string(step) + " was asked for",
+                "checkpoint", "use matching fsi-server and fsi-client releases");
+  }
+  return std::move(reply.state);
+}
+
+void TcpFluidSide::send_particles(const scene::Scene& scene) {
+  protocol::Particles particles;
+  particles.dimension = static_cast<std::uint32_t>(scene.fluid.dimension);
+  particles.atom_type = static_cast<std::uint32_t>(scene.fluid.atom_type);
+  particles.mass = scene.fluid.mass;
+  particles.density = scene.fluid.density;
+  particles.positions = scene.fluid.positions;
+  particles.velocities = scene.fluid.velocities;
+  channel_->send(particles);
+}
+
+protocol::Ready TcpFluidSide::expect_ready() {
+  // Set-up and equilibration may take long: a client that sends heartbeats (1.1) is waited for
+  // as long as it computes; one of protocol 1.0 (no heartbeats) as long as it takes.
+  const bool client_heartbeats = (capabilities_ & protocol::kCapabilityHeartbeat) != 0;
+  return channel_->expect<protocol::Ready>(client_heartbeats ? std::optional(options_.peer_timeout)
+                                                             : std::nullopt);
+}
+
+void TcpFluidSide::send_setup_and_mesh(const scene::Scene& scene,
+                                       const std::vector<double>& boundary_positions,
+                                       const std::vector<double>& boundary_velocities) {
+  if (!channel_) connect();
   // Before any set-up data: an older client would otherwise run its whole set-up first.
   refuse_client_lacking(scene);
   protocol::Setup setup;
@@ -96,31 +173,6 @@ void TcpFluidSide::set_up(const scene::Scene& scene, const std::vector<double>& 
   mesh.velocities = boundary_velocities;
   mesh.element_vertices = boundary.elements();
   channel_->send(mesh);
-
-  protocol::Particles particles;
-  particles.dimension = static_cast<std::uint32_t>(scene.fluid.dimension);
-  particles.atom_type = static_cast<std::uint32_t>(scene.fluid.atom_type);
-  particles.mass = scene.fluid.mass;
-  particles.density = scene.fluid.density;
-  particles.positions = scene.fluid.positions;
-  particles.velocities = scene.fluid.velocities;
-  channel_->send(particles);
-
-  if (settling_agreed()) {
-    protocol::Settling settling;
-    settling.gravity = scene.gravity;
-    settling.column_height = scene.fluid.column_height;
-    settling.drag_rate = scene.liggghts.settling_drag.value_or(protocol::kAutomaticDragRate);
-    settling.initial_densities = scene.fluid.densities;
-    channel_->send(settling);
-  } else {
-    spdlog::warn(
-        "fsi-client speaks protocol {}: the fluid settles without the drag, starts at rho0 "
-        "everywhere (no hydrostatic start) and is not checked at release (use an fsi-client of "
-        "protocol 1.2 or later)",
-        protocol::version_text(channel_->peer_major(), channel_->peer_minor()));
-  }
-  send_probes(scene);
 }
 
 void TcpFluidSide::refuse_client_lacking(const scene::Scene& scene) const {
@@ -170,11 +222,7 @@ void TcpFluidSide::send_probes(const scene::Scene& scene) {
 }
 
 FluidReady TcpFluidSide::equilibrate() {
-  // Set-up and equilibration may take long: a client that sends heartbeats (1.1) is waited for
-  // as long as it computes; one of protocol 1.0 (no heartbeats) as long as it takes.
-  const bool client_heartbeats = (capabilities_ & protocol::kCapabilityHeartbeat) != 0;
-  const auto ready = channel_->expect<protocol::Ready>(
-      client_heartbeats ? std::optional(options_.peer_timeout) : std::nullopt);
+  const auto ready = expect_ready();
   FluidReady result;
   result.particle_count = ready.particle_count;
   result.liggghts_version = ready.liggghts_version;

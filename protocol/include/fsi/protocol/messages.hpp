@@ -42,6 +42,9 @@ inline constexpr std::uint32_t kCapabilityMovingProbes = 1u << 5;
 // 1.5: the sender sends (server) or takes (client) structure steps of several fluid steps with
 // the boundary's stage values (StepMotion; docs/theory.md, "Multi-rate coupling").
 inline constexpr std::uint32_t kCapabilityMultiRate = 1u << 6;
+// 1.6: coupled checkpoints (CheckpointRequest, FluidState) and resumes (Resume in place of
+// Particles and Settling; docs/user-guide.md, "Checkpoints and resume").
+inline constexpr std::uint32_t kCapabilityCheckpoint = 1u << 7;
 
 // The codes of an Error message (docs/protocol.md §7) as X(enumerator, value); AuthenticationFailed
 // came with 1.1.
@@ -345,6 +348,36 @@ struct Snapshot {  // client -> server: all particles, gathered on rank 0
   std::vector<double> density;     // one per id
   std::vector<double> pressure;    // one per id
   bool operator==(const Snapshot&) const = default;
+};
+
+// 1.6, capability kCapabilityCheckpoint: the fluid's complete state at the end of the exchange of
+// `step` (a checkpoint). The client answers with a FluidState and goes on from exactly the state a
+// Resume with these bytes starts in.
+struct CheckpointRequest {  // server -> client, between exchanges
+  static constexpr MessageType kType = MessageType::CheckpointRequest;
+  std::uint64_t step = 0;
+  bool operator==(const CheckpointRequest&) const = default;
+};
+
+struct FluidState {  // client -> server: opaque to the server, read back only by a client
+  static constexpr MessageType kType = MessageType::FluidState;
+  std::uint64_t step = 0;
+  std::uint64_t particle_count = 0;
+  std::string state;  // the client's bytes (sph_client/src/fluid_state.hpp)
+  bool operator==(const FluidState&) const = default;
+};
+
+// 1.6, capability kCapabilityCheckpoint: a resumed run, sent after the Particles in place of the
+// Settling. The client runs its scripts on the scene's particles as in a new run but without an
+// equilibration, then replaces the fluid by `state` (a FluidState's bytes) and answers with Ready
+// (no ReleaseState, no Forces of step 0); the next Step is step + 1 (or a StepMotion ending at
+// step + substeps).
+struct Resume {  // server -> client
+  static constexpr MessageType kType = MessageType::Resume;
+  std::uint64_t step = 0;
+  double time = 0.0;
+  std::string state;
+  bool operator==(const Resume&) const = default;
 };
 
 struct Shutdown {  // server -> client

@@ -9,7 +9,7 @@
 namespace fsi::protocol {
 
 inline constexpr std::uint16_t kMajorVersion = 1;
-inline constexpr std::uint16_t kMinorVersion = 5;
+inline constexpr std::uint16_t kMinorVersion = 6;
 
 // "1.0"
 std::string version_text(std::uint16_t major, std::uint16_t minor);

@@ -24,6 +24,13 @@ class TcpFluidSide final : public FluidSide {
   void set_up(const scene::Scene& scene, const std::vector<double>& boundary_positions,
               const std::vector<double>& boundary_velocities) override;
   FluidReady equilibrate() override;
+  std::string checkpoint(std::uint64_t step) override;
+  bool can_checkpoint() const override {
+    return (capabilities_ & protocol::kCapabilityCheckpoint) != 0;
+  }
+  FluidReady resume(const scene::Scene& scene, const std::vector<double>& boundary_positions,
+                    const std::vector<double>& boundary_velocities, std::uint64_t step, double time,
+                    std::string_view fluid_state) override;
   FluidForces exchange(const BoundaryMotion& motion) override;
   ParticleSnapshot snapshot(std::uint64_t step) override;
   void finish() override;
@@ -32,6 +39,14 @@ class TcpFluidSide final : public FluidSide {
   std::optional<FluidPeer> peer() const override;
 
  private:
+  // Connects, refuses a client that lacks what the scene needs, sends Setup and Mesh.
+  void send_setup_and_mesh(const scene::Scene& scene, const std::vector<double>& positions,
+                           const std::vector<double>& velocities);
+  // The scene's particles (a new run's, and a resumed run's before its Resume).
+  void send_particles(const scene::Scene& scene);
+  // The client's Ready after its set-up (and equilibration): waited for as long as the client
+  // sends heartbeats.
+  protocol::Ready expect_ready();
   void connect();
   FluidForces expect_forces(std::uint64_t step);
   bool settling_agreed() const { return (capabilities_ & protocol::kCapabilitySettling) != 0; }
