@@ -23,14 +23,15 @@ namespace {
 // Rank-aware logs: rank 0 logs at the chosen level to stderr and --log-file; the other ranks only
 // report warnings and errors (what one rank sees must still be told, e.g. fix fsi/sph's
 // close-approach warning for a particle of rank 1), unless --log-all-ranks, which gives each
-// rank r > 0 its own file FILE.rank<r> (one file per rank: no interleaved lines).
+// rank r > 0 its own file FILE.rank<r> (one file per rank: no interleaved lines). The files are
+// appended to: a resumed run continues the log of the run it resumes.
 void configure_logging(int rank, const std::string& level, const std::string& log_file,
                        bool all_ranks) {
   std::vector<spdlog::sink_ptr> sinks{std::make_shared<spdlog::sinks::stderr_color_sink_mt>()};
   const bool verbose = rank == 0 || all_ranks;
   if (!log_file.empty() && verbose) {
     const std::string path = rank == 0 ? log_file : log_file + ".rank" + std::to_string(rank);
-    sinks.push_back(std::make_shared<spdlog::sinks::basic_file_sink_mt>(path, true));
+    sinks.push_back(std::make_shared<spdlog::sinks::basic_file_sink_mt>(path, false));
   }
   auto logger = std::make_shared<spdlog::logger>("fsi-client", sinks.begin(), sinks.end());
   logger->set_pattern("[%H:%M:%S.%e] [fsi-client rank " + std::to_string(rank) + "] [%l] %v");
@@ -91,8 +92,8 @@ int main(int argc, char** argv) {
   std::string log_file;
   app.add_option(
       "--log-file", log_file,
-      "Also write rank 0's log to this file (fsi-run passes DIR/fsi-client.log; default: "
-      "none)");
+      "Also write rank 0's log to this file, appended (fsi-run passes DIR/fsi-client.log; a "
+      "resumed run continues it; default: none)");
   bool log_all_ranks = false;
   app.add_flag("--log-all-ranks", log_all_ranks,
                "Log on every rank, rank r > 0 into FILE.rank<r> (default: off: rank 0 logs, the "

@@ -8,9 +8,11 @@
 #include <cmath>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <limits>
 #include <optional>
+#include <thread>
 
 #include "fsi/common/error.hpp"
 #include "fsi/common/stopwatch.hpp"
@@ -119,6 +121,8 @@ class Session {
     if (status == 0) {
       spdlog::info("run completed: {} steps in {:.1f} s; results in {}", steps_done_,
                    timings_.total.seconds(), options_.output_dir);
+    } else if (options_.resume && !resumed_state_) {
+      spdlog::error("resume refused: the run in {} is as it was", options_.output_dir);
     } else {
       spdlog::error("run failed after {} coupled steps; partial results in {}", steps_done_,
                     options_.output_dir);
@@ -591,6 +595,7 @@ class Session {
     try {
       store.begin(n);
       store.add(kServerStateFile, state.bytes());
+      pause_for_tests(n);
       store.add(kFluidStateFile, fluid_state);
       const output::Checkpoint written = store.commit(structure_->time());
       ++checkpoints_written_;
@@ -609,6 +614,20 @@ class Session {
                             : "; the checkpoint of step " + std::to_string(kept.back().step) +
                                   " is intact: fsi-server --resume " + options_.output_dir +
                                   " continues from it"));
+    }
+  }
+
+  // FSI_TEST_SLOW_CHECKPOINT=STEP:SECONDS (integration tests only): the checkpoint of STEP waits
+  // that long between its two files, so that a test can kill the server in the middle of it.
+  static void pause_for_tests(std::uint64_t step) {
+    const char* hook = std::getenv("FSI_TEST_SLOW_CHECKPOINT");
+    if (hook == nullptr) return;
+    unsigned long long slow_step = 0;
+    double seconds = 0.0;
+    if (std::sscanf(hook, "%llu:%lf", &slow_step, &seconds) == 2 && slow_step == step) {
+      spdlog::warn("test hook: the checkpoint of step {} waits {} s between its files", step,
+                   seconds);
+      std::this_thread::sleep_for(std::chrono::duration<double>(seconds));
     }
   }
 

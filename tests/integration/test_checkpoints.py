@@ -1,0 +1,186 @@
+#!/usr/bin/python3
+"""Coupled checkpoints and resume (issue 16) on the coarse elastic plate, a flexible ANCF plate
+moving in LIGGGHTS' SPH water, 160 steps with a checkpoint every 40:
+
+- bitwise continuation: a run killed mid-way and resumed (`fsi-run --resume`) ends with the
+  sensors.csv, energy.csv and particle snapshot of the run that never stopped, byte for byte,
+  on 1 and on 2 ranks; the server killed (-9) in one case, the client in the other;
+- a checkpoint whose writing is killed (-9 in the middle of it) is never used: the resume takes
+  the one before and still ends byte for byte like the whole run;
+- a resume on 1 rank from the checkpoint of a 2-rank run agrees with the 2-rank run to 1e-10 of
+  each sensor's scale (the summation order only);
+- a resume of a folder without a complete checkpoint is refused, naming the folder, and leaves
+  its files as they were."""
+import hashlib
+import json
+import os
+import signal
+import subprocess
+import time
+
+from fsi_test import ENV, binary, check, cleanup, example, fail, kill_group, load_sensors, read, work_dir
+
+scene = example("elastic_plate", "elastic_plate_coarse.scene")
+overrides = ["Resolution.equilibration_steps=500", "Resolution.end_time=160*Resolution.time_step",
+             "Output.checkpoint_every_steps=40", "Output.snapshot_every_steps=80"]
+COMPARED = ["sensors.csv", "energy.csv", os.path.join("snapshots", "particles_000000160.csv")]
+work = work_dir("checkpoints")
+
+
+def fsi_run(run_dir, ranks, resume=False, env_extra=None):
+    command = [binary("fsi-run"), scene, "--np", str(ranks), "--resume" if resume else "--output",
+               run_dir]
+    for item in overrides:
+        command += ["--set", item]
+    env = dict(ENV)
+    env.update(env_extra or {})
+    log = open(run_dir + (".resume" if resume else "") + ".log", "w")
+    return subprocess.Popen(command, stdout=log, stderr=subprocess.STDOUT, env=env,
+                            start_new_session=True)
+
+
+def finish(process, what, timeout=300):
+    try:
+        status = process.wait(timeout=timeout)
+    except subprocess.TimeoutExpired:
+        kill_group(process)
+        fail(f"{what} did not end within {timeout} s")
+    return status
+
+
+def wait_for(path, process, what, timeout=120):
+    deadline = time.time() + timeout
+    while not os.path.exists(path):
+        if process.poll() is not None:
+            fail(f"{what}: the run ended ({process.returncode}) before {path} appeared")
+        if time.time() > deadline:
+            kill_group(process)
+            fail(f"{what}: {path} did not appear within {timeout} s")
+        time.sleep(0.05)
+
+
+def pid_of(pattern):
+    found = subprocess.run(["pgrep", "-f", pattern], capture_output=True, text=True).stdout.split()
+    return int(found[0]) if found else None
+
+
+def kill_program(program, run_dir):
+    """kill -9 of this run's fsi-server, or of its fsi-client rank 0 (not mpirun)."""
+    pid = pid_of(f"^{binary(program)} .*{run_dir}")
+    check(pid is not None, f"{program} of {os.path.basename(run_dir)} found to kill")
+    os.kill(pid, signal.SIGKILL)
+
+
+def check_logged(condition, message, log):
+    """check(), with the end of the run's log when it fails."""
+    if not condition:
+        fail(f"{message}\n{log[-3000:]}")
+    check(True, message)
+
+
+def same_files(a, b):
+    return {name: open(os.path.join(a, name), "rb").read() == open(os.path.join(b, name), "rb").read()
+            for name in COMPARED}
+
+
+def folder_hashes(folder):
+    hashes = {}
+    for root, _, files in os.walk(folder):
+        for name in files:
+            path = os.path.join(root, name)
+            with open(path, "rb") as handle:
+                hashes[os.path.relpath(path, folder)] = hashlib.sha256(handle.read()).hexdigest()
+    return hashes
+
+
+whole = {}
+for ranks in (1, 2):
+    run_dir = os.path.join(work, f"whole{ranks}")
+    status = finish(fsi_run(run_dir, ranks), f"the whole run on {ranks} rank(s)")
+    check_logged(status == 0, f"the whole run on {ranks} rank(s) completes ({status})",
+                 read(work, f"whole{ranks}.log"))
+    whole[ranks] = run_dir
+    check(sorted(os.listdir(os.path.join(run_dir, "checkpoints"))) == ["step-000000080", "step-000000120"],
+          f"{ranks} rank(s): the newest two checkpoints are kept ({os.listdir(os.path.join(run_dir, 'checkpoints'))})")
+
+# Killed mid-way (step 100 takes 20 s by the client's test hook, the checkpoint of step 80 is
+# written by then): the server on 1 rank, the client on 2 ranks; then resumed.
+for ranks, victim in ((1, "fsi-server"), (2, "fsi-client")):
+    run_dir = os.path.join(work, f"killed{ranks}")
+    first = fsi_run(run_dir, ranks, env_extra={"FSI_TEST_SLOW_STEP": "100:20"})
+    wait_for(os.path.join(run_dir, "checkpoints", "step-000000080"), first, f"{ranks} rank(s)")
+    time.sleep(0.5)
+    killed_at = time.time()
+    kill_program(victim, run_dir)
+    status = finish(first, "the killed run", timeout=60)
+    ended = time.time() - killed_at
+    check(status != 0 and ended < 15,
+          f"{ranks} rank(s): kill -9 of the {victim} ends the run non-zero ({status}) in {ended:.1f} s (< 15 s)")
+    status = finish(fsi_run(run_dir, ranks, resume=True), "the resumed run")
+    log = read(work, f"killed{ranks}.resume.log")
+    check_logged(status == 0, f"{ranks} rank(s): the resumed run completes ({status})", log)
+    check("resuming from" in log and "step-000000080" in log, f"{ranks} rank(s): it resumed from step 80")
+    for name, same in same_files(whole[ranks], run_dir).items():
+        check(same, f"{ranks} rank(s), {victim} killed at step 100 and resumed: {name} equals the whole run's byte for byte")
+    with open(os.path.join(run_dir, "run.json")) as handle:
+        manifest = json.load(handle)
+    check(manifest["status"] == "completed" and manifest["steps"] == 160 and len(manifest["resumes"]) == 1
+          and manifest["resumes"][0]["step"] == 80,
+          f"{ranks} rank(s): run.json records the completed run and its resume from step 80 "
+          f"({manifest['status']}, {manifest['steps']}, {manifest['resumes']})")
+
+# Killed while writing the checkpoint of step 120 (the server waits 20 s between its files by its
+# test hook): that checkpoint stays partial and is passed over; the resume takes step 80's.
+run_dir = os.path.join(work, "killed_writing")
+first = fsi_run(run_dir, 1, env_extra={"FSI_TEST_SLOW_CHECKPOINT": "120:20"})
+partial = os.path.join(run_dir, "checkpoints", "step-000000120.partial", "server.state")
+wait_for(partial, first, "the checkpoint of step 120")
+kill_program("fsi-server", run_dir)
+finish(first, "the run killed while writing a checkpoint", timeout=60)
+check(not os.path.exists(os.path.join(run_dir, "checkpoints", "step-000000120")),
+      "the checkpoint killed while being written is not complete")
+status = finish(fsi_run(run_dir, 1, resume=True), "the resume after a kill during a checkpoint")
+log = read(work, "killed_writing.resume.log")
+check_logged(status == 0 and "step-000000120.partial: unfinished" in log and "step-000000080" in log,
+             f"the resume passes over the unfinished checkpoint and takes step 80's ({status})", log)
+for name, same in same_files(whole[1], run_dir).items():
+    check(same, f"killed while writing a checkpoint, resumed from the one before: {name} equals the whole run's")
+
+# A resume on 1 rank from a 2-rank run's checkpoint.
+run_dir = os.path.join(work, "ranks_changed")
+first = fsi_run(run_dir, 2, env_extra={"FSI_TEST_SLOW_STEP": "100:20"})
+wait_for(os.path.join(run_dir, "checkpoints", "step-000000080"), first, "2 -> 1 ranks")
+time.sleep(0.5)
+kill_program("fsi-server", run_dir)
+finish(first, "the 2-rank run", timeout=60)
+status = finish(fsi_run(run_dir, 1, resume=True), "the resume on 1 rank")
+check_logged(status == 0, f"the resume on 1 rank of a 2-rank run completes ({status})",
+             read(work, "ranks_changed.resume.log"))
+one, two = load_sensors(run_dir), load_sensors(whole[2])
+worst = 0.0
+for name in two:
+    scale = max(abs(v) for v in two[name]) or 1.0
+    worst = max(worst, max(abs(a - b) for a, b in zip(one[name], two[name])) / scale)
+check(len(one["time"]) == len(two["time"]) and worst <= 1e-10,
+      f"resumed on 1 rank from a 2-rank checkpoint: {len(one['time'])} rows, the sensors differ from the "
+      f"2-rank run by {worst:.1e} of their scale (<= 1e-10)")
+
+# A folder without a complete checkpoint: refused by name, nothing changed.
+run_dir = os.path.join(work, "no_checkpoint")
+first = fsi_run(run_dir, 1, env_extra={"FSI_TEST_SLOW_STEP": "20:20"})
+wait_for(os.path.join(run_dir, "sensors.csv"), first, "a run without checkpoints")
+time.sleep(1.0)
+kill_program("fsi-server", run_dir)
+finish(first, "the run killed before its first checkpoint", timeout=60)
+before = folder_hashes(run_dir)
+status = finish(fsi_run(run_dir, 1, resume=True), "the refused resume", timeout=120)
+log = read(work, "no_checkpoint.resume.log")
+check_logged(status != 0 and "no complete checkpoint in" in log and os.path.join(run_dir, "checkpoints") in log
+             and "the run in" in log and "is as it was" in log,
+             f"a resume without a checkpoint is refused, naming the folder and that nothing changed ({status})", log)
+after = folder_hashes(run_dir)
+# Only the logs grow (a resume appends to them) and the launcher's port file is rewritten.
+changed = sorted(name for name in set(before) | set(after)
+                 if before.get(name) != after.get(name) and not name.endswith(".log") and name != "server.port")
+check(not changed, f"the refused resume changed no result file ({changed})")
+cleanup(work)
