@@ -5,6 +5,8 @@ moving in LIGGGHTS' SPH water, 160 steps with a checkpoint every 40:
 - bitwise continuation: a run killed mid-way and resumed (`fsi-run --resume`) ends with the
   sensors.csv, energy.csv and particle snapshot of the run that never stopped, byte for byte,
   on 1 and on 2 ranks; the server killed (-9) in one case, the client in the other;
+- a server with --reconnect-timeout outlives its client (kill -9): it goes back to the newest
+  checkpoint and the client started again with the same command line continues byte for byte;
 - a checkpoint whose writing is killed (-9 in the middle of it) is never used: the resume takes
   the one before and still ends byte for byte like the whole run;
 - a resume on 1 rank from the checkpoint of a 2-rank run agrees with the 2-rank run to 1e-10 of
@@ -128,6 +130,39 @@ for ranks, victim in ((1, "fsi-server"), (2, "fsi-client")):
           and manifest["resumes"][0]["step"] == 80,
           f"{ranks} rank(s): run.json records the completed run and its resume from step 80 "
           f"({manifest['status']}, {manifest['steps']}, {manifest['resumes']})")
+
+# --reconnect-timeout: the client killed at step 100 (-9), the server waits, goes back to the
+# checkpoint of step 80, and the client started again with the same command line finishes the run.
+run_dir = os.path.join(work, "reconnected")
+os.makedirs(run_dir)
+port_file = os.path.join(work, "reconnected.port")
+command = [binary("fsi-server"), scene, "--output", run_dir, "--port", "0", "--port-file", port_file,
+           "--reconnect-timeout", "60"]
+for item in overrides:
+    command += ["--set", item]
+server = subprocess.Popen(command, stdout=open(run_dir + ".server.log", "w"), stderr=subprocess.STDOUT,
+                          env=ENV, start_new_session=True)
+wait_for(port_file, server, "the server's port")
+time.sleep(0.2)
+with open(port_file) as handle:
+    port = handle.read().strip()
+client_command = ["mpirun", "--oversubscribe", "-np", "1"] + (["--allow-run-as-root"] if os.geteuid() == 0 else []) + \
+    [binary("fsi-client"), "--server", f"127.0.0.1:{port}", "--log-file", os.path.join(run_dir, "fsi-client.log")]
+first = subprocess.Popen(client_command, stdout=open(run_dir + ".client1.log", "w"), stderr=subprocess.STDOUT,
+                         env=dict(ENV, FSI_TEST_SLOW_STEP="100:20"), start_new_session=True)
+wait_for(os.path.join(run_dir, "checkpoints", "step-000000080"), server, "reconnect")
+time.sleep(0.5)
+kill_program("fsi-client", run_dir)
+finish(first, "the killed client", timeout=60)
+again = subprocess.Popen(client_command, stdout=open(run_dir + ".client2.log", "w"), stderr=subprocess.STDOUT,
+                         env=ENV, start_new_session=True)
+status = finish(server, "the server waiting for its client again")
+client_status = finish(again, "the client started again", timeout=60)
+log = read(work, "reconnected.server.log")
+check_logged(status == 0 and client_status == 0 and "the fluid side is gone" in log,
+             f"the server outlives its client and completes with the one started again ({status}, {client_status})", log)
+for name, same in same_files(whole[1], run_dir).items():
+    check(same, f"client killed and started again (--reconnect-timeout): {name} equals the whole run's byte for byte")
 
 # Killed while writing the checkpoint of step 120 (the server waits 20 s between its files by its
 # test hook): that checkpoint stays partial and is passed over; the resume takes step 80's.

@@ -204,6 +204,7 @@ struct CommandLine {
   std::string listen = "127.0.0.1";
   std::vector<std::string> overrides;
   double accept_timeout = 120.0;
+  double reconnect_timeout = 0.0;
   double peer_timeout = 300.0;
   std::string token_file;
   bool allow_unauthenticated = false;
@@ -275,6 +276,12 @@ void declare_network_options(CLI::App& app, CommandLine& line) {
                  "Seconds to wait for fsi-client to connect")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
+  app.add_option("--reconnect-timeout", line.reconnect_timeout,
+                 "Seconds to wait for fsi-client to connect again when it dies during the coupled "
+                 "steps: the run goes back to its newest checkpoint and the new client (the same "
+                 "command line) continues from there (0: the run ends with the client; default 0)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
   app.add_option("--peer-timeout", line.peer_timeout,
                  "Seconds of silence from fsi-client after which the server gives up (a stopped or "
                  "hung client). A computing client sends a heartbeat every 0.5 s, so long "
@@ -388,6 +395,7 @@ fsi::coupling::ServerOptions server_options(const CommandLine& line, const Scene
   options.output_dir = line.output;
   options.resume = !line.resume.empty();
   options.accept_timeout = milliseconds(line.accept_timeout);
+  options.reconnect_timeout = milliseconds(line.reconnect_timeout);
   options.peer_timeout = milliseconds(line.peer_timeout);
   options.progress_interval = milliseconds(line.progress_interval);
   if (terminal) {

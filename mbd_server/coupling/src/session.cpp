@@ -138,6 +138,7 @@ class Session {
     sensors_ = std::make_unique<SensorFile>(fs::path(options_.output_dir) / "sensors.csv",
                                             "fsi-server sensors of " + scene_.file, scene_.sensors,
                                             scene_.probes, scene_.dimension, sensors_length);
+    probe_columns_ = 0;
     for (const auto& probe : scene_.probes)
       probe_columns_ += probes::columns(probe, scene_.dimension).size();
     const std::string work_unit = scene_.dimension == 3 ? "J" : "J/m";
@@ -367,6 +368,20 @@ class Session {
                       ", the scene's run ends at step " + std::to_string(steps),
                   "--resume", "raise SolverOptions.end_time to continue the run beyond it");
     }
+    while (true) {
+      try {
+        steps_to_end(steps, dt, k);
+        break;
+      } catch (const std::exception& failure) {
+        if (!may_reconnect(failure)) throw;
+        roll_back(failure);
+      }
+    }
+    if (options_.live_status) options_.live_status("");
+    timings_.coupled.stop();
+  }
+
+  void steps_to_end(std::uint64_t steps, double dt, std::uint64_t k) {
     for (std::uint64_t n = steps_done_ + k; n <= steps; n += k) {
       if (g_stop_signal != 0) {
         throw Error("stopped by signal " + std::to_string(g_stop_signal.load()) + " at step " +
@@ -381,8 +396,29 @@ class Session {
       if (checkpoint_due(n, steps)) write_checkpoint(n);
       report_progress(n, steps);
     }
-    if (options_.live_status) options_.live_status("");
-    timings_.coupled.stop();
+  }
+
+  // A lost fluid side is waited for again (--reconnect-timeout) when there is a checkpoint to go
+  // back to, and not more than kMaxRollbacksPerCheckpoint times to the same one (a client that
+  // dies at the same step every time would otherwise be restarted forever).
+  static constexpr int kMaxRollbacksPerCheckpoint = 3;
+  bool may_reconnect(const std::exception& failure) {
+    if (options_.reconnect_timeout.count() <= 0 || !fluid_.peer_lost(failure)) return false;
+    if (!last_checkpoint_step_) {
+      spdlog::error("the fluid side is gone and there is no checkpoint to go back to");
+      return false;
+    }
+    if (rollback_step_ == last_checkpoint_step_) {
+      if (++rollbacks_to_step_ > kMaxRollbacksPerCheckpoint) {
+        spdlog::error("the fluid side was lost {} times after the checkpoint of step {}; giving up",
+                      kMaxRollbacksPerCheckpoint, *last_checkpoint_step_);
+        return false;
+      }
+    } else {
+      rollback_step_ = last_checkpoint_step_;
+      rollbacks_to_step_ = 1;
+    }
+    return true;
   }
 
   // Thesis Fig. 4.10: the structure moves from t(n-k) to t(n) under f(t(n-k)), the fluid follows
@@ -702,6 +738,29 @@ class Session {
       throw Error("no run folder " + options_.output_dir, "--resume",
                   "give --resume (or --output with --resume) the folder of the run to continue");
     }
+    restore_newest_checkpoint(true);
+    timings_.setup.stop();
+  }
+
+  // The fluid side is gone during the coupled steps (--reconnect-timeout): back to the newest
+  // checkpoint, its output files cut back to it, and a new fluid side set up from it (TCP: the
+  // next client that connects within the timeout, on the same port).
+  void roll_back(const std::exception& failure) {
+    spdlog::warn(
+        "the fluid side is gone ({}); back to the newest checkpoint, waiting up to {:.0f} "
+        "s for fsi-client to connect again (the same command line)",
+        failure.what(), std::chrono::duration<double>(options_.reconnect_timeout).count());
+    // The open files go first: their last rows must not land after the cut.
+    sensors_.reset();
+    energy_.reset();
+    vtk_.reset();
+    restore_newest_checkpoint(false);
+  }
+
+  // Both sides from the newest complete checkpoint: the server's state, the output files cut
+  // back to it, the fluid side resumed from its bytes. A fresh process (fsi-server --resume)
+  // also continues the timings of the run; a rollback keeps its own (the lost steps took time).
+  void restore_newest_checkpoint(bool fresh_process) {
     output::CheckpointStore& store = checkpoint_store();
     std::vector<std::string> skipped;
     const std::optional<output::Checkpoint> checkpoint = store.newest_valid(&skipped);
@@ -762,7 +821,8 @@ class Session {
     }
     for (Stopwatch* watch : {&timings_.total, &timings_.setup, &timings_.coupled, &timings_.mbd,
                              &timings_.output, &timings_.round_trip, &timings_.checkpoint}) {
-      watch->add(in.f64("timing"));
+      const double seconds = in.f64("timing");
+      if (fresh_process) watch->add(seconds);
     }
     FluidRecord& fluid = watch_.record;
     fluid.particle_count = in.u64("particles");
@@ -808,6 +868,7 @@ class Session {
     remove_snapshots_after(step);
     steps_done_ = step;
     resumes_.push_back({utc_now(), step, checkpoint->folder.filename().string(), 0});
+    last_checkpoint_step_ = step;  // the checkpoint to go back to if the fluid side is lost
     spdlog::info(
         "resuming from {} (step {}, t = {:.9g} s); sensors.csv and energy.csv cut back "
         "to it",
@@ -828,7 +889,6 @@ class Session {
                   "resume from " + checkpoint->folder.string(),
                   "check that the scripts are those of the run that wrote the checkpoint");
     }
-    timings_.setup.stop();
   }
 
   // Snapshots of steps after `step` belong to the run resumed from there and go.
@@ -915,6 +975,8 @@ class Session {
   std::optional<output::CheckpointStore> store_;
   bool checkpoints_ = false;    // the scene asks for them and the fluid side can write them
   bool resumed_state_ = false;  // a resume has taken the checkpoint's state
+  std::optional<std::uint64_t> rollback_step_;  // the checkpoint the last rollback went to
+  int rollbacks_to_step_ = 0;
   std::uint64_t checkpoints_written_ = 0;
   std::optional<std::uint64_t> last_checkpoint_step_;
   std::vector<ResumeRecord> resumes_;

@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <typeinfo>
 
 #include "fsi/common/error.hpp"
 #include "fsi/common/version.hpp"
@@ -41,11 +42,18 @@ TcpFluidSide::TcpFluidSide(const ServerOptions& options) : options_(options) {}
 TcpFluidSide::~TcpFluidSide() = default;
 
 void TcpFluidSide::connect() {
-  protocol::Listener listener(options_.listen_address, options_.port);
+  // A second connection (a client started again after the first died) comes on the same port,
+  // within the reconnect timeout.
+  const bool again = bound_port_ != 0;
+  heartbeat_.reset();
+  channel_.reset();
+  protocol::Listener listener(options_.listen_address, again ? bound_port_ : options_.port);
+  bound_port_ = listener.port();
   spdlog::info("listening on {}:{} for fsi-client (mpirun -np N fsi-client --server {}:{})",
                options_.listen_address, listener.port(), options_.listen_address, listener.port());
   if (!options_.port_file.empty()) write_port_file(options_.port_file, listener.port());
-  channel_ = std::make_unique<protocol::Channel>(listener.accept(options_.accept_timeout));
+  channel_ = std::make_unique<protocol::Channel>(
+      listener.accept(again ? options_.reconnect_timeout : options_.accept_timeout));
   protocol::ServerHandshake handshake;
   handshake.token = options_.token;
   handshake.software_version = std::string(fsi::software_version());
@@ -93,7 +101,7 @@ FluidReady TcpFluidSide::resume(const scene::Scene& scene,
                                 const std::vector<double>& boundary_positions,
                                 const std::vector<double>& boundary_velocities, std::uint64_t step,
                                 double time, std::string_view fluid_state) {
-  connect();
+  connect();  // a new connection, also after a lost one
   if (!can_checkpoint()) {
     throw Error("fsi-client " + client_->software_version + " (protocol " +
                     protocol::version_text(channel_->peer_major(), channel_->peer_minor()) +
@@ -112,6 +120,16 @@ FluidReady TcpFluidSide::resume(const scene::Scene& scene,
   result.liggghts_version = ready.liggghts_version;
   result.seconds_setup = ready.seconds_setup;
   return result;
+}
+
+bool TcpFluidSide::peer_lost(const std::exception& failure) const {
+  // The client's own report that its job was ended from outside (a rank killed), a connection
+  // that closed, or a client that fell silent; not a fault of the session (a version, an
+  // unexpected or malformed message) nor one the client would meet again.
+  if (const auto* reported = dynamic_cast<const protocol::PeerReportedError*>(&failure))
+    return reported->code() == protocol::ErrorCode::PeerAborted;
+  if (dynamic_cast<const protocol::PeerTimeoutError*>(&failure)) return true;
+  return typeid(failure) == typeid(protocol::ProtocolError);
 }
 
 std::string TcpFluidSide::checkpoint(std::uint64_t step) {

@@ -86,6 +86,10 @@ class FakeFluidSide final : public FluidSide {
     for (double x : motion.positions)
       sum += x;
     memory_ = 0.9 * memory_ + 0.1 * sum;
+    if (lose_at_step && motion.step == *lose_at_step) {
+      lose_at_step.reset();  // once: the fluid "started again" is healthy
+      throw LostFluid("the fake fluid's process is gone at step " + std::to_string(motion.step));
+    }
     if (fail_at_step && motion.step == *fail_at_step) {
       throw Error("the fake fluid fails at step " + std::to_string(motion.step), "fake fluid side",
                   "nothing to fix");
@@ -131,6 +135,14 @@ class FakeFluidSide final : public FluidSide {
     return ready;
   }
   bool checkpoints_supported = true;
+  // The exchange of this step throws LostFluid once, which peer_lost() recognises.
+  std::optional<std::uint64_t> lose_at_step;
+  struct LostFluid : std::runtime_error {
+    using std::runtime_error::runtime_error;
+  };
+  bool peer_lost(const std::exception& failure) const override {
+    return dynamic_cast<const LostFluid*>(&failure) != nullptr;
+  }
   // How much the fluid's memory (a filtered sum of the boundary positions) adds to every force
   // value; 0: a fluid without memory.
   double memory_coupling = 0.0;

@@ -119,6 +119,41 @@ TEST_F(SessionCheckpoints, AResumedRunContinuesBitForBit) {
             manifest(folder_ / "whole")["energy_audit"]["exchanges"]);
 }
 
+// --reconnect-timeout: the fluid lost at step 130 (after the checkpoint of step 72); the session
+// goes back to that checkpoint, resumes the fluid side from it and ends like the whole run. Without
+// the timeout the same loss ends the run.
+TEST_F(SessionCheckpoints, ALostFluidSideIsResumedFromTheNewestCheckpoint) {
+  ServerOptions whole;
+  whole.output_dir = (folder_ / "whole").string();
+  {
+    scene::Scene scene = elastic_plate();
+    FakeFluidSide fluid = plate_fluid();
+    ASSERT_EQ(run_session(scene, whole, fluid), 0);
+  }
+  ServerOptions options;
+  options.output_dir = (folder_ / "lost").string();
+  {
+    scene::Scene scene = elastic_plate();
+    FakeFluidSide fluid = plate_fluid();
+    fluid.lose_at_step = 130;
+    EXPECT_EQ(run_session(scene, options, fluid), 1);
+    EXPECT_EQ(fluid.resume_calls, 0);
+  }
+  fs::remove_all(folder_ / "lost");
+  options.reconnect_timeout = std::chrono::seconds(5);
+  scene::Scene scene = elastic_plate();
+  FakeFluidSide fluid = plate_fluid();
+  fluid.lose_at_step = 130;
+  ASSERT_EQ(run_session(scene, options, fluid), 0);
+  EXPECT_EQ(fluid.resume_calls, 1);
+  EXPECT_EQ(fluid.resumed_at.first, 72u);
+  for (const char* file : {"sensors.csv", "energy.csv", "vtk/beams.pvd"})
+    EXPECT_EQ(file_text(folder_ / "lost" / file), file_text(folder_ / "whole" / file)) << file;
+  const auto run = manifest(folder_ / "lost");
+  ASSERT_EQ(run["resumes"].size(), 1u);
+  EXPECT_EQ(run["resumes"][0]["step"], 72);
+}
+
 TEST_F(SessionCheckpoints, ADamagedNewestCheckpointIsPassedOver) {
   ServerOptions options;
   options.output_dir = (folder_ / "run").string();

@@ -97,6 +97,10 @@ class FluidSide {
   virtual std::string checkpoint(std::uint64_t step);
   // Whether checkpoint() and resume() work (a client of protocol 1.6 or later).
   virtual bool can_checkpoint() const { return false; }
+  // Whether `failure` means the fluid's process is gone (its connection closed or silent, its
+  // job ended from outside) rather than a fault it would meet again (a script error): then a
+  // run with a reconnect timeout rolls back and calls resume() again, which waits for a new one.
+  virtual bool peer_lost(const std::exception& /*failure*/) const { return false; }
   // A resumed run, in place of set_up() and equilibrate(): sets the fluid up from a checkpoint's
   // bytes around the whole boundary (static vertices included) at the checkpoint's `step` and
   // `time`. The returned Ready's initial forces and release are not used. Throws fsi::Error

@@ -38,6 +38,11 @@ struct ServerOptions {
   // fsi-server --resume: continue the run in output_dir from its newest complete checkpoint
   // (docs/user-guide.md, "Checkpoints and resume").
   bool resume = false;
+  // --reconnect-timeout: when the client dies during the coupled steps (its connection closes
+  // or falls silent), roll back to the newest checkpoint and wait this long for a client to
+  // connect again (on the same port), which then takes the checkpoint's fluid; zero: the run
+  // ends (docs/user-guide.md, "Checkpoints and resume").
+  std::chrono::milliseconds reconnect_timeout{0};
   std::string command_line;           // recorded in run.json
   std::vector<std::string> warnings;  // the scene's physics warnings, recorded in run.json
 };

@@ -28,6 +28,7 @@ class TcpFluidSide final : public FluidSide {
   bool can_checkpoint() const override {
     return (capabilities_ & protocol::kCapabilityCheckpoint) != 0;
   }
+  bool peer_lost(const std::exception& failure) const override;
   FluidReady resume(const scene::Scene& scene, const std::vector<double>& boundary_positions,
                     const std::vector<double>& boundary_velocities, std::uint64_t step, double time,
                     std::string_view fluid_state) override;
@@ -56,6 +57,7 @@ class TcpFluidSide final : public FluidSide {
   void send_probes(const scene::Scene& scene);
 
   ServerOptions options_;
+  std::uint16_t bound_port_ = 0;  // the port of the first connection; later ones come there
   std::unique_ptr<protocol::Channel> channel_;
   std::optional<protocol::Hello> client_;
   std::uint32_t capabilities_ = 0;
