@@ -11,11 +11,14 @@
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <limits>
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <string_view>
 #include <thread>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -48,6 +51,39 @@ struct SetupData {
   std::optional<protocol::Settling> settling;  // protocol 1.2, when both sides agreed
   std::optional<protocol::ProbeSetup> probes;  // protocol 1.3, when both sides agreed
 };
+
+// The client's half of a checkpoint (FluidState.state, Resume.state): the fluid's state and the
+// last step's rates (fluid_state.hpp), one after the other, each behind its length.
+std::string pack_checkpoint(const std::string& state, const std::string& rates) {
+  std::string bytes;
+  for (const std::string* part : {&state, &rates}) {
+    const std::uint64_t size = part->size();
+    bytes.append(reinterpret_cast<const char*>(&size), sizeof size);
+    bytes += *part;
+  }
+  return bytes;
+}
+
+std::pair<std::string_view, std::string_view> unpack_checkpoint(std::string_view bytes) {
+  std::string_view parts[2];
+  for (std::string_view& part : parts) {
+    std::uint64_t size = 0;
+    if (bytes.size() < sizeof size) break;
+    std::memcpy(&size, bytes.data(), sizeof size);
+    bytes.remove_prefix(sizeof size);
+    if (size > bytes.size()) {
+      throw Error("the checkpoint's fluid state is cut short", "Resume",
+                  "resume from another checkpoint; this one is damaged");
+    }
+    part = bytes.substr(0, size);
+    bytes.remove_prefix(size);
+  }
+  if (!bytes.empty() || parts[1].empty()) {
+    throw Error("the checkpoint's fluid state has another layout", "Resume",
+                "resume with the release that wrote the checkpoint");
+  }
+  return {parts[0], parts[1]};
+}
 
 // State the exit handler needs when LIGGGHTS ends the process with exit(1) (Error::all).
 struct ExitReport {
@@ -475,7 +511,10 @@ class ClientSession {
     driver_->run_script(data.setup.script2_name, data.setup.script2_text);
     driver_->set_time_step(data.setup.time_step);
     driver_->run_with_setup(0);
-    restore_fluid_state(driver_->lammps(), mpi_.communicator(), data.resume->state);
+    const auto [state, rates] = unpack_checkpoint(data.resume->state);
+    restore_fluid_state(driver_->lammps(), mpi_.communicator(), state);
+    driver_->run_with_setup(0);  // as after a checkpoint (write_checkpoint)
+    apply_step_rates(driver_->lammps(), mpi_.communicator(), rates);
     time_step_ = data.setup.time_step;
     dimension_ = static_cast<int>(data.setup.dimension);
     last_time_ = data.resume->time;
@@ -507,10 +546,17 @@ class ClientSession {
           "fsi-client, checkpoint of step " + std::to_string(request.step),
           "use matching fsi-server and fsi-client releases");
     }
-    std::string state = capture_fluid_state(driver_->lammps(), mpi_.communicator());
-    restore_fluid_state(driver_->lammps(), mpi_.communicator(), state);
+    LAMMPS_NS::LAMMPS& lammps = driver_->lammps();
+    const std::string state = capture_fluid_state(lammps, mpi_.communicator());
+    const std::string rates = capture_step_rates(lammps, mpi_.communicator());
+    restore_fluid_state(lammps, mpi_.communicator(), state);
+    // The set-up right here, with the walls where they were at the checkpoint (a resume does
+    // the same with the Mesh's), then the last step's forces and density rates in place of the
+    // set-up's: the next step goes on as without a checkpoint (to the summation order).
+    driver_->run_with_setup(0);
+    apply_step_rates(lammps, mpi_.communicator(), rates);
     const std::uint64_t count = driver_->particle_count();
-    if (mpi_.root()) send(protocol::FluidState{request.step, count, std::move(state)});
+    if (mpi_.root()) send(protocol::FluidState{request.step, count, pack_checkpoint(state, rates)});
   }
 
   // The scene's probes over LIGGGHTS' particles, with the kernel and h of the scripts (collective).

@@ -721,4 +721,79 @@ void restore_fluid_state(LAMMPS_NS::LAMMPS& lammps, MPI_Comm communicator, std::
   update.first_update = 0;
 }
 
+// ---- The last step's rates ---------------------------------------------------------------------
+
+namespace {
+constexpr char kRatesMagic[8] = {'F', 'S', 'I', 'R', 'A', 'T', 'E', 'S'};
+constexpr std::size_t kRateValues = 4;  // f[0..2], drho
+}  // namespace
+
+std::string capture_step_rates(LAMMPS_NS::LAMMPS& lammps, MPI_Comm communicator) {
+  constexpr const char* kWhere = "capture_step_rates";
+  const auto& atom = *lammps.atom;
+  std::vector<long long> tags;
+  std::vector<double> values;
+  for (int i = 0; i < atom.nlocal; ++i) {
+    tags.push_back(atom.tag[i]);
+    for (int k = 0; k < 3; ++k)
+      values.push_back(atom.f[i][k]);
+    values.push_back(atom.drho ? atom.drho[i] : 0.0);
+  }
+  const std::vector<long long> all_tags = gather(tags, MPI_LONG_LONG, communicator, kWhere);
+  const std::vector<double> all_values = gather(values, MPI_DOUBLE, communicator, kWhere);
+  if (rank_of(communicator) != 0) return {};
+  std::vector<std::size_t> order(all_tags.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(),
+            [&](std::size_t a, std::size_t b) { return all_tags[a] < all_tags[b]; });
+  Writer out;
+  out.put_raw(kRatesMagic, sizeof kRatesMagic);
+  out.put(static_cast<std::uint64_t>(order.size()));
+  for (std::size_t j : order) {
+    out.put(static_cast<std::int64_t>(all_tags[j]));
+    out.put_doubles(all_values.data() + kRateValues * j, kRateValues);
+  }
+  return out.take();
+}
+
+void apply_step_rates(LAMMPS_NS::LAMMPS& lammps, MPI_Comm communicator, std::string_view bytes) {
+  constexpr const char* kWhere = "apply_step_rates";
+  const std::string shared = broadcast_bytes(bytes, communicator);
+  constexpr std::size_t kRecord = sizeof(std::int64_t) + kRateValues * sizeof(double);
+  std::uint64_t count = 0;
+  const bool framed = shared.size() >= sizeof kRatesMagic + sizeof count &&
+                      std::memcmp(shared.data(), kRatesMagic, sizeof kRatesMagic) == 0;
+  if (framed) std::memcpy(&count, shared.data() + sizeof kRatesMagic, sizeof count);
+  const std::size_t begin = sizeof kRatesMagic + sizeof count;
+  auto& atom = *lammps.atom;
+  if (!framed || shared.size() != begin + count * kRecord ||
+      static_cast<long long>(count) != static_cast<long long>(atom.natoms)) {
+    throw Error("the checkpoint's step rates do not fit the fluid (" + std::to_string(count) +
+                    " records for " + std::to_string(static_cast<long long>(atom.natoms)) +
+                    " particles, " + std::to_string(shared.size()) + " bytes)",
+                kWhere, "resume from another checkpoint; this one is damaged or of another run");
+  }
+  int applied = 0;
+  for (std::uint64_t r = 0; r < count; ++r) {
+    const char* record = shared.data() + begin + r * kRecord;
+    std::int64_t tag = 0;
+    double rates[kRateValues];
+    std::memcpy(&tag, record, sizeof tag);
+    std::memcpy(rates, record + sizeof tag, sizeof rates);
+    const int i = atom.map(static_cast<int>(tag));
+    if (i < 0 || i >= atom.nlocal) continue;  // another rank's particle (or a ghost here)
+    for (int k = 0; k < 3; ++k)
+      atom.f[i][k] = rates[k];
+    if (atom.drho) atom.drho[i] = rates[3];
+    ++applied;
+  }
+  // Every particle of every rank got its rates.
+  int local = atom.nlocal - applied, total = 0;
+  MPI_Allreduce(&local, &total, 1, MPI_INT, MPI_SUM, communicator);
+  if (total != 0) {
+    throw Error(std::to_string(total) + " particle(s) found no rates in the checkpoint", kWhere,
+                "resume from another checkpoint; this one is damaged or of another run");
+  }
+}
+
 }  // namespace fsi::client

@@ -47,4 +47,15 @@ std::string capture_fluid_state(LAMMPS_NS::LAMMPS& lammps, MPI_Comm communicator
 // state differs from what was captured, or a step change with a time-dependent fix.
 void restore_fluid_state(LAMMPS_NS::LAMMPS& lammps, MPI_Comm communicator, std::string_view bytes);
 
+// The last step's rates that the next step's first half-kick uses: the force f and the density
+// rate drho of every particle, by atom id. A set-up recomputes them from the state at the step's
+// end, where the step computed them from its middle (the half-step velocities of the viscosity,
+// the continuity equation), so a set-up in mid-run would move the run off its course (measured:
+// 7e-6 of the largest speed on the coarse elastic plate per checkpoint). Captured with the state
+// (rank 0 returns the bytes) and applied after the set-up that follows a restore, on the
+// particles the restore placed; collective. apply_step_rates throws Error (all ranks) when the
+// bytes do not fit the particles.
+std::string capture_step_rates(LAMMPS_NS::LAMMPS& lammps, MPI_Comm communicator);
+void apply_step_rates(LAMMPS_NS::LAMMPS& lammps, MPI_Comm communicator, std::string_view bytes);
+
 }  // namespace fsi::client

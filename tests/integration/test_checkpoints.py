@@ -11,6 +11,8 @@ moving in LIGGGHTS' SPH water, 160 steps with a checkpoint every 40:
   the one before and still ends byte for byte like the whole run;
 - a resume on 1 rank from the checkpoint of a 2-rank run agrees with the 2-rank run to 1e-10 of
   each sensor's scale (the summation order only);
+- a checkpoint does not change the run: the whole run with checkpoints agrees with one without
+  to 1e-10 of each sensor's scale and of the largest particle speed (the summation order only);
 - a resume of a folder without a complete checkpoint is refused, naming the folder, and leaves
   its files as they were."""
 import hashlib
@@ -104,6 +106,36 @@ for ranks in (1, 2):
     whole[ranks] = run_dir
     check(sorted(os.listdir(os.path.join(run_dir, "checkpoints"))) == ["step-000000080", "step-000000120"],
           f"{ranks} rank(s): the newest two checkpoints are kept ({os.listdir(os.path.join(run_dir, 'checkpoints'))})")
+
+# A checkpoint is also a restart point of the running programs (the client restores itself from
+# its bytes and carries the last step's forces and density rates through the set-up): the run
+# must not feel it beyond the summation order.
+plain_dir = os.path.join(work, "plain")
+plain = subprocess.Popen([binary("fsi-run"), scene, "--np", "1", "--output", plain_dir,
+                          *sum((["--set", item] for item in overrides), []),
+                          "--set", "Output.checkpoint_every_steps=0", "--set", "Output.checkpoint_every_seconds=0"],
+                         stdout=open(plain_dir + ".log", "w"), stderr=subprocess.STDOUT, env=ENV,
+                         start_new_session=True)
+check_logged(finish(plain, "the run without checkpoints") == 0, "the run without checkpoints completes",
+             read(work, "plain.log"))
+check(not os.path.exists(os.path.join(plain_dir, "checkpoints")), "the run without checkpoints wrote none")
+with_them, without = load_sensors(whole[1]), load_sensors(plain_dir)
+worst = max(max(abs(a - b) for a, b in zip(with_them[name], without[name])) / (max(abs(v) for v in without[name]) or 1.0)
+            for name in without)
+
+
+def particles(run_dir):
+    with open(os.path.join(run_dir, "snapshots", "particles_000000160.csv")) as handle:
+        rows = [line.strip().split(",") for line in handle if not line.startswith("#")][1:]
+    return {int(row[0]): [float(value) for value in row[1:]] for row in rows}
+
+
+a, b = particles(whole[1]), particles(plain_dir)
+speed = max(max(abs(values[2]), abs(values[3])) for values in b.values())
+moved = max(max(abs(a[key][2] - b[key][2]), abs(a[key][3] - b[key][3])) for key in b) / speed
+check(worst <= 1e-10 and moved <= 1e-10,
+      f"checkpoints do not change the run: sensors within {worst:.1e} of their scale, particle velocities "
+      f"within {moved:.1e} of the largest speed (<= 1e-10)")
 
 # Killed mid-way (step 100 takes 20 s by the client's test hook, the checkpoint of step 80 is
 # written by then): the server on 1 rank, the client on 2 ranks; then resumed.

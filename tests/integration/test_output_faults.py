@@ -1,10 +1,12 @@
 #!/usr/bin/python3
-"""Files that cannot be written (issue 16 item 5, without checkpoints): an output folder on a
-read-only file system, and a disk that fills up during the run (a small tmpfs), end the run with
-a message naming the file, the system's reason and the fix, a non-zero exit of both programs
-within seconds, and no half-written file: run.json parses, sensors.csv holds whole rows, every
-snapshot is complete, every .pvd index is valid and names only files that exist, no temporary
-file is left. Needs root to mount the tmpfs; exits 77 (skipped) otherwise."""
+"""Files that cannot be written (issue 16 item 5): an output folder on a read-only file system,
+and a disk that fills up during the run (a small tmpfs), end the run with a message naming the
+file, the system's reason and the fix, a non-zero exit of both programs within seconds, and no
+half-written file: run.json parses, sensors.csv holds whole rows, every snapshot is complete,
+every .pvd index is valid and names only files that exist, no temporary file is left. With
+checkpoints: a disk that fills up after the first checkpoint ends the run clearly, that
+checkpoint stays intact, and once there is room again `fsi-run --resume` ends the run byte for
+byte like one that never stopped. Needs root to mount the tmpfs; exits 77 (skipped) otherwise."""
 import glob
 import json
 import os
@@ -97,6 +99,53 @@ try:
     check(pieces, f"{len(pieces)} VTK files, each complete")
     leftovers = [path for path in glob.glob(os.path.join(run_dir, "**", "*.tmp"), recursive=True)]
     check(not leftovers, f"no temporary file is left ({leftovers})")
+
+    # 3. Checkpoints on a disk that fills up after the first one (the client's test hook holds
+    # step 60 for 20 s; the test fills the disk meanwhile), then room again and a resume.
+    plate = example("elastic_plate", "elastic_plate_coarse.scene")
+    plate_set = []
+    for item in ("Resolution.equilibration_steps=500", "Resolution.end_time=160*Resolution.time_step",
+                 "Output.checkpoint_every_steps=40", "Output.snapshot_every_steps=160"):
+        plate_set += ["--set", item]
+
+    def plate_run(run_dir, how="--output", env=None):
+        return subprocess.Popen([binary("fsi-run"), plate, "--np", "1", how, run_dir, *plate_set],
+                                stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                                env=env or ENV, start_new_session=True)
+
+    whole_dir = os.path.join(output, "whole")
+    whole = plate_run(whole_dir)
+    whole_text, _ = whole.communicate(timeout=300)
+    check(whole.returncode == 0, "the plate's whole run completes" + ("" if whole.returncode == 0 else whole_text[-3000:]))
+    disk = mount("checkpoints", "size=8m")
+    run_dir = os.path.join(disk, "run")
+    first = plate_run(run_dir, env=dict(ENV, FSI_TEST_SLOW_STEP="60:20"))
+    deadline = time.time() + 120
+    while not os.path.isdir(os.path.join(run_dir, "checkpoints", "step-000000040")):
+        if time.time() > deadline or first.poll() is not None:
+            fail("the checkpoint of step 40 did not appear")
+        time.sleep(0.05)
+    # All but 48 kB: the sensor rows still fit, the checkpoint of step 80 (0.16 MB) does not.
+    filler = os.path.join(disk, "filler")
+    free = os.statvfs(disk).f_bavail * os.statvfs(disk).f_frsize
+    with open(filler, "wb") as handle:
+        handle.write(b"\0" * max(0, free - 48 * 1024))
+    text, _ = first.communicate(timeout=120)
+    named = [line for line in text.splitlines() if "No space left on device" in line]
+    ok = (first.returncode != 0 and named and "checkpoint of step 80" in text and "free space on the disk" in text
+          and "the checkpoint of step 40 is intact" in text)
+    check(ok, f"checkpoints on a full disk: the run ends ({first.returncode}) naming the checkpoint, the file, the fix "
+              f"and the intact checkpoint: {named[0].strip()[:300] if ok else text[-3000:]}")
+    kept = sorted(os.listdir(os.path.join(run_dir, "checkpoints")))
+    check(kept == ["step-000000040"], f"the checkpoint of step 40 is kept whole, the failed one removed ({kept})")
+    os.remove(filler)
+    again = plate_run(run_dir, how="--resume")
+    text, _ = again.communicate(timeout=300)
+    check(again.returncode == 0 and "resuming from" in text,
+          f"with room again, --resume completes the run ({again.returncode})" + ("" if again.returncode == 0 else text[-3000:]))
+    for name in ("sensors.csv", "energy.csv", os.path.join("snapshots", "particles_000000160.csv")):
+        with open(os.path.join(run_dir, name), "rb") as a, open(os.path.join(whole_dir, name), "rb") as b:
+            check(a.read() == b.read(), f"resumed after a full disk: {name} equals the whole run's byte for byte")
 finally:
     for path in mounts:
         subprocess.run(["umount", path], check=False)
