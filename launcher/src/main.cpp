@@ -113,11 +113,11 @@ int main(int argc, char** argv) {
   auto* output_option = app.add_option(
       "--output", output,
       "Output folder of the run (created). A folder that holds an earlier run's results is "
-      "refused, naming that run, unless --overwrite");
+      "refused, naming that run, unless --overwrite (required unless --resume)");
   std::string resume;
   app.add_option("--resume", resume,
                  "Continue the run in this folder from its newest complete checkpoint (the same "
-                 "scene and --set; --np may differ); in place of --output")
+                 "scene and --set; --np may differ); in place of --output (default: none)")
       ->excludes(output_option)
       ->check(CLI::ExistingDirectory);
   bool overwrite = false;

@@ -236,7 +236,7 @@ void declare_run_options(CLI::App& app, CommandLine& line) {
                  "Continue the run in this folder from its newest complete checkpoint "
                  "(checkpoints/; Output.checkpoint_every_steps or checkpoint_every_seconds): the "
                  "same scene and --set, a client started as usual (any rank count); sensors.csv "
-                 "and the series go on from the checkpoint. Takes the place of --output");
+                 "and the series go on from the checkpoint. Takes the place of --output (default: none)");
   app.add_option("--set", line.overrides,
                  "Override a scene parameter, KEY=EXPR (repeatable; default: none)");
   app.add_flag("--check", line.check_only,
