@@ -106,7 +106,10 @@ int main(int argc, char** argv) {
   std::vector<std::string> client_arguments;
   double client_grace = 10.0;
   std::string mpirun = "mpirun";
-  app.add_option("scene", scene, "Scene parameter file")->required()->check(CLI::ExistingFile);
+  app.add_option("scene", scene,
+                 "Scene parameter file; required, except with --resume (then the run's own, with "
+                 "its --set, from its run.json)")
+      ->check(CLI::ExistingFile);
   app.add_option("--np", ranks, "Number of MPI ranks of fsi-client")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
@@ -151,6 +154,10 @@ int main(int argc, char** argv) {
                  "authenticate each other (default: none)")
       ->check(CLI::ExistingFile);
   CLI11_PARSE(app, argc, argv);
+  if (scene.empty() && resume.empty()) {
+    std::fprintf(stderr, "fsi-run: a scene file is required (see --help)\n");
+    return 2;
+  }
   if (resume.empty() && output.empty()) {
     std::fprintf(stderr, "fsi-run: --output DIR (a new run) or --resume DIR is required\n");
     return 2;
@@ -191,13 +198,14 @@ int main(int argc, char** argv) {
   sigaction(SIGTERM, &action, nullptr);
 
   std::vector<std::string> server_command{server.string(),
-                                          scene,
                                           resume.empty() ? "--output" : "--resume",
                                           output,
                                           "--port",
                                           "0",
                                           "--port-file",
                                           port_file.string()};
+  // Without a scene, a resume takes the run's own (fsi-server reads it from run.json).
+  if (!scene.empty()) server_command.insert(server_command.begin() + 1, scene);
   for (const std::string& item : overrides) {
     server_command.push_back("--set");
     server_command.push_back(item);

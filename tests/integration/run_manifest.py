@@ -10,7 +10,7 @@ SHAPE = {
     "format": None, "format_version": None, "mode": None, "started_utc": None,
     "program": {"name": None, "version": None, "git_revision": None, "command_line": None},
     "protocol": None, "client": None,
-    "scene": {"file": None, "fnv1a64": None},
+    "scene": {"file": None, "fnv1a64": None, "overrides": None},
     "parameters": None, "parameters_flat": None, "dimension": None,
     "model": {"gravity": None, "bodies": None, "constraints": None, "integrator": None},
     "fluid": None,

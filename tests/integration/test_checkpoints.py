@@ -3,7 +3,8 @@
 moving in LIGGGHTS' SPH water, 200 steps with a checkpoint every 40 (and once on the coarse
 static tank, whose piston is prescribed):
 
-- bitwise continuation: a run killed mid-way and resumed (`fsi-run --resume`) ends with the
+- bitwise continuation: a run killed mid-way and resumed (`fsi-run --resume DIR`, on 1 rank
+  without the scene and its --set, which come from the run's run.json) ends with the
   sensors.csv, energy.csv and particle snapshot of the run that never stopped, byte for byte,
   on 1 and on 2 ranks; the server killed (-9) in one case, the client in the other;
 - a server with --reconnect-timeout outlives its client (kill -9): it goes back to the newest
@@ -32,10 +33,13 @@ COMPARED = ["sensors.csv", "energy.csv", os.path.join("snapshots", "particles_00
 work = work_dir("checkpoints")
 
 
-def fsi_run(run_dir, ranks, resume=False, env_extra=None, run_scene=None, run_overrides=None):
-    command = [binary("fsi-run"), run_scene or scene, "--np", str(ranks),
-               "--resume" if resume else "--output", run_dir]
-    for item in run_overrides or overrides:
+def fsi_run(run_dir, ranks, resume=False, env_extra=None, run_scene=None, run_overrides=None,
+            bare=False):
+    """fsi-run of the scene with its --set; `bare`: `fsi-run --np N --resume DIR` alone (the
+    scene and its --set from the run's run.json)."""
+    command = [binary("fsi-run")] + ([] if bare else [run_scene or scene]) + \
+        ["--np", str(ranks), "--resume" if resume else "--output", run_dir]
+    for item in [] if bare else run_overrides or overrides:
         command += ["--set", item]
     env = dict(ENV)
     env.update(env_extra or {})
@@ -153,7 +157,8 @@ for ranks, victim in ((1, "fsi-server"), (2, "fsi-client")):
     # its 10-s grace; a dead client is noticed at once.
     check(status != 0 and ended < 25,
           f"{ranks} rank(s): kill -9 of the {victim} ends the run non-zero ({status}) in {ended:.1f} s (< 25 s)")
-    status = finish(fsi_run(run_dir, ranks, resume=True), "the resumed run")
+    # On 1 rank as a user would type it: `fsi-run --np 1 --resume DIR`, nothing else.
+    status = finish(fsi_run(run_dir, ranks, resume=True, bare=ranks == 1), "the resumed run")
     log = read(work, f"killed{ranks}.resume.log")
     check_logged(status == 0, f"{ranks} rank(s): the resumed run completes ({status})", log)
     check("resuming from" in log and "step-000000080" in log, f"{ranks} rank(s): it resumed from step 80")

@@ -8,6 +8,7 @@
 #include <spdlog/spdlog.h>
 #include <unistd.h>
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cstdio>
@@ -224,7 +225,9 @@ struct CommandLine {
 };
 
 void declare_run_options(CLI::App& app, CommandLine& line) {
-  app.add_option("scene", line.scene_file, "Scene parameter file (*.scene); required");
+  app.add_option("scene", line.scene_file,
+                 "Scene parameter file (*.scene); required, except with --resume (then the run's "
+                 "own, with its --set, from its run.json)");
   app.add_option("--output", line.output,
                  "Output folder of the run (created): sensors.csv, run.json, fsi-server.log, "
                  "snapshots/, vtk/; required for a run. A folder that holds an earlier run's "
@@ -232,11 +235,12 @@ void declare_run_options(CLI::App& app, CommandLine& line) {
   app.add_flag("--overwrite", line.overwrite,
                "Replace the results of an earlier run in --output (its run.json, sensors.csv, "
                "energy.csv, logs, snapshots/, vtk/, plots/; other files stay; default: off)");
-  app.add_option("--resume", line.resume,
-                 "Continue the run in this folder from its newest complete checkpoint "
-                 "(checkpoints/; Output.checkpoint_every_steps or checkpoint_every_seconds): the "
-                 "same scene and --set, a client started as usual (any rank count); sensors.csv "
-                 "and the series go on from the checkpoint. Takes the place of --output (default: none)");
+  app.add_option(
+      "--resume", line.resume,
+      "Continue the run in this folder from its newest complete checkpoint "
+      "(checkpoints/; Output.checkpoint_every_steps or checkpoint_every_seconds): the "
+      "same scene and --set, a client started as usual (any rank count); sensors.csv "
+      "and the series go on from the checkpoint. Takes the place of --output (default: none)");
   app.add_option("--set", line.overrides,
                  "Override a scene parameter, KEY=EXPR (repeatable; default: none)");
   app.add_flag("--check", line.check_only,
@@ -402,6 +406,7 @@ fsi::coupling::ServerOptions server_options(const CommandLine& line, const Scene
     options.live_status = [terminal](const std::string& status) { terminal->set_status(status); };
   }
   options.command_line = line.text;
+  options.overrides = line.overrides;
   for (const fsi::scene::Diagnostic& warning : notes.run_warnings)
     options.warnings.push_back(warning.text());
   for (const fsi::scene::Diagnostic& diagnostic : notes.diagnostics) {
@@ -514,6 +519,28 @@ int main(int argc, char** argv) {
       return 2;
     }
     line.output = line.resume;
+    // `--resume DIR` alone: the scene and its --set as the run recorded them.
+    if (line.scene_file.empty()) {
+      if (!line.overrides.empty()) {
+        std::fprintf(stderr,
+                     "fsi-server: --set without a scene: give the scene with its --set, or "
+                     "neither (--resume then takes both from %s/run.json)\n",
+                     line.resume.c_str());
+        return 2;
+      }
+      try {
+        std::ifstream in(std::filesystem::path(line.resume) / "run.json");
+        const nlohmann::json run = nlohmann::json::parse(in);
+        line.scene_file = run.at("scene").at("file").get<std::string>();
+        line.overrides = run.at("scene").at("overrides").get<std::vector<std::string>>();
+      } catch (const std::exception& unreadable) {
+        std::fprintf(stderr,
+                     "fsi-server: --resume %s without a scene: its run.json does not name the "
+                     "scene (%s)\n  fix: give the scene file and its --set as the run had them\n",
+                     line.resume.c_str(), unreadable.what());
+        return 2;
+      }
+    }
   }
 
   if (line.help_params) {

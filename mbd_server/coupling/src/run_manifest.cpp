@@ -237,6 +237,7 @@ void write_run_manifest(const fs::path& output_dir, const scene::Scene& scene,
   manifest["client"] = client_entry(record.fluid);
   manifest["started_utc"] = record.started_utc.empty() ? json(nullptr) : json(record.started_utc);
   manifest["scene"] = scene_entry(scene);
+  manifest["scene"]["overrides"] = record.overrides;
   manifest["parameters"] = scene::to_json(scene.parameters);
   // With every value of a Fluid block, the derived ones too (Fluid.smoothing_length, ...).
   std::map<std::string, double> flat = scene::flatten_numbers(scene.parameters);

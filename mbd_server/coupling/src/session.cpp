@@ -908,6 +908,7 @@ class Session {
     RunRecord run;
     run.mode = RunMode::Coupled;
     run.command_line = options_.command_line;
+    run.overrides = options_.overrides;
     run.started_utc = started_utc_;
     run.warnings = options_.warnings;
     // The release warning stays in run.json's "release" entry: "warnings" lists the scene's

@@ -26,7 +26,7 @@ namespace fsi::coupling {
 // Version 6: "started_utc"; run.json is written when the run starts too ("status": "started"
 // until the end is recorded), always whole (a temporary name and a rename).
 // Version 7: "checkpoints" (interval, how many written, the last step) and "resumes" (each resume
-// of the run: when, from which checkpoint).
+// of the run: when, from which checkpoint); "scene" names the run's --set overrides.
 inline constexpr int kRunManifestFormatVersion = 7;
 
 // Now, as run.json's "started_utc" writes it: "2026-12-02T11:40:12Z".
@@ -89,6 +89,9 @@ struct CheckpointRecord {
 struct RunRecord {
   RunMode mode = RunMode::Coupled;
   std::string command_line;
+  // The --set KEY=EXPR of the run, as given (scene.overrides; a resume without a scene reads
+  // the scene's file and these back).
+  std::vector<std::string> overrides;
   std::vector<std::string> warnings;
   std::string started_utc;         // utc_now() when the run began
   std::string status = "started";  // "completed" or "failed" at the end

@@ -43,8 +43,9 @@ struct ServerOptions {
   // connect again (on the same port), which then takes the checkpoint's fluid; zero: the run
   // ends (docs/user-guide.md, "Checkpoints and resume").
   std::chrono::milliseconds reconnect_timeout{0};
-  std::string command_line;           // recorded in run.json
-  std::vector<std::string> warnings;  // the scene's physics warnings, recorded in run.json
+  std::string command_line;            // recorded in run.json
+  std::vector<std::string> overrides;  // --set KEY=EXPR, recorded in run.json (scene.overrides)
+  std::vector<std::string> warnings;   // the scene's physics warnings, recorded in run.json
 };
 
 class FluidSide;
