@@ -14,6 +14,7 @@
 #include <system_error>
 
 #include "fsi/common/error.hpp"
+#include "fsi/common/utc_time.hpp"
 #include "fsi/output/atomic_file.hpp"
 
 namespace fsi::output {
@@ -25,15 +26,6 @@ namespace {
 constexpr const char* kManifestName = "checkpoint.json";
 constexpr const char* kPartialSuffix = ".partial";
 constexpr const char* kFormatName = "fsi-checkpoint";
-
-std::string utc_now() {
-  const std::time_t now = std::time(nullptr);
-  std::tm parts{};
-  gmtime_r(&now, &parts);
-  char text[32];
-  std::strftime(text, sizeof text, "%Y-%m-%d %H:%M:%S UTC", &parts);
-  return text;
-}
 
 // The step of a folder named step-N (complete) or step-N.partial; nullopt for other names.
 std::optional<std::uint64_t> step_of(const std::string& name, bool& partial) {

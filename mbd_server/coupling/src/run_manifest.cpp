@@ -214,15 +214,6 @@ json release_entry(const std::optional<ReleaseCheck>& release) {
 
 }  // namespace
 
-std::string utc_now() {
-  const std::time_t now = std::time(nullptr);
-  std::tm parts{};
-  gmtime_r(&now, &parts);
-  char text[32];
-  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &parts);
-  return text;
-}
-
 void write_run_manifest(const fs::path& output_dir, const scene::Scene& scene,
                         const RunRecord& record) {
   json manifest;

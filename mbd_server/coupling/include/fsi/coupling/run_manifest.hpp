@@ -6,10 +6,13 @@
 #include <array>
 #include <cstdint>
 #include <filesystem>
+
 #include <optional>
 #include <string>
 #include <vector>
+#include "fsi/common/utc_time.hpp"
 
+#include "fsi/common/utc_time.hpp"
 #include "fsi/coupling/energy_audit.hpp"
 #include "fsi/coupling/fluid_health.hpp"
 #include "fsi/coupling/fluid_side.hpp"
@@ -29,8 +32,7 @@ namespace fsi::coupling {
 // of the run: when, from which checkpoint); "scene" names the run's --set overrides.
 inline constexpr int kRunManifestFormatVersion = 7;
 
-// Now, as run.json's "started_utc" writes it: "2026-12-02T11:40:12Z".
-std::string utc_now();
+// run.json's times ("started_utc", resumes) come from fsi::utc_now (fsi/common/utc_time.hpp).
 
 enum class RunMode { Coupled, MbdOnly };
 
