@@ -1,17 +1,25 @@
 // The baseline of the coupling benchmark: the scene's fluid in plain LIGGGHTS, driven exactly
 // like fsi-client does (same variables, scripts, particles, equilibration, time step), but with
 // the structure replaced by LIGGGHTS' own `fix wall/region/sph` walls around a block region, and
-// the measured steps done in one `run M`. Prints one JSON line with the loop wall time.
+// the measured steps done in one `run M`. The decomposition is fsi-client's at its set-up (the
+// grid from the fluid's extent unless script 1 names one, cuts balanced; `--balance off`:
+// LIGGGHTS' even cuts), not re-balanced during the run. Prints one JSON line with the loop wall
+// time.
 //
-//   mpirun -np N bench_plain_liggghts SCENE --steps M --region XLO XHI YLO YHI [--set KEY=EXPR]...
+//   mpirun -np N bench_plain_liggghts SCENE --steps M --region XLO XHI YLO YHI [--balance off]
+//       [--cutoff R] [--set KEY=EXPR]...
 #include <mpi.h>
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
+#include <array>
 #include <chrono>
 #include <cstdio>
 #include <regex>
 #include <string>
 
+#include "decomposition.hpp"
+#include "fluid_decomposition.hpp"
 #include "fsi/common/error.hpp"
 #include "fsi/scene/scene.hpp"
 #include "liggghts_driver.hpp"
@@ -29,6 +37,10 @@ int main(int argc, char** argv) {
   app.add_option("--steps", steps)->required();
   app.add_option("--region", region, "block XLO XHI YLO YHI of the walls")->expected(4)->required();
   app.add_option("--set", overrides);
+  std::string balance = "on";
+  app.add_option("--balance", balance)->check(CLI::IsMember({"on", "off"}));
+  std::string cutoff = "${SPH_wall_cutoff}";
+  app.add_option("--cutoff", cutoff, "cut-off of the walls (default: the scene's SPH_wall_cutoff)");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
@@ -48,8 +60,8 @@ int main(int argc, char** argv) {
     char walls[512];
     std::snprintf(walls, sizeof walls,
                   "region fsi_bench_tank block %.17g %.17g %.17g %.17g -1 1 units box\n"
-                  "fix fsi_bench_walls all wall/region/sph fsi_bench_tank ${SPH_wall_cutoff} 5.0",
-                  region[0], region[1], region[2], region[3]);
+                  "fix fsi_bench_walls all wall/region/sph fsi_bench_tank %s 5.0",
+                  region[0], region[1], region[2], region[3], cutoff.c_str());
     const std::string script1 = std::regex_replace(
         scene.liggghts.script1_text,
         std::regex(R"(fix\s+\S+\s+\S+\s+fsi/sph(?:[^\n&]*&[ \t]*\n)*[^\n]*)"), walls);
@@ -59,8 +71,31 @@ int main(int argc, char** argv) {
     particles.atom_type = scene.fluid.atom_type;
     particles.positions = scene.fluid.positions;
     particles.velocities = scene.fluid.velocities;
+    int ranks = 1;
+    MPI_Comm_size(MPI_COMM_WORLD, &ranks);
+    if (balance == "on" && ranks > 1 && !particles.positions.empty()) {
+      std::array<double, 3> lo{0.0, 0.0, 0.0};
+      std::array<double, 3> hi{0.0, 0.0, 0.0};
+      lo.fill(1e300);
+      hi.fill(-1e300);
+      const auto dimension = static_cast<std::size_t>(scene.dimension);
+      for (std::size_t i = 0; i < particles.positions.size(); ++i) {
+        lo[i % dimension] = std::min(lo[i % dimension], particles.positions[i]);
+        hi[i % dimension] = std::max(hi[i % dimension], particles.positions[i]);
+      }
+      std::array<double, 3> extent{0.0, 0.0, 0.0};
+      for (std::size_t k = 0; k < dimension; ++k)
+        extent[k] = hi[k] - lo[k];
+      driver.set_automatic_grid(
+          fsi::client::choose_processor_grid(ranks, static_cast<int>(dimension), extent));
+    }
     driver.run_script(scene.liggghts.script1_name + " (walls: wall/region/sph)", script1,
                       [&] { driver.insert_particles(particles); });
+    if (balance == "on" && ranks > 1) {
+      fsi::client::apply_cuts(driver.lammps(), fsi::client::balanced_cuts_of_particles(
+                                                   driver.lammps(), MPI_COMM_WORLD));
+      fsi::client::migrate_particles(driver.lammps());
+    }
     driver.set_time_step(scene.solver.step_size);
     driver.run_with_setup(0);
     if (scene.liggghts.equilibration_steps > 0)
@@ -73,8 +108,6 @@ int main(int argc, char** argv) {
     MPI_Barrier(MPI_COMM_WORLD);
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    int ranks = 1;
-    MPI_Comm_size(MPI_COMM_WORLD, &ranks);
     if (rank == 0) {
       std::printf("{\"particles\": %llu, \"steps\": %ld, \"ranks\": %d, \"seconds_loop\": %.6f}\n",
                   static_cast<unsigned long long>(driver.particle_count()), steps, ranks, seconds);

@@ -22,7 +22,9 @@
 #include <variant>
 #include <vector>
 
+#include "decomposition.hpp"
 #include "fault_relay.hpp"
+#include "fluid_decomposition.hpp"
 #include "fluid_probes.hpp"
 #include "fluid_state.hpp"
 #include "fsi/common/error.hpp"
@@ -412,6 +414,7 @@ class ClientSession {
     particles.velocities = data.particles.velocities;
     if (data.settling) particles.densities = data.settling->initial_densities;
     const bool have_particles = !particles.positions.empty();
+    driver_->set_automatic_grid(automatic_grid(particles));
     bool inserted = false;
     driver_->run_script(data.setup.script1_name, data.setup.script1_text, [&] {
       if (have_particles && !inserted) {
@@ -431,6 +434,113 @@ class ClientSession {
           "structure",
           data.setup.script1_name, "add the fix (docs/fix_fsi_sph.md)");
     }
+    // No forces yet to carry: the set-up run that follows builds everything.
+    if (options_.balance) balance_particles();
+    log_decomposition(have_particles);
+  }
+
+  // The processor grid for script 1 from the extent of the server's particles (docs/user-guide.md,
+  // "Ranks and balance"); none (LIGGGHTS' default from the box) when the scripts create the fluid.
+  std::optional<ProcessorGrid> automatic_grid(const ParticleBlock& particles) const {
+    if (!options_.automatic_grid || mpi_.size() < 2 || particles.positions.empty())
+      return std::nullopt;
+    const auto dimension = static_cast<std::size_t>(particles.dimension);
+    std::array<double, 3> lo{0.0, 0.0, 0.0};
+    std::array<double, 3> hi{0.0, 0.0, 0.0};
+    for (std::size_t k = 0; k < dimension; ++k) {
+      lo[k] = std::numeric_limits<double>::infinity();
+      hi[k] = -std::numeric_limits<double>::infinity();
+    }
+    for (std::size_t i = 0; i < particles.positions.size(); ++i) {
+      const std::size_t k = i % dimension;
+      lo[k] = std::min(lo[k], particles.positions[i]);
+      hi[k] = std::max(hi[k], particles.positions[i]);
+    }
+    return choose_processor_grid(mpi_.size(), particles.dimension,
+                                 {hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
+  }
+
+  // Moves the cuts between the ranks' sub-domains so that each owns an equal share of the
+  // particles, and the particles to their owners; the next run must set up (collective).
+  void balance_particles() {
+    if (mpi_.size() < 2) return;
+    LAMMPS_NS::LAMMPS& lammps = driver_->lammps();
+    apply_cuts(lammps, balanced_cuts_of_particles(lammps, mpi_.communicator()));
+    migrate_particles(lammps);
+  }
+
+  void log_decomposition(bool server_particles) const {
+    const std::vector<std::uint64_t> counts =
+        particles_per_rank(driver_->lammps(), mpi_.communicator());
+    if (!mpi_.root() || mpi_.size() < 2) return;
+    const char* grid_source = driver_->script_chose_grid() ? "script 1's processors command"
+                              : !options_.automatic_grid   ? "LIGGGHTS' default (--grid liggghts)"
+                              : server_particles
+                                  ? "automatic, from the fluid's extent"
+                                  : "LIGGGHTS' default: the scripts create the fluid";
+    std::string shares;
+    for (const std::uint64_t count : counts)
+      shares += (shares.empty() ? "" : " / ") + std::to_string(count);
+    spdlog::info(
+        "decomposition: {} ranks ({}), {} cuts {}; particles per rank {} (imbalance {:.3f})",
+        grid_text(processor_grid(driver_->lammps())), grid_source,
+        options_.balance ? "balanced" : "even", cuts_text(driver_->lammps()), shares,
+        imbalance(counts));
+  }
+
+  // Between steps (collective): when LIGGGHTS' step counter has passed a multiple of
+  // rebalance_every since the last call, compares the ranks' particle counts and re-balances
+  // when the largest exceeds rebalance_threshold times the mean. The last step's forces and
+  // density rates are carried through the set-up the move needs (fluid_state.hpp), so the run
+  // goes on as without it, to the summation order. Depends only on the step counter and the
+  // particles: a resumed run re-balances where the original did.
+  // `mark_busy`: rank 0 marks itself busy for the heartbeat while it moves particles (in the
+  // coupled phase; the set-up is busy as a whole).
+  void maybe_rebalance(bool mark_busy) {
+    const std::int64_t now = driver_->current_step();
+    const std::int64_t before = last_balance_check_;
+    last_balance_check_ = now;
+    if (!options_.balance || mpi_.size() < 2 || options_.rebalance_every == 0) return;
+    const auto every = static_cast<std::int64_t>(options_.rebalance_every);
+    if (now / every == before / every) return;
+    LAMMPS_NS::LAMMPS& lammps = driver_->lammps();
+    const double measured = imbalance(particles_per_rank(lammps, mpi_.communicator()));
+    largest_imbalance_ = std::max(largest_imbalance_, measured);
+    if (measured <= options_.rebalance_threshold) return;
+    auto balancing = mark_busy ? busy() : protocol::HeartbeatSender::Busy{};
+    Stopwatch watch;
+    watch.start();
+    const std::string rates = capture_step_rates(lammps, mpi_.communicator());
+    balance_particles();
+    driver_->run_with_setup(0);
+    apply_step_rates(lammps, mpi_.communicator(), rates);
+    seconds_rebalancing_ += watch.stop();
+    ++rebalances_;
+    const double after = imbalance(particles_per_rank(lammps, mpi_.communicator()));
+    if (mpi_.root()) {
+      spdlog::debug("re-balanced at LIGGGHTS step {}: imbalance {:.3f} -> {:.3f}; {}", now,
+                    measured, after, cuts_text(lammps));
+    }
+  }
+
+  // A checkpoint's fluid in place of this one (collective). Balanced: the fluid is placed, the
+  // cuts are set from it, and it is placed again, so that the process that writes a checkpoint
+  // and one that resumes from it hold the same particles in the same order on every rank.
+  void restore_balanced(std::string_view state) {
+    LAMMPS_NS::LAMMPS& lammps = driver_->lammps();
+    restore_fluid_state(lammps, mpi_.communicator(), state);
+    if (!options_.balance || mpi_.size() < 2) return;
+    apply_cuts(lammps, balanced_cuts_of_particles(lammps, mpi_.communicator()));
+    restore_fluid_state(lammps, mpi_.communicator(), state);
+  }
+
+  void log_balance_summary() const {
+    if (!mpi_.root() || mpi_.size() < 2 || !options_.balance) return;
+    spdlog::info(
+        "balance: {} re-balance(s) in {:.3f} s; largest imbalance found at a check {:.3f} "
+        "(threshold {:.3f}, checked every {} LIGGGHTS steps)",
+        rebalances_, seconds_rebalancing_, largest_imbalance_, options_.rebalance_threshold,
+        options_.rebalance_every);
   }
 
   void prepare_fluid(const SetupData& data) {
@@ -497,6 +607,7 @@ class ClientSession {
       }
     }
     if (data.probes && !data.probes->probes.empty()) prepare_probes(*data.probes, data.particles);
+    last_balance_check_ = driver_->current_step();
     send_forces(0, 0.0, 0.0);
   }
 
@@ -512,9 +623,10 @@ class ClientSession {
     driver_->set_time_step(data.setup.time_step);
     driver_->run_with_setup(0);
     const auto [state, rates] = unpack_checkpoint(data.resume->state);
-    restore_fluid_state(driver_->lammps(), mpi_.communicator(), state);
+    restore_balanced(state);
     driver_->run_with_setup(0);  // as after a checkpoint (write_checkpoint)
     apply_step_rates(driver_->lammps(), mpi_.communicator(), rates);
+    last_balance_check_ = driver_->current_step();
     time_step_ = data.setup.time_step;
     dimension_ = static_cast<int>(data.setup.dimension);
     last_time_ = data.resume->time;
@@ -549,7 +661,7 @@ class ClientSession {
     LAMMPS_NS::LAMMPS& lammps = driver_->lammps();
     const std::string state = capture_fluid_state(lammps, mpi_.communicator());
     const std::string rates = capture_step_rates(lammps, mpi_.communicator());
-    restore_fluid_state(lammps, mpi_.communicator(), state);
+    restore_balanced(state);
     // The set-up right here, with the walls where they were at the checkpoint (a resume does
     // the same with the Mesh's), then the last step's forces and density rates in place of the
     // set-up's: the next step goes on as without a checkpoint (to the summation order).
@@ -602,6 +714,7 @@ class ClientSession {
   void equilibrate(std::uint64_t steps) {
     constexpr double kEquilibrationReportSeconds = 10.0;
     const std::uint64_t chunk = equilibration_chunk(steps);
+    last_balance_check_ = driver_->current_step();
     const auto start = std::chrono::steady_clock::now();
     auto last_report = start;
     for (std::uint64_t done = 0; done < steps;) {
@@ -612,6 +725,7 @@ class ClientSession {
         driver_->run_continued(now_steps);
       }
       done += now_steps;
+      if (done < steps) maybe_rebalance(false);  // the fluid settles, a dam's column may move
       const auto now = std::chrono::steady_clock::now();
       if (!mpi_.root() || done == steps ||
           std::chrono::duration<double>(now - last_report).count() < kEquilibrationReportSeconds) {
@@ -799,6 +913,7 @@ class ClientSession {
         computing = {};
         send_forces(step->step, times.liggghts, times.contact);
         ++steps;
+        maybe_rebalance(true);
       } else if (auto* motion = std::get_if<protocol::StepMotion>(&message)) {
         auto computing = busy();
         slow_step_for_tests(motion->step);
@@ -806,6 +921,7 @@ class ClientSession {
         computing = {};
         send_forces(motion->step, times.liggghts, times.contact);
         steps += motion->substeps;
+        maybe_rebalance(true);
       } else if (auto* placement = std::get_if<protocol::ProbePlacement>(&message)) {
         move_probes(*placement);
       } else if (auto* checkpoint = std::get_if<protocol::CheckpointRequest>(&message)) {
@@ -842,6 +958,7 @@ class ClientSession {
           }
         }
         log_health_scan_cost(steps);
+        log_balance_summary();
         return;
       } else if (auto* error = std::get_if<protocol::ErrorMessage>(&message)) {
         throw protocol::PeerReportedError(error->code, error->text,
@@ -1004,6 +1121,11 @@ class ClientSession {
   Stopwatch health_scan_;          // the per-step health scans of this rank
   double seconds_stepping_ = 0.0;  // the coupled LIGGGHTS steps of this rank
   int dimension_ = 2;
+  // The balance (docs/user-guide.md, "Ranks and balance").
+  std::int64_t last_balance_check_ = 0;  // LIGGGHTS' step counter at the last maybe_rebalance()
+  std::uint64_t rebalances_ = 0;
+  double seconds_rebalancing_ = 0.0;
+  double largest_imbalance_ = 1.0;
 };
 
 // One connection, set-up and run. A fault ends the whole MPI job (also with --persistent: the

@@ -26,10 +26,19 @@ struct ClientOptions {
   std::optional<protocol::Token> token;
   std::string liggghts_log;  // LIGGGHTS log file (rank 0); empty: none
   bool echo_liggghts = false;
-  bool allow_unsafe_commands = false;
+  bool allow_unsafe_commands = false;  // run `shell` and files outside the run directory
   // After a successful run, wait for the next fsi-server at the same address and serve it too
   // (thesis §5.4.2 "Finalize"); connecting then waits without limit.
-  bool persistent = false;  // run `shell` and files outside the run directory
+  bool persistent = false;
+  // The balanced decomposition (docs/user-guide.md, "Ranks and balance"): the cuts between the
+  // ranks' sub-domains follow the particles (off: LIGGGHTS' even cuts); the processor grid
+  // follows the fluid's extent unless script 1 names one (`processors`).
+  bool balance = true;
+  bool automatic_grid = true;
+  // Every this many LIGGGHTS steps the ranks' particle counts are compared; when the largest is
+  // more than rebalance_threshold times the mean, the cuts move. 0: balanced at the set-up only.
+  std::uint64_t rebalance_every = 100;
+  double rebalance_threshold = 1.05;
 };
 
 // Runs the session; returns the process exit status. Faults end the whole MPI job: rank 0 tells

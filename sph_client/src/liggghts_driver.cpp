@@ -118,6 +118,13 @@ void LiggghtsDriver::run_script(const std::string& name, const std::string& text
                       "--allow-unsafe-commands if you trust the scene's author");
         }
       }
+      if (raw.front() == "processors") script_chose_grid_ = true;
+      if (raw.front() == "create_box" && !script_chose_grid_ && automatic_grid_) {
+        const ProcessorGrid& grid = *automatic_grid_;
+        lammps_->input->one(("processors " + std::to_string(grid[0]) + " " +
+                             std::to_string(grid[1]) + " " + std::to_string(grid[2]))
+                                .c_str());
+      }
       lammps_->input->one(code.c_str());
       if (raw.front() == "create_box" && after_create_box) after_create_box();
     }
@@ -221,6 +228,10 @@ void LiggghtsDriver::set_time_step(double time_step) {
 
 double LiggghtsDriver::time_step() const {
   return lammps_->update->dt;
+}
+
+std::int64_t LiggghtsDriver::current_step() const {
+  return static_cast<std::int64_t>(lammps_->update->ntimestep);
 }
 
 void LiggghtsDriver::run_with_setup(std::uint64_t steps) {

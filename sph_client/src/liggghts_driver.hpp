@@ -11,11 +11,13 @@
 #include <functional>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "decomposition.hpp"
 #include "fsi/contact/liggghts_fix.hpp"
 #include "output_capture.hpp"
 
@@ -94,6 +96,14 @@ class LiggghtsDriver {
   // Throws fsi::Error naming script:line for problems we detect before LIGGGHTS does.
   void run_script(const std::string& name, const std::string& text,
                   const std::function<void()>& after_create_box = {});
+  // The processor grid a script gets right before its create_box when it has no `processors`
+  // command of its own (docs/user-guide.md, "Ranks and balance"); unset: LIGGGHTS' default grid.
+  void set_automatic_grid(std::optional<ProcessorGrid> grid) {
+    automatic_grid_ = grid;
+    script_chose_grid_ = false;
+  }
+  // Whether the script that created the box named its processor grid itself.
+  bool script_chose_grid() const { return script_chose_grid_; }
   // Executes one LIGGGHTS command.
   void command(const std::string& line);
   // Creates the particles on the ranks owning their positions, sets per-type mass and density.
@@ -101,6 +111,8 @@ class LiggghtsDriver {
 
   void set_time_step(double time_step);
   double time_step() const;
+  // LIGGGHTS' step counter (restored with a checkpoint's fluid).
+  std::int64_t current_step() const;
   // A run with set-up: re-initialises styles and fixes (needed after changed settings, and for a
   // newly added fix), evaluates forces at the current state.
   void run_with_setup(std::uint64_t steps);
@@ -141,6 +153,8 @@ class LiggghtsDriver {
   std::shared_ptr<contact::CouplingBoundary> boundary_;
   int fsi_fix_count_ = 0;
   ScriptPosition position_;
+  std::optional<ProcessorGrid> automatic_grid_;
+  bool script_chose_grid_ = false;
 };
 
 }  // namespace fsi::client

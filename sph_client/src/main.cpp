@@ -85,6 +85,30 @@ int main(int argc, char** argv) {
   app.add_flag("--allow-unsafe-commands", options.allow_unsafe_commands,
                "Run script commands that are refused by default: 'shell' and file names outside "
                "the run directory (absolute, ~ or ..). Only for scenes you trust (default: off)");
+  std::string balance = "on";
+  app.add_option("--balance", balance,
+                 "Move the cuts between the ranks' sub-domains so that each rank owns an equal "
+                 "share of the particles, at the set-up and as the fluid moves (off: LIGGGHTS' "
+                 "even cuts; docs/user-guide.md, 'Ranks and balance')")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"on", "off"}));
+  std::string grid = "auto";
+  app.add_option("--grid", grid,
+                 "Processor grid when script 1 has no 'processors' command: auto (the fewest cuts "
+                 "through the fluid's bounding box) or liggghts (LIGGGHTS' choice from the box). "
+                 "A 'processors' command in script 1 always wins")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"auto", "liggghts"}));
+  app.add_option("--rebalance-every", options.rebalance_every,
+                 "Compare the ranks' particle counts every this many LIGGGHTS steps and re-balance "
+                 "when the largest exceeds --rebalance-threshold times the mean; 0: balance at the "
+                 "set-up only")
+      ->capture_default_str();
+  app.add_option("--rebalance-threshold", options.rebalance_threshold,
+                 "Largest particle count over the mean that is tolerated before a re-balance "
+                 "(at least 1)")
+      ->capture_default_str()
+      ->check(CLI::Range(1.0, 1e9));
   std::string log_level = "info";
   app.add_option("--log-level", log_level, "trace, debug, info, warn, error")
       ->capture_default_str()
@@ -127,6 +151,8 @@ int main(int argc, char** argv) {
     MPI_Finalize();
     return 2;
   }
+  options.balance = balance == "on";
+  options.automatic_grid = grid == "auto";
   options.host = server.substr(0, colon);
   if (!token_file.empty()) {
     try {

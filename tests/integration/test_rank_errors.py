@@ -36,7 +36,8 @@ def script(name, text):
     return path
 
 
-# The box is split along x at 0.025 m (processors * 1 1); the fluid reaches x = 0.0484 m.
+# fsi-client splits the fluid along x at its median (about 0.024 m; docs/user-guide.md "Ranks and
+# balance"); the fluid reaches x = 0.0484 m.
 RANK1_ONLY = script("rank1_only.in2", SCRIPT2 + """
 # Only particles right of x = 0.045 m lie outside this region; only rank 1 owns them.
 region      keep block -0.005 0.045 ${ymin} ${ymax} -${zhalf} ${zhalf} units box

@@ -1,0 +1,114 @@
+#!/usr/bin/python3
+"""Strong scaling 1 -> 2 ranks, and what the balanced decomposition buys (docs/user-guide.md,
+"Ranks and balance"; docs/performance.md, "Ranks and balance").
+
+Cases (`--case`):
+  dam_break  Martin & Moyce's column, `--resolution` particles across it (2 r^2 particles; 158:
+             49 928); script 1 splits along x, the column stands in the left tenth of the tank.
+  box_3d     the 3D hydrostatic box, `--resolution` particles across its 12 mm (h = 1.2 d, dt
+             scaled with d; 56: about 10^5 particles), the grid chosen by the client.
+All runs in one invocation, on the same particles: coupled (fsi-run) on 1 rank; on 2 ranks
+balanced (the default); on 2 ranks with `--balance off` (LIGGGHTS' even cuts: for the dam break,
+rank 0 holds the whole column). Prints the coupled phase's wall time per step, the decomposition
+lines of the client's log and the speed-ups 2 ranks / 1 rank. Not a pass/fail test; the machine
+should be otherwise idle.
+
+The ratio coupled / plain LIGGGHTS is bench/static_tank_overhead.py's (--np 1 and 2): LIGGGHTS'
+own wall/region/sph walls, its baseline's walls, let the dam break's particles through at this
+resolution ("Particle on or inside fix wall/region/sph surface" within 400 steps).
+
+  bench/balance.py [--case dam_break|box_3d] [--resolution R] [--steps 1000]
+                   [--equilibration-steps 100] [--build build]
+"""
+import argparse
+import json
+import os
+import subprocess
+import sys
+import tempfile
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
+           OMPI_MCA_rmaps_base_oversubscribe="1")
+SCENES = {"dam_break": os.path.join(ROOT, "examples", "dam_break", "martin_moyce.scene"),
+          "box_3d": os.path.join(ROOT, "examples", "hydrostatic_box_3d", "hydrostatic_box_3d.scene")}
+
+
+def case_overrides(case, resolution, steps, equilibration_steps):
+    """(overrides, time step, resolution's description) of a case."""
+    if case == "dam_break":
+        # dt c / h = 0.092 as in every resolution of the example (dt = 2.5e-5 s at 10 columns).
+        time_step = 2.5e-5 * 10 / resolution
+        overrides = [f"Resolution.columns={resolution}", f"Resolution.time_step={time_step:.6g}",
+                     f"Resolution.equilibration_steps={equilibration_steps}",
+                     f"Resolution.end_time={steps}*Resolution.time_step",
+                     "Resolution.snapshot_every_steps=0", "Resolution.sensor_every_steps=100"]
+        return overrides, time_step, f"{resolution} particles across the column"
+    # The example: d = 1 mm (12 across), h = 1.2 d, dt = 2.5e-5 s; all three scale with d.
+    spacing = 0.012 / resolution
+    time_step = float(f"{2.5e-5 * spacing / 0.001:.6g}")
+    prefix = "LIGGGHTS_SPH_parameters."
+    overrides = [f"{prefix}particlespacing={spacing:.9g}", f"{prefix}smoothinglength={1.2 * spacing:.9g}",
+                 f"SolverOptions.Timeint.step_size={time_step:.9g}",
+                 f"LIGGGHTS.equilibration_steps={equilibration_steps}",
+                 f"SolverOptions.end_time={steps * time_step:.9g}",
+                 "Output.snapshot_every_steps=0", "Output.sensor_every_steps=100",
+                 # A timing run: the lattice has not settled after 100 steps (|rho/rho0 - 1| up to
+                 # 4.5 % at release), which the health check would stop at its 3 %.
+                 "FluidHealth.max_density_deviation=0.1"]
+    return overrides, time_step, f"{resolution} particles across the box (d = {1e3 * spacing:.4g} mm)"
+
+
+def coupled(bin_dir, folder, scene, name, ranks, overrides, client_args):
+    run_dir = os.path.join(folder, name)
+    command = [os.path.join(bin_dir, "fsi-run"), scene, "--np", str(ranks), "--output", run_dir]
+    for item in overrides:
+        command += ["--set", item]
+    for item in client_args:
+        command += ["--client-arg", item]
+    subprocess.run(command, env=ENV, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    with open(os.path.join(run_dir, "run.json")) as handle:
+        run = json.load(handle)
+    with open(os.path.join(run_dir, "fsi-client.log")) as handle:
+        log = handle.read()
+    decomposition = [line.split("] ", 3)[-1] for line in log.splitlines() if "decomposition:" in line
+                     or "balance:" in line]
+    return run, decomposition
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--case", choices=sorted(SCENES), default="dam_break")
+    parser.add_argument("--resolution", type=int, default=None,
+                        help="particles across the column (dam_break, default 158) or the box (box_3d, default 56)")
+    parser.add_argument("--steps", type=int, default=400, help="coupled steps measured")
+    parser.add_argument("--equilibration-steps", type=int, default=100)
+    parser.add_argument("--build", default=os.path.join(ROOT, "build"))
+    args = parser.parse_args()
+    bin_dir = os.path.join(args.build, "bin")
+    resolution = args.resolution or (158 if args.case == "dam_break" else 56)
+    overrides, time_step, described = case_overrides(args.case, resolution, args.steps, args.equilibration_steps)
+    with tempfile.TemporaryDirectory(prefix="fsi_bench_balance_") as folder:
+        runs = {}
+        for name, ranks, client_args in (("np1", 1, []), ("np2", 2, []), ("np2_even", 2, ["--balance=off"])):
+            runs[name] = coupled(bin_dir, folder, SCENES[args.case], name, ranks, overrides, client_args)
+
+    particles = runs["np1"][0]["fluid"]["particle_count"]
+    print(f"{args.case}, {described}: {particles} particles, "
+          f"{args.steps} coupled steps after {args.equilibration_steps} of equilibration, dt = {time_step:.4g} s")
+    seconds = {}
+    for name, (run, decomposition) in runs.items():
+        t = run["timings_seconds"]
+        seconds[name] = t["coupled_phase"]
+        print(f"  coupled {name}: {t['coupled_phase']:.3f} s = {1e3 * t['coupled_phase'] / run['steps']:.3f} ms/step "
+              f"(LIGGGHTS {t['liggghts']:.3f} s, contact fix {t['contact_fix']:.3f} s, communication "
+              f"{t['communication']:.3f} s, MBD {t['mbd']:.3f} s); equilibration "
+              f"{t['client_equilibration']:.3f} s")
+        for line in decomposition:
+            print(f"      {line}")
+    print(f"speed-up 2 ranks / 1 rank, coupled, balanced: {seconds['np1'] / seconds['np2']:.3f}")
+    print(f"speed-up 2 ranks / 1 rank, coupled, even cuts: {seconds['np1'] / seconds['np2_even']:.3f}")
+
+
+if __name__ == "__main__":
+    sys.exit(main())
