@@ -4,7 +4,9 @@ ranks: a dimension = 3 scene whose structure is a static ground STL box. The flu
 container along z, averaged over the settled second half of the coupled phase, equals the weight
 N rho0 d^3 g within 3 % (the mass from the scene's own parameters, not from the server's report);
 no particle is lost; action = reaction at every exchange; run.json counts triangles; the VTK
-files hold 3D particles and the 12 triangles and read back with VTK. The same fluid block given
+files hold 3D particles and the 12 triangles and read back with VTK; fsi-plot renders 3D frames
+headless (a view and a section: PNGs of the figure's size whose plot area holds the coloured
+particles; a section above the water holds none, the check's control). The same fluid block given
 as a closed STL surface (hydrostatic_box_3d_stl.scene) runs too (briefly): the same particles."""
 import os
 import subprocess
@@ -95,6 +97,38 @@ check(boundary.GetNumberOfPoints() == 8 and boundary.GetNumberOfCells() == 12,
 check(all(boundary.GetCellType(c) == vtk.VTK_TRIANGLE for c in range(12)), "boundary VTK: triangles")
 corners = vtk_to_numpy(boundary.GetPoints().GetData())
 check(numpy.allclose(corners.max(axis=0), [0.012, 0.012, 0.02]) and numpy.allclose(corners.min(axis=0), 0), "boundary VTK: the box's corners")
+
+
+def coloured_pixels(path):
+    """(width, height, pixels of a colour map's hue in the left 70 % of the image): the plot area
+    without the colour bar; axes, panes, text and the box's static mesh are grey."""
+    reader = vtk.vtkPNGReader()
+    reader.SetFileName(path)
+    reader.Update()
+    image = reader.GetOutput()
+    width, height, _ = image.GetDimensions()
+    pixels = vtk_to_numpy(image.GetPointData().GetScalars()).reshape(height, width, -1)[:, :, :3].astype(int)
+    left = pixels[:, : int(0.7 * width)]
+    return width, height, int(((left.max(axis=2) - left.min(axis=2)) > 60).sum())
+
+
+# 3D frames from fsi-plot, headless (matplotlib's Agg renderer): the view and a section.
+last_step = max(int(name[len("particles_"):-len(".csv")]) for name in os.listdir(os.path.join(run_dir, "snapshots")))
+for name, extra, size, least in (("view", [], (770, 660), 500), ("section", ["--cut", "y=0.006"], (660, 660), 500),
+                                 ("dry section", ["--cut", "z=0.019"], (660, 660), None)):
+    plots = os.path.join(output, "plots_" + name.replace(" ", "_"))
+    result = subprocess.run([binary("fsi-plot"), run_dir, "--frames", "1", "--output", plots, *extra],
+                            capture_output=True, text=True, timeout=300)
+    check(result.returncode == 0, f"fsi-plot {name} exits 0 (got {result.returncode}: {result.stderr[-500:]})")
+    frame = os.path.join(plots, "frames", f"frame_{last_step:09d}.png")
+    check(os.path.exists(frame), f"fsi-plot {name}: {os.path.basename(frame)} written")
+    width, height, coloured = coloured_pixels(frame)
+    check((width, height) == size, f"fsi-plot {name}: {width} x {height} pixels (expected {size[0]} x {size[1]})")
+    if least is not None:
+        check(coloured >= least, f"fsi-plot {name}: {coloured} pixels of coloured particles (at least {least})")
+    else:
+        check(coloured < 50, f"fsi-plot {name}: no particle there, {coloured} coloured pixels (fewer than 50)")
+
 # The fluid from a closed STL surface (FluidRegion shape "stl") end to end, short (its lattice is
 # the box's, tested in scene_unit_tests): it runs, LIGGGHTS holds the same particles, none is lost.
 stl_dir = os.path.join(output, "stl")
