@@ -1,6 +1,7 @@
 #include "client_session.hpp"
 
 #include <spdlog/spdlog.h>
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -461,12 +462,15 @@ class ClientSession {
   }
 
   // Moves the cuts between the ranks' sub-domains so that each owns an equal share of the
-  // particles, and the particles to their owners; the next run must set up (collective).
-  void balance_particles() {
-    if (mpi_.size() < 2) return;
+  // particles, and the particles to their owners; the next run must set up (collective). Returns
+  // the imbalance reached (whole lattice planes cannot always be shared evenly).
+  double balance_particles() {
+    if (mpi_.size() < 2) return 1.0;
     LAMMPS_NS::LAMMPS& lammps = driver_->lammps();
     apply_cuts(lammps, balanced_cuts_of_particles(lammps, mpi_.communicator()));
     migrate_particles(lammps);
+    reached_imbalance_ = imbalance(particles_per_rank(lammps, mpi_.communicator()));
+    return reached_imbalance_;
   }
 
   void log_decomposition(bool server_particles) const {
@@ -490,7 +494,9 @@ class ClientSession {
 
   // Between steps (collective): when LIGGGHTS' step counter has passed a multiple of
   // rebalance_every since the last call, compares the ranks' particle counts and re-balances
-  // when the largest exceeds rebalance_threshold times the mean. The last step's forces and
+  // when the largest exceeds rebalance_threshold times the mean, or times the imbalance the last
+  // balance reached if that was higher (three ranks on ten lattice planes: 1.2 at best; no
+  // futile moves at every check). The last step's forces and
   // density rates are carried through the set-up the move needs (fluid_state.hpp), so the run
   // goes on as without it, to the summation order. Depends only on the step counter and the
   // particles: a resumed run re-balances where the original did.
@@ -506,17 +512,16 @@ class ClientSession {
     LAMMPS_NS::LAMMPS& lammps = driver_->lammps();
     const double measured = imbalance(particles_per_rank(lammps, mpi_.communicator()));
     largest_imbalance_ = std::max(largest_imbalance_, measured);
-    if (measured <= options_.rebalance_threshold) return;
+    if (measured <= options_.rebalance_threshold * std::max(1.0, reached_imbalance_)) return;
     auto balancing = mark_busy ? busy() : protocol::HeartbeatSender::Busy{};
     Stopwatch watch;
     watch.start();
     const std::string rates = capture_step_rates(lammps, mpi_.communicator());
-    balance_particles();
+    const double after = balance_particles();
     driver_->run_with_setup(0);
     apply_step_rates(lammps, mpi_.communicator(), rates);
     seconds_rebalancing_ += watch.stop();
     ++rebalances_;
-    const double after = imbalance(particles_per_rank(lammps, mpi_.communicator()));
     if (mpi_.root()) {
       spdlog::debug("re-balanced at LIGGGHTS step {}: imbalance {:.3f} -> {:.3f}; {}", now,
                     measured, after, cuts_text(lammps));
@@ -532,6 +537,22 @@ class ClientSession {
     if (!options_.balance || mpi_.size() < 2) return;
     apply_cuts(lammps, balanced_cuts_of_particles(lammps, mpi_.communicator()));
     restore_fluid_state(lammps, mpi_.communicator(), state);
+    reached_imbalance_ = imbalance(particles_per_rank(lammps, mpi_.communicator()));
+  }
+
+  // Every rank's peak resident memory (getrusage), logged by rank 0 at the end (collective).
+  void log_peak_memory() const {
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    const double megabytes = static_cast<double>(usage.ru_maxrss) / 1024.0;  // Linux: in KiB
+    std::vector<double> all(static_cast<std::size_t>(mpi_.size()), 0.0);
+    MPI_Gather(&megabytes, 1, MPI_DOUBLE, all.data(), 1, MPI_DOUBLE, 0, mpi_.communicator());
+    if (!mpi_.root()) return;
+    std::string text;
+    for (const double value : all)
+      text += (text.empty() ? "" : " / ") + fmt::format("{:.1f}", value);
+    spdlog::info("memory: peak resident {} MiB per rank ({} particles)", text,
+                 driver_->particle_count());
   }
 
   void log_balance_summary() const {
@@ -959,6 +980,7 @@ class ClientSession {
         }
         log_health_scan_cost(steps);
         log_balance_summary();
+        log_peak_memory();
         return;
       } else if (auto* error = std::get_if<protocol::ErrorMessage>(&message)) {
         throw protocol::PeerReportedError(error->code, error->text,
@@ -1126,6 +1148,7 @@ class ClientSession {
   std::uint64_t rebalances_ = 0;
   double seconds_rebalancing_ = 0.0;
   double largest_imbalance_ = 1.0;
+  double reached_imbalance_ = 1.0;  // by the last balance (set-up, move or checkpoint)
 };
 
 // One connection, set-up and run. A fault ends the whole MPI job (also with --persistent: the
