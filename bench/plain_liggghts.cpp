@@ -7,7 +7,7 @@
 // time.
 //
 //   mpirun -np N bench_plain_liggghts SCENE --steps M --region XLO XHI YLO YHI [--balance off]
-//       [--cutoff R] [--set KEY=EXPR]...
+//       [--cutoff R] [--per-step] [--command LINE]... [--set KEY=EXPR]...
 #include <mpi.h>
 #include <CLI/CLI.hpp>
 
@@ -39,6 +39,10 @@ int main(int argc, char** argv) {
   app.add_option("--set", overrides);
   std::string balance = "on";
   app.add_option("--balance", balance)->check(CLI::IsMember({"on", "off"}));
+  bool per_step = false;
+  app.add_flag("--per-step", per_step, "one `run 1 pre no post no` per step, as fsi-client does");
+  std::vector<std::string> extra_commands;
+  app.add_option("--command", extra_commands, "LIGGGHTS command after script 2 (repeatable)");
   std::string cutoff = "${SPH_wall_cutoff}";
   app.add_option("--cutoff", cutoff, "cut-off of the walls (default: the scene's SPH_wall_cutoff)");
   try {
@@ -102,9 +106,18 @@ int main(int argc, char** argv) {
       driver.run_with_setup(scene.liggghts.equilibration_steps);
     driver.run_script(scene.liggghts.script2_name, scene.liggghts.script2_text);
     driver.run_with_setup(0);
+    for (const std::string& line : extra_commands)
+      driver.command(line);
+    if (!extra_commands.empty()) driver.run_with_setup(0);
     MPI_Barrier(MPI_COMM_WORLD);
     const auto start = std::chrono::steady_clock::now();
-    driver.run_with_setup(static_cast<std::uint64_t>(steps));
+    if (per_step) {
+      // As fsi-client steps the coupled phase: one `run 1 pre no post no` per step.
+      for (long k = 0; k < steps; ++k)
+        driver.step();
+    } else {
+      driver.run_with_setup(static_cast<std::uint64_t>(steps));
+    }
     MPI_Barrier(MPI_COMM_WORLD);
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
