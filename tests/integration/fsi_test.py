@@ -186,10 +186,11 @@ def manifest(output):
         return json.load(handle)
 
 
-def run_pair(scene, output, ranks, overrides=(), timeout=1200):
-    """Runs server and client to completion; returns (server status, client status)."""
+def run_pair(scene, output, ranks, overrides=(), timeout=1200, client_args=()):
+    """Runs server and client (with `client_args`) to completion; returns (server status, client
+    status)."""
     server, port = start_server(scene, output, overrides)
-    client = start_client(port, ranks, output)
+    client = start_client(port, ranks, output, client_args)
     server_status = wait(server, timeout)
     if server_status is None:
         kill_group(server)

@@ -15,22 +15,11 @@
 import os
 import re
 
-from fsi_test import (check, cleanup, example, fail, kill_group, load_sensors, read, start_client,
-                      start_server, wait, work_dir)
+from fsi_test import check, cleanup, example, fail, load_sensors, read, run_pair, work_dir
 
 
 def run(scene, run_dir, overrides, client_args):
-    server, port = start_server(scene, run_dir, overrides)
-    client = start_client(port, 2, run_dir, client_args)
-    server_status = wait(server, 600)
-    if server_status is None:
-        kill_group(server)
-        kill_group(client)
-        fail(f"{run_dir}: fsi-server did not finish within 600 s")
-    client_status = wait(client, 30)
-    if client_status is None:
-        kill_group(client)
-        fail(f"{run_dir}: fsi-client did not end within 30 s after the server")
+    server_status, client_status = run_pair(scene, run_dir, 2, overrides, 600, client_args)
     log = read(run_dir, "client.stderr")
     check(server_status == 0 and client_status == 0,
           f"{run_dir}: server and client exit 0 ({server_status}, {client_status})\n{log[-3000:]}")
