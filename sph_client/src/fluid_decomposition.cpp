@@ -111,27 +111,6 @@ DomainCuts balanced_cuts_of_particles(const LAMMPS_NS::LAMMPS& lammps, MPI_Comm 
   return cuts_from(lammps, bins);
 }
 
-DomainCuts balanced_cuts_of_positions(const LAMMPS_NS::LAMMPS& lammps,
-                                      std::span<const double> positions, int dimension) {
-  const auto& domain = *lammps.domain;
-  const std::size_t count = positions.size() / static_cast<std::size_t>(dimension);
-  const auto coordinate = [&](std::size_t i, int axis) {
-    return axis < dimension ? positions[i * static_cast<std::size_t>(dimension) + axis] : 0.0;
-  };
-  std::array<double, 3> lo;
-  std::array<double, 3> hi;
-  lo.fill(std::numeric_limits<double>::infinity());
-  hi.fill(-std::numeric_limits<double>::infinity());
-  for (std::size_t i = 0; i < count; ++i) {
-    for (int axis = 0; axis < 3; ++axis) {
-      const double x = clamp_into_box(domain, axis, coordinate(i, axis));
-      lo[axis] = std::min(lo[axis], x);
-      hi[axis] = std::max(hi[axis], x);
-    }
-  }
-  return cuts_from(lammps, histograms(domain, processor_grid(lammps), lo, hi, count, coordinate));
-}
-
 void apply_cuts(LAMMPS_NS::LAMMPS& lammps, const DomainCuts& cuts) {
   auto& comm = *lammps.comm;
   double* splits[3] = {comm.xsplit, comm.ysplit, comm.zsplit};

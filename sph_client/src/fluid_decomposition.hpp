@@ -11,7 +11,6 @@
 
 #include <array>
 #include <cstdint>
-#include <span>
 #include <string>
 #include <vector>
 
@@ -34,10 +33,6 @@ DomainCuts current_cuts(const LAMMPS_NS::LAMMPS& lammps);
 // Cuts that give every rank of the grid an equal share of the particles LIGGGHTS holds (their
 // coordinates binned per axis, the bins summed over the ranks).
 DomainCuts balanced_cuts_of_particles(const LAMMPS_NS::LAMMPS& lammps, MPI_Comm communicator);
-// The same for particles not created yet: every rank passes all of them (`dimension` values per
-// particle), so no communication is needed (not collective, but every rank gets the same).
-DomainCuts balanced_cuts_of_positions(const LAMMPS_NS::LAMMPS& lammps,
-                                      std::span<const double> positions, int dimension);
 
 // Makes `cuts` LIGGGHTS' decomposition (Comm's splits and this rank's sub-domain). The particles
 // stay where they are: call migrate_particles() if there are any (not collective, but every rank
