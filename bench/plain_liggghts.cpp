@@ -11,8 +11,6 @@
 #include <mpi.h>
 #include <CLI/CLI.hpp>
 
-#include <algorithm>
-#include <array>
 #include <chrono>
 #include <cstdio>
 #include <regex>
@@ -78,20 +76,9 @@ int main(int argc, char** argv) {
     int ranks = 1;
     MPI_Comm_size(MPI_COMM_WORLD, &ranks);
     if (balance == "on" && ranks > 1 && !particles.positions.empty()) {
-      std::array<double, 3> lo{0.0, 0.0, 0.0};
-      std::array<double, 3> hi{0.0, 0.0, 0.0};
-      lo.fill(1e300);
-      hi.fill(-1e300);
-      const auto dimension = static_cast<std::size_t>(scene.dimension);
-      for (std::size_t i = 0; i < particles.positions.size(); ++i) {
-        lo[i % dimension] = std::min(lo[i % dimension], particles.positions[i]);
-        hi[i % dimension] = std::max(hi[i % dimension], particles.positions[i]);
-      }
-      std::array<double, 3> extent{0.0, 0.0, 0.0};
-      for (std::size_t k = 0; k < dimension; ++k)
-        extent[k] = hi[k] - lo[k];
-      driver.set_automatic_grid(
-          fsi::client::choose_processor_grid(ranks, static_cast<int>(dimension), extent));
+      driver.set_automatic_grid(fsi::client::choose_processor_grid(
+          ranks, scene.dimension,
+          fsi::client::positions_extent(particles.positions, scene.dimension)));
     }
     driver.run_script(scene.liggghts.script1_name + " (walls: wall/region/sph)", script1,
                       [&] { driver.insert_particles(particles); });

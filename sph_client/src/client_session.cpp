@@ -445,20 +445,8 @@ class ClientSession {
   std::optional<ProcessorGrid> automatic_grid(const ParticleBlock& particles) const {
     if (!options_.automatic_grid || mpi_.size() < 2 || particles.positions.empty())
       return std::nullopt;
-    const auto dimension = static_cast<std::size_t>(particles.dimension);
-    std::array<double, 3> lo{0.0, 0.0, 0.0};
-    std::array<double, 3> hi{0.0, 0.0, 0.0};
-    for (std::size_t k = 0; k < dimension; ++k) {
-      lo[k] = std::numeric_limits<double>::infinity();
-      hi[k] = -std::numeric_limits<double>::infinity();
-    }
-    for (std::size_t i = 0; i < particles.positions.size(); ++i) {
-      const std::size_t k = i % dimension;
-      lo[k] = std::min(lo[k], particles.positions[i]);
-      hi[k] = std::max(hi[k], particles.positions[i]);
-    }
     return choose_processor_grid(mpi_.size(), particles.dimension,
-                                 {hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
+                                 positions_extent(particles.positions, particles.dimension));
   }
 
   // Moves the cuts between the ranks' sub-domains so that each owns an equal share of the

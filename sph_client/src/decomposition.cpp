@@ -41,6 +41,23 @@ ProcessorGrid choose_processor_grid(int ranks, int dimension, const std::array<d
   return best;
 }
 
+std::array<double, 3> positions_extent(std::span<const double> positions, int dimension) {
+  if (dimension != 2 && dimension != 3) throw std::invalid_argument("positions are 2D or 3D");
+  const auto per_point = static_cast<std::size_t>(dimension);
+  std::array<double, 3> extent{0.0, 0.0, 0.0};
+  if (positions.size() < per_point) return extent;
+  for (std::size_t k = 0; k < per_point; ++k) {
+    double lo = positions[k];
+    double hi = positions[k];
+    for (std::size_t i = k; i < positions.size(); i += per_point) {
+      lo = std::min(lo, positions[i]);
+      hi = std::max(hi, positions[i]);
+    }
+    extent[k] = hi - lo;
+  }
+  return extent;
+}
+
 std::vector<double> balanced_cuts(const AxisHistogram& histogram, double box_lo, double box_hi,
                                   int parts, double min_width) {
   if (parts < 1) throw std::invalid_argument("cuts need at least one part");

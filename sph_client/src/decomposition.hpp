@@ -24,6 +24,11 @@ using ProcessorGrid = std::array<int, 3>;
 // ranks < 1 or a dimension other than 2 or 3.
 ProcessorGrid choose_processor_grid(int ranks, int dimension, const std::array<double, 3>& extent);
 
+// The lengths of the bounding box of `positions` (`dimension` values per point) along x, y, z;
+// 0 along an axis the dimension lacks and for no points. Throws std::invalid_argument for a
+// dimension other than 2 or 3.
+std::array<double, 3> positions_extent(std::span<const double> positions, int dimension);
+
 // Counts of particle coordinates along one axis in equal bins over [lo, hi].
 struct AxisHistogram {
   double lo = 0.0;

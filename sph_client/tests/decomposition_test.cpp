@@ -36,6 +36,15 @@ TEST(ProcessorGrid, FollowsTheFluidsExtentNotTheBox) {
   EXPECT_EQ(choose_processor_grid(2, 2, {1.0, 0.0, 0.0}), (ProcessorGrid{2, 1, 1}));
 }
 
+TEST(ProcessorGrid, TheExtentOfPositions) {
+  const std::vector<double> plane{0.0, 1.0, 2.0, -1.0, 0.5, 3.0};  // three 2D points
+  EXPECT_EQ(positions_extent(plane, 2), (std::array<double, 3>{2.0, 4.0, 0.0}));
+  const std::vector<double> space{1.0, 2.0, 3.0, 0.0, 5.0, 3.5};  // two 3D points
+  EXPECT_EQ(positions_extent(space, 3), (std::array<double, 3>{1.0, 3.0, 0.5}));
+  EXPECT_EQ(positions_extent({}, 3), (std::array<double, 3>{0.0, 0.0, 0.0}));
+  EXPECT_THROW(positions_extent(plane, 1), std::invalid_argument);
+}
+
 TEST(ProcessorGrid, RefusesNonsense) {
   EXPECT_THROW(choose_processor_grid(0, 2, {1.0, 1.0, 0.0}), std::invalid_argument);
   EXPECT_THROW(choose_processor_grid(2, 1, {1.0, 1.0, 0.0}), std::invalid_argument);
