@@ -827,9 +827,17 @@ void HeartbeatSender::run() {
     if (now - busy_since_ < interval_) continue;
     // Still busy an interval after the start or the last heartbeat. The lock is held while
     // sending (see set_busy).
-    if (channel_.is_open() && channel_.try_send_heartbeat()) ++sent_;
+    if (channel_.is_open() && channel_.try_send_heartbeat()) {
+      ++sent_;
+      last_sent_ = std::chrono::steady_clock::now();
+    }
     busy_since_ = now;
   }
+}
+
+std::optional<std::chrono::steady_clock::time_point> HeartbeatSender::last_sent() const {
+  std::lock_guard lock(mutex_);
+  return last_sent_;
 }
 
 HeartbeatSender::Busy HeartbeatSender::busy() {

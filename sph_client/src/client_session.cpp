@@ -225,6 +225,20 @@ class ClientSession {
     }
   }
 
+  // Rank 0, after a fault of the connection: how many heartbeats went out and when the last one
+  // did, to tell a silent client from a network or a server that stopped reading. Empty on other
+  // ranks and without heartbeats.
+  std::string heartbeat_summary() const {
+    if (!heartbeat_) return {};
+    const auto last = heartbeat_->last_sent();
+    const std::uint64_t sent = heartbeat_->sent();
+    if (!last) return fmt::format("no heartbeat had gone out to fsi-server ({} sent)", sent);
+    const double ago =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - *last).count();
+    return fmt::format("{} heartbeat(s) had gone out to fsi-server, the last {:.2f} s before this",
+                       sent, ago);
+  }
+
   // What the server and the log are told of a fault on this rank: LIGGGHTS' own line with the
   // script line being executed, and which rank saw it when there are several.
   std::string describe(const std::exception& failure) const {
@@ -541,6 +555,18 @@ class ClientSession {
       text += (text.empty() ? "" : " / ") + fmt::format("{:.1f}", value);
     spdlog::info("memory: peak resident {} MiB per rank ({} particles)", text,
                  driver_->particle_count());
+  }
+
+  // Every rank's ghost particles at the end, and LIGGGHTS' ghost cut-off (collective): the
+  // halo the decomposition costs (bench/cost_model.py reads this line).
+  void log_ghosts() const {
+    const LAMMPS_NS::LAMMPS& lammps = driver_->lammps();
+    const std::vector<std::uint64_t> ghosts = ghosts_per_rank(lammps, mpi_.communicator());
+    if (!mpi_.root()) return;
+    std::string text;
+    for (const std::uint64_t value : ghosts)
+      text += (text.empty() ? "" : " / ") + std::to_string(value);
+    spdlog::info("ghosts: {} per rank (ghost cut-off {:.6g} m)", text, ghost_cutoff(lammps));
   }
 
   void log_balance_summary() const {
@@ -968,6 +994,7 @@ class ClientSession {
         }
         log_health_scan_cost(steps);
         log_balance_summary();
+        log_ghosts();
         log_peak_memory();
         return;
       } else if (auto* error = std::get_if<protocol::ErrorMessage>(&message)) {
@@ -1151,6 +1178,10 @@ int run_one_session(MPI_Comm communicator, const ClientOptions& options, FaultRe
     // collective call forever otherwise.
     const std::string text = session.describe(failure);
     spdlog::error("fsi-client (rank {}): {}", rank, text);
+    if (dynamic_cast<const protocol::ProtocolError*>(&failure) != nullptr) {
+      if (const std::string heartbeats = session.heartbeat_summary(); !heartbeats.empty())
+        spdlog::warn("fsi-client: {}", heartbeats);
+    }
     spdlog::default_logger()->flush();
     g_exit_report.active = false;
     // Tell the server unless it reported the fault itself (docs/protocol.md §7); another rank

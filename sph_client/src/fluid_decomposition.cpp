@@ -10,6 +10,7 @@
 #include "domain.h"
 #include "irregular.h"
 #include "lammps.h"
+#include "neighbor.h"
 
 namespace fsi::client {
 namespace {
@@ -142,6 +143,19 @@ std::vector<std::uint64_t> particles_per_rank(const LAMMPS_NS::LAMMPS& lammps,
   const auto local = static_cast<std::uint64_t>(lammps.atom->nlocal);
   MPI_Allgather(&local, 1, MPI_UINT64_T, counts.data(), 1, MPI_UINT64_T, communicator);
   return counts;
+}
+
+std::vector<std::uint64_t> ghosts_per_rank(const LAMMPS_NS::LAMMPS& lammps, MPI_Comm communicator) {
+  int ranks = 1;
+  MPI_Comm_size(communicator, &ranks);
+  std::vector<std::uint64_t> counts(static_cast<std::size_t>(ranks), 0);
+  const auto local = static_cast<std::uint64_t>(lammps.atom->nghost);
+  MPI_Allgather(&local, 1, MPI_UINT64_T, counts.data(), 1, MPI_UINT64_T, communicator);
+  return counts;
+}
+
+double ghost_cutoff(const LAMMPS_NS::LAMMPS& lammps) {
+  return lammps.neighbor->cutneighmax;
 }
 
 std::string cuts_text(const LAMMPS_NS::LAMMPS& lammps) {

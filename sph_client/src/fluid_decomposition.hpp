@@ -48,6 +48,14 @@ void migrate_particles(LAMMPS_NS::LAMMPS& lammps);
 std::vector<std::uint64_t> particles_per_rank(const LAMMPS_NS::LAMMPS& lammps,
                                               MPI_Comm communicator);
 
+// Ghost particles held by each rank (copies of other ranks' particles within the neighbour
+// cut-off of its sub-domain, and periodic images), on every rank.
+std::vector<std::uint64_t> ghosts_per_rank(const LAMMPS_NS::LAMMPS& lammps, MPI_Comm communicator);
+
+// The distance to which LIGGGHTS keeps ghosts: the largest pair cut-off plus the neighbour skin
+// [m] (not collective; set by the latest run with set-up).
+double ghost_cutoff(const LAMMPS_NS::LAMMPS& lammps);
+
 // "x 0 0.3121 1" per split axis (those of more than one part), for the log (not collective).
 std::string cuts_text(const LAMMPS_NS::LAMMPS& lammps);
 

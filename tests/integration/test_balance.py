@@ -26,6 +26,14 @@ def run(scene, run_dir, overrides, client_args):
     return log
 
 
+def ghosts(log):
+    """(ghosts per rank, ghost cut-off) from the client's closing line."""
+    match = re.search(r"ghosts: ([\d /]+) per rank \(ghost cut-off ([\d.eE+-]+) m\)", log)
+    if not match:
+        fail(f"no ghosts line in the client's log:\n{log[-3000:]}")
+    return [int(value) for value in match.group(1).split("/")], float(match.group(2))
+
+
 def decomposition(log):
     """(grid, source, shares, imbalance) from the client's set-up line."""
     match = re.search(r"decomposition: (\d+ x \d+ x \d+) ranks \(([^)]*)\), \w+ cuts .*?; particles per "
@@ -61,6 +69,15 @@ if not summary:
 moves, largest = int(summary.group(1)), float(summary.group(3))
 print(f"balanced: {moves} re-balance(s), largest imbalance at a check {largest}")
 check(moves >= 1, f"the cuts followed the moving fluid ({moves} re-balances)")
+# The halo: with even cuts the column is far from the cut (no ghosts); balanced, each rank holds a
+# band of the other's particles across the cut (about 4 of the column's 10 lattice columns here:
+# the ghost cut-off is 2h + skin = 4.3 d), not all of them.
+even_ghosts, _ = ghosts(even_log)
+balanced_ghosts, cutoff = ghosts(balanced_log)
+print(f"ghosts per rank: even {even_ghosts}, balanced {balanced_ghosts} (cut-off {cutoff} m)")
+check(even_ghosts == [0, 0], f"even cuts: no rank holds ghosts ({even_ghosts})")
+check(all(0 < g < sum(shares) / 2 for g in balanced_ghosts) and cutoff > 0,
+      f"balanced: each rank holds a halo of the other's particles, not all of them ({balanced_ghosts})")
 check(largest <= 1.1, f"the imbalance found at the checks stayed small ({largest} <= 1.1)")
 
 even = load_sensors(os.path.join(output, "even"))

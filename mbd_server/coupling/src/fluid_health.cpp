@@ -95,7 +95,9 @@ std::string FluidHealthMonitor::time_step_advice() const {
   if (!known) return {};
   const double courant = *known;
   std::string text = "dt c / h = " + number(courant);
-  if (courant > kStableCourant) {
+  // Beyond the limit by more than the three digits printed (else the advice would read "from
+  // 6.67e-06 s to at most 6.67e-06 s").
+  if (courant > kStableCourant * (1.0 + 1e-3)) {
     text += " exceeds the " + number(kStableCourant) +
             " measured stable: reduce SolverOptions.Timeint.step_size from " +
             number(scales_.time_step) + " s to at most " +
@@ -187,7 +189,9 @@ std::optional<HealthFinding> FluidHealthMonitor::density(std::uint64_t step,
   std::string fix;
   const std::string advice = time_step_advice();
   const double courant = courant_number().value_or(0.0);
-  if (courant > kStableCourant) {
+  // Beyond the limit by more than the three digits printed (else the advice would read "from
+  // 6.67e-06 s to at most 6.67e-06 s").
+  if (courant > kStableCourant * (1.0 + 1e-3)) {
     fix = "the time step is too large for the speed of sound: " + advice;
   } else {
     if (courant > kImpactStableCourant) {

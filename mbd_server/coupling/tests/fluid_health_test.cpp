@@ -163,6 +163,19 @@ TEST(FluidHealth, ADensityDeviationWithATooLargeStepNamesTheStep) {
       << verdict.stop->fix;
 }
 
+TEST(FluidHealth, AStepAtTheLimitToThePrintedDigitsIsNotAdvisedDown) {
+  // dt = 2.500012e-5 s: dt c / h = 0.1250006, above 0.125 only beyond the three digits printed
+  // (the advice read "reduce from 2.5e-05 s to at most 2.5e-05 s").
+  FluidScales scales = water_column_scales();
+  scales.time_step = 2.500012e-5;
+  FluidHealthMonitor watch = monitor(scales);
+  FluidForces forces = healthy();
+  forces.health->max_density = 1040.0;
+  const HealthVerdict verdict = watch.judge(5, forces);
+  ASSERT_TRUE(verdict.stop);
+  EXPECT_FALSE(contains(verdict.stop->fix, "exceeds")) << verdict.stop->fix;
+}
+
 TEST(FluidHealth, ADensityDeviationAboveTheImpactLimitNamesTheStepFirst) {
   // dt c / h = 0.115: within the static tank's 0.125 but above the dam break's 0.092.
   FluidScales scales = water_column_scales();

@@ -38,6 +38,10 @@ constexpr double kNeighboursHigh = 100.0;
 constexpr double kWallViscosityFactor = 3.0;
 // A value that meets a limit exactly (the coarse tank's dt c / h = 0.125) is not beyond it.
 constexpr double kTolerance = 1e-9;
+// The rules of thumb are printed to three significant digits: a value beyond its limit by less
+// than that (dt = 6.66667e-06 s against 0.125 h/c = 6.6666e-06 s) is not worth a warning that
+// would read "above 6.67e-06 s ... use <= 6.67e-06 s".
+constexpr double kRuleTolerance = 1e-3;
 
 constexpr std::string_view kSphBlock = "LIGGGHTS_SPH_parameters";
 
@@ -328,10 +332,10 @@ class Report {
 };
 
 bool above(double value, double limit) {
-  return value > limit * (1.0 + kTolerance);
+  return value > limit * (1.0 + kRuleTolerance);
 }
 bool below(double value, double limit) {
-  return value < limit * (1.0 - kTolerance);
+  return value < limit * (1.0 - kRuleTolerance);
 }
 
 // --- 1. time step against the acoustic limit -------------------------------------------------

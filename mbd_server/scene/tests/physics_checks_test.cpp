@@ -118,6 +118,17 @@ TEST(PhysicsChecks, AcousticTimeStepAboveTheMeasuredLimit) {
   EXPECT_CONTAINS(warning.location.text(), "static_tank_model.inc:");
 }
 
+TEST(PhysicsChecks, AcousticTimeStepAtTheLimitToThePrintedDigitsIsNotWarned) {
+  // 1.0000005e-5 s against 0.125 h/c = 1e-05 s: beyond it only past the three digits printed
+  // ("above 1e-05 s ... use <= 1e-05 s"); 1.01e-5 s is warned.
+  EXPECT_TRUE(
+      of(coarse_diagnostics({{"Resolution.time_step", "1.0000005e-5"}}), "acoustic_time_step")
+          .empty());
+  EXPECT_EQ(
+      of(coarse_diagnostics({{"Resolution.time_step", "1.01e-5"}}), "acoustic_time_step").size(),
+      1u);
+}
+
 TEST(PhysicsChecks, AcousticTimeStepAboveTheThesisLimit) {
   const Diagnostic warning =
       coarse_warning("acoustic_time_step", {{"Resolution.time_step", "3e-5"}});

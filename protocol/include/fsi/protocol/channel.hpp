@@ -147,6 +147,8 @@ class HeartbeatSender {
   // callable from any thread.
   void stop();
   std::uint64_t sent() const;
+  // When the latest heartbeat went out; nullopt before the first.
+  std::optional<std::chrono::steady_clock::time_point> last_sent() const;
 
  private:
   void run();
@@ -159,6 +161,7 @@ class HeartbeatSender {
   bool stopping_ = false;
   std::chrono::steady_clock::time_point busy_since_;  // start of busy, or the last heartbeat
   std::uint64_t sent_ = 0;
+  std::optional<std::chrono::steady_clock::time_point> last_sent_;
   std::thread thread_;
 };
 
