@@ -45,7 +45,7 @@ def main():
 
     flat = run["parameters_flat"]
     width, thickness, height = flat["Geometry.width"], flat["Geometry.thickness"], flat["Geometry.height"]
-    command = ["mpirun", "--oversubscribe", "-np", str(args.np)]
+    command = ["mpirun", "--oversubscribe", "--bind-to", "none", "-np", str(args.np)]  # as fsi-run
     if os.geteuid() == 0:
         command.append("--allow-run-as-root")
     command += [os.path.join(bin_dir, "bench_plain_liggghts"), args.scene, "--steps", str(args.steps),

@@ -148,6 +148,14 @@ int main(int argc, char** argv) {
                  "MPI launcher; one named mpirun* (Open MPI) is started with -q, which leaves out "
                  "its notices after a job that the client ended with a clear message")
       ->capture_default_str();
+  std::string bind_to = "none";
+  app.add_option("--bind-to", bind_to,
+                 "Open MPI's --bind-to for the client's ranks (an mpirun* launcher only): none "
+                 "lets the OS place them, so that runs started side by side share the cores; "
+                 "core pins rank i to core i, for a machine given to one run (two runs pinned "
+                 "alike share core 0 and each takes twice as long)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"none", "core", "socket"}));
   std::string token_file;
   app.add_option("--token-file", token_file,
                  "Shared token file given to both fsi-server and fsi-client (--token-file): they "
@@ -246,7 +254,12 @@ int main(int argc, char** argv) {
   // Open MPI's -q: mpirun's own notices about an aborted job ("MPI_ABORT was invoked ...") would
   // follow the clear message fsi-client and fsi-server already gave, and say less. Only for a
   // launcher named mpirun (Debian's is Open MPI's); another --mpirun gets no flag it may not know.
-  if (fs::path(mpirun).filename().string().rfind("mpirun", 0) == 0) client_command.push_back("-q");
+  if (fs::path(mpirun).filename().string().rfind("mpirun", 0) == 0) {
+    client_command.push_back("-q");
+    // Open MPI pins rank i of every job to core i: two runs side by side would share core 0
+    // (measured: each at 0.53 of its speed alone, docs/performance.md "Cost model").
+    client_command.insert(client_command.end(), {"--bind-to", bind_to});
+  }
   client_command.insert(client_command.end(), {"-np", std::to_string(ranks)});
   if (geteuid() == 0) client_command.push_back("--allow-run-as-root");
   client_command.insert(

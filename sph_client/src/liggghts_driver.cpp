@@ -14,9 +14,12 @@
 #include "domain.h"
 #include "fix.h"
 #include "input.h"
+#include "integrate.h"
 #include "lammps.h"
 #include "memory.h"
 #include "modify.h"
+#include "output.h"
+#include "timer.h"
 #include "update.h"
 #include "variable.h"
 
@@ -66,6 +69,7 @@ void LiggghtsDriver::define_variables(
 }
 
 void LiggghtsDriver::command(const std::string& line) {
+  if (stepping_) end_steps();
   position_.command = line;
   lammps_->input->one(line.c_str());
 }
@@ -243,7 +247,42 @@ void LiggghtsDriver::run_continued(std::uint64_t steps) {
 }
 
 void LiggghtsDriver::step() {
-  run_continued(1);
+  LAMMPS_NS::Update& update = *lammps_->update;
+  if (update.first_update == 0) {  // no run with set-up yet: LIGGGHTS' own run sets up
+    run_continued(1);
+    return;
+  }
+  if (stepping_ && update.ntimestep >= steps_until_) end_steps();
+  if (!stepping_) begin_steps();
+  position_.command = "coupled step " + std::to_string(update.ntimestep + 1);
+  update.integrate->run(1);
+}
+
+void LiggghtsDriver::begin_steps() {
+  // Far ahead, so that output->next stays a thermo or dump step of the scripts; a run that
+  // reaches it begins anew.
+  constexpr LAMMPS_NS::bigint kHorizon = 100'000'000;
+  LAMMPS_NS::Update& update = *lammps_->update;
+  update.whichflag = 1;
+  update.nsteps = static_cast<int>(kHorizon);
+  update.firststep = update.ntimestep;
+  update.laststep = update.ntimestep + kHorizon;
+  update.beginstep = update.firststep;
+  update.endstep = update.laststep;
+  lammps_->output->init();
+  lammps_->output->setup(0);
+  lammps_->timer->init();
+  steps_until_ = update.laststep;
+  stepping_ = true;
+}
+
+void LiggghtsDriver::end_steps() {
+  stepping_ = false;
+  LAMMPS_NS::Update& update = *lammps_->update;
+  update.integrate->cleanup();
+  update.whichflag = 0;
+  update.firststep = update.laststep = 0;
+  update.beginstep = update.endstep = 0;
 }
 
 namespace {
