@@ -66,7 +66,10 @@ def case_overrides(case, resolution, steps, equilibration_steps, fill_height=Non
 
 def coupled(bin_dir, folder, scene, name, ranks, overrides, client_args):
     run_dir = os.path.join(folder, name)
-    command = [os.path.join(bin_dir, "fsi-run"), scene, "--np", str(ranks), "--output", run_dir]
+    # A machine given to one run: the ranks pinned to their cores (fsi-run's --bind-to core;
+    # 8 % faster than unpinned on 2 ranks, docs/performance.md "Ranks and balance").
+    command = [os.path.join(bin_dir, "fsi-run"), scene, "--np", str(ranks), "--output", run_dir,
+               "--bind-to", "core"]
     for item in overrides:
         command += ["--set", item]
     for item in client_args:
@@ -77,7 +80,7 @@ def coupled(bin_dir, folder, scene, name, ranks, overrides, client_args):
     with open(os.path.join(run_dir, "fsi-client.log")) as handle:
         log = handle.read()
     decomposition = [line.split("] ", 3)[-1] for line in log.splitlines() if "decomposition:" in line
-                     or "balance:" in line or "memory:" in line]
+                     or "balance:" in line or "memory:" in line or "ghosts:" in line]
     return run, decomposition
 
 

@@ -5,8 +5,28 @@ fix fsi/sph treats both sides of a triangle alike, so the fluid inside sees the 
 
   python3 make_box_stl.py > box.stl                     (the container: 0.012 0.012 0.02)
   python3 make_box_stl.py 0.0096 0.0096 0.008 0.0012 0.0012 0.0008 > fluid.stl   (the fluid block)
+  python3 make_box_stl.py --subdivide 16 > box_fine.stl (each face as 16 x 16 squares: 3 072
+                                                          triangles; bench/boundary_elements.py)
 """
 import sys
+
+
+def subdivided(triangles, n):
+    """Each face's two triangles (one square) as n x n squares of two triangles each."""
+    triangles = list(triangles)
+    for k in range(0, len(triangles), 2):
+        normal, (p, q, r) = triangles[k]
+        _, (_, _, s) = triangles[k + 1]
+
+        def at(u, v):  # p + u (q - p) + v (s - p): the square's corner p, edges along q and s
+            return tuple(p[i] + u * (q[i] - p[i]) + v * (s[i] - p[i]) for i in range(3))
+
+        for i in range(n):
+            for j in range(n):
+                a, b = at(i / n, j / n), at((i + 1) / n, j / n)
+                c, d = at((i + 1) / n, (j + 1) / n), at(i / n, (j + 1) / n)
+                yield normal, (a, b, c)
+                yield normal, (a, c, d)
 
 
 def box_triangles(a, b, c, offset=(0.0, 0.0, 0.0)):
@@ -26,13 +46,21 @@ def box_triangles(a, b, c, offset=(0.0, 0.0, 0.0)):
 
 
 def main():
-    values = [float(v) for v in sys.argv[1:]]
+    arguments = sys.argv[1:]
+    parts = 1
+    if arguments[:1] == ["--subdivide"]:
+        if len(arguments) < 2 or not arguments[1].isdigit() or int(arguments[1]) < 1:
+            sys.exit("make_box_stl.py: --subdivide needs a whole number >= 1 (squares per face edge)")
+        parts = int(arguments[1])
+        arguments = arguments[2:]
+    values = [float(v) for v in arguments]
     if len(values) not in (0, 3, 6):
-        sys.exit("usage: make_box_stl.py [a b c [x y z]]")
+        sys.exit("usage: make_box_stl.py [--subdivide N] [a b c [x y z]]")
     a, b, c = values[0:3] if values else (0.012, 0.012, 0.02)
     offset = values[3:6] if len(values) == 6 else (0.0, 0.0, 0.0)
     out = ["solid box"]
-    for normal, triangle in box_triangles(a, b, c, offset):
+    triangles = box_triangles(a, b, c, offset)
+    for normal, triangle in (subdivided(triangles, parts) if parts > 1 else triangles):
         out.append("  facet normal %g %g %g" % normal)
         out.append("    outer loop")
         for vertex in triangle:

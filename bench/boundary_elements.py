@@ -1,0 +1,92 @@
+#!/usr/bin/python3
+"""What a boundary element costs each rank: memory and time per step against the number of mesh
+triangles (docs/performance.md, "Cost model"; issue 17 items 2 and 7).
+
+The 3D hydrostatic box (examples/hydrostatic_box_3d, 648 particles) with its container drawn as
+12 triangles and as the same box with every face cut into n x n squares
+(`make_box_stl.py --subdivide n`: 12 n^2 triangles), coupled on 1 and on 2 ranks. Printed per
+run: the coupled phase per step, the contact fix's part, every rank's peak resident memory; then
+the memory and the contact time per triangle from the differences to the 12-triangle run. Every
+rank holds and evaluates the whole mesh today: the per-rank figures do not shrink with the ranks.
+Not a pass/fail test; the machine should be otherwise idle.
+
+  bench/boundary_elements.py [--subdivisions 1,16,48] [--steps 200] [--build build]
+"""
+import argparse
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+EXAMPLE = os.path.join(ROOT, "examples", "hydrostatic_box_3d")
+TIME_STEP = 2.5e-5  # the example's SolverOptions.Timeint.step_size [s]
+ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
+           OMPI_MCA_rmaps_base_oversubscribe="1")
+
+
+def run(bin_dir, folder, parts, ranks, steps):
+    """One coupled run of the example with its box cut `parts` times per face edge."""
+    case = os.path.join(folder, f"case_{parts}")
+    if not os.path.isdir(case):
+        shutil.copytree(EXAMPLE, case)
+        with open(os.path.join(case, "box.stl"), "w") as handle:
+            subprocess.run([sys.executable, os.path.join(EXAMPLE, "make_box_stl.py"), "--subdivide", str(parts)],
+                           stdout=handle, check=True)
+    run_dir = os.path.join(folder, f"run_{parts}_np{ranks}")
+    command = [os.path.join(bin_dir, "fsi-run"), os.path.join(case, "hydrostatic_box_3d.scene"), "--np",
+               str(ranks), "--output", run_dir, "--set", f"SolverOptions.end_time={steps * TIME_STEP:.9g}",
+               "--set", "Output.snapshot_every_steps=0"]
+    subprocess.run(command, env=ENV, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    with open(os.path.join(run_dir, "run.json")) as handle:
+        result = json.load(handle)
+    with open(os.path.join(run_dir, "fsi-client.log")) as handle:
+        memory = re.search(r"memory: peak resident ([\d. /]+) MiB per rank", handle.read())
+    t = result["timings_seconds"]
+    return {"triangles": 12 * parts * parts, "ranks": ranks, "steps": result["steps"],
+            "step_ms": 1e3 * t["coupled_phase"] / result["steps"],
+            "contact_ms": 1e3 * t["contact_fix"] / result["steps"],
+            "memory_mib": [float(v) for v in memory.group(1).split("/")] if memory else []}
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--subdivisions", default="1,16,48",
+                        help="squares per face edge, comma-separated, the first the reference (default 1,16,48)")
+    parser.add_argument("--steps", type=int, default=200, help="coupled steps per run")
+    parser.add_argument("--build", default=os.path.join(ROOT, "build"))
+    args = parser.parse_args()
+    parts_list = [int(p) for p in args.subdivisions.split(",")]
+    if not parts_list or min(parts_list) < 1:
+        parser.error("--subdivisions: whole numbers >= 1")
+    bin_dir = os.path.join(args.build, "bin")
+    results = []
+    with tempfile.TemporaryDirectory(prefix="fsi_bench_boundary_") as folder:
+        for parts in parts_list:
+            for ranks in (1, 2):
+                results.append(run(bin_dir, folder, parts, ranks, args.steps))
+    print(f"3D hydrostatic box, 648 particles, {args.steps} coupled steps; the container as 12 n^2 triangles")
+    print("| triangles | ranks | ms/step | contact fix ms/step | peak resident MiB per rank |")
+    print("|---|---|---|---|---|")
+    for r in results:
+        print(f"| {r['triangles']} | {r['ranks']} | {r['step_ms']:.3f} | {r['contact_ms']:.3f} | "
+              f"{' / '.join(f'{m:.1f}' for m in r['memory_mib'])} |")
+    for ranks in (1, 2):
+        same = [r for r in results if r["ranks"] == ranks]
+        base = same[0]
+        for r in same[1:]:
+            extra = r["triangles"] - base["triangles"]
+            if extra <= 0 or not r["memory_mib"] or not base["memory_mib"]:
+                continue
+            per_rank_kib = [1024 * (m - b) / extra for m, b in zip(r["memory_mib"], base["memory_mib"])]
+            print(f"{ranks} rank(s), {r['triangles']} triangles against {base['triangles']}: "
+                  f"{' / '.join(f'{k:.2f}' for k in per_rank_kib)} KiB per triangle per rank, contact fix "
+                  f"{1e3 * (r['contact_ms'] - base['contact_ms']) / extra:.3f} us per triangle per step")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
