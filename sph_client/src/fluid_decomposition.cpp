@@ -135,23 +135,26 @@ void migrate_particles(LAMMPS_NS::LAMMPS& lammps) {
   irregular.migrate_atoms();
 }
 
-std::vector<std::uint64_t> particles_per_rank(const LAMMPS_NS::LAMMPS& lammps,
-                                              MPI_Comm communicator) {
+namespace {
+
+// This rank's count next to every other rank's, on every rank.
+std::vector<std::uint64_t> gathered_counts(std::uint64_t local, MPI_Comm communicator) {
   int ranks = 1;
   MPI_Comm_size(communicator, &ranks);
   std::vector<std::uint64_t> counts(static_cast<std::size_t>(ranks), 0);
-  const auto local = static_cast<std::uint64_t>(lammps.atom->nlocal);
   MPI_Allgather(&local, 1, MPI_UINT64_T, counts.data(), 1, MPI_UINT64_T, communicator);
   return counts;
 }
 
+}  // namespace
+
+std::vector<std::uint64_t> particles_per_rank(const LAMMPS_NS::LAMMPS& lammps,
+                                              MPI_Comm communicator) {
+  return gathered_counts(static_cast<std::uint64_t>(lammps.atom->nlocal), communicator);
+}
+
 std::vector<std::uint64_t> ghosts_per_rank(const LAMMPS_NS::LAMMPS& lammps, MPI_Comm communicator) {
-  int ranks = 1;
-  MPI_Comm_size(communicator, &ranks);
-  std::vector<std::uint64_t> counts(static_cast<std::size_t>(ranks), 0);
-  const auto local = static_cast<std::uint64_t>(lammps.atom->nghost);
-  MPI_Allgather(&local, 1, MPI_UINT64_T, counts.data(), 1, MPI_UINT64_T, communicator);
-  return counts;
+  return gathered_counts(static_cast<std::uint64_t>(lammps.atom->nghost), communicator);
 }
 
 double ghost_cutoff(const LAMMPS_NS::LAMMPS& lammps) {
