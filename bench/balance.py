@@ -64,16 +64,22 @@ def case_overrides(case, resolution, steps, equilibration_steps, fill_height=Non
     return overrides, time_step, f"{resolution} particles across the box (d = {1e3 * spacing:.4g} mm)"
 
 
-def coupled(bin_dir, folder, scene, name, ranks, overrides, client_args):
-    run_dir = os.path.join(folder, name)
-    # A machine given to one run: the ranks pinned to their cores (fsi-run's --bind-to core;
-    # 8 % faster than unpinned on 2 ranks, docs/performance.md "Ranks and balance").
+def fsi_run_command(bin_dir, scene, run_dir, ranks, overrides, client_args=(), bind="core"):
+    """fsi-run's command line. bind "core" (the default here): a machine given to one run, the
+    ranks pinned to their cores (8 % faster than unpinned on 2 ranks, docs/performance.md "Ranks
+    and balance"); "none" for runs side by side, which pinned would all share core 0."""
     command = [os.path.join(bin_dir, "fsi-run"), scene, "--np", str(ranks), "--output", run_dir,
-               "--bind-to", "core"]
+               "--bind-to", bind]
     for item in overrides:
         command += ["--set", item]
     for item in client_args:
         command += ["--client-arg", item]
+    return command
+
+
+def coupled(bin_dir, folder, scene, name, ranks, overrides, client_args):
+    run_dir = os.path.join(folder, name)
+    command = fsi_run_command(bin_dir, scene, run_dir, ranks, overrides, client_args)
     subprocess.run(command, env=ENV, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     with open(os.path.join(run_dir, "run.json")) as handle:
         run = json.load(handle)

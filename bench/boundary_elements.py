@@ -24,8 +24,9 @@ import tempfile
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 EXAMPLE = os.path.join(ROOT, "examples", "hydrostatic_box_3d")
 TIME_STEP = 2.5e-5  # the example's SolverOptions.Timeint.step_size [s]
-ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
-           OMPI_MCA_rmaps_base_oversubscribe="1")
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import balance  # noqa: E402  (fsi-run's command line and environment)
 
 
 def run(bin_dir, folder, parts, ranks, steps):
@@ -37,10 +38,10 @@ def run(bin_dir, folder, parts, ranks, steps):
             subprocess.run([sys.executable, os.path.join(EXAMPLE, "make_box_stl.py"), "--subdivide", str(parts)],
                            stdout=handle, check=True)
     run_dir = os.path.join(folder, f"run_{parts}_np{ranks}")
-    command = [os.path.join(bin_dir, "fsi-run"), os.path.join(case, "hydrostatic_box_3d.scene"), "--np",
-               str(ranks), "--output", run_dir, "--set", f"SolverOptions.end_time={steps * TIME_STEP:.9g}",
-               "--set", "Output.snapshot_every_steps=0"]
-    subprocess.run(command, env=ENV, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    command = balance.fsi_run_command(bin_dir, os.path.join(case, "hydrostatic_box_3d.scene"), run_dir, ranks,
+                                      [f"SolverOptions.end_time={steps * TIME_STEP:.9g}",
+                                       "Output.snapshot_every_steps=0"], bind="none")
+    subprocess.run(command, env=balance.ENV, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     with open(os.path.join(run_dir, "run.json")) as handle:
         result = json.load(handle)
     with open(os.path.join(run_dir, "fsi-client.log")) as handle:

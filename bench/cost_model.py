@@ -214,10 +214,7 @@ def concurrent_step(bin_dir, folder, case, overrides):
     for k in range(2):
         run_dir = os.path.join(folder, f"concurrent_{k}")
         # Unpinned: pinned, both runs' rank 0 would share core 0 (Open MPI binds rank i to core i).
-        command = [os.path.join(bin_dir, "fsi-run"), balance.SCENES[case], "--np", "1", "--output", run_dir,
-                   "--bind-to", "none"]
-        for item in overrides:
-            command += ["--set", item]
+        command = balance.fsi_run_command(bin_dir, balance.SCENES[case], run_dir, 1, overrides, bind="none")
         jobs.append((run_dir, subprocess.Popen(command, env=balance.ENV, stdout=subprocess.DEVNULL,
                                                stderr=subprocess.DEVNULL)))
     steps = []

@@ -550,10 +550,7 @@ class ClientSession {
     std::vector<double> all(static_cast<std::size_t>(mpi_.size()), 0.0);
     MPI_Gather(&megabytes, 1, MPI_DOUBLE, all.data(), 1, MPI_DOUBLE, 0, mpi_.communicator());
     if (!mpi_.root()) return;
-    std::string text;
-    for (const double value : all)
-      text += (text.empty() ? "" : " / ") + fmt::format("{:.1f}", value);
-    spdlog::info("memory: peak resident {} MiB per rank ({} particles)", text,
+    spdlog::info("memory: peak resident {:.1f} MiB per rank ({} particles)", fmt::join(all, " / "),
                  driver_->particle_count());
   }
 
@@ -563,10 +560,8 @@ class ClientSession {
     const LAMMPS_NS::LAMMPS& lammps = driver_->lammps();
     const std::vector<std::uint64_t> ghosts = ghosts_per_rank(lammps, mpi_.communicator());
     if (!mpi_.root()) return;
-    std::string text;
-    for (const std::uint64_t value : ghosts)
-      text += (text.empty() ? "" : " / ") + std::to_string(value);
-    spdlog::info("ghosts: {} per rank (ghost cut-off {:.6g} m)", text, ghost_cutoff(lammps));
+    spdlog::info("ghosts: {} per rank (ghost cut-off {:.6g} m)", fmt::join(ghosts, " / "),
+                 ghost_cutoff(lammps));
   }
 
   void log_balance_summary() const {

@@ -63,6 +63,15 @@ DomainCuts cuts_from(const LAMMPS_NS::LAMMPS& lammps, const std::array<AxisHisto
   return cuts;
 }
 
+// This rank's count next to every other rank's, on every rank.
+std::vector<std::uint64_t> gathered_counts(std::uint64_t local, MPI_Comm communicator) {
+  int ranks = 1;
+  MPI_Comm_size(communicator, &ranks);
+  std::vector<std::uint64_t> counts(static_cast<std::size_t>(ranks), 0);
+  MPI_Allgather(&local, 1, MPI_UINT64_T, counts.data(), 1, MPI_UINT64_T, communicator);
+  return counts;
+}
+
 }  // namespace
 
 ProcessorGrid processor_grid(const LAMMPS_NS::LAMMPS& lammps) {
@@ -134,19 +143,6 @@ void migrate_particles(LAMMPS_NS::LAMMPS& lammps) {
   LAMMPS_NS::Irregular irregular(&lammps);
   irregular.migrate_atoms();
 }
-
-namespace {
-
-// This rank's count next to every other rank's, on every rank.
-std::vector<std::uint64_t> gathered_counts(std::uint64_t local, MPI_Comm communicator) {
-  int ranks = 1;
-  MPI_Comm_size(communicator, &ranks);
-  std::vector<std::uint64_t> counts(static_cast<std::size_t>(ranks), 0);
-  MPI_Allgather(&local, 1, MPI_UINT64_T, counts.data(), 1, MPI_UINT64_T, communicator);
-  return counts;
-}
-
-}  // namespace
 
 std::vector<std::uint64_t> particles_per_rank(const LAMMPS_NS::LAMMPS& lammps,
                                               MPI_Comm communicator) {

@@ -252,9 +252,8 @@ void LiggghtsDriver::step() {
     run_continued(1);
     return;
   }
-  if (stepping_ && update.ntimestep >= steps_until_) end_steps();
+  if (stepping_ && update.ntimestep >= update.laststep) end_steps();
   if (!stepping_) begin_steps();
-  position_.command = "coupled step " + std::to_string(update.ntimestep + 1);
   update.integrate->run(1);
 }
 
@@ -272,7 +271,7 @@ void LiggghtsDriver::begin_steps() {
   lammps_->output->init();
   lammps_->output->setup(0);
   lammps_->timer->init();
-  steps_until_ = update.laststep;
+  position_.command = "coupled steps from LIGGGHTS step " + std::to_string(update.ntimestep);
   stepping_ = true;
 }
 

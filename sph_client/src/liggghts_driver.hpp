@@ -164,8 +164,7 @@ class LiggghtsDriver {
   ScriptPosition position_;
   std::optional<ProcessorGrid> automatic_grid_;
   bool script_chose_grid_ = false;
-  bool stepping_ = false;         // inside the run of step()s
-  std::int64_t steps_until_ = 0;  // that run's last step (LIGGGHTS' update->laststep)
+  bool stepping_ = false;  // inside the run of step()s (it ends at update->laststep)
 };
 
 }  // namespace fsi::client

@@ -12,6 +12,13 @@ namespace {
 
 // dt c / h measured stable here (docs/user-guide.md, "Physics checks": below the thesis' 0.25).
 constexpr double kStableCourant = 0.125;
+
+// Beyond the measured-stable ratio by more than the three digits printed (else the advice would
+// read "reduce from 6.67e-06 s to at most 6.67e-06 s").
+bool beyond_stable(double courant) {
+  return courant > kStableCourant * (1.0 + 1e-3);
+}
+
 // dt c / h measured stable through a dam break's impact on a wall (examples/dam_break/
 // stability_map.json, docs/validation.md "Stability maps": the coarse Martin & Moyce dam break
 // ran at 0.092 with |rho/rho0 - 1| <= 0.4 % and stopped at 3 % at 0.115, whatever the wall).
@@ -95,9 +102,7 @@ std::string FluidHealthMonitor::time_step_advice() const {
   if (!known) return {};
   const double courant = *known;
   std::string text = "dt c / h = " + number(courant);
-  // Beyond the limit by more than the three digits printed (else the advice would read "from
-  // 6.67e-06 s to at most 6.67e-06 s").
-  if (courant > kStableCourant * (1.0 + 1e-3)) {
+  if (beyond_stable(courant)) {
     text += " exceeds the " + number(kStableCourant) +
             " measured stable: reduce SolverOptions.Timeint.step_size from " +
             number(scales_.time_step) + " s to at most " +
@@ -189,9 +194,7 @@ std::optional<HealthFinding> FluidHealthMonitor::density(std::uint64_t step,
   std::string fix;
   const std::string advice = time_step_advice();
   const double courant = courant_number().value_or(0.0);
-  // Beyond the limit by more than the three digits printed (else the advice would read "from
-  // 6.67e-06 s to at most 6.67e-06 s").
-  if (courant > kStableCourant * (1.0 + 1e-3)) {
+  if (beyond_stable(courant)) {
     fix = "the time step is too large for the speed of sound: " + advice;
   } else {
     if (courant > kImpactStableCourant) {
