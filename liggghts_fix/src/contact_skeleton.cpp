@@ -122,6 +122,7 @@ void ContactDiagnostics::merge(const ContactDiagnostics& other) {
   pair_count += other.pair_count;
   candidate_pairs += other.candidate_pairs;
   sampling_points += other.sampling_points;
+  sampling_points_skipped += other.sampling_points_skipped;
   closest_distance = std::min(closest_distance, other.closest_distance);
 }
 

@@ -4,7 +4,12 @@
 // redistribution of eq. (4.11)/(4.12). What differs between the two is only how an element is
 // sampled, so each half supplies a sampling: an object with
 //   using Point = SamplingPoint<Element, Dimension, Corners>;
-//   template <class Visit> void for_each_point(Visit&& visit) const;  // visit(const Point&)
+//   template <class Visit>
+//   void for_each_point(Visit&& visit, const ReachBox<Dimension>* reach,
+//                       std::size_t& skipped) const;  // visit(const Point&)
+// that skips, when reach is not null, every (sub-)element whose corners' bounding box misses
+// *reach, adding the sampling points it would have had to `skipped` (a rank then evaluates only
+// its share of the boundary: thesis §7.1),
 // and an Element type with
 //   double closest_distance(const double* particle, double closest_so_far) const;
 // returning min(closest_so_far, distance of the particle to the element).
@@ -39,6 +44,30 @@ struct SamplingPoint {
   std::uint32_t corner_vertex[Corners];
   double corner_share[Corners];  // eq. (4.11/4.12) weights of the point in the original element
   const Element* element;
+};
+
+// The box a sampling point must lie in to have a partner particle: the bounding box of the
+// particles that can reach the mesh, widened by the search reach. A sampling point lies in the
+// bounding box of its (sub-)element's corners, so an element whose box misses this one has no
+// pair: skipping it changes nothing but the work.
+template <int Dimension>
+struct ReachBox {
+  double low[Dimension];
+  double high[Dimension];
+
+  // True when the bounding box of `count` corners lies entirely outside this box.
+  bool misses(const double* const* corners, int count) const {
+    for (int k = 0; k < Dimension; ++k) {
+      bool all_below = true;
+      bool all_above = true;
+      for (int c = 0; c < count; ++c) {
+        all_below = all_below && corners[c][k] < low[k];
+        all_above = all_above && corners[c][k] > high[k];
+      }
+      if (all_below || all_above) return true;
+    }
+    return false;
+  }
 };
 
 inline bool takes_part(const ParticleArrays& particles, std::size_t i) {
@@ -198,12 +227,22 @@ ContactDiagnostics evaluate_near_particles(
   buffers.in_range.assign(particles.count, 0);
   PairKernel<Point> kernel(law, particles, vertex_forces, buffers.in_range, diagnostics);
   const double reach = range * (1.0 + kSearchMargin);
-  sampling.for_each_point([&](const Point& s) {
-    ++diagnostics.sampling_points;
-    kernel.begin_sample(s, record);
-    diagnostics.candidate_pairs +=
-        buffers.grid.visit_near(s.position, reach, [&](std::uint32_t i) { kernel(s, i); });
-  });
+  // A record holds every sampling point (the probes sum them over the ranks), so it turns the
+  // skipping off.
+  ReachBox<Point::kDimension> box;
+  for (int k = 0; k < Point::kDimension; ++k) {
+    box.low[k] = buffers.grid.members_low()[k] - reach;
+    box.high[k] = buffers.grid.members_high()[k] + reach;
+  }
+  sampling.for_each_point(
+      [&](const Point& s) {
+        ++diagnostics.sampling_points;
+        kernel.begin_sample(s, record);
+        diagnostics.candidate_pairs +=
+            buffers.grid.visit_near(s.position, reach, [&](std::uint32_t i) { kernel(s, i); });
+      },
+      record ? nullptr : &box, diagnostics.sampling_points_skipped);
+  diagnostics.sampling_points += diagnostics.sampling_points_skipped;
   finish_evaluation<Point::kDimension>(vertex_forces, diagnostics);
   return diagnostics;
 }
@@ -220,15 +259,17 @@ ContactDiagnostics evaluate_all_pairs(const Sampling& sampling, const ForceLaw& 
   ContactDiagnostics diagnostics = start_evaluation(vertex_forces);
   std::vector<std::uint8_t> in_range(particles.count, 0);
   PairKernel<Point> kernel(law, particles, vertex_forces, in_range, diagnostics);
-  sampling.for_each_point([&](const Point& s) {
-    ++diagnostics.sampling_points;
-    kernel.begin_sample(s, record);
-    for (std::size_t i = 0; i < particles.count; ++i) {
-      if (!takes_part(particles, i)) continue;
-      ++diagnostics.candidate_pairs;
-      kernel(s, i);
-    }
-  });
+  sampling.for_each_point(
+      [&](const Point& s) {
+        ++diagnostics.sampling_points;
+        kernel.begin_sample(s, record);
+        for (std::size_t i = 0; i < particles.count; ++i) {
+          if (!takes_part(particles, i)) continue;
+          ++diagnostics.candidate_pairs;
+          kernel(s, i);
+        }
+      },
+      nullptr, diagnostics.sampling_points_skipped);
   finish_evaluation<Point::kDimension>(vertex_forces, diagnostics);
   return diagnostics;
 }

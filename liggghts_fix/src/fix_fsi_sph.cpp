@@ -97,6 +97,9 @@ class FixFsiSph : public LAMMPS_NS::Fix {
       throw std::runtime_error(text);
     }
     ++boundary.evaluations;
+    boundary.sampling_points += boundary.diagnostics.sampling_points;
+    boundary.sampling_points_generated +=
+        boundary.diagnostics.sampling_points - boundary.diagnostics.sampling_points_skipped;
     warn_if_too_close(boundary.diagnostics.closest_distance);
     boundary.seconds_in_fix +=
         std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();

@@ -34,7 +34,8 @@ class SegmentSampling {
         mesh_(mesh) {}
 
   template <class Visit>
-  void for_each_point(Visit&& visit) const {
+  void for_each_point(Visit&& visit, const skeleton::ReachBox<2>* reach,
+                      std::size_t& skipped) const {
     const double* r = mesh_.positions.data();
     const double* v = mesh_.velocities.data();
     for (std::size_t segment = 0; segment < mesh_.segment_count(); ++segment) {
@@ -48,6 +49,11 @@ class SegmentSampling {
       const double length = std::hypot(rb[0] - ra[0], rb[1] - ra[1]);
       const int levels = bisection_levels(length, resolution_);
       const std::size_t pieces = std::size_t{1} << levels;
+      const double* ends[2] = {ra, rb};
+      if (reach && reach->misses(ends, 2)) {
+        skipped += pieces * rule_.size();
+        continue;
+      }
       const double piece_fraction = 1.0 / static_cast<double>(pieces);
       const double piece_length = length * piece_fraction;
       Point point{};
@@ -60,6 +66,18 @@ class SegmentSampling {
       point.normal[1] = -(rb[0] - ra[0]) * inverse_length;
       for (std::size_t piece = 0; piece < pieces; ++piece) {
         const double start = static_cast<double>(piece) * piece_fraction;
+        if (reach && pieces > 1) {
+          const double end = start + piece_fraction;
+          const double from[2] = {(1.0 - start) * ra[0] + start * rb[0],
+                                  (1.0 - start) * ra[1] + start * rb[1]};
+          const double to[2] = {(1.0 - end) * ra[0] + end * rb[0],
+                                (1.0 - end) * ra[1] + end * rb[1]};
+          const double* piece_ends[2] = {from, to};
+          if (reach->misses(piece_ends, 2)) {
+            skipped += rule_.size();
+            continue;
+          }
+        }
         for (const QuadraturePoint& q : rule_) {
           const double g = start + q.position * piece_fraction;  // along the segment, eq. 4.5
           point.corner_share[0] = 1.0 - g;

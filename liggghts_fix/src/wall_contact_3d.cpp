@@ -77,10 +77,12 @@ Barycentric midpoint(const Barycentric& a, const Barycentric& b) {
 }
 
 // Splits the barycentric triangle (c0, c1, c2) by its edge midpoints, `levels` times, and calls
-// leaf(corner0, corner1, corner2) for every resulting sub-triangle.
-template <class Leaf>
+// leaf(corner0, corner1, corner2) for every resulting sub-triangle, except where
+// prune(corner0, corner1, corner2, levels) returns true for it or a triangle containing it.
+template <class Leaf, class Prune>
 void split(const Barycentric& c0, const Barycentric& c1, const Barycentric& c2, int levels,
-           Leaf& leaf) {
+           Leaf& leaf, Prune& prune) {
+  if (prune(c0, c1, c2, levels)) return;
   if (levels == 0) {
     leaf(c0, c1, c2);
     return;
@@ -88,10 +90,10 @@ void split(const Barycentric& c0, const Barycentric& c1, const Barycentric& c2, 
   const Barycentric m01 = midpoint(c0, c1);
   const Barycentric m12 = midpoint(c1, c2);
   const Barycentric m20 = midpoint(c2, c0);
-  split(c0, m01, m20, levels - 1, leaf);
-  split(m01, c1, m12, levels - 1, leaf);
-  split(m20, m12, c2, levels - 1, leaf);
-  split(m12, m20, m01, levels - 1, leaf);
+  split(c0, m01, m20, levels - 1, leaf, prune);
+  split(m01, c1, m12, levels - 1, leaf, prune);
+  split(m20, m12, c2, levels - 1, leaf, prune);
+  split(m12, m20, m01, levels - 1, leaf, prune);
 }
 
 [[noreturn]] void too_fine(double longest_edge, double resolution, std::size_t triangle) {
@@ -145,7 +147,8 @@ class TriangleSampling {
       : rule_(triangle_rule(settings.quadrature_points)), mesh_(mesh), levels_(levels) {}
 
   template <class Visit>
-  void for_each_point(Visit&& visit) const {
+  void for_each_point(Visit&& visit, const skeleton::ReachBox<3>* reach,
+                      std::size_t& skipped) const {
     for (std::size_t t = 0; t < mesh_.triangle_count(); ++t) {
       const Triangle e = element(mesh_, t);
       if (!(e.area > 0.0)) continue;  // zero area: no contribution
@@ -174,7 +177,23 @@ class TriangleSampling {
           visit(point);
         }
       };
-      split({1.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, {0.0, 0.0, 1.0}, level, leaf);
+      auto prune = [&](const Barycentric& c0, const Barycentric& c1, const Barycentric& c2,
+                       int levels) {
+        if (!reach) return false;
+        double corner[3][3];
+        const Barycentric* barycentric[3] = {&c0, &c1, &c2};
+        for (int c = 0; c < 3; ++c) {
+          const Barycentric& l = *barycentric[c];
+          for (int k = 0; k < 3; ++k)
+            corner[c][k] =
+                l[0] * e.position[0][k] + l[1] * e.position[1][k] + l[2] * e.position[2][k];
+        }
+        const double* corners[3] = {corner[0], corner[1], corner[2]};
+        if (!reach->misses(corners, 3)) return false;
+        skipped += (std::size_t{1} << (2 * levels)) * rule_.size();
+        return true;
+      };
+      split({1.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, {0.0, 0.0, 1.0}, level, leaf, prune);
     }
   }
 

@@ -426,6 +426,69 @@ TEST(WallContact3D, TwoRanksGiveTheVertexForcesOfOne) {
   }
 }
 
+// The plate of square_plate() below, for the test that follows it.
+BoundaryMesh3D square_plate(double cutoff);
+
+// The distributed boundary (thesis §7.1): a rank samples only the (sub-)triangles within the
+// range of its own particles. Two ranks split a layer of water over a plate at x = 0: each
+// generates little more than its half of the sampling points, its forces are bit for bit those of
+// the evaluation that samples everything (a record turns the skipping off), and the two ranks'
+// vertex forces sum to one rank's to summation order.
+TEST(WallContact3D, EachRankSamplesOnlyTheBoundaryWithinReachOfItsParticles) {
+  const ContactSettings3D s = settings(1);
+  const double cutoff = s.law.cutoff;
+  const BoundaryMesh3D plate = square_plate(cutoff);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> jitter(-0.2 * cutoff, 0.2 * cutoff);
+  Particles all, rank[2];
+  for (int i = 0; i < 40; ++i) {
+    for (int j = 0; j < 40; ++j) {
+      for (int k = 0; k < 2; ++k) {
+        const Vector x{(i - 19.5) * 0.5 * cutoff + jitter(rng),
+                       (j - 19.5) * 0.5 * cutoff + jitter(rng), (0.3 + 0.5 * k) * cutoff};
+        const Vector v{jitter(rng) / cutoff, jitter(rng) / cutoff, -0.1};
+        all.add(x, v);
+        rank[x[0] < 0.0 ? 0 : 1].add(x, v);
+      }
+    }
+  }
+  std::vector<double> single(plate.positions.size());
+  const ContactDiagnostics one = WallContact3D(s).compute(plate, all.arrays(), single);
+  ASSERT_GT(one.pair_count, 10000u);
+  std::vector<double> summed(plate.positions.size(), 0.0);
+  for (int r = 0; r < 2; ++r) {
+    Particles everything = rank[r];
+    std::vector<double> share(plate.positions.size()), reference(plate.positions.size());
+    const ContactDiagnostics d = WallContact3D(s).compute(plate, rank[r].arrays(), share);
+    WallSampleRecord record;
+    record.enabled = true;
+    const ContactDiagnostics full =
+        WallContact3D(s).compute(plate, everything.arrays(), reference, &record);
+    EXPECT_EQ(d.sampling_points, one.sampling_points) << "rank " << r;
+    EXPECT_EQ(full.sampling_points_skipped, 0u) << "a record samples everything";
+    const double evaluated = static_cast<double>(d.sampling_points - d.sampling_points_skipped);
+    const double fraction = evaluated / static_cast<double>(d.sampling_points);
+    RecordProperty("evaluated_fraction_rank_" + std::to_string(r), scientific(fraction));
+    // Half the plate plus a strip one cut-off wide (1/20 of the side) and the sub-triangles the
+    // strip's edge cuts.
+    EXPECT_GT(fraction, 0.5) << "rank " << r;
+    EXPECT_LT(fraction, 0.65) << "rank " << r;
+    EXPECT_EQ(share, reference) << "rank " << r << ": skipping changes no vertex force";
+    EXPECT_EQ(rank[r].f, everything.f) << "rank " << r << ": nor any particle's force";
+    EXPECT_EQ(d.pair_count, full.pair_count);
+    EXPECT_EQ(d.candidate_pairs, full.candidate_pairs);
+    for (std::size_t k = 0; k < summed.size(); ++k)
+      summed[k] += share[k];
+  }
+  EXPECT_LE(relative_difference(summed, single), 1e-12);
+  // Without particles nothing is sampled, and nothing is lost.
+  Particles none;
+  std::vector<double> nothing(plate.positions.size(), 1.0);
+  const ContactDiagnostics empty = WallContact3D(s).compute(plate, none.arrays(), nothing);
+  EXPECT_EQ(empty.sampling_points_skipped, empty.sampling_points);
+  EXPECT_EQ(nothing, std::vector<double>(plate.positions.size(), 0.0));
+}
+
 TEST(WallContact3D, OnlyParticlesOfTheGroupTakePart) {
   BoundaryMesh3D mesh{{0, 0, 0, 0.05, 0, 0, 0, 0.05, 0}, std::vector<double>(9, 0.0), {0, 1, 2}};
   Particles p;

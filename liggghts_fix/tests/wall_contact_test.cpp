@@ -160,6 +160,35 @@ TEST(WallContact, CellListEqualsAllPairs) {
   }
 }
 
+// A rank samples only the pieces of the wall within the range of its particles (thesis §7.1):
+// a floor 1 m long whose water sits over its left tenth generates the sampling points of little
+// more than that tenth, with the forces of the evaluation that samples everything.
+TEST(WallContact, SamplesOnlyThePiecesWithinReachOfTheParticles) {
+  const ContactSettings s = settings();
+  const BoundaryMesh2D floor{{0.0, 0.0, 1.0, 0.0}, {0.0, 0.0, 0.0, 0.0}, {0, 1}};
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> x(0.0, 0.1), y(0.001, 0.012), speed(-0.5, 0.5);
+  Particles p;
+  for (int i = 0; i < 400; ++i)
+    p.add(x(rng), y(rng), speed(rng), speed(rng));
+  Particles q = p;
+  std::vector<double> share(4), reference(4);
+  const auto d = WallContact2D(s).compute(floor, p.arrays(), share);
+  WallSampleRecord record;
+  record.enabled = true;
+  const auto full = WallContact2D(s).compute(floor, q.arrays(), reference, &record);
+  ASSERT_GT(d.pair_count, 500u);
+  EXPECT_EQ(d.sampling_points, full.sampling_points);
+  EXPECT_EQ(full.sampling_points_skipped, 0u);
+  const double fraction = static_cast<double>(d.sampling_points - d.sampling_points_skipped) /
+                          static_cast<double>(d.sampling_points);
+  EXPECT_GT(fraction, 0.1);
+  EXPECT_LT(fraction, 0.13);  // 0.1 m of water, the cut-off 0.01 m and one 0.0156 m piece
+  EXPECT_EQ(share, reference);
+  EXPECT_EQ(p.f, q.f);
+  EXPECT_EQ(d.pair_count, full.pair_count);
+}
+
 TEST(WallContact, CellListHandlesDegenerateParticleClouds) {
   const ContactSettings s = settings();
   BoundaryMesh2D mesh{{-0.05, 0.0, 0.05, 0.0}, {0.0, 0.0, 0.0, 0.0}, {0, 1}};

@@ -564,6 +564,26 @@ class ClientSession {
                  ghost_cutoff(lammps));
   }
 
+  // Every rank's share of the boundary's sampling points, averaged over its evaluations, and
+  // their total per evaluation (collective): a rank generates only the points within reach of
+  // its own particles (thesis §7.1; bench/cost_model.py reads this line).
+  void log_boundary_share() const {
+    if (!boundary_) return;  // the same on every rank
+    const double evaluations =
+        static_cast<double>(std::max<std::uint64_t>(1, boundary_->evaluations));
+    const double generated =
+        static_cast<double>(boundary_->sampling_points_generated) / evaluations;
+    std::vector<double> all(static_cast<std::size_t>(mpi_.size()), 0.0);
+    MPI_Gather(&generated, 1, MPI_DOUBLE, all.data(), 1, MPI_DOUBLE, 0, mpi_.communicator());
+    if (!mpi_.root()) return;
+    const double total = static_cast<double>(boundary_->sampling_points) / evaluations;
+    std::vector<std::string> shares;
+    for (double value : all)
+      shares.push_back(fmt::format("{:.0f}", value));
+    spdlog::info("boundary: {} of {:.0f} sampling points generated per evaluation per rank",
+                 fmt::join(shares, " / "), total);
+  }
+
   void log_balance_summary() const {
     if (!mpi_.root() || mpi_.size() < 2 || !options_.balance) return;
     spdlog::info(
@@ -990,6 +1010,7 @@ class ClientSession {
         log_health_scan_cost(steps);
         log_balance_summary();
         log_ghosts();
+        log_boundary_share();
         log_peak_memory();
         return;
       } else if (auto* error = std::get_if<protocol::ErrorMessage>(&message)) {

@@ -34,6 +34,14 @@ def ghosts(log):
     return [int(value) for value in match.group(1).split("/")], float(match.group(2))
 
 
+def boundary_share(log):
+    """(sampling points generated per evaluation on each rank, all sampling points per evaluation)."""
+    match = re.search(r"boundary: ([\d /]+) of (\d+) sampling points generated per evaluation per rank", log)
+    if not match:
+        fail(f"no boundary line in the client's log:\n{log[-3000:]}")
+    return [int(value) for value in match.group(1).split("/")], int(match.group(2))
+
+
 def decomposition(log):
     """(grid, source, shares, imbalance) from the client's set-up line."""
     match = re.search(r"decomposition: (\d+ x \d+ x \d+) ranks \(([^)]*)\), \w+ cuts .*?; particles per "
@@ -78,6 +86,19 @@ print(f"ghosts per rank: even {even_ghosts}, balanced {balanced_ghosts} (cut-off
 check(even_ghosts == [0, 0], f"even cuts: no rank holds ghosts ({even_ghosts})")
 check(all(0 < g < sum(shares) / 2 for g in balanced_ghosts) and cutoff > 0,
       f"balanced: each rank holds a halo of the other's particles, not all of them ({balanced_ghosts})")
+# The distributed boundary: a rank generates only the sampling points within reach of its own
+# particles. With even cuts rank 1 holds no particle and samples nothing; balanced, each rank
+# samples the walls near its half of the column, not the whole tank (the right wall and most of
+# the floor are beyond every particle's reach).
+even_share, even_total = boundary_share(even_log)
+balanced_share, balanced_total = boundary_share(balanced_log)
+print(f"sampling points generated per evaluation: even {even_share}, balanced {balanced_share} "
+      f"of {balanced_total}")
+check(even_total == balanced_total > 0, f"the same boundary in both runs ({even_total}, {balanced_total})")
+check(even_share[1] == 0 and 0 < even_share[0] < even_total,
+      f"even cuts: rank 1 samples nothing, rank 0 only the walls near the column ({even_share})")
+check(all(0 < s < balanced_total / 2 for s in balanced_share),
+      f"balanced: each rank samples less than half the boundary ({balanced_share} of {balanced_total})")
 check(largest <= 1.1, f"the imbalance found at the checks stayed small ({largest} <= 1.1)")
 
 even = load_sensors(os.path.join(output, "even"))

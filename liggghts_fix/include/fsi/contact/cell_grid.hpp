@@ -46,6 +46,8 @@ class CellGrid {
       }
     }
     geometry_ = GridGeometry<D>{};
+    low_ = low;
+    high_ = high;
     if (members == 0) {
       start_.assign(1, 0);
       members_.clear();
@@ -90,6 +92,10 @@ class CellGrid {
   }
 
   const GridGeometry<D>& geometry() const { return geometry_; }
+
+  // The bounding box of the member particles (low > high when there is none).
+  const std::array<double, D>& members_low() const { return low_; }
+  const std::array<double, D>& members_high() const { return high_; }
 
   // Calls visit(i) for every member particle in the cells overlapping the box
   // [point - reach, point + reach] (at most three cells per axis when reach <= the cell size)
@@ -140,6 +146,8 @@ class CellGrid {
   }
 
   GridGeometry<D> geometry_;
+  std::array<double, D> low_{};
+  std::array<double, D> high_{};
   std::vector<std::uint32_t> start_{0};
   std::vector<std::uint32_t> members_;
   std::vector<std::uint32_t> cell_of_;

@@ -46,6 +46,10 @@ struct ContactDiagnostics {
   std::size_t pair_count = 0;                   // (particle, sampling point) pairs within range
   std::size_t candidate_pairs = 0;              // pairs examined (cell-list or all-pairs)
   std::size_t sampling_points = 0;              // sampling points of this evaluation
+  std::size_t sampling_points_skipped = 0;      // of which never generated: their (sub-)element
+                                                // lies beyond the range of every particle of
+                                                // this process (the rank's share of the boundary
+                                                // is sampling_points - sampling_points_skipped)
   double closest_distance = 0.0;                // smallest particle–element distance in range;
                                                 // +inf when no particle is in range
   void merge(const ContactDiagnostics& other);  // sum/min of two partial results

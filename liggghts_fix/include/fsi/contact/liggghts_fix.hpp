@@ -45,6 +45,10 @@ struct CouplingBoundary {
   ContactDiagnostics diagnostics;
   std::uint64_t evaluations = 0;
   double seconds_in_fix = 0.0;  // accumulated on this rank
+  // Sampling points over this rank's evaluations: all of them, and those generated (within
+  // reach of a particle of this rank; the rank's share of the boundary work).
+  std::uint64_t sampling_points = 0;
+  std::uint64_t sampling_points_generated = 0;
 };
 
 // True for a command whose words are "fix ID GROUP fsi/sph ...".
