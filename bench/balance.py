@@ -86,7 +86,8 @@ def coupled(bin_dir, folder, scene, name, ranks, overrides, client_args):
     with open(os.path.join(run_dir, "fsi-client.log")) as handle:
         log = handle.read()
     decomposition = [line.split("] ", 3)[-1] for line in log.splitlines() if "decomposition:" in line
-                     or "balance:" in line or "memory:" in line or "ghosts:" in line]
+                     or "balance:" in line or "memory:" in line or "ghosts:" in line
+                     or "boundary:" in line]
     return run, decomposition
 
 
