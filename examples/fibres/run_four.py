@@ -1,0 +1,77 @@
+#!/usr/bin/python3
+"""The thesis' four fibre runs (Figs 7.9 and 7.10): low and high viscosity of the fluid times low
+and high bending stiffness of the fibres, one after another, then analyze.py over all four.
+
+  run_four.py [--scene fibres_coarse.scene] [--output out/fibres_four] [--np 2] [--end-time T]
+              [--nu-low 5e-5] [--nu-high 5e-4] [--ei-low 2e-6] [--ei-high 2e-4] [--until T]
+
+Each run goes to OUTPUT/nu_<nu>_ei_<EI> (fsi-run --set Fibres.viscosity=... --set
+Fibres.bending_stiffness=...); a run whose folder already holds a completed run.json is not run
+again. The figures: OUTPUT/fibres_speed.png and OUTPUT/fibres_tips.png; analyze.py prints each
+run's numbers (a run stopped by a health check with its sensors up to the stop). Exit status 1
+when a run failed (its fsi-server.log says why)."""
+import argparse
+import json
+import os
+import subprocess
+import sys
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(os.path.dirname(HERE))
+ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+
+
+def completed(run_dir):
+    try:
+        with open(os.path.join(run_dir, "run.json")) as handle:
+            return json.load(handle).get("status") == "completed"
+    except (OSError, ValueError):
+        return False
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--scene", default=os.path.join(HERE, "fibres_coarse.scene"))
+    parser.add_argument("--output", default=os.path.join("out", "fibres_four"))
+    parser.add_argument("--np", type=int, default=2)
+    parser.add_argument("--end-time", type=float, help="Resolution.end_time of every run (default: the scene's)")
+    parser.add_argument("--nu-low", type=float, default=5e-5)
+    parser.add_argument("--nu-high", type=float, default=5e-4)
+    parser.add_argument("--ei-low", type=float, default=2e-6)
+    parser.add_argument("--ei-high", type=float, default=2e-4)
+    parser.add_argument("--until", type=float, help="analyse t <= this only (analyze.py --until)")
+    parser.add_argument("--build", default=os.path.join(ROOT, "build"))
+    args = parser.parse_args()
+    fsi_run = os.path.join(args.build, "bin", "fsi-run")
+    if not os.access(fsi_run, os.X_OK):
+        sys.exit(f"run_four.py: no fsi-run at {fsi_run}; build first (cmake --build build) or give --build")
+    run_dirs = []
+    failed = []
+    for nu in (args.nu_high, args.nu_low):
+        for ei in (args.ei_high, args.ei_low):
+            run_dir = os.path.join(args.output, f"nu_{nu:g}_ei_{ei:g}")
+            run_dirs.append(run_dir)
+            if completed(run_dir):
+                print(f"{run_dir}: completed before, not run again")
+                continue
+            command = [fsi_run, args.scene, "--np", str(args.np), "--output", run_dir,
+                       "--set", f"Fibres.viscosity={nu!r}", "--set", f"Fibres.bending_stiffness={ei!r}"]
+            if args.end_time is not None:
+                command += ["--set", f"Resolution.end_time={args.end_time!r}"]
+            print(" ".join(command), flush=True)
+            if subprocess.run(command, env=ENV).returncode != 0:
+                failed.append(run_dir)
+                print(f"run_four.py: the run in {run_dir} failed (its fsi-server.log says why); its "
+                      f"sensors up to the stop are analysed with the others", flush=True)
+    analysis = [sys.executable, os.path.join(HERE, "analyze.py"), *run_dirs,
+                "--figure-prefix", os.path.join(args.output, "fibres")]
+    if args.until is not None:
+        analysis += ["--until", repr(args.until)]
+    status = subprocess.run(analysis).returncode
+    if failed:
+        sys.exit(f"run_four.py: {len(failed)} run(s) failed: {', '.join(failed)}")
+    sys.exit(status)
+
+
+if __name__ == "__main__":
+    main()
