@@ -1,5 +1,6 @@
 #include "direction_rows.hpp"
 
+#include <cmath>
 #include <utility>
 
 namespace fsi::mbd::detail {
@@ -45,6 +46,80 @@ void PerpendicularityConstraint::add_force_derivative_entries(double, const Eige
   jb.add_transpose_product(derivative, Eigen::Matrix3d::Identity(), ja, multiplier);
   a_.add_load_derivative(q, multiplier * b_.value(q), derivative);
   b_.add_load_derivative(q, multiplier * a_.value(q), derivative);
+}
+
+RotationDriveConstraint::RotationDriveConstraint(std::string description, SpatialDirection e1,
+                                                 SpatialDirection e2, SpatialDirection u,
+                                                 double rate)
+    : ConstraintRow(std::move(description)), e1_(e1), e2_(e2), u_(u), rate_(rate) {}
+
+Eigen::Vector3d RotationDriveConstraint::turned(double time, const Eigen::VectorXd& q) const {
+  const double phi = rate_ * time;
+  return std::sin(phi) * e1_.value(q) + std::cos(phi) * e2_.value(q);
+}
+
+Eigen::Vector3d RotationDriveConstraint::turned_time_rate(double time,
+                                                          const Eigen::VectorXd& q) const {
+  const double phi = rate_ * time;
+  return rate_ * (std::cos(phi) * e1_.value(q) - std::sin(phi) * e2_.value(q));
+}
+
+double RotationDriveConstraint::residual(double time, const Eigen::VectorXd& q,
+                                         const Eigen::VectorXd&) const {
+  return u_.value(q).dot(turned(time, q));
+}
+
+void RotationDriveConstraint::add_jacobian_entries(double time, const Eigen::VectorXd& q, int row,
+                                                   MatrixSink& jacobian) const {
+  const double phi = rate_ * time;
+  const Eigen::Vector3d u = u_.value(q);
+  u_.jacobian(q).add_row(jacobian, row, turned(time, q));
+  e1_.jacobian(q).add_row(jacobian, row, std::sin(phi) * u);
+  e2_.jacobian(q).add_row(jacobian, row, std::cos(phi) * u);
+}
+
+double RotationDriveConstraint::explicit_time_derivative(double time,
+                                                         const Eigen::VectorXd& q) const {
+  return u_.value(q).dot(turned_time_rate(time, q));
+}
+
+double RotationDriveConstraint::acceleration_remainder(double time, const Eigen::VectorXd& q,
+                                                       const Eigen::VectorXd& v) const {
+  // C = u . w with w = sin(phi) e1 + cos(phi) e2: d^2C/dt^2 = u'' . w + 2 u' . w' + u . w'', where
+  // w' = sin(phi) e1' + cos(phi) e2' + w_t and w'' = sin(phi) e1'' + cos(phi) e2''
+  // + 2 rate (cos(phi) e1' - sin(phi) e2') - rate^2 w; the acceleration-free parts of e1'', e2'',
+  // u'' are the points' remainders.
+  const double phi = rate_ * time;
+  const double s = std::sin(phi);
+  const double c = std::cos(phi);
+  const Eigen::Vector3d u = u_.value(q);
+  const Eigen::Vector3d w = turned(time, q);
+  const Eigen::Vector3d e1_rate = e1_.rate(q, v);
+  const Eigen::Vector3d e2_rate = e2_.rate(q, v);
+  const Eigen::Vector3d w_rate = s * e1_rate + c * e2_rate + turned_time_rate(time, q);
+  const Eigen::Vector3d w_remainder = s * e1_.acceleration_remainder(q, v) +
+                                      c * e2_.acceleration_remainder(q, v) +
+                                      2.0 * rate_ * (c * e1_rate - s * e2_rate) - rate_ * rate_ * w;
+  return w.dot(u_.acceleration_remainder(q, v)) + 2.0 * u_.rate(q, v).dot(w_rate) +
+         u.dot(w_remainder);
+}
+
+void RotationDriveConstraint::add_force_derivative_entries(double time, const Eigen::VectorXd& q,
+                                                           double multiplier,
+                                                           MatrixSink& derivative) const {
+  // G^T mu = mu (U^T w + W^T u), U = du/dq, W = dw/dq = sin(phi) E1 + cos(phi) E2: the product
+  // rule gives mu (U^T W + W^T U) plus the load derivatives of mu w on u and mu u on w.
+  const double phi = rate_ * time;
+  SpatialColumns jw;
+  jw.append(e1_.jacobian(q), std::sin(phi));
+  jw.append(e2_.jacobian(q), std::cos(phi));
+  const SpatialColumns ju = u_.jacobian(q);
+  ju.add_transpose_product(derivative, Eigen::Matrix3d::Identity(), jw, multiplier);
+  jw.add_transpose_product(derivative, Eigen::Matrix3d::Identity(), ju, multiplier);
+  const Eigen::Vector3d u = u_.value(q);
+  u_.add_load_derivative(q, multiplier * turned(time, q), derivative);
+  e1_.add_load_derivative(q, multiplier * std::sin(phi) * u, derivative);
+  e2_.add_load_derivative(q, multiplier * std::cos(phi) * u, derivative);
 }
 
 namespace {

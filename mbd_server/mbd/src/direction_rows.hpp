@@ -5,6 +5,7 @@
 //   perpendicularity   d_a . d_b = 0 with the spatial body directions d = r(p + u) - r(p), exact
 //                      for rigid bodies; two of them keep a revolute joint's axis, three a fixed
 //                      joint's orientation
+//   drive              a revolute joint's relative rotation about its axis held at rate * t
 //   slope on a body    a beam node's slope held in the frame of a planar rigid body
 //
 // (The orthonormality rows of a spatial rigid body's own axes are with the body,
@@ -56,6 +57,41 @@ class PerpendicularityConstraint final : public ConstraintRow {
  private:
   SpatialDirection a_;
   SpatialDirection b_;
+};
+
+// The drive of a spatial revolute joint: body a turns relative to body b about the hinge axis n
+// at a prescribed angle phi(t) = rate t. e1, e2 are directions of a normal to n (e1 x e2 = n), u
+// the direction of b that coincides with e1 initially; the row
+//
+//     C = u . (sin(phi) e1 + cos(phi) e2) = sin(phi - theta)
+//
+// (theta: a's rotation relative to b, the other joint rows holding u normal to n) is smooth, zero
+// at theta = phi with dC/dtheta = -1 there: lambda is the torque about n that the drive exerts on
+// body a (-lambda on b), N m. Its time dependence: C_t = rate u . (cos(phi) e1 - sin(phi) e2), and
+// G, through phi, a function of time.
+class RotationDriveConstraint final : public ConstraintRow {
+ public:
+  RotationDriveConstraint(std::string description, SpatialDirection e1, SpatialDirection e2,
+                          SpatialDirection u, double rate);
+
+  double residual(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v) const override;
+  void add_jacobian_entries(double time, const Eigen::VectorXd& q, int row,
+                            MatrixSink& jacobian) const override;
+  double explicit_time_derivative(double time, const Eigen::VectorXd& q) const override;
+  double acceleration_remainder(double time, const Eigen::VectorXd& q,
+                                const Eigen::VectorXd& v) const override;
+  void add_force_derivative_entries(double time, const Eigen::VectorXd& q, double multiplier,
+                                    MatrixSink& derivative) const override;
+
+ private:
+  // w = sin(phi) e1 + cos(phi) e2 and its partial time derivative at fixed q.
+  Eigen::Vector3d turned(double time, const Eigen::VectorXd& q) const;
+  Eigen::Vector3d turned_time_rate(double time, const Eigen::VectorXd& q) const;
+
+  SpatialDirection e1_;
+  SpatialDirection e2_;
+  SpatialDirection u_;
+  double rate_;
 };
 
 // A beam node's slope s = r' held in the frame of a planar rigid body with angle phi (a beam

@@ -150,6 +150,10 @@ int Model::add_revolute_joint_3d(const RevoluteJoint3DSpec& spec) {
   if (!(axis_length > 0.0) || !spec.axis.allFinite()) {
     throw Error("the axis must be a finite, non-zero vector", user, "give e.g. axis = [0, 0, 1]");
   }
+  if (spec.rate && !std::isfinite(*spec.rate)) {
+    throw Error("the drive rate is not finite, got " + number_text(*spec.rate), user,
+                "give a finite rate [rad/s], or none for a free hinge");
+  }
   data_->check_pair({spec.a.body, {}}, {spec.b.body, {}}, user);
   const detail::SpatialPoint pa = data_->spatial_point(spec.a, user);
   const detail::SpatialPoint pb = data_->spatial_point(spec.b, user);
@@ -159,8 +163,9 @@ int Model::add_revolute_joint_3d(const RevoluteJoint3DSpec& spec) {
   }
   // The axis in the world and in b's body frame; two directions of b normal to it.
   const Eigen::Vector3d unit = spec.axis / axis_length;
-  const Eigen::Vector3d world =
-      body_a != nullptr ? Eigen::Vector3d(body_a->spec().orientation * unit) : unit;
+  const Eigen::Matrix3d from_a =
+      body_a != nullptr ? Eigen::Matrix3d(body_a->spec().orientation) : Eigen::Matrix3d::Identity();
+  const Eigen::Vector3d world = from_a * unit;
   const Eigen::Matrix3d to_b = body_b != nullptr
                                    ? Eigen::Matrix3d(body_b->spec().orientation.transpose())
                                    : Eigen::Matrix3d::Identity();
@@ -173,6 +178,19 @@ int Model::add_revolute_joint_3d(const RevoluteJoint3DSpec& spec) {
         pb, data_->spatial_point({spec.b.body, spec.b.local + n}, user)};
     data_->constraints.push_back(std::make_unique<detail::PerpendicularityConstraint>(
         user + " (axis normal " + std::to_string(which++) + ")", axis_direction, normal));
+  }
+  if (spec.rate) {
+    // e1, e2 normal to the axis in a's frame (e1 x e2 = axis), u the direction of b along e1
+    // initially.
+    const auto [e1, e2] = normals(unit);
+    auto of_a = [&](const Eigen::Vector3d& d) {
+      return detail::SpatialDirection{pa,
+                                      data_->spatial_point({spec.a.body, spec.a.local + d}, user)};
+    };
+    const detail::SpatialDirection u{
+        pb, data_->spatial_point({spec.b.body, spec.b.local + to_b * (from_a * e1)}, user)};
+    data_->constraints.push_back(std::make_unique<detail::RotationDriveConstraint>(
+        user + " (drive)", of_a(e1), of_a(e2), u, *spec.rate));
   }
   return first;
 }

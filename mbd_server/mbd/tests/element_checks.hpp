@@ -47,41 +47,47 @@ struct BodyPair {
   }
 };
 
-inline Eigen::RowVectorXd jacobian_row_of(const ConstraintElement& row, const Eigen::VectorXd& q) {
-  Eigen::MatrixXd jacobian = Eigen::MatrixXd::Zero(1, q.size());
-  row.jacobian_row(0.0, q, jacobian.row(0));
-  return jacobian.row(0);
-}
-
-// Differences of C for G (to 1e-9), of G for mu d(G^T)/dq (to 1e-8), and the second difference
-// of C along q + v t for the acceleration remainder (relative 1e-6).
+// At `time`: differences of C for G (to 1e-9), of G for mu d(G^T)/dq (to 1e-8), of C in time for
+// the explicit dC/dt of a position row (to 1e-8), and the second difference of C along
+// (q + v s, time + s) for the acceleration remainder (relative 1e-6).
 inline void expect_exact_row_derivatives(const ConstraintElement& row, const Eigen::VectorXd& q,
-                                         const Eigen::VectorXd& v, const std::string& what) {
+                                         const Eigen::VectorXd& v, const std::string& what,
+                                         double time = 0.0) {
   const auto n = q.size();
   const double step = 1e-6;
   const double multiplier = -2.3;
-  const Eigen::RowVectorXd g = jacobian_row_of(row, q);
+  auto jacobian_at = [&](const Eigen::VectorXd& position) {
+    Eigen::MatrixXd jacobian = Eigen::MatrixXd::Zero(1, n);
+    row.jacobian_row(time, position, jacobian.row(0));
+    return Eigen::RowVectorXd(jacobian.row(0));
+  };
+  const Eigen::RowVectorXd g = jacobian_at(q);
   Eigen::MatrixXd force_derivative = Eigen::MatrixXd::Zero(n, n);
-  row.add_force_derivative(0.0, q, multiplier, force_derivative);
+  row.add_force_derivative(time, q, multiplier, force_derivative);
   for (Eigen::Index j = 0; j < n; ++j) {
     Eigen::VectorXd plus = q, minus = q;
     plus(j) += step;
     minus(j) -= step;
     const double by_difference =
-        (row.residual(0.0, plus, v) - row.residual(0.0, minus, v)) / (2.0 * step);
+        (row.residual(time, plus, v) - row.residual(time, minus, v)) / (2.0 * step);
     EXPECT_NEAR(g(j), by_difference, 1e-9) << what << ": G(" << j << ")";
     const Eigen::RowVectorXd g_by_difference =
-        (jacobian_row_of(row, plus) - jacobian_row_of(row, minus)) / (2.0 * step);
+        (jacobian_at(plus) - jacobian_at(minus)) / (2.0 * step);
     for (Eigen::Index i = 0; i < n; ++i) {
       EXPECT_NEAR(force_derivative(i, j), multiplier * g_by_difference(i), 1e-8)
           << what << ": d(G^T lambda)/dq(" << i << ", " << j << ")";
     }
   }
+  if (row.level() == ConstraintLevel::Position) {
+    const double by_time =
+        (row.residual(time + step, q, v) - row.residual(time - step, q, v)) / (2.0 * step);
+    EXPECT_NEAR(row.explicit_time_derivative(time, q), by_time, 1e-8) << what << ": explicit dC/dt";
+  }
   const double dt = 1e-4;
-  const double second = (row.residual(0.0, q + dt * v, v) - 2.0 * row.residual(0.0, q, v) +
-                         row.residual(0.0, q - dt * v, v)) /
+  const double second = (row.residual(time + dt, q + dt * v, v) - 2.0 * row.residual(time, q, v) +
+                         row.residual(time - dt, q - dt * v, v)) /
                         (dt * dt);
-  EXPECT_NEAR(row.acceleration_remainder(0.0, q, v), second, 1e-6 * (1.0 + std::abs(second)))
+  EXPECT_NEAR(row.acceleration_remainder(time, q, v), second, 1e-6 * (1.0 + std::abs(second)))
       << what << ": acceleration remainder";
 }
 

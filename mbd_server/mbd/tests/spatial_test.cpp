@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <numbers>
 #include <random>
 #include <vector>
@@ -15,6 +16,7 @@
 #include "element_checks.hpp"
 #include "force_elements.hpp"
 #include "fsi/common/error.hpp"
+#include "fsi/mbd/ida.hpp"
 #include "fsi/mbd/integrator.hpp"
 #include "fsi/mbd/model.hpp"
 #include "fsi/mbd/readouts.hpp"
@@ -438,6 +440,219 @@ TEST(MbdSpatialJoints, FixedJointHoldsABodyAndReportsTheForceAndTorqueItExerts) 
   EXPECT_LT((orientation(pair, moving, carried) - turn * second.orientation).norm(), 1e-9);
   const Eigen::Vector3d offset = moving.q.segment<3>(12) - moving.q.head<3>();
   EXPECT_LT((offset - turn * Eigen::Vector3d(0.5, 0.0, 0.0)).norm(), 1e-9);
+}
+
+TEST(MbdSpatialJoints, RevoluteDriveRowHasExactDerivativesAtAnyTime) {
+  // G, d(G^T lambda)/dq, the explicit dC/dt and the acceleration remainder (with its time terms)
+  // against differences in q and t, at a time where sin(phi) and cos(phi) are both far from 0.
+  const SpatialPair pair;
+  const detail::SpatialPoint on_first(&pair.first, 0, {0.2, -0.15, 0.3});
+  const detail::SpatialPoint on_second(&pair.second, 12, {-0.1, 0.35, -0.2});
+  const detail::SpatialPoint on_ground(nullptr, 0, {-0.4, 0.25, 0.1});
+  const std::pair<detail::SpatialPoint, detail::SpatialPoint> ends[] = {
+      {on_first, on_second}, {on_first, on_ground}, {on_ground, on_second}};
+  for (const auto& [a, b] : ends) {
+    auto direction = [](const detail::SpatialPoint& p, int offset, const Eigen::Vector3d& d) {
+      return detail::SpatialDirection{
+          p, detail::SpatialPoint(p.body(), p.on_ground() ? 0 : offset, p.local() + d)};
+    };
+    const detail::RotationDriveConstraint drive("drive", direction(a, 0, {0.3, 0.1, -0.5}),
+                                                direction(a, 0, {-0.6, 0.2, 0.1}),
+                                                direction(b, 12, {0.4, -0.7, 0.2}), 2.3);
+    testing::expect_exact_row_derivatives(drive, pair.q, pair.v, "drive row", 0.37);
+  }
+}
+
+// A rotor on a driven revolute joint to the ground: rate w about an oblique axis, the rotor's
+// axes turned against the world and its inertia not principal about the axis.
+struct DrivenRotor {
+  static constexpr double kRate = 3.0;                                  // [rad/s]
+  Eigen::Vector3d axis = Eigen::Vector3d(0.3, -0.4, 1.0).normalized();  // rotor frame
+  RigidBody3DSpec spec;
+  Model model;
+  BodyId rotor = kGround;
+  int first_row = 0;
+  Eigen::Vector3d hinge_local{0.0, 0.0, 0.0};
+
+  DrivenRotor() {
+    model.set_spatial_gravity({0.0, 0.0, -kGravity});
+    spec.name = "rotor";
+    spec.mass = 2.0;
+    spec.inertia = Eigen::Vector3d(0.05, 0.07, 0.11).asDiagonal();
+    spec.inertia(0, 2) = spec.inertia(2, 0) = 0.01;
+    spec.position = {0.1, 0.2, 0.3};
+    spec.orientation = rotation(0.8, {1.0, 0.5, -0.3});
+    spec.angular_velocity = kRate * (spec.orientation * axis);
+    rotor = model.add_rigid_body_3d(spec);
+    // The hinge point on the axis, 0.25 m from the centre of mass: the centre stays on the axis.
+    hinge_local = 0.25 * axis;
+    RevoluteJoint3DSpec hinge;
+    hinge.name = "motor";
+    hinge.a = {rotor, hinge_local};
+    hinge.b = {kGround, spec.position + spec.orientation * hinge_local};
+    hinge.axis = axis;
+    hinge.rate = kRate;
+    first_row = model.add_revolute_joint_3d(hinge);
+  }
+  Eigen::Vector3d world_axis() const { return spec.orientation * axis; }
+};
+
+TEST(MbdSpatialJoints, DrivenRevoluteJointTurnsTheRotorAtItsRate) {
+  DrivenRotor driven;
+  Model& model = driven.model;
+  EXPECT_EQ(model.constraint_count(), 6 + 6);
+  EXPECT_EQ(model.constraint_description(driven.first_row + 5), "revolute joint 'motor' (drive)");
+  const Eigen::Vector3d n = driven.world_axis();
+  const double end = 1.0;
+  struct Tolerance {
+    double angle, omega, torque;
+  };
+  auto check = [&](const State& state, const std::string& how, Tolerance tolerance) {
+    // R(T) = Rot(w T, n) R(0): the angle about the axis is w T, the other rotations are zero.
+    const Eigen::Matrix3d expected =
+        rotation(DrivenRotor::kRate * end, n) * driven.spec.orientation;
+    const Eigen::Matrix3d turned = orientation(model, state, driven.rotor);
+    const Eigen::AngleAxisd off(turned * expected.transpose());
+    const Eigen::Vector3d omega = angular_velocity(model, state, driven.rotor);
+    const Eigen::Vector3d hinge =
+        point_position(model, state, SpatialPointSpec{driven.rotor, driven.hinge_local});
+    const Eigen::Vector3d held =
+        driven.spec.position + driven.spec.orientation * driven.hinge_local;
+    // The drive balances nothing about the axis: the centre of mass is on it, so gravity and the
+    // gyroscopic moment of the non-principal axis are normal to it.
+    const double drive_torque = state.lambda(driven.first_row + 5);
+    std::printf(
+        "driven rotor (%s), w = %.1f rad/s, T = %.1f s: rotation off Rot(w T) by %.2e rad, "
+        "|omega - w n| = %.2e rad/s, hinge gap %.2e m, drive torque %.2e N m\n",
+        how.c_str(), DrivenRotor::kRate, end, off.angle(), (omega - DrivenRotor::kRate * n).norm(),
+        (hinge - held).norm(), drive_torque);
+    EXPECT_LT(off.angle(), tolerance.angle) << how;
+    EXPECT_LT((omega - DrivenRotor::kRate * n).norm(), tolerance.omega) << how;
+    EXPECT_LT((hinge - held).norm(), tolerance.angle) << how;
+    EXPECT_LT(std::abs(drive_torque), tolerance.torque) << how;
+  };
+  // Index 3 holds C exactly, its velocities and multipliers converge with lower order (h = 1e-2:
+  // ~1e-8 rad/s, ~3e-7 N m); index 2 holds the velocity level.
+  RadauIIA radau({.stages = 3, .newton = kTight});
+  RadauIIA index2({.stages = 3, .newton = kTight, .constraint_form = ConstraintForm::Index2});
+  State state = model.initial_state();
+  State stabilised = state;
+  for (int i = 0; i < 100; ++i) {
+    radau.step(model, state, 1e-2);
+    index2.step(model, stabilised, 1e-2);
+  }
+  check(state, "Radau IIA 3, index 3", {1e-12, 1e-7, 1e-6});
+  check(stabilised, "Radau IIA 3, index 2", {1e-12, 1e-9, 1e-9});
+  // IDA (GGL form, C_t and dG/dt in its velocity rows); it fails to start on this rotor below
+  // relative_tolerance 1e-6 with the drive as without it.
+  IdaIntegrator ida({.relative_tolerance = 1e-6, .absolute_tolerance = 1e-8});
+  State bdf = model.initial_state();
+  ida.advance(model, bdf, end);
+  check(bdf, "IDA, GGL", {1e-12, 1e-12, 1e-5});
+}
+
+TEST(MbdSpatialJoints, DriveTorqueBalancesAnAppliedTorqueAboutTheAxis) {
+  // A constant torque tau n on the rotor: the drive holds the rate with -tau about the axis, and
+  // the joint's reaction on the rotor (all six rows) has that axial component.
+  DrivenRotor driven;
+  Model& model = driven.model;
+  const double tau = 0.7;  // [N m]
+  const Eigen::Vector3d n = driven.world_axis();
+  model.add_spatial_torque({"load", driven.rotor, [n, tau](double) { return tau * n; }});
+  RadauIIA radau({.stages = 3, .newton = kTight, .constraint_form = ConstraintForm::Index2});
+  State state = model.initial_state();
+  for (int i = 0; i < 50; ++i)
+    radau.step(model, state, 1e-2);
+  const double drive = state.lambda(driven.first_row + 5);
+  const Wrench reaction = joint_reaction(model, state, driven.first_row, 6, driven.rotor);
+  std::printf("drive against tau = %.2f N m: drive torque %.12f N m, reaction . n %.12f N m\n", tau,
+              drive, reaction.torque.dot(n));
+  EXPECT_NEAR(drive, -tau, 1e-9);
+  EXPECT_NEAR(reaction.torque.dot(n), -tau, 1e-9);
+  EXPECT_NEAR(angular_velocity(model, state, driven.rotor).dot(n), DrivenRotor::kRate, 1e-9);
+}
+
+TEST(MbdSpatialJoints, DriveTurnsARotorRelativeToASprungCarrier) {
+  // The carrier hangs on four springs and bounces under gravity; the rotor's hinge is on the
+  // carrier: its orientation relative to the carrier is Rot(w t, n_c) of the initial one.
+  Model model;
+  model.set_spatial_gravity({0.0, 0.0, -kGravity});
+  RigidBody3DSpec carrier = top_spec();
+  carrier.name = "carrier";
+  carrier.velocity.setZero();
+  carrier.angular_velocity.setZero();
+  const BodyId holder = model.add_rigid_body_3d(carrier);
+  for (const Eigen::Vector3d& corner :
+       {Eigen::Vector3d(0.3, 0.3, 0.0), Eigen::Vector3d(-0.3, 0.3, 0.0),
+        Eigen::Vector3d(0.3, -0.4, 0.0), Eigen::Vector3d(-0.3, -0.2, 0.0)}) {
+    const Eigen::Vector3d world = carrier.position + carrier.orientation * corner;
+    model.add_spatial_spring_damper({"",
+                                     {holder, corner},
+                                     {kGround, world + Eigen::Vector3d(0.1, 0.0, 0.5)},
+                                     400.0,
+                                     2.0,
+                                     std::nullopt});
+  }
+  const double rate = -4.0;
+  const Eigen::Vector3d axis(0.0, 1.0, 0.0);  // in the rotor's axes
+  RigidBody3DSpec rotor = top_spec();
+  rotor.name = "rotor";
+  rotor.mass = 0.5;
+  rotor.position = carrier.position + carrier.orientation * Eigen::Vector3d(0.0, 0.0, 0.2);
+  rotor.orientation = rotation(0.4, {0.0, 1.0, 1.0});
+  rotor.velocity.setZero();
+  rotor.angular_velocity = rate * (rotor.orientation * axis);
+  const BodyId spinning = model.add_rigid_body_3d(rotor);
+  RevoluteJoint3DSpec hinge;
+  hinge.a = {spinning, Eigen::Vector3d::Zero()};
+  hinge.b = {holder, Eigen::Vector3d(0.0, 0.0, 0.2)};
+  hinge.axis = axis;
+  hinge.rate = rate;
+  model.add_revolute_joint_3d(hinge);
+  RadauIIA radau({.stages = 3, .newton = kTight});
+  State state = model.initial_state();
+  for (int i = 0; i < 100; ++i)
+    radau.step(model, state, 1e-2);
+  const Eigen::Vector3d n_carrier = carrier.orientation.transpose() * (rotor.orientation * axis);
+  const Eigen::Matrix3d relative =
+      orientation(model, state, holder).transpose() * orientation(model, state, spinning);
+  const Eigen::Matrix3d expected =
+      rotation(rate * state.time, n_carrier) * carrier.orientation.transpose() * rotor.orientation;
+  const double moved = (state.q.head<3>() - carrier.position).norm();
+  std::printf("rotor on a sprung carrier (carrier moved %.3f m): relative rotation off by %.2e\n",
+              moved, Eigen::AngleAxisd(relative * expected.transpose()).angle());
+  EXPECT_GT(moved, 0.01);
+  EXPECT_LT(Eigen::AngleAxisd(relative * expected.transpose()).angle(), 1e-9);
+}
+
+TEST(MbdSpatialBadInput, DriveRateMustBeFiniteAndTheInitialSpinAgree) {
+  DrivenRotor driven;
+  RevoluteJoint3DSpec hinge;
+  hinge.name = "motor2";
+  hinge.a = {driven.rotor, Eigen::Vector3d::Zero()};
+  hinge.b = {kGround, driven.spec.position};
+  hinge.rate = std::numeric_limits<double>::infinity();
+  const std::string message = error_message([&] { driven.model.add_revolute_joint_3d(hinge); });
+  EXPECT_NE(message.find("revolute joint 'motor2'"), std::string::npos) << message;
+  EXPECT_NE(message.find("drive rate is not finite"), std::string::npos) << message;
+  EXPECT_NE(message.find("give a finite rate"), std::string::npos) << message;
+  // A rotor at rest on a driven joint: its initial spin contradicts the drive, named by the row.
+  Model model;
+  RigidBody3DSpec spec;
+  spec.name = "still";
+  spec.mass = 1.0;
+  spec.inertia = Eigen::Matrix3d::Identity();
+  const BodyId still = model.add_rigid_body_3d(spec);
+  model.add_revolute_joint_3d({"drive",
+                               {still, Eigen::Vector3d::Zero()},
+                               {kGround, Eigen::Vector3d::Zero()},
+                               Eigen::Vector3d::UnitZ(),
+                               1.5});
+  const std::string inconsistent =
+      error_message([&] { model.check_consistency(model.initial_state()); });
+  EXPECT_NE(inconsistent.find("revolute joint 'drive' (drive): velocity residual"),
+            std::string::npos)
+      << inconsistent;
 }
 
 TEST(MbdSpatialLoads, SpringDamperHasExactDerivativesAndOscillatesAtItsFrequency) {

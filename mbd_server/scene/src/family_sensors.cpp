@@ -77,8 +77,9 @@ std::vector<BlockSpec> sensor_blocks() {
            text("element", "spring_force: the name of a spring block").optional(),
            text("component",
                 "x, y, angle (torque for forces); 3D: x, y, z, and torque_x, torque_y, torque_z "
-                "(about the centre of mass) for fluid_force and joint_force; not for spring_force "
-                "and energies")
+                "(about the centre of mass) for fluid_force and joint_force, and torque for the "
+                "joint_force of a RevoluteJoint3D with a rate (the drive torque on body_a about "
+                "the axis); not for spring_force and energies")
                .one_of({"x", "y", "z", "angle", "torque", "torque_x", "torque_y", "torque_z"})
                .optional()})
           .as_list()};
@@ -183,11 +184,18 @@ bool SensorBuilder::component_fits() {
   const bool force = !variant.kinematic();
   if (builder.spatial()) {
     const bool takes_torque = !variant.spatial_torque_unit.empty();
+    if (component == "torque" && variant.kind == SensorType::JointForce) {
+      sensor.axis = kDriveTorqueAxis;  // joint_fits checks the joint has a drive
+      return true;
+    }
     if ((component != "x" && component != "y" && component != "z" && !spatial_torque) ||
         (spatial_torque && !takes_torque)) {
       problem(s.location("component"),
               "a 3D " + type + " sensor has components x, y or z" +
-                  (takes_torque ? " (or torque_x, torque_y, torque_z)" : ""),
+                  (takes_torque ? " (or torque_x, torque_y, torque_z)" : "") +
+                  (variant.kind == SensorType::JointForce
+                       ? " (and torque: a driven RevoluteJoint3D's drive torque)"
+                       : ""),
               "write x, y or z (angles of 3D bodies are not sensors yet)");
       return false;
     }
@@ -214,8 +222,8 @@ bool SensorBuilder::component_fits() {
 
 std::string SensorBuilder::unit() const {
   if (builder.spatial()) {
-    return std::string(component.rfind("torque_", 0) == 0 ? variant.spatial_torque_unit
-                                                          : variant.spatial_unit);
+    return std::string(component.rfind("torque", 0) == 0 ? variant.spatial_torque_unit
+                                                         : variant.spatial_unit);
   }
   const bool rotational = !component.empty() && sensor.component == mbd::Coordinate::Angle;
   return std::string(rotational ? variant.planar_rotational_unit : variant.planar_unit);
@@ -294,6 +302,14 @@ bool SensorBuilder::joint_fits() {
                 "and torque",
             "give the joint a rigid body as body_a, or measure the beam with a fluid_force "
             "sensor");
+    return false;
+  }
+  if (sensor.axis == kDriveTorqueAxis && !joint.drive) {
+    problem(s.location("component"),
+            "component torque of a 3D joint_force sensor is the drive torque of a "
+            "RevoluteJoint3D with a rate, and joint '" +
+                name + "' has no drive",
+            "give the joint a rate, or read torque_x, torque_y or torque_z");
     return false;
   }
   sensor.first_row = joint.first_row;

@@ -23,9 +23,18 @@ std::vector<BlockSpec> spatial_joint_blocks() {
       block_spec(
           "RevoluteJoint3D",
           "A hinge: the points coincide and body_b turns relative to body_a about `axis` "
-          "(in body_a's axes) only: 5 rows. Rigid bodies (or the ground as body_b).",
+          "(in body_a's axes) only: 5 rows. Rigid bodies (or the ground as body_b). With `rate` "
+          "a drive (motor): a 6th row turns body_a relative to body_b about `axis` by rate * t "
+          "from the initial configuration; a joint_force sensor's component torque reads the "
+          "drive torque on body_a about the axis.",
           spatial_two_points(
-              {vector("axis", 3, "", "hinge axis in body_a's axes").with_default({0.0, 0.0, 1.0})}))
+              {vector("axis", 3, "", "hinge axis in body_a's axes").with_default({0.0, 0.0, 1.0}),
+               number("rate", "rad/s",
+                      "drive: body_a turns relative to body_b at this rate about `axis` "
+                      "(right-handed; with the ground as body_b, body_a's angular velocity about "
+                      "the axis); body_a's initial angular_velocity must agree (absent: a free "
+                      "hinge)")
+                   .optional()}))
           .as_list()
           .spatial(),
       block_spec("FixedJoint3D",
@@ -65,8 +74,12 @@ void build_spatial_joints(SceneBuilder& builder) {
     spec.a = builder.point3(j, "a");
     spec.b = builder.point3(j, "b");
     spec.axis = vector3(j, "axis");
+    spec.rate = optional_number(j, "rate");
     builder.add_joint(j, [&] { return model.add_revolute_joint_3d(spec); },
-                      {.rows = 5, .body = spec.a.body, .kind = "revolute joint"});
+                      {.rows = spec.rate ? 6 : 5,
+                       .body = spec.a.body,
+                       .kind = "revolute joint",
+                       .drive = spec.rate.has_value()});
   });
   builder.each("FixedJoint3D", [&](const View& j) {
     mbd::FixedJoint3DSpec spec;

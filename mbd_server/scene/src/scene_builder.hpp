@@ -30,7 +30,8 @@ struct NamedJoint {
   int first_row = 0;
   int rows = 0;
   mbd::BodyId body = mbd::kGround;
-  std::string kind;  // "prismatic joint", for units and messages
+  std::string kind;    // "prismatic joint", for units and messages
+  bool drive = false;  // a driven RevoluteJoint3D: its last row is the drive (component torque)
 };
 
 struct NamedElements {

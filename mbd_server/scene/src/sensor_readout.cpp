@@ -23,6 +23,9 @@ double structure_sensor_value(const mbd::Model& model, const SensorSpec& sensor,
       case SensorType::FluidForce:
         return point_load_resultant(model, state, sensor.body).stacked()(sensor.axis);
       case SensorType::JointForce:
+        // The drive row's multiplier is its torque on body_a about the axis (RevoluteJoint3DSpec).
+        if (sensor.axis == kDriveTorqueAxis)
+          return state.lambda(sensor.first_row + sensor.rows - 1);
         return joint_reaction(model, state, sensor.first_row, sensor.rows, sensor.body)
             .stacked()(sensor.axis);
       default:

@@ -11,6 +11,7 @@
 #include "fsi/mbd/integrator.hpp"
 #include "fsi/mbd/readouts.hpp"
 #include "fsi/scene/scene.hpp"
+#include "fsi/scene/schema.hpp"
 #include "test_files.hpp"
 
 namespace fsi::scene {
@@ -170,6 +171,52 @@ Torque3D { body = "rotor"; torque_z = "0.4*q" }
 )scene"));
   EXPECT_NE(text.find("m.scene:6:28: the expression \"0.4*q\" is invalid"), std::string::npos)
       << text;
+}
+
+TEST_F(SpatialScene, DrivenRevoluteJointTurnsTheRotorAndReportsItsTorque) {
+  // rate = 5 rad/s about z against a load torque of 0.3 N m about z: after 0.2 s the rotor has
+  // turned by 1 rad, spins at 5 rad/s, and the drive torque on it is -0.3 N m.
+  const Scene scene = build_scene(write(R"scene(
+RigidBody3D { name = "rotor"; mass = 2; inertia = [0.3, 0.4, 0.5]; angular_velocity = [0, 0, 5]
+              Mesh { stl = "box.stl"; scale = 0.1 } }
+RevoluteJoint3D { name = "motor"; body_a = "rotor"; axis = [0, 0, 1]; rate = 5 }
+Torque3D { name = "load"; body = "rotor"; torque_z = "0.3" }
+Sensor { name = "drive"; type = "joint_force"; joint = "motor"; component = "torque" }
+Sensor { name = "motor_tz"; type = "joint_force"; joint = "motor"; component = "torque_z" }
+)scene")
+                                      .string());
+  ASSERT_EQ(scene.model.constraint_count(), 6 + 6);
+  EXPECT_EQ(scene.sensors[0].unit, "N m");
+  EXPECT_EQ(scene.sensors[0].rows, 6);
+  mbd::RadauIIA integrator(scene.solver.integrator_options());
+  mbd::State state = scene.model.initial_state();
+  for (int i = 0; i < 200; ++i)
+    integrator.step(scene.model, state, 1e-3);
+  const Eigen::Matrix3d turned = orientation(scene.model, state, 0);
+  const double angle = std::atan2(turned(1, 0), turned(0, 0));
+  EXPECT_NEAR(angle, 5.0 * state.time, 1e-12);
+  EXPECT_NEAR(angular_velocity(scene.model, state, 0).z(), 5.0, 1e-8);
+  EXPECT_NEAR(structure_sensor_value(scene.model, scene.sensors[0], state), -0.3, 1e-6);
+  EXPECT_NEAR(structure_sensor_value(scene.model, scene.sensors[1], state), -0.3, 1e-6);
+
+  // A non-finite rate, a drive torque of an undriven joint, a rate on a point mass's joint.
+  const std::string text = testing::build_error(write(R"scene(
+RigidBody3D { name = "rotor"; mass = 2; inertia = [0.3, 0.4, 0.5] }
+PointMass { name = "bob"; mass = 1 }
+RevoluteJoint3D { name = "spin"; body_a = "rotor"; rate = 1/0 }
+RevoluteJoint3D { name = "free"; body_a = "rotor"; point_b = [0, 0, 1] }
+Sensor { name = "t"; type = "joint_force"; joint = "free"; component = "torque" }
+RevoluteJoint3D { name = "pm"; body_a = "bob"; rate = 2 }
+)scene"));
+  for (const char* expected :
+       {"m.scene:7:", "evaluates to infinity", "m.scene:9:", "joint 'free' has no drive",
+        "give the joint a rate", "m.scene:10:", "not a rigid body"}) {
+    EXPECT_NE(text.find(expected), std::string::npos) << expected << "\n" << text;
+  }
+  // The key is declared once: --help and docs/parameters.md render it with its unit.
+  const std::string help = render_help(scene_schema());
+  EXPECT_NE(help.find("RevoluteJoint3D.rate  number [rad/s]  (optional)"), std::string::npos);
+  EXPECT_NE(render_markdown(scene_schema()).find("| `rate` | number | rad/s |"), std::string::npos);
 }
 
 TEST_F(SpatialScene, MistakesAreProblemsAtTheirPlace) {

@@ -234,11 +234,17 @@ struct AncfCableSpec {
 // body a (in a's body frame; a world direction if a is the ground), stays normal to two
 // directions of body b that are normal to it initially (two rows), so b turns about the axis
 // only. The bodies must be rigid bodies (or the ground).
+// With a rate, a drive (motor): a sixth row turns body a relative to body b about the axis by the
+// angle rate * t from the initial configuration (right-handed about the axis; with the ground as
+// b, a's angular velocity about the axis is rate). Its multiplier is the drive torque about the
+// axis on body a [N m] (RotationDriveConstraint, direction_rows.hpp). The initial velocities
+// must agree: a's angular velocity relative to b about the axis is rate at t = 0.
 struct RevoluteJoint3DSpec {
   std::string name;  // in messages; default "revolute joint <row>"
   SpatialPointSpec a;
   SpatialPointSpec b;
   Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();
+  std::optional<double> rate = std::nullopt;  // [rad/s]; absent: a free hinge (5 rows)
 };
 
 // Fixed joint in space: `body` (a RigidBody3D) keeps its initial position and orientation

@@ -170,12 +170,17 @@ enum class SensorType {
   PotentialEnergy
 };
 
+// SensorSpec::axis of a driven RevoluteJoint3D's drive torque.
+inline constexpr int kDriveTorqueAxis = 6;
+
 struct SensorSpec {
   std::string name;
   SensorType type = SensorType::Position;
   mbd::BodyId body = 0;                            // unused for TotalFluidForce and energies
   mbd::Coordinate component = mbd::Coordinate::X;  // Angle means the torque for force sensors
-  // TotalFluidForce and 3D sensors: 0 x, 1 y, 2 z, 3-5 torque x, y, z; a 2D point: 0 x, 1 y.
+  // TotalFluidForce and 3D sensors: 0 x, 1 y, 2 z, 3-5 torque x, y, z; a 2D point: 0 x, 1 y;
+  // kDriveTorqueAxis: a 3D JointForce's component torque, the drive torque of a driven
+  // RevoluteJoint3D about its axis on body_a (the multiplier of its last row).
   int axis = 0;
   // Position, velocity: a body point instead of the centre of mass (2D: z = 0).
   std::optional<std::array<double, 3>> point;
