@@ -4,6 +4,7 @@
 // Measured numbers: docs/theory.md ("Spatial bodies").
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -96,13 +97,18 @@ TEST(MbdSpatialRigidBody, OrthonormalityRowsHaveExactDerivatives) {
   }
 }
 
-TEST(MbdSpatialJoints, RowsHaveExactDerivativesBetweenBodiesAndTheGround) {
-  const SpatialPair pair;
+// The ends a row's derivative checks use: body to body, body to ground, ground to body.
+std::array<std::pair<detail::SpatialPoint, detail::SpatialPoint>, 3> point_pairs(
+    const SpatialPair& pair) {
   const detail::SpatialPoint on_first(&pair.first, 0, {0.2, -0.15, 0.3});
   const detail::SpatialPoint on_second(&pair.second, 12, {-0.1, 0.35, -0.2});
   const detail::SpatialPoint on_ground(nullptr, 0, {-0.4, 0.25, 0.1});
-  const std::pair<detail::SpatialPoint, detail::SpatialPoint> ends[] = {
-      {on_first, on_second}, {on_first, on_ground}, {on_ground, on_second}};
+  return {{{on_first, on_second}, {on_first, on_ground}, {on_ground, on_second}}};
+}
+
+TEST(MbdSpatialJoints, RowsHaveExactDerivativesBetweenBodiesAndTheGround) {
+  const SpatialPair pair;
+  const auto ends = point_pairs(pair);
   for (const auto& [a, b] : ends) {
     for (int axis = 0; axis < 3; ++axis) {
       testing::expect_exact_row_derivatives(detail::SpatialPointConstraint("p", a, b, axis), pair.q,
@@ -446,11 +452,7 @@ TEST(MbdSpatialJoints, RevoluteDriveRowHasExactDerivativesAtAnyTime) {
   // G, d(G^T lambda)/dq, the explicit dC/dt and the acceleration remainder (with its time terms)
   // against differences in q and t, at a time where sin(phi) and cos(phi) are both far from 0.
   const SpatialPair pair;
-  const detail::SpatialPoint on_first(&pair.first, 0, {0.2, -0.15, 0.3});
-  const detail::SpatialPoint on_second(&pair.second, 12, {-0.1, 0.35, -0.2});
-  const detail::SpatialPoint on_ground(nullptr, 0, {-0.4, 0.25, 0.1});
-  const std::pair<detail::SpatialPoint, detail::SpatialPoint> ends[] = {
-      {on_first, on_second}, {on_first, on_ground}, {on_ground, on_second}};
+  const auto ends = point_pairs(pair);
   for (const auto& [a, b] : ends) {
     auto direction = [](const detail::SpatialPoint& p, int offset, const Eigen::Vector3d& d) {
       return detail::SpatialDirection{
