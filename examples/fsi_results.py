@@ -103,3 +103,31 @@ def fluid_weight(run, particle_count):
     particle_mass = run["fluid"]["particle_mass"]
     gravity = math.hypot(*run["model"]["gravity"])
     return particle_mass, gravity, particle_count * particle_mass * gravity
+
+
+def completed(run_dir):
+    """Whether `run_dir` holds a run.json of a completed run (a study script does not run it again)."""
+    try:
+        with open(os.path.join(run_dir, "run.json")) as handle:
+            return json.load(handle).get("status") == "completed"
+    except (OSError, ValueError):
+        return False
+
+
+def run_variant(fsi_run, scene, run_dir, ranks, settings):
+    """Runs `scene` with fsi-run into `run_dir`, each (name, value) of `settings` as a --set, unless
+    the folder already holds a completed run. Returns True when the run completed (now or before).
+    """
+    if completed(run_dir):
+        print(f"{run_dir}: completed before, not run again", flush=True)
+        return True
+    import subprocess
+    command = [fsi_run, scene, "--np", str(ranks), "--output", run_dir]
+    for name, value in settings:
+        command += ["--set", f"{name}={value!r}"]
+    print(" ".join(command), flush=True)
+    environment = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+    if subprocess.run(command, env=environment).returncode == 0:
+        return True
+    print(f"the run in {run_dir} failed (its fsi-server.log says why)", flush=True)
+    return False

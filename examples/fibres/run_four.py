@@ -11,22 +11,14 @@ again. The figures: OUTPUT/fibres_speed.png and OUTPUT/fibres_tips.png; analyze.
 run's numbers (a run stopped by a health check with its sensors up to the stop). Exit status 1
 when a run failed (its fsi-server.log says why)."""
 import argparse
-import json
 import os
 import subprocess
 import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
-ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
-
-
-def completed(run_dir):
-    try:
-        with open(os.path.join(run_dir, "run.json")) as handle:
-            return json.load(handle).get("status") == "completed"
-    except (OSError, ValueError):
-        return False
+sys.path.insert(0, os.path.dirname(HERE))
+from fsi_results import run_variant  # noqa: E402
 
 
 def main():
@@ -51,18 +43,12 @@ def main():
         for ei in (args.ei_high, args.ei_low):
             run_dir = os.path.join(args.output, f"nu_{nu:g}_ei_{ei:g}")
             run_dirs.append(run_dir)
-            if completed(run_dir):
-                print(f"{run_dir}: completed before, not run again")
-                continue
-            command = [fsi_run, args.scene, "--np", str(args.np), "--output", run_dir,
-                       "--set", f"Fibres.viscosity={nu!r}", "--set", f"Fibres.bending_stiffness={ei!r}"]
+            settings = [("Fibres.viscosity", nu), ("Fibres.bending_stiffness", ei)]
             if args.end_time is not None:
-                command += ["--set", f"Resolution.end_time={args.end_time!r}"]
-            print(" ".join(command), flush=True)
-            if subprocess.run(command, env=ENV).returncode != 0:
+                settings.append(("Resolution.end_time", args.end_time))
+            if not run_variant(fsi_run, args.scene, run_dir, args.np, settings):
                 failed.append(run_dir)
-                print(f"run_four.py: the run in {run_dir} failed (its fsi-server.log says why); its "
-                      f"sensors up to the stop are analysed with the others", flush=True)
+                print("run_four.py: its sensors up to the stop are analysed with the others", flush=True)
     analysis = [sys.executable, os.path.join(HERE, "analyze.py"), *run_dirs,
                 "--figure-prefix", os.path.join(args.output, "fibres")]
     if args.until is not None:
