@@ -131,3 +131,31 @@ def run_variant(fsi_run, scene, run_dir, ranks, settings):
         return True
     print(f"the run in {run_dir} failed (its fsi-server.log says why)", flush=True)
     return False
+
+
+def study_arguments(description, scene, output):
+    """The command line every study script (several runs of one scene) shares: --scene (default
+    `scene`), --output (default `output`), --np, --end-time, --build; the script adds its knobs.
+    Returns the parser."""
+    parser = argparse.ArgumentParser(description=description, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--scene", default=scene)
+    parser.add_argument("--output", default=output)
+    parser.add_argument("--np", type=int, default=2)
+    parser.add_argument("--end-time", type=float, help="Resolution.end_time of every run (default: the scene's)")
+    parser.add_argument("--build", default=os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "build"))
+    return parser
+
+
+def fsi_run_binary(args, script):
+    """build/bin/fsi-run of a study script's --build, or exit saying how to get it."""
+    fsi_run = os.path.join(args.build, "bin", "fsi-run")
+    if not os.access(fsi_run, os.X_OK):
+        raise SystemExit(f"{script}: no fsi-run at {fsi_run}; build first (cmake --build build) or give --build")
+    return fsi_run
+
+
+def require_run(run_dir, case):
+    """Exits saying what to give when `run_dir` is no run's output folder (no sensors.csv)."""
+    if not os.path.isfile(os.path.join(run_dir, "sensors.csv")):
+        raise SystemExit(f"analyze: {run_dir} holds no sensors.csv; give the output folder of a "
+                         f"finished {case} run (fsi-run ... --output DIR)")

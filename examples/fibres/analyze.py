@@ -19,7 +19,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
-from fsi_results import finish_figure, read_run, write_analysis  # noqa: E402
+from fsi_results import finish_figure, read_run, require_run, write_analysis  # noqa: E402
 
 TIPS = ["13", "23", "33", "12", "22", "32"]
 
@@ -70,9 +70,7 @@ def main():
 
     analysed = []
     for run_dir in args.run_dirs:
-        if not os.path.isfile(os.path.join(run_dir, "sensors.csv")):
-            raise SystemExit(f"analyze: {run_dir} holds no sensors.csv; give the output folder of a "
-                             f"finished fibres run (fsi-run ... --output DIR)")
+        require_run(run_dir, "fibres")
         result, time, speed, sensors = analyse(run_dir, args.until)
         write_analysis(run_dir, result)
         analysed.append((run_dir, result, time, speed, sensors))

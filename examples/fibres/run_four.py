@@ -10,33 +10,24 @@ Fibres.bending_stiffness=...); a run whose folder already holds a completed run.
 again. The figures: OUTPUT/fibres_speed.png and OUTPUT/fibres_tips.png; analyze.py prints each
 run's numbers (a run stopped by a health check with its sensors up to the stop). Exit status 1
 when a run failed (its fsi-server.log says why)."""
-import argparse
 import os
 import subprocess
 import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-ROOT = os.path.dirname(os.path.dirname(HERE))
 sys.path.insert(0, os.path.dirname(HERE))
-from fsi_results import run_variant  # noqa: E402
+from fsi_results import fsi_run_binary, run_variant, study_arguments  # noqa: E402
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--scene", default=os.path.join(HERE, "fibres_coarse.scene"))
-    parser.add_argument("--output", default=os.path.join("out", "fibres_four"))
-    parser.add_argument("--np", type=int, default=2)
-    parser.add_argument("--end-time", type=float, help="Resolution.end_time of every run (default: the scene's)")
+    parser = study_arguments(__doc__, os.path.join(HERE, "fibres_coarse.scene"), os.path.join("out", "fibres_four"))
     parser.add_argument("--nu-low", type=float, default=5e-5)
     parser.add_argument("--nu-high", type=float, default=5e-4)
     parser.add_argument("--ei-low", type=float, default=2e-6)
     parser.add_argument("--ei-high", type=float, default=2e-4)
     parser.add_argument("--until", type=float, help="analyse t <= this only (analyze.py --until)")
-    parser.add_argument("--build", default=os.path.join(ROOT, "build"))
     args = parser.parse_args()
-    fsi_run = os.path.join(args.build, "bin", "fsi-run")
-    if not os.access(fsi_run, os.X_OK):
-        sys.exit(f"run_four.py: no fsi-run at {fsi_run}; build first (cmake --build build) or give --build")
+    fsi_run = fsi_run_binary(args, "run_four.py")
     run_dirs = []
     failed = []
     for nu in (args.nu_high, args.nu_low):

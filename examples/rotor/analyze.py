@@ -29,7 +29,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
-from fsi_results import finish_figure, read_run, write_analysis  # noqa: E402
+from fsi_results import finish_figure, read_run, require_run, write_analysis  # noqa: E402
 
 
 def mean(values):
@@ -91,9 +91,7 @@ def main():
 
     analysed = []
     for run_dir in args.run_dirs:
-        if not os.path.isfile(os.path.join(run_dir, "sensors.csv")):
-            raise SystemExit(f"analyze: {run_dir} holds no sensors.csv; give the output folder of a "
-                             f"rotor run (fsi-run ... --output DIR)")
+        require_run(run_dir, "rotor")
         result, time, flux, moved, sensors = analyse(run_dir, args.window_start)
         write_analysis(run_dir, result)
         analysed.append((result, time, flux, moved, sensors))

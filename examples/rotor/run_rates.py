@@ -9,30 +9,21 @@ Each run goes to OUTPUT/rate_<w> (fsi-run --set Rotor.rate=w); a run whose folde
 completed run.json is not run again. The figures: OUTPUT/rotor_flux.png, OUTPUT/rotor_trajectory.png
 and OUTPUT/rotor_hub.png. Exit status 1 when a run failed (its fsi-server.log says why) or when the
 flux does not grow with the rate (analyze.py --require-growth)."""
-import argparse
 import os
 import subprocess
 import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-ROOT = os.path.dirname(os.path.dirname(HERE))
 sys.path.insert(0, os.path.dirname(HERE))
-from fsi_results import run_variant  # noqa: E402
+from fsi_results import fsi_run_binary, run_variant, study_arguments  # noqa: E402
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--scene", default=os.path.join(HERE, "rotor_coarse.scene"))
-    parser.add_argument("--output", default=os.path.join("out", "rotor_rates"))
-    parser.add_argument("--np", type=int, default=2)
+    parser = study_arguments(__doc__, os.path.join(HERE, "rotor_coarse.scene"), os.path.join("out", "rotor_rates"))
     parser.add_argument("--rates", type=float, nargs="+", default=[10.0, 20.0, 40.0],
                         help="rotation rates [rad/s] (the scene runs healthy up to 40 rad/s; at 80 the density check stops the run: -3.1 %%)")
-    parser.add_argument("--end-time", type=float, help="Resolution.end_time of every run (default: the scene's)")
-    parser.add_argument("--build", default=os.path.join(ROOT, "build"))
     args = parser.parse_args()
-    fsi_run = os.path.join(args.build, "bin", "fsi-run")
-    if not os.access(fsi_run, os.X_OK):
-        sys.exit(f"run_rates.py: no fsi-run at {fsi_run}; build first (cmake --build build) or give --build")
+    fsi_run = fsi_run_binary(args, "run_rates.py")
     if len(args.rates) < 2:
         sys.exit("run_rates.py: --rates needs at least two rates to compare")
     run_dirs, failed = [], []
