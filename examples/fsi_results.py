@@ -4,6 +4,7 @@ import csv
 import json
 import math
 import os
+import subprocess
 
 
 def read_sensors(path):
@@ -121,7 +122,6 @@ def run_variant(fsi_run, scene, run_dir, ranks, settings):
     if completed(run_dir):
         print(f"{run_dir}: completed before, not run again", flush=True)
         return True
-    import subprocess
     command = [fsi_run, scene, "--np", str(ranks), "--output", run_dir]
     for name, value in settings:
         command += ["--set", f"{name}={value!r}"]

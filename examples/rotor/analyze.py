@@ -36,6 +36,14 @@ def mean(values):
     return sum(values) / len(values) if values else float("nan")
 
 
+def label_panel(axes, xlabel, ylabel, legend_size=8):
+    """Axis labels, grid and legend of a figure's left panel (the right one: finish_figure)."""
+    axes.set_xlabel(xlabel)
+    axes.set_ylabel(ylabel)
+    axes.grid(True, alpha=0.3)
+    axes.legend(fontsize=legend_size)
+
+
 def analyse(run_dir, window_start=None):
     run, s = read_run(run_dir)
     p = run["parameters_flat"]
@@ -63,6 +71,7 @@ def analyse(run_dir, window_start=None):
         "rate": rate, "spacing": p["Fluid.spacing"], "status": run.get("status", "?"),
         "end_time": time[-1], "window_start": time[window[0]],
         "flux": mean([flux[i] for i in window]),
+        "flux_upstream": up, "flux_downstream": down,
         "flux_probe_difference": abs(up - down) / max(abs(0.5 * (up + down)), 1e-30),
         "mean_speed_in_section": mean([flux[i] for i in window]) / section,
         "centre_mean_displacement": {axis: mean([moved[axis][i] for i in window]) for axis in "xyz"},
@@ -131,10 +140,7 @@ def main():
     figure, (left, right) = plt.subplots(1, 2, figsize=(10, 4))
     for result, time, flux, _, _ in analysed:
         left.plot(time, [1e6 * q for q in flux], label=f"{result['rate']:g} rad/s")
-    left.set_xlabel("t [s]")
-    left.set_ylabel("flux through the duct [cm^3/s]")
-    left.grid(True, alpha=0.3)
-    left.legend(fontsize=8)
+    label_panel(left, "t [s]", "flux through the duct [cm^3/s]")
     rates = [a[0]["rate"] for a in analysed]
     right.plot(rates, [1e6 * a[0]["flux"] for a in analysed], "o-", label="mean over the window")
     right.set_xlabel("rotation rate [rad/s]")
@@ -148,11 +154,8 @@ def main():
         left.plot([1e6 * v for v in moved["y"]], [1e6 * v for v in moved["z"]], lw=0.8, label=label)
         right.plot(time, [1e6 * v for v in moved["x"]], label=label)
     left.plot([0], [0], "k+", ms=12, label="mounting point")
-    left.set_xlabel("y - y0 [um]")
-    left.set_ylabel("z - z0 [um]")
     left.set_aspect("equal", adjustable="datalim")
-    left.grid(True, alpha=0.3)
-    left.legend(fontsize=8)
+    label_panel(left, "y - y0 [um]", "z - z0 [um]")
     left.set_title("Rotor centre across the axis")
     right.set_xlabel("t [s]")
     right.set_ylabel("x - x0 along the axis [um]")
@@ -165,10 +168,7 @@ def main():
         line, = left.plot(time, [1e3 * v for v in sensors["hub_x"]], label=f"{label}: x")
         left.plot(time, [1e3 * v for v in sensors["hub_z"]], ls="--", color=line.get_color(), label=f"{label}: z")
         right.plot(time, [1e6 * v for v in sensors["drive_torque"]], label=label)
-    left.set_xlabel("t [s]")
-    left.set_ylabel("hub force on the rotor [mN]")
-    left.grid(True, alpha=0.3)
-    left.legend(fontsize=7)
+    label_panel(left, "t [s]", "hub force on the rotor [mN]", legend_size=7)
     right.set_xlabel("t [s]")
     right.set_ylabel("drive torque [uN m]")
     finish_figure(figure, right, "Hub forces and drive torque", prefix + "_hub.png")

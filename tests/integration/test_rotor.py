@@ -39,10 +39,8 @@ check(checks["particles_final"] == checks["particles_initial"], "no particle los
 check(checks["max_action_reaction_relative"] <= 1e-12,
       f"action = reaction at every exchange ({checks['max_action_reaction_relative']:.3e})")
 
-r, time, flux, moved, sensors = analyse(run_dir)
-window = [i for i, t in enumerate(time) if t >= r["window_start"]]
-up = sum(sensors["upstream_flux"][i] for i in window) / len(window)
-down = sum(sensors["downstream_flux"][i] for i in window) / len(window)
+r = analyse(run_dir)[0]
+up, down = r["flux_upstream"], r["flux_downstream"]
 print(f"measured: flux upstream {1e6 * up:.3f}, downstream {1e6 * down:.3f} cm^3/s over t >= "
       f"{r['window_start']:.4f} s; thrust {1e3 * r['thrust_mean']:.3f} mN; centre mean dx "
       f"{1e6 * r['centre_mean_displacement']['x']:+.1f} um; drive work {1e3 * r['drive_work']:.4f} mJ, "
