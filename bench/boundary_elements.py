@@ -6,9 +6,10 @@ The 3D hydrostatic box (examples/hydrostatic_box_3d, 648 particles) with its con
 12 triangles and as the same box with every face cut into n x n squares
 (`make_box_stl.py --subdivide n`: 12 n^2 triangles), coupled on 1 and on 2 ranks. Printed per
 run: the coupled phase per step, the contact fix's part, every rank's peak resident memory; then
-the memory and the contact time per triangle from the differences to the 12-triangle run. Every
-rank holds and evaluates the whole mesh today: the per-rank figures do not shrink with the ranks.
-Not a pass/fail test; the machine should be otherwise idle.
+the memory and the contact time per triangle from the differences to the 12-triangle run, and the
+triangles each rank held (its share of the mesh plus the halo: fsi-client's `boundary mesh:` line;
+rank 0 holds the whole mesh besides, as the coupling's root). Not a pass/fail test; the machine
+should be otherwise idle.
 
   bench/boundary_elements.py [--subdivisions 1,16,48] [--steps 200] [--build build]
 """
@@ -45,12 +46,15 @@ def run(bin_dir, folder, parts, ranks, steps):
     with open(os.path.join(run_dir, "run.json")) as handle:
         result = json.load(handle)
     with open(os.path.join(run_dir, "fsi-client.log")) as handle:
-        memory = re.search(r"memory: peak resident ([\d. /]+) MiB per rank", handle.read())
+        log = handle.read()
+    memory = re.search(r"memory: peak resident ([\d. /]+) MiB per rank", log)
+    held = re.search(r"boundary mesh: [\d /]+ of \d+ elements held per rank at the end \(at most ([\d /]+);", log)
     t = result["timings_seconds"]
     return {"triangles": 12 * parts * parts, "ranks": ranks, "steps": result["steps"],
             "step_ms": 1e3 * t["coupled_phase"] / result["steps"],
             "contact_ms": 1e3 * t["contact_fix"] / result["steps"],
-            "memory_mib": [float(v) for v in memory.group(1).split("/")] if memory else []}
+            "memory_mib": [float(v) for v in memory.group(1).split("/")] if memory else [],
+            "held": [int(v) for v in held.group(1).split("/")] if held else []}
 
 
 def main():
@@ -70,11 +74,11 @@ def main():
             for ranks in (1, 2):
                 results.append(run(bin_dir, folder, parts, ranks, args.steps))
     print(f"3D hydrostatic box, 648 particles, {args.steps} coupled steps; the container as 12 n^2 triangles")
-    print("| triangles | ranks | ms/step | contact fix ms/step | peak resident MiB per rank |")
-    print("|---|---|---|---|---|")
+    print("| triangles | ranks | ms/step | contact fix ms/step | peak resident MiB per rank | triangles held per rank |")
+    print("|---|---|---|---|---|---|")
     for r in results:
         print(f"| {r['triangles']} | {r['ranks']} | {r['step_ms']:.3f} | {r['contact_ms']:.3f} | "
-              f"{' / '.join(f'{m:.1f}' for m in r['memory_mib'])} |")
+              f"{' / '.join(f'{m:.1f}' for m in r['memory_mib'])} | {' / '.join(str(h) for h in r['held'])} |")
     for ranks in (1, 2):
         same = [r for r in results if r["ranks"] == ranks]
         base = same[0]

@@ -56,7 +56,15 @@ class FixFsiSph : public LAMMPS_NS::Fix {
   void post_force(int /*vflag*/) override {
     const auto started = std::chrono::steady_clock::now();
     CouplingBoundary& boundary = *boundary_;
+    if (boundary.share_pending) {
+      throw std::runtime_error(
+          "fix fsi/sph: LIGGGHTS evaluates the wall forces before fsi-client has handed out the "
+          "ranks' shares of the boundary (a run command in script 1?): put run commands in "
+          "script 2");
+    }
+    take_share(boundary);
     const int local = atom->nlocal;
+    check_coverage(boundary.coverage, local);
     ParticleArrays particles;
     particles.count = static_cast<std::size_t>(local);
     if (local > 0) {
@@ -72,7 +80,9 @@ class FixFsiSph : public LAMMPS_NS::Fix {
     const Periodicity box = periodicity();
     const double range = contact_.settings().law.range();
     if (box.any() && !periodic_mesh_checked_) {
-      check_periodic_mesh(box, boundary.positions(), range);  // as drawn, at the set-up
+      // As drawn, at the set-up: the whole mesh's extent, not this rank's share's.
+      check_periodic_mesh(
+          box, boundary.drawn_bounds.empty() ? boundary.positions() : boundary.drawn_bounds, range);
       periodic_mesh_checked_ = true;
     }
     const ParticleArrays evaluated =
@@ -106,6 +116,38 @@ class FixFsiSph : public LAMMPS_NS::Fix {
   }
 
  private:
+  // A new share of the mesh: its pre-refinement (3D options 2, 3) comes with it.
+  void take_share(const CouplingBoundary& boundary) {
+    if (boundary.share_generation == share_generation_) return;
+    share_generation_ = boundary.share_generation;
+    if (boundary.dimension == 3) contact3d_.prepare(boundary.pre_refinement);
+  }
+
+  // Every particle of the group must lie where this rank's share of the mesh holds every element
+  // within its reach (CouplingBoundary::coverage).
+  void check_coverage(const CouplingBoundary::Coverage& coverage, int local) const {
+    if (!coverage.active) return;
+    for (int i = 0; i < local; ++i) {
+      if ((atom->mask[i] & groupbit) == 0) continue;
+      const double* x = atom->x[i];
+      bool inside = true;
+      for (int k = 0; k < domain->dimension; ++k)
+        inside = inside && x[k] >= coverage.low[k] && x[k] <= coverage.high[k];
+      if (inside) continue;
+      char text[480];
+      std::snprintf(text, sizeof text,
+                    "fix fsi/sph: atom %d at (%g, %g, %g) on rank %d is outside (%g, %g, %g) - "
+                    "(%g, %g, %g), where this rank's share of the boundary mesh holds every "
+                    "element within its reach, at step " BIGINT_FORMAT
+                    ": LIGGGHTS has not handed it to its owner; let it re-neighbour as the "
+                    "particles move (neigh_modify delay 0 every 1 check yes)",
+                    atom->tag[i], x[0], x[1], x[2], comm->me, coverage.low[0], coverage.low[1],
+                    coverage.low[2], coverage.high[0], coverage.high[1], coverage.high[2],
+                    update->ntimestep);
+      throw std::runtime_error(text);
+    }
+  }
+
   Periodicity periodicity() const {
     Periodicity box;
     box.dimension = domain->dimension;
@@ -142,6 +184,7 @@ class FixFsiSph : public LAMMPS_NS::Fix {
   std::shared_ptr<CouplingBoundary> boundary_;
   PeriodicImages images_;
   bool periodic_mesh_checked_ = false;
+  std::uint64_t share_generation_ = 0;
 };
 
 constexpr const char* kGhostSyncId = "fsi_ghost_sync";

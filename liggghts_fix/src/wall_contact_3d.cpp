@@ -296,6 +296,19 @@ void WallContact3D::prepare(const BoundaryMesh3D& mesh) {
   prepared_ = true;
 }
 
+void WallContact3D::prepare(std::vector<std::uint8_t> levels) {
+  if (!uses_pre_refinement(settings_)) return;
+  pre_refinement_ = std::move(levels);
+  prepared_ = true;
+}
+
+std::vector<std::uint8_t> pre_refinement_levels(const ContactSettings3D& settings,
+                                                const BoundaryMesh3D& mesh) {
+  std::vector<std::uint8_t> levels(mesh.triangle_count(), 0);
+  if (uses_pre_refinement(settings)) pre_refine(settings, mesh, levels);
+  return levels;
+}
+
 ContactDiagnostics WallContact3D::compute(const BoundaryMesh3D& mesh,
                                           const ParticleArrays& particles,
                                           std::span<double> vertex_forces,

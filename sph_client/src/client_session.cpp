@@ -23,6 +23,7 @@
 #include <variant>
 #include <vector>
 
+#include "boundary_distribution.hpp"
 #include "decomposition.hpp"
 #include "fault_relay.hpp"
 #include "fluid_decomposition.hpp"
@@ -190,11 +191,11 @@ class ClientSession {
     }
     // Every rank must know which optional messages of the set-up follow.
     MPI_Bcast(&capabilities_, 1, MPI_UINT32_T, 0, mpi_.communicator());
-    const SetupData data = receive_setup();
+    SetupData data = receive_setup();
     // From here until Ready, rank 0 tells the server it is busy (set-up and equilibration).
     setup_busy_ = busy();
     dimension_ = static_cast<int>(data.setup.dimension);
-    configure_boundary(data.mesh);
+    configure_boundary(std::move(data.mesh));
     DriverOptions driver_options;
     driver_options.log_file = mpi_.root() ? options_.liggghts_log : std::string();
     driver_options.echo_output = options_.echo_liggghts;
@@ -328,19 +329,78 @@ class ClientSession {
     }
   }
 
-  // Receives one frame on rank 0 and hands type and payload to every rank.
+  // How rank 0 hands a message to the other ranks.
+  enum class Handout : std::uint64_t {
+    kWhole = 0,         // every rank gets the whole message
+    kMeshSettings = 1,  // the Mesh stays on rank 0; the others get its settings (no arrays)
+    kShares = 2,        // a Step or StepMotion: each rank gets its share's vertices
+    kSharesChosen = 3,  // as kShares, after choosing the shares again
+  };
+
+  // Receives one frame on rank 0 and hands the message to every rank: whole, or only what a
+  // rank's share of the boundary needs (boundary_distribution.hpp).
   protocol::Message next_message() {
     std::uint16_t type = 0;
     std::vector<std::byte> payload;
+    std::optional<protocol::Message> whole;
+    Handout handout = Handout::kWhole;
     if (mpi_.root()) {
       std::lock_guard lock(channel_mutex_);
       protocol::Frame frame =
           channel_->receive(options_.peer_timeout, "the next message from fsi-server");
       type = static_cast<std::uint16_t>(frame.header.type);
       payload = std::move(frame.payload);
+      const auto kind = static_cast<protocol::MessageType>(type);
+      if (kind == protocol::MessageType::Mesh) {
+        whole = protocol::decode(kind, payload);
+        handout = Handout::kMeshSettings;
+      } else if (distribution_ && (kind == protocol::MessageType::Step ||
+                                   kind == protocol::MessageType::StepMotion)) {
+        whole = protocol::decode(kind, payload);
+        handout = distribution_->take_whole(*whole) ? Handout::kSharesChosen : Handout::kShares;
+      }
+    }
+    std::uint64_t header[2] = {type, static_cast<std::uint64_t>(handout)};
+    {
+      ScopedTimer timer(mpi_.mpi_time());
+      MPI_Bcast(header, 2, MPI_UINT64_T, 0, mpi_.communicator());
+    }
+    type = static_cast<std::uint16_t>(header[0]);
+    handout = static_cast<Handout>(header[1]);
+    switch (handout) {
+      case Handout::kMeshSettings:
+        return mesh_settings(whole);
+      case Handout::kSharesChosen:
+        distribution_->select(driver_->lammps());
+        [[fallthrough]];
+      case Handout::kShares: {
+        ScopedTimer timer(mpi_.mpi_time());
+        return distribution_->scatter(whole ? &*whole : nullptr, type);
+      }
+      case Handout::kWhole:
+        break;
     }
     mpi_.broadcast(type, payload);
     return protocol::decode(static_cast<protocol::MessageType>(type), payload);
+  }
+
+  // Rank 0 keeps the whole Mesh; the other ranks get its counts and settings only.
+  protocol::Message mesh_settings(std::optional<protocol::Message>& whole) {
+    std::array<double, 4> settings{};
+    if (mpi_.root()) {
+      const auto& mesh = std::get<protocol::Mesh>(*whole);
+      settings = {static_cast<double>(mesh.dimension),
+                  static_cast<double>(mesh.dynamic_vertex_count),
+                  static_cast<double>(mesh.refinement_option), mesh.refinement_resolution};
+    }
+    MPI_Bcast(settings.data(), 4, MPI_DOUBLE, 0, mpi_.communicator());
+    if (mpi_.root()) return std::move(*whole);
+    protocol::Mesh mesh;
+    mesh.dimension = static_cast<std::uint32_t>(settings[0]);
+    mesh.dynamic_vertex_count = static_cast<std::uint32_t>(settings[1]);
+    mesh.refinement_option = static_cast<std::uint32_t>(settings[2]);
+    mesh.refinement_resolution = settings[3];
+    return mesh;
   }
 
   template <class T>
@@ -398,19 +458,18 @@ class ClientSession {
     return data;
   }
 
-  void configure_boundary(const protocol::Mesh& mesh) {
+  // Rank 0 keeps the whole mesh; every rank holds its share once select_shares() has run.
+  void configure_boundary(protocol::Mesh mesh) {
     boundary_ = std::make_shared<contact::CouplingBoundary>();
-    boundary_->dynamic_vertex_count = mesh.dynamic_vertex_count;
-    boundary_->refinement_resolution = mesh.refinement_resolution;
-    boundary_->refinement_option = static_cast<int>(mesh.refinement_option);
-    try {
-      boundary_->assign(static_cast<int>(mesh.dimension), mesh.positions, mesh.velocities,
-                        mesh.element_vertices);
-    } catch (const std::invalid_argument& bad) {
-      throw Error(std::string("boundary mesh from the server is inconsistent: ") + bad.what(),
-                  "set-up (mesh)", "check the scene's meshes");
-    }
-    initial_velocities_ = mesh.velocities;
+    distribution_ = std::make_unique<DistributedBoundary>(mpi_.communicator(), boundary_);
+    distribution_->configure(std::move(mesh));
+  }
+
+  // Collective: every rank's share of the boundary for the decomposition and particles as they
+  // are now (after script 1, a balance, a restored fluid, and every equilibration chunk).
+  void select_shares() {
+    ScopedTimer timer(mpi_.mpi_time());
+    distribution_->select(driver_->lammps());
   }
 
   // The scene's variables, then script 1 with the scene's particles created right after its
@@ -520,6 +579,7 @@ class ClientSession {
     watch.start();
     const std::string rates = capture_step_rates(lammps, mpi_.communicator());
     const double after = balance_particles();
+    select_shares();
     driver_->run_with_setup(0);
     apply_step_rates(lammps, mpi_.communicator(), rates);
     seconds_rebalancing_ += watch.stop();
@@ -564,24 +624,28 @@ class ClientSession {
                  ghost_cutoff(lammps));
   }
 
-  // Every rank's share of the boundary's sampling points, averaged over its evaluations, and
-  // their total per evaluation (collective): a rank generates only the points within reach of
-  // its own particles (thesis §7.1; bench/cost_model.py reads this line).
+  // Every rank's sampling points per evaluation, averaged over its evaluations: those it
+  // generated (within reach of its own particles) and all of its share of the mesh (collective;
+  // thesis §7.1).
   void log_boundary_share() const {
     if (!boundary_) return;  // the same on every rank
     const double evaluations =
         static_cast<double>(std::max<std::uint64_t>(1, boundary_->evaluations));
-    const double generated =
-        static_cast<double>(boundary_->sampling_points_generated) / evaluations;
-    std::vector<double> all(static_cast<std::size_t>(mpi_.size()), 0.0);
-    MPI_Gather(&generated, 1, MPI_DOUBLE, all.data(), 1, MPI_DOUBLE, 0, mpi_.communicator());
+    const std::array<double, 2> mine{
+        static_cast<double>(boundary_->sampling_points_generated) / evaluations,
+        static_cast<double>(boundary_->sampling_points) / evaluations};
+    std::vector<double> all(2 * static_cast<std::size_t>(mpi_.size()), 0.0);
+    MPI_Gather(mine.data(), 2, MPI_DOUBLE, all.data(), 2, MPI_DOUBLE, 0, mpi_.communicator());
     if (!mpi_.root()) return;
-    const double total = static_cast<double>(boundary_->sampling_points) / evaluations;
-    std::vector<std::string> shares;
-    for (double value : all)
-      shares.push_back(fmt::format("{:.0f}", value));
-    spdlog::info("boundary: {} of {:.0f} sampling points generated per evaluation per rank",
-                 fmt::join(shares, " / "), total);
+    std::vector<std::string> generated, held;
+    for (std::size_t r = 0; r < all.size(); r += 2) {
+      generated.push_back(fmt::format("{:.0f}", all[r]));
+      held.push_back(fmt::format("{:.0f}", all[r + 1]));
+    }
+    spdlog::info(
+        "boundary: {} sampling points generated per evaluation per rank, of {} in its share of "
+        "the mesh",
+        fmt::join(generated, " / "), fmt::join(held, " / "));
   }
 
   void log_balance_summary() const {
@@ -602,7 +666,10 @@ class ClientSession {
     setup_watch.start();
     run_script1(data);
     // Equilibration (thesis §5.4.2): the structure rests in its initial configuration.
-    std::fill(boundary_->velocities().begin(), boundary_->velocities().end(), 0.0);
+    // Wall-pressure probes read every sampling point of their patches on rank 0.
+    distribution_->root_holds_whole_mesh(reads_wall_samples(data));
+    distribution_->hold_still(true);
+    select_shares();
     driver_->set_time_step(data.setup.time_step);
     driver_->run_with_setup(0);
     const double seconds_setup = setup_watch.stop();
@@ -618,14 +685,10 @@ class ClientSession {
     driver_->run_script(data.setup.script2_name, data.setup.script2_text);
     // The coupled phase starts from the structure's initial velocities; a run with set-up makes
     // script 2's changes effective and evaluates the wall forces f(0).
-    boundary_->velocities() = initial_velocities_;
+    distribution_->hold_still(false);
+    select_shares();
     // The wall-pressure probes of step 0 read the wall forces of this evaluation.
-    boundary_->samples.enabled =
-        data.probes && std::any_of(data.probes->probes.begin(), data.probes->probes.end(),
-                                   [](const protocol::ProbeRecord& record) {
-                                     return probes::reads_wall_samples(
-                                         {static_cast<probes::ProbeKind>(record.kind), {}, {}});
-                                   });
+    boundary_->samples.enabled = reads_wall_samples(data);
     driver_->set_time_step(data.setup.time_step);
     driver_->run_with_setup(0);
     const double seconds_equilibration = equilibration_watch.stop();
@@ -661,6 +724,14 @@ class ClientSession {
     send_forces(0, 0.0, 0.0);
   }
 
+  static bool reads_wall_samples(const SetupData& data) {
+    return data.probes && std::any_of(data.probes->probes.begin(), data.probes->probes.end(),
+                                      [](const protocol::ProbeRecord& record) {
+                                        return probes::reads_wall_samples(
+                                            {static_cast<probes::ProbeKind>(record.kind), {}, {}});
+                                      });
+  }
+
   // A resumed run (1.6; docs/user-guide.md, "Checkpoints and resume"): the scripts on the scene's
   // particles as in a new run but no equilibration, then the fluid of the checkpoint in their
   // place (fluid_state.hpp); the boundary is the Mesh's, at the checkpoint. The next run sets up.
@@ -668,12 +739,15 @@ class ClientSession {
     Stopwatch setup_watch;
     setup_watch.start();
     run_script1(data);
+    distribution_->root_holds_whole_mesh(reads_wall_samples(data));
+    select_shares();
     driver_->set_time_step(data.setup.time_step);
     driver_->run_script(data.setup.script2_name, data.setup.script2_text);
     driver_->set_time_step(data.setup.time_step);
     driver_->run_with_setup(0);
     const auto [state, rates] = unpack_checkpoint(data.resume->state);
     restore_balanced(state);
+    select_shares();
     driver_->run_with_setup(0);  // as after a checkpoint (write_checkpoint)
     apply_step_rates(driver_->lammps(), mpi_.communicator(), rates);
     last_balance_check_ = driver_->current_step();
@@ -712,6 +786,7 @@ class ClientSession {
     const std::string state = capture_fluid_state(lammps, mpi_.communicator());
     const std::string rates = capture_step_rates(lammps, mpi_.communicator());
     restore_balanced(state);
+    select_shares();
     // The set-up right here, with the walls where they were at the checkpoint (a resume does
     // the same with the Mesh's), then the last step's forces and density rates in place of the
     // set-up's: the next step goes on as without a checkpoint (to the summation order).
@@ -742,9 +817,14 @@ class ClientSession {
     probes_ = std::make_unique<FluidProbes>(driver_->lammps(), mpi_.communicator(),
                                             probes::ProbeSet(std::move(definitions), context),
                                             static_cast<int>(particles.atom_type));
-    // Every rank holds every sampling point: all ranks find the same problems.
-    if (const std::string problems = probes_->probes().wall_problems(wall_samples());
-        !problems.empty()) {
+    // Rank 0 holds every sampling point of the probes' patches (root_holds_whole_mesh) and
+    // tells every rank what it finds.
+    std::string problems = mpi_.root() ? probes_->probes().wall_problems(wall_samples()) : "";
+    unsigned long long size = problems.size();
+    MPI_Bcast(&size, 1, MPI_UNSIGNED_LONG_LONG, 0, mpi_.communicator());
+    problems.resize(size);
+    MPI_Bcast(problems.data(), static_cast<int>(size), MPI_CHAR, 0, mpi_.communicator());
+    if (!problems.empty()) {
       throw Error(problems, "probe set-up (the wall law's sampling points at t = 0)",
                   "enlarge the probe's radius to the spacing of the sampling points (about "
                   "Coupling.refinement_resolution / the fix's gauss points) or move its centre "
@@ -775,7 +855,10 @@ class ClientSession {
         driver_->run_continued(now_steps);
       }
       done += now_steps;
-      if (done < steps) maybe_rebalance(false);  // the fluid settles, a dam's column may move
+      if (done < steps) {
+        maybe_rebalance(false);  // the fluid settles, a dam's column may move
+        select_shares();         // the shares follow the particles
+      }
       const auto now = std::chrono::steady_clock::now();
       if (!mpi_.root() || done == steps ||
           std::chrono::duration<double>(now - last_report).count() < kEquilibrationReportSeconds) {
@@ -831,33 +914,34 @@ class ClientSession {
     return drag;
   }
 
-  // Sums this rank's vertex forces and diagnostics over all ranks; rank 0 sends them.
-  // The fluid's health (every step) and, on probe steps, the probes' partials travel in the same
-  // two reductions (no extra synchronisation of the ranks); rank 0 sends FluidHealth and then
-  // ProbeValues right after the Forces.
+  // Gathers the ranks' vertex forces onto the whole mesh (each rank sends its share's only) and
+  // sums the diagnostics over all ranks; rank 0 sends them. The fluid's health (every step), on
+  // probe steps the probes' partials, and whether a rank's particles near the edge of its share
+  // travel in the same two reductions (no extra synchronisation of the ranks); rank 0 sends
+  // FluidHealth and then ProbeValues right after the Forces.
   void send_forces(std::uint64_t step, double seconds_liggghts, double seconds_contact) {
     const bool probing = probes_ && step % probe_every_steps_ == 0;
     const probes::Partials* probe_partials = probing ? &probes_->partials(wall_samples()) : nullptr;
     if (probing) ++probe_evaluations_;
+    const bool near_edge = distribution_->particles_near_edge(driver_->lammps());
     Stopwatch& communication = mpi_.mpi_time();
     communication.start();
-    const std::size_t dynamic_values = boundary_->dynamic_vertex_count * dimension_;
+    std::vector<double> vertex_forces = distribution_->gather_forces(boundary_->vertex_forces);
     const auto& diagnostics = boundary_->diagnostics;
-    // Sums: dynamic vertex forces, force on fluid (3), on structure (3), magnitude sum, particles
-    // in range; then the health's counts (particles, non-finite ones); then the probes' sums.
+    // Sums: force on fluid (3), on structure (3), magnitude sum, particles in range; then the
+    // health's counts (particles, non-finite ones); then the probes' sums.
     constexpr std::size_t kDiagnostics = 8;
-    std::vector<double> sums(dynamic_values + kDiagnostics, 0.0);
-    std::copy_n(boundary_->vertex_forces.begin(),
-                std::min(dynamic_values, boundary_->vertex_forces.size()), sums.begin());
+    std::vector<double> sums(kDiagnostics, 0.0);
     for (int k = 0; k < 3; ++k) {
-      sums[dynamic_values + k] = diagnostics.force_on_particles[k];
-      sums[dynamic_values + 3 + k] = diagnostics.force_on_structure[k];
+      sums[k] = diagnostics.force_on_particles[k];
+      sums[3 + k] = diagnostics.force_on_structure[k];
     }
-    sums[dynamic_values + 6] = diagnostics.pair_force_magnitude_sum;
-    sums[dynamic_values + 7] = static_cast<double>(diagnostics.particles_in_range);
-    // Maxima: the closest approach as its negative (a minimum); then the health's extremes
-    // (-min density, max density, max speed squared); then the probes' maxima.
-    std::vector<double> maxima{-diagnostics.closest_distance};
+    sums[6] = diagnostics.pair_force_magnitude_sum;
+    sums[7] = static_cast<double>(diagnostics.particles_in_range);
+    // Maxima: the closest approach as its negative (a minimum), whether this rank's particles
+    // near the edge of its share; then the health's extremes (-min density, max density, max
+    // speed squared); then the probes' maxima.
+    std::vector<double> maxima{-diagnostics.closest_distance, near_edge ? 1.0 : 0.0};
     const bool report_health = health_agreed();
     if (report_health) {
       communication.stop();
@@ -886,17 +970,18 @@ class ClientSession {
     const std::uint64_t particles = driver_->particle_count();
     communication.stop();
     if (!mpi_.root()) return;
+    if (maxima_total[1] > 0.0) distribution_->request_selection();
 
     protocol::Forces forces;
     forces.step = step;
-    forces.forces.assign(total.begin(), total.begin() + static_cast<long>(dynamic_values));
+    forces.forces = std::move(vertex_forces);
     auto& out = forces.diagnostics;
     for (int k = 0; k < 3; ++k) {
-      out.force_on_fluid[k] = total[dynamic_values + k];
-      out.force_on_structure[k] = total[dynamic_values + 3 + k];
+      out.force_on_fluid[k] = total[k];
+      out.force_on_structure[k] = total[3 + k];
     }
-    out.pair_force_magnitude_sum = total[dynamic_values + 6];
-    out.particles_in_range = static_cast<std::uint64_t>(std::llround(total[dynamic_values + 7]));
+    out.pair_force_magnitude_sum = total[6];
+    out.particles_in_range = static_cast<std::uint64_t>(std::llround(total[7]));
     const double r0 = boundary_->law.equilibrium_distance;
     out.closest_approach_over_r0 = std::isfinite(closest_total) && r0 > 0.0
                                        ? closest_total / r0
@@ -910,13 +995,12 @@ class ClientSession {
     if (report_health) {
       protocol::FluidHealth report;
       report.step = step;
-      report.particle_count =
-          static_cast<std::uint64_t>(std::llround(total[dynamic_values + kDiagnostics]));
+      report.particle_count = static_cast<std::uint64_t>(std::llround(total[kDiagnostics]));
       report.non_finite_particles =
-          static_cast<std::uint64_t>(std::llround(total[dynamic_values + kDiagnostics + 1]));
-      report.min_density = -maxima_total[1];
-      report.max_density = maxima_total[2];
-      report.max_speed = std::sqrt(maxima_total[3]);
+          static_cast<std::uint64_t>(std::llround(total[kDiagnostics + 1]));
+      report.min_density = -maxima_total[2];
+      report.max_density = maxima_total[3];
+      report.max_speed = std::sqrt(maxima_total[4]);
       send(report);
     }
     if (probe_partials) {
@@ -930,10 +1014,15 @@ class ClientSession {
 
   // The wall forces at the sampling points of this rank's latest fix evaluation (recorded on the
   // steps whose probes read them; empty otherwise).
-  probes::WallSamples wall_samples() const {
+  // Their elements are named by their index in the whole mesh, as the probes name them.
+  probes::WallSamples wall_samples() {
     const contact::WallSampleRecord& record = boundary_->samples;
+    const std::span<const std::uint32_t> ids = distribution_->element_ids();
+    sample_elements_.resize(record.elements.size());
+    for (std::size_t s = 0; s < record.elements.size(); ++s)
+      sample_elements_[s] = ids[record.elements[s]];
     return {record.count(),  record.positions, record.normals, record.forces,
-            record.measures, record.elements,  record.pairs};
+            record.measures, sample_elements_, record.pairs};
   }
 
   bool health_agreed() const { return (capabilities_ & protocol::kCapabilityFluidHealth) != 0; }
@@ -1011,6 +1100,8 @@ class ClientSession {
         log_balance_summary();
         log_ghosts();
         log_boundary_share();
+        if (const std::string shares = distribution_->summary(); mpi_.root())
+          spdlog::info("{}", shares);
         log_peak_memory();
         return;
       } else if (auto* error = std::get_if<protocol::ErrorMessage>(&message)) {
@@ -1165,8 +1256,9 @@ class ClientSession {
   protocol::HeartbeatSender::Busy setup_busy_;
   std::shared_ptr<contact::CouplingBoundary> boundary_;
   std::unique_ptr<LiggghtsDriver> driver_;
-  std::vector<double> initial_velocities_;
-  std::unique_ptr<FluidProbes> probes_;  // when the scene declares probes (protocol 1.3)
+  std::unique_ptr<DistributedBoundary> distribution_;
+  std::vector<std::uint32_t> sample_elements_;  // wall_samples(): whole-mesh element indices
+  std::unique_ptr<FluidProbes> probes_;         // when the scene declares probes (protocol 1.3)
   std::uint64_t probe_every_steps_ = 1;
   std::uint64_t probe_evaluations_ = 0;
   double time_step_ = 0.0;

@@ -233,6 +233,36 @@ TEST(LiggghtsDriver, FixWarnsWhenAParticleComesTooCloseToAWall) {
   EXPECT_TRUE(warned()) << "a particle on the wall must be reported";
 }
 
+// A rank's share of a distributed boundary (fsi-client's boundary_distribution.hpp) holds every
+// element within reach of the particles inside its coverage box only: the fix stops the run,
+// naming the atom, when one is outside; and it refuses to evaluate before the shares exist.
+TEST(LiggghtsDriver, FixStopsWhenAParticleLeavesTheCoverageOfItsShare) {
+  Tank tank;
+  contact::CouplingBoundary::Coverage& coverage = tank.boundary->coverage;
+  coverage.active = true;
+  coverage.low = {-1.0, -1.0, -1.0};
+  coverage.high = {1.0, 1.0, 1.0};
+  tank.driver.step();                         // every particle is inside
+  coverage.high[1] = 0.5 * kSmoothingLength;  // below the lowest particle row
+  try {
+    tank.driver.step();
+    FAIL() << "a particle outside the coverage went through the fix";
+  } catch (const std::exception& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find("is outside"), std::string::npos) << message;
+    EXPECT_NE(message.find("share of the boundary mesh"), std::string::npos) << message;
+    EXPECT_NE(message.find("neigh_modify"), std::string::npos) << message;
+  }
+  coverage.active = false;
+  tank.boundary->share_pending = true;
+  try {
+    tank.driver.step();
+    FAIL() << "the fix evaluated before the shares were handed out";
+  } catch (const std::exception& error) {
+    EXPECT_NE(std::string(error.what()).find("script 2"), std::string::npos) << error.what();
+  }
+}
+
 // A blown-up integration leaves NaN in an atom's state; LIGGGHTS' `set` refuses NaN, so poison
 // the atom directly. The fix must stop the run naming the atom ID and the step, in 2D and 3D.
 void expect_non_finite_atom_stops_the_run(LiggghtsDriver& driver) {

@@ -257,6 +257,24 @@ def run_example_checked(scene, ranks, timeout, analyze_args=None, analyze_claim=
     return ExampleRun(work, run_dir, run, analysis)
 
 
+def fsi_run_checked(scene, run_dir, ranks, settings=(), timeout=900, label=""):
+    """fsi-run of `scene` on `ranks` ranks into `run_dir` with every "Block.name=value" of `settings`
+    given by --set; checks that it exits 0 (printing the end of its output when not), that run.json
+    says completed and that no particle was lost. Returns run.json. `label` starts every message."""
+    command = [binary("fsi-run"), scene, "--np", str(ranks), "--output", run_dir]
+    for item in settings:
+        command += ["--set", item]
+    result = subprocess.run(command, env=ENV, capture_output=True, text=True, timeout=timeout)
+    if result.returncode != 0:
+        print(result.stderr[-4000:])
+    check(result.returncode == 0, f"{label}fsi-run exits 0 (got {result.returncode})")
+    record = manifest(run_dir)
+    check(record["status"] == "completed", f"{label}run.json says completed")
+    checks = record["checks"]
+    check(checks["particles_final"] == checks["particles_initial"], f"{label}no particle lost")
+    return record
+
+
 def refused_client(scene, output, capabilities, overrides=()):
     """Opens a session with `scene`'s fsi-server (with `overrides`, KEY=EXPR) from a fake client
     offering only `capabilities` (session bits, e.g. 4: a client of protocol 1.2), checks that the server sends no set-up data,

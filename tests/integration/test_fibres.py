@@ -15,7 +15,7 @@ import os
 import subprocess
 import sys
 
-from fsi_test import binary, check, cleanup, example, manifest, work_dir, ENV
+from fsi_test import check, cleanup, example, fsi_run_checked, work_dir
 
 sys.path.insert(0, os.path.dirname(example("fibres", "analyze.py")))
 sys.path.insert(0, os.path.dirname(os.path.dirname(example("fibres", "analyze.py"))))
@@ -28,18 +28,10 @@ scene = example("fibres", "fibres_coarse.scene")
 
 def run(name, overrides):
     run_dir = os.path.join(output, name)
-    command = [binary("fsi-run"), scene, "--np", "2", "--output", run_dir,
-               "--set", f"Resolution.end_time={END}", "--set", "Resolution.equilibration_steps=1000"]
-    for item in overrides:
-        command += ["--set", item]
-    result = subprocess.run(command, env=ENV, capture_output=True, text=True, timeout=900)
-    if result.returncode != 0:
-        print(result.stderr[-4000:])
-    check(result.returncode == 0, f"{name}: fsi-run exits 0 (got {result.returncode})")
-    record = manifest(run_dir)
-    check(record["status"] == "completed", f"{name}: run.json says completed")
+    record = fsi_run_checked(scene, run_dir, 2,
+                             [f"Resolution.end_time={END}", "Resolution.equilibration_steps=1000"] + list(overrides),
+                             label=f"{name}: ")
     checks = record["checks"]
-    check(checks["particles_final"] == checks["particles_initial"], f"{name}: no particle lost")
     check(checks["max_action_reaction_relative"] <= 1e-12,
           f"{name}: action = reaction at every exchange ({checks['max_action_reaction_relative']:.3e})")
     return read_run(run_dir)[1], run_dir

@@ -7,6 +7,7 @@
 // The client and the fix share a CouplingBoundary: the client writes vertex positions and
 // velocities into it before each step, the fix writes this rank's vertex forces and diagnostics.
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -37,6 +38,24 @@ struct CouplingBoundary {
   // Sets the mesh from the server's arrays; throws std::invalid_argument naming the problem.
   void assign(int mesh_dimension, std::vector<double> vertex_positions,
               std::vector<double> vertex_velocities, std::vector<std::uint32_t> elements);
+
+  // A rank's share of the whole mesh (fsi-client's boundary_distribution.hpp): `mesh`/`mesh3d`
+  // then hold only the elements within reach of this rank's particles. `coverage` is the box the
+  // rank's particles must stay in for that to hold: the fix stops with an error naming the
+  // particle when one is outside it. `share_pending`: the client has not handed out the shares
+  // yet, and the fix refuses to evaluate. `share_generation` counts the shares handed out;
+  // `pre_refinement` holds the share's levels of a mesh pre-refined whole (3D options 2, 3).
+  // `drawn_bounds`: two corners of the whole mesh's bounding box as drawn, for the periodic-box
+  // check (empty: the mesh's own vertices).
+  struct Coverage {
+    bool active = false;
+    std::array<double, 3> low{}, high{};
+  };
+  Coverage coverage;
+  bool share_pending = false;
+  std::uint64_t share_generation = 0;
+  std::vector<std::uint8_t> pre_refinement;
+  std::vector<double> drawn_bounds;
 
   // Results of the latest evaluation on this rank (not yet summed over ranks).
   std::vector<double> vertex_forces;

@@ -87,6 +87,10 @@ class WallContact3D {
   // Options 2 and 3: fixes the pre-refinement of every triangle from this geometry (done by the
   // first compute() otherwise; calling it again re-does it). No effect for options 0 and 1.
   void prepare(const BoundaryMesh3D& mesh);
+  // Options 2 and 3: the levels fixed elsewhere, one per triangle of the meshes compute() gets
+  // next (a rank's share of a mesh pre-refined whole, pre_refinement_levels()). No effect for
+  // options 0 and 1.
+  void prepare(std::vector<std::uint8_t> levels);
 
   // Adds the contact forces to particles.forces, writes the vertex forces (3 per vertex, zeroed
   // first) and returns the diagnostics of this evaluation. Throws, before writing anything,
@@ -107,6 +111,12 @@ class WallContact3D {
   std::vector<std::uint8_t> levels_;  // refinement level per triangle of the latest compute()
   NeighbourSearchBuffers<3> buffers_;
 };
+
+// The pre-refinement level of every triangle of `mesh` (options 2 and 3) as prepare() fixes it
+// from this geometry; zeros for options 0 and 1. Throws std::invalid_argument like compute() for
+// a triangle that would need too many levels.
+std::vector<std::uint8_t> pre_refinement_levels(const ContactSettings3D& settings,
+                                                const BoundaryMesh3D& mesh);
 
 // All-pairs reference of WallContact3D::compute (same sampling, no cell grid), for tests. For
 // options 2 and 3 it pre-refines from this mesh, like the first evaluation of a WallContact3D.
