@@ -375,27 +375,56 @@ bool DistributedBoundary::particles_near_edge(const LAMMPS_NS::LAMMPS& lammps) c
   return false;
 }
 
+namespace {
+
+template <class T>
+double bytes_of(const std::vector<T>& values) {
+  return static_cast<double>(values.capacity() * sizeof(T));
+}
+
+}  // namespace
+
+double DistributedBoundary::share_bytes() const {
+  const contact::CouplingBoundary& b = *boundary_;
+  return bytes_of(b.mesh.positions) + bytes_of(b.mesh.velocities) + bytes_of(b.mesh.segments) +
+         bytes_of(b.mesh3d.positions) + bytes_of(b.mesh3d.velocities) +
+         bytes_of(b.mesh3d.triangles) + bytes_of(b.vertex_forces) + bytes_of(b.pre_refinement) +
+         bytes_of(share_elements_);
+}
+
+double DistributedBoundary::whole_bytes() const {
+  double bytes = bytes_of(whole_.positions) + bytes_of(whole_.velocities) +
+                 bytes_of(whole_.element_vertices) + bytes_of(whole_pre_refinement_) +
+                 bytes_of(positions_at_selection_);
+  for (const BoundaryShare& share : shares_)
+    bytes += bytes_of(share.elements) + bytes_of(share.vertices);
+  return bytes;
+}
+
 std::string DistributedBoundary::summary() const {
-  const std::array<double, 3> mine{
+  const std::array<double, 4> mine{
       static_cast<double>(share_elements_.size()), static_cast<double>(most_elements_held_),
-      static_cast<double>(boundary_->positions().size() / static_cast<std::size_t>(dimension_))};
-  std::vector<double> all(rank_ == 0 ? 3 * static_cast<std::size_t>(ranks_) : 0);
-  MPI_Gather(mine.data(), 3, MPI_DOUBLE, all.data(), 3, MPI_DOUBLE, 0, communicator_);
+      static_cast<double>(boundary_->positions().size() / static_cast<std::size_t>(dimension_)),
+      share_bytes()};
+  constexpr std::size_t kValues = mine.size();
+  std::vector<double> all(rank_ == 0 ? kValues * static_cast<std::size_t>(ranks_) : 0);
+  MPI_Gather(mine.data(), kValues, MPI_DOUBLE, all.data(), kValues, MPI_DOUBLE, 0, communicator_);
   if (rank_ != 0) return {};
-  std::string held, most, vertices;
-  for (int r = 0; r < ranks_; ++r) {
+  std::string held, most, vertices, kib;
+  for (std::size_t r = 0; r < static_cast<std::size_t>(ranks_); ++r) {
     const char* separator = r == 0 ? "" : " / ";
-    held += fmt::format("{}{:.0f}", separator, all[3 * r]);
-    most += fmt::format("{}{:.0f}", separator, all[3 * r + 1]);
-    vertices += fmt::format("{}{:.0f}", separator, all[3 * r + 2]);
+    held += fmt::format("{}{:.0f}", separator, all[kValues * r]);
+    most += fmt::format("{}{:.0f}", separator, all[kValues * r + 1]);
+    vertices += fmt::format("{}{:.0f}", separator, all[kValues * r + 2]);
+    kib += fmt::format("{}{:.1f}", separator, all[kValues * r + 3] / 1024.0);
   }
   return fmt::format(
       "boundary mesh: {} of {} elements held per rank at the end (at most {}; vertices {} of "
       "{}), {} selection(s) of the shares, {} of them during the coupled steps (margin {:.6g} "
-      "m){}",
+      "m); the shares take {} KiB per rank, rank 0 keeps the whole mesh besides ({:.1f} KiB){}",
       held, whole_elements_, most, vertices, whole_.vertex_count(), selections_,
-      selections_while_moving_, margin_,
-      root_whole_ ? "; rank 0 holds the whole mesh for the wall-pressure probes" : "");
+      selections_while_moving_, margin_, kib, whole_bytes() / 1024.0,
+      root_whole_ ? "; rank 0's share is the whole mesh (wall-pressure probes)" : "");
 }
 
 }  // namespace fsi::client

@@ -75,6 +75,10 @@ class DistributedBoundary {
  private:
   contact::CouplingBoundary& boundary() { return *boundary_; }
   std::vector<double> whole_velocities() const;
+  // The bytes of this rank's share (mesh, velocities, forces, element ids), and rank 0's of the
+  // whole mesh and the shares' index lists.
+  double share_bytes() const;
+  double whole_bytes() const;
   // 3D refinement options 2 and 3: the levels fixed from the whole mesh travel with the shares.
   bool pre_refined() const;
 
