@@ -18,7 +18,15 @@ own wall/region/sph walls, its baseline's walls, let the dam break's particles t
 resolution ("Particle on or inside fix wall/region/sph surface" within 400 steps).
 
   bench/balance.py [--case dam_break|box_3d] [--resolution R] [--fill-height H] [--steps 1000]
-                   [--equilibration-steps 100] [--runs np1,np2,np2_even] [--build build]
+                   [--equilibration-steps 100] [--runs np1,np2,np2_even] [--plain] [--build build]
+
+--plain also runs the same particles, scripts and equilibration in plain LIGGGHTS (bench_plain_liggghts
+--walls none: no walls at all, the measured steps in one `run`, the ranks pinned like the coupled runs)
+on the rank counts of --runs, and prints the ratio coupled/plain of each (issue 17: at most 1.0 asked).
+No walls is the cheapest baseline there is: LIGGGHTS' own `fix wall/region/sph` cannot stand in for
+these structures (it stops within 10 steps with "Particle on or inside surface", the dam break's
+particles starting d/2 from the walls, the 3D box's likewise); over the measured interval (about 2 ms
+of fluid time) the unwalled fluid moves by a few spacings at its edges.
 """
 import argparse
 import json
@@ -91,6 +99,20 @@ def coupled(bin_dir, folder, scene, name, ranks, overrides, client_args):
     return run, decomposition
 
 
+def plain(bin_dir, scene, ranks, overrides, steps, client_args):
+    """Seconds of `steps` plain-LIGGGHTS steps of the scene's particles (bench_plain_liggghts)."""
+    command = ["mpirun", "--oversubscribe", "--bind-to", "core", "-np", str(ranks)]
+    if os.geteuid() == 0:
+        command.append("--allow-run-as-root")
+    command += [os.path.join(bin_dir, "bench_plain_liggghts"), scene, "--steps", str(steps), "--walls", "none"]
+    if "--balance=off" in client_args:
+        command += ["--balance", "off"]
+    for item in overrides:
+        command += ["--set", item]
+    output = subprocess.run(command, env=ENV, check=True, capture_output=True, text=True).stdout
+    return json.loads([line for line in output.splitlines() if line.startswith("{")][-1])["seconds_loop"]
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--case", choices=sorted(SCENES), default="dam_break")
@@ -104,17 +126,21 @@ def main():
                              "56 across gives about 2.2e5 particles)")
     parser.add_argument("--runs", default="np1,np2,np2_even",
                         help="which of np1, np2, np2_even to run (default: all three)")
+    parser.add_argument("--plain", action="store_true",
+                        help="also run plain LIGGGHTS on the same particles and print coupled/plain")
     args = parser.parse_args()
     bin_dir = os.path.join(args.build, "bin")
     resolution = args.resolution or (158 if args.case == "dam_break" else 56)
     overrides, time_step, described = case_overrides(args.case, resolution, args.steps, args.equilibration_steps,
                                                      args.fill_height)
     with tempfile.TemporaryDirectory(prefix="fsi_bench_balance_") as folder:
-        runs = {}
+        runs, plains = {}, {}
         for name, ranks, client_args in (("np1", 1, []), ("np2", 2, []), ("np2_even", 2, ["--balance=off"])):
             if name not in args.runs.split(","):
                 continue
             runs[name] = coupled(bin_dir, folder, SCENES[args.case], name, ranks, overrides, client_args)
+            if args.plain:
+                plains[name] = plain(bin_dir, SCENES[args.case], ranks, overrides, runs[name][0]["steps"], client_args)
 
     particles = next(iter(runs.values()))[0]["fluid"]["particle_count"]
     print(f"{args.case}, {described}: {particles} particles, "
@@ -129,6 +155,9 @@ def main():
               f"{t['client_equilibration']:.3f} s")
         for line in decomposition:
             print(f"      {line}")
+        if name in plains:
+            print(f"      plain LIGGGHTS, same particles and ranks, no walls: {plains[name]:.3f} s = "
+                  f"{1e3 * plains[name] / run['steps']:.3f} ms/step; coupled/plain {t['coupled_phase'] / plains[name]:.3f}")
     for name, label in (("np2", "balanced"), ("np2_even", "even cuts")):
         if "np1" in seconds and name in seconds:
             print(f"speed-up 2 ranks / 1 rank, coupled, {label}: {seconds['np1'] / seconds[name]:.3f}")

@@ -6,8 +6,9 @@
 // LIGGGHTS' even cuts), not re-balanced during the run. Prints one JSON line with the loop wall
 // time.
 //
-//   mpirun -np N bench_plain_liggghts SCENE --steps M --region XLO XHI YLO YHI [--balance off]
-//       [--cutoff R] [--per-step] [--command LINE]... [--set KEY=EXPR]...
+//   mpirun -np N bench_plain_liggghts SCENE --steps M (--region XLO XHI YLO YHI [ZLO ZHI] |
+//       --walls none) [--balance off]
+//       [--cutoff R] [--strength D] [--per-step] [--command LINE]... [--set KEY=EXPR]...
 #include <mpi.h>
 #include <CLI/CLI.hpp>
 
@@ -33,7 +34,8 @@ int main(int argc, char** argv) {
   std::vector<std::string> overrides;
   app.add_option("scene", scene_file)->required();
   app.add_option("--steps", steps)->required();
-  app.add_option("--region", region, "block XLO XHI YLO YHI of the walls")->expected(4)->required();
+  app.add_option("--region", region, "block XLO XHI YLO YHI [ZLO ZHI] of the walls (3D: all six)")
+      ->expected(4, 6);
   app.add_option("--set", overrides);
   std::string balance = "on";
   app.add_option("--balance", balance)->check(CLI::IsMember({"on", "off"}));
@@ -43,6 +45,16 @@ int main(int argc, char** argv) {
   app.add_option("--command", extra_commands, "LIGGGHTS command after script 2 (repeatable)");
   std::string cutoff = "${SPH_wall_cutoff}";
   app.add_option("--cutoff", cutoff, "cut-off of the walls (default: the scene's SPH_wall_cutoff)");
+  std::string walls_kind = "region";
+  app.add_option("--walls", walls_kind,
+                 "region: wall/region/sph walls around --region; none: no walls at all (the "
+                 "cheapest baseline, for scenes whose particles start closer to the walls than "
+                 "wall/region/sph holds, over a measured interval too short for the fluid to "
+                 "spread)")
+      ->check(CLI::IsMember({"region", "none"}));
+  double strength = 5.0;
+  app.add_option("--strength", strength,
+                 "wall/region/sph's prefactor D of the repulsion (default 5)");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
@@ -59,15 +71,25 @@ int main(int argc, char** argv) {
     fsi::client::LiggghtsDriver driver(MPI_COMM_WORLD, {}, boundary);
     driver.define_variables(scene.liggghts.variables);
     // The structure becomes LIGGGHTS walls: same cut-off as our fix, LIGGGHTS' own force law.
-    char walls[512];
-    std::snprintf(walls, sizeof walls,
-                  "region fsi_bench_tank block %.17g %.17g %.17g %.17g -1 1 units box\n"
-                  "fix fsi_bench_walls all wall/region/sph fsi_bench_tank %s 5.0",
-                  region[0], region[1], region[2], region[3], cutoff.c_str());
+    if (walls_kind == "region" && region.size() != (scene.dimension == 3 ? 6u : 4u)) {
+      throw fsi::Error("--region needs " + std::string(scene.dimension == 3 ? "six" : "four") +
+                           " numbers for a " + std::to_string(scene.dimension) + "D scene",
+                       "command line", "give XLO XHI YLO YHI (and ZLO ZHI in 3D)");
+    }
+    const double z_low = region.size() == 6 ? region[4] : -1.0;
+    const double z_high = region.size() == 6 ? region[5] : 1.0;
+    char walls[512] = "";
+    if (walls_kind == "region")
+      std::snprintf(walls, sizeof walls,
+                    "region fsi_bench_tank block %.17g %.17g %.17g %.17g %.17g %.17g units box\n"
+                    "fix fsi_bench_walls all wall/region/sph fsi_bench_tank %s %.17g",
+                    region[0], region[1], region[2], region[3], z_low, z_high, cutoff.c_str(),
+                    strength);
     const std::string script1 = std::regex_replace(
         scene.liggghts.script1_text,
         std::regex(R"(fix\s+\S+\s+\S+\s+fsi/sph(?:[^\n&]*&[ \t]*\n)*[^\n]*)"), walls);
     fsi::client::ParticleBlock particles;
+    particles.dimension = scene.dimension;
     particles.mass = scene.fluid.mass;
     particles.density = scene.fluid.density;
     particles.atom_type = scene.fluid.atom_type;
