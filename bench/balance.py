@@ -20,13 +20,14 @@ resolution ("Particle on or inside fix wall/region/sph surface" within 400 steps
   bench/balance.py [--case dam_break|box_3d] [--resolution R] [--fill-height H] [--steps 1000]
                    [--equilibration-steps 100] [--runs np1,np2,np2_even] [--plain] [--build build]
 
---plain also runs the same particles, scripts and equilibration in plain LIGGGHTS (bench_plain_liggghts
---walls none: no walls at all, the measured steps in one `run`, the ranks pinned like the coupled runs)
-on the rank counts of --runs, and prints the ratio coupled/plain of each (issue 17: at most 1.0 asked).
-No walls is the cheapest baseline there is: LIGGGHTS' own `fix wall/region/sph` cannot stand in for
-these structures (it stops within 10 steps with "Particle on or inside surface", the dam break's
-particles starting d/2 from the walls, the 3D box's likewise); over the measured interval (about 2 ms
-of fluid time) the unwalled fluid moves by a few spacings at its edges.
+--plain also runs the same particles, scripts and equilibration in plain LIGGGHTS (bench_plain_liggghts:
+the structure replaced by LIGGGHTS' own `fix wall/region/sph` walls on the tank's inside faces, the
+measured steps in one `run`, the ranks pinned like the coupled runs) on the rank counts of --runs, and
+prints the ratio coupled/plain of each (issue 17: at most 1.0 asked). The walls' range is one particle
+spacing and their prefactor 5: with the scene's wall range (2 h) LIGGGHTS' Lennard-Jones-like wall
+throws the particles that start within it (d/2 from the dam break's walls) through the wall within 10
+steps ("Particle on or inside surface"). `--plain-walls none` leaves the walls out (the cheapest
+baseline there is).
 """
 import argparse
 import json
@@ -99,12 +100,24 @@ def coupled(bin_dir, folder, scene, name, ranks, overrides, client_args):
     return run, decomposition
 
 
-def plain(bin_dir, scene, ranks, overrides, steps, client_args):
+def walls_region(case, flat):
+    """The block whose faces stand in for the structure in plain LIGGGHTS: the tank's inside."""
+    if case == "dam_break":
+        return [0.0, flat["Geometry.tank_length"], 0.0, flat["Geometry.wall_height"]]
+    return [0.0, flat["Geometry.length"], 0.0, flat["Geometry.length"], 0.0, flat["Geometry.height"]]
+
+
+def plain(bin_dir, scene, ranks, overrides, steps, region, client_args):
     """Seconds of `steps` plain-LIGGGHTS steps of the scene's particles (bench_plain_liggghts)."""
     command = ["mpirun", "--oversubscribe", "--bind-to", "core", "-np", str(ranks)]
     if os.geteuid() == 0:
         command.append("--allow-run-as-root")
-    command += [os.path.join(bin_dir, "bench_plain_liggghts"), scene, "--steps", str(steps), "--walls", "none"]
+    command += [os.path.join(bin_dir, "bench_plain_liggghts"), scene, "--steps", str(steps)]
+    if region:
+        command += ["--region"] + [f"{value:.17g}" for value in region] + ["--cutoff", "${particlespacing}",
+                                                                          "--strength", "5"]
+    else:
+        command += ["--walls", "none"]
     if "--balance=off" in client_args:
         command += ["--balance", "off"]
     for item in overrides:
@@ -128,6 +141,8 @@ def main():
                         help="which of np1, np2, np2_even to run (default: all three)")
     parser.add_argument("--plain", action="store_true",
                         help="also run plain LIGGGHTS on the same particles and print coupled/plain")
+    parser.add_argument("--plain-walls", choices=["region", "none"], default="region",
+                        help="the plain runs' walls: LIGGGHTS' wall/region/sph (default) or none")
     args = parser.parse_args()
     bin_dir = os.path.join(args.build, "bin")
     resolution = args.resolution or (158 if args.case == "dam_break" else 56)
@@ -140,7 +155,10 @@ def main():
                 continue
             runs[name] = coupled(bin_dir, folder, SCENES[args.case], name, ranks, overrides, client_args)
             if args.plain:
-                plains[name] = plain(bin_dir, SCENES[args.case], ranks, overrides, runs[name][0]["steps"], client_args)
+                region = (walls_region(args.case, runs[name][0]["parameters_flat"]) if args.plain_walls == "region"
+                          else None)
+                plains[name] = plain(bin_dir, SCENES[args.case], ranks, overrides, runs[name][0]["steps"], region,
+                                     client_args)
 
     particles = next(iter(runs.values()))[0]["fluid"]["particle_count"]
     print(f"{args.case}, {described}: {particles} particles, "
@@ -156,7 +174,7 @@ def main():
         for line in decomposition:
             print(f"      {line}")
         if name in plains:
-            print(f"      plain LIGGGHTS, same particles and ranks, no walls: {plains[name]:.3f} s = "
+            print(f"      plain LIGGGHTS, same particles and ranks, walls {args.plain_walls}: {plains[name]:.3f} s = "
                   f"{1e3 * plains[name] / run['steps']:.3f} ms/step; coupled/plain {t['coupled_phase'] / plains[name]:.3f}")
     for name, label in (("np2", "balanced"), ("np2_even", "even cuts")):
         if "np1" in seconds and name in seconds:
