@@ -24,9 +24,10 @@ resolution ("Particle on or inside fix wall/region/sph surface" within 400 steps
 the structure replaced by LIGGGHTS' own `fix wall/region/sph` walls on the tank's inside faces, the
 measured steps in one `run`, the ranks pinned like the coupled runs) on the rank counts of --runs, and
 prints the ratio coupled/plain of each (issue 17: at most 1.0 asked). The walls' range is one particle
-spacing and their prefactor 5: with the scene's wall range (2 h) LIGGGHTS' Lennard-Jones-like wall
-throws the particles that start within it (d/2 from the dam break's walls) through the wall within 10
-steps ("Particle on or inside surface"). `--plain-walls none` leaves the walls out (the cheapest
+spacing and their prefactor D `--plain-strength` (default 5 for box_3d, 0.2 for dam_break, the values
+that hold each fluid): with the scene's wall range (2 h), or D = 1 at 158 columns, LIGGGHTS'
+Lennard-Jones-like wall throws the particles that start within it (d/2 from the dam break's walls)
+through the wall within 10 steps ("Particle on or inside surface"). `--plain-walls none` leaves the walls out (the cheapest
 baseline there is).
 """
 import argparse
@@ -107,7 +108,7 @@ def walls_region(case, flat):
     return [0.0, flat["Geometry.length"], 0.0, flat["Geometry.length"], 0.0, flat["Geometry.height"]]
 
 
-def plain(bin_dir, scene, ranks, overrides, steps, region, client_args):
+def plain(bin_dir, scene, ranks, overrides, steps, region, strength, client_args):
     """Seconds of `steps` plain-LIGGGHTS steps of the scene's particles (bench_plain_liggghts)."""
     command = ["mpirun", "--oversubscribe", "--bind-to", "core", "-np", str(ranks)]
     if os.geteuid() == 0:
@@ -115,7 +116,7 @@ def plain(bin_dir, scene, ranks, overrides, steps, region, client_args):
     command += [os.path.join(bin_dir, "bench_plain_liggghts"), scene, "--steps", str(steps)]
     if region:
         command += ["--region"] + [f"{value:.17g}" for value in region] + ["--cutoff", "${particlespacing}",
-                                                                          "--strength", "5"]
+                                                                          "--strength", f"{strength:g}"]
     else:
         command += ["--walls", "none"]
     if "--balance=off" in client_args:
@@ -143,6 +144,8 @@ def main():
                         help="also run plain LIGGGHTS on the same particles and print coupled/plain")
     parser.add_argument("--plain-walls", choices=["region", "none"], default="region",
                         help="the plain runs' walls: LIGGGHTS' wall/region/sph (default) or none")
+    parser.add_argument("--plain-strength", type=float, default=None,
+                        help="the plain walls' prefactor D (default 5 for box_3d, 0.2 for dam_break)")
     args = parser.parse_args()
     bin_dir = os.path.join(args.build, "bin")
     resolution = args.resolution or (158 if args.case == "dam_break" else 56)
@@ -157,8 +160,9 @@ def main():
             if args.plain:
                 region = (walls_region(args.case, runs[name][0]["parameters_flat"]) if args.plain_walls == "region"
                           else None)
+                strength = args.plain_strength or (0.2 if args.case == "dam_break" else 5.0)
                 plains[name] = plain(bin_dir, SCENES[args.case], ranks, overrides, runs[name][0]["steps"], region,
-                                     client_args)
+                                     strength, client_args)
 
     particles = next(iter(runs.values()))[0]["fluid"]["particle_count"]
     print(f"{args.case}, {described}: {particles} particles, "
