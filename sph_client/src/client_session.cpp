@@ -819,17 +819,11 @@ class ClientSession {
                                             static_cast<int>(particles.atom_type));
     // Rank 0 holds every sampling point of the probes' patches (root_holds_whole_mesh) and
     // tells every rank what it finds.
-    std::string problems = mpi_.root() ? probes_->probes().wall_problems(wall_samples()) : "";
-    unsigned long long size = problems.size();
-    MPI_Bcast(&size, 1, MPI_UNSIGNED_LONG_LONG, 0, mpi_.communicator());
-    problems.resize(size);
-    MPI_Bcast(problems.data(), static_cast<int>(size), MPI_CHAR, 0, mpi_.communicator());
-    if (!problems.empty()) {
-      throw Error(problems, "probe set-up (the wall law's sampling points at t = 0)",
+    share_verdict(mpi_.root() ? probes_->probes().wall_problems(wall_samples()) : std::string(),
+                  mpi_.communicator(), "probe set-up (the wall law's sampling points at t = 0)",
                   "enlarge the probe's radius to the spacing of the sampling points (about "
                   "Coupling.refinement_resolution / the fix's gauss points) or move its centre "
                   "onto the mesh");
-    }
     if (mpi_.root()) {
       spdlog::info(
           "{} probe(s) every {} step(s), {} column(s); LIGGGHTS kernel {}, support {:.6g} m (h = "

@@ -444,7 +444,8 @@ std::string broadcast_bytes(std::string_view bytes, MPI_Comm communicator) {
   return copy;
 }
 
-// Rank 0's verdict to every rank: an error seen on rank 0 only ends all ranks together.
+}  // namespace
+
 void share_verdict(const std::string& rank0_problem, MPI_Comm communicator, const char* where,
                    const char* fix) {
   int bad = rank_of(communicator) == 0 && !rank0_problem.empty() ? 1 : 0;
@@ -457,8 +458,6 @@ void share_verdict(const std::string& rank0_problem, MPI_Comm communicator, cons
   MPI_Bcast(text.data(), static_cast<int>(size), MPI_CHAR, 0, communicator);
   throw Error(text, where, fix);
 }
-
-}  // namespace
 
 // ---- Capture -----------------------------------------------------------------------------------
 

@@ -58,4 +58,10 @@ void restore_fluid_state(LAMMPS_NS::LAMMPS& lammps, MPI_Comm communicator, std::
 std::string capture_step_rates(LAMMPS_NS::LAMMPS& lammps, MPI_Comm communicator);
 void apply_step_rates(LAMMPS_NS::LAMMPS& lammps, MPI_Comm communicator, std::string_view bytes);
 
+// Rank 0's verdict to every rank (collective): when `rank0_problem` (read on rank 0 only) is not
+// empty, every rank throws Error(rank0_problem, where, fix), so that a problem seen on rank 0 alone
+// ends all ranks together.
+void share_verdict(const std::string& rank0_problem, MPI_Comm communicator, const char* where,
+                   const char* fix);
+
 }  // namespace fsi::client
