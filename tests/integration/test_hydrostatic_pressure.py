@@ -7,11 +7,15 @@ most at this spacing; the example's acceptance, 2 %, holds at d = 1 mm: docs/val
 patch above the water that says it is dry (pairs 0, pressure 0).
 Bad input: `fsi-server --check` names an unknown mesh and a patch that misses its mesh; a patch on
 the mesh too small to hold a sampling point of the wall law is refused by fsi-client at set-up,
-naming the probe, with a non-zero exit."""
+naming the probe, with a non-zero exit.
+The time step derived from the Fluid block (issue 13 item 4): the same coarse tank with
+SolverOptions.Timeint.step_size left out runs at end_time / 2527 (the largest step within the
+block's 0.125 h/c that divides 0.06 s), says so in --check and run.json, and still passes."""
 import os
+import shutil
 import subprocess
 
-from fsi_test import ENV, binary, check, cleanup, example, load_sensors, manifest, work_dir
+from fsi_test import ENV, binary, check, cleanup, example, fsi_run_checked, load_sensors, manifest, work_dir
 
 COARSE_TOLERANCE = 0.05
 output = work_dir("hydrostatic_pressure")
@@ -73,4 +77,28 @@ print(analysis.stdout[-3000:], analysis.stderr[-2000:])
 check(analysis.returncode == 0,
       f"every patch below H - 2h within {100 * COARSE_TOLERANCE:.0f} % of rho0 g (H - y) (analyze.py)")
 check(os.path.exists(os.path.join(run_dir, "hydrostatic_pressure.png")), "analyze.py draws the figure")
+
+# The step left out: the Fluid block's rule gives it (one rank).
+derived_folder = os.path.join(output, "derived_step")
+shutil.copytree(os.path.dirname(model), derived_folder)
+model_inc = os.path.join(derived_folder, "hydrostatic_pressure_model.inc")
+with open(model_inc) as handle:
+    text = handle.read()
+check("Timeint { step_size = Resolution.time_step }" in text, "the example's model gives its step (to leave it out)")
+with open(model_inc, "w") as handle:
+    handle.write(text.replace("Timeint { step_size = Resolution.time_step }", "Timeint { stages = 3 }"))
+derived_scene = os.path.join(derived_folder, "hydrostatic_pressure_coarse.scene")
+checked = subprocess.run([binary("fsi-server"), derived_scene, "--check"], capture_output=True, text=True,
+                         timeout=60, env=ENV)
+check(checked.returncode == 0 and "SolverOptions.Timeint.step_size is not given: the run steps at 2.374e-05 s, "
+      "end_time / 2527" in checked.stdout, "--check says the step is derived and which it is")
+derived_dir = os.path.join(output, "derived_run")
+record = fsi_run_checked(derived_scene, derived_dir, 1, label="derived step: ")
+h, c = 1.9 * 0.002, 20.0  # the model sets speed_of_sound = 20
+check(record["time_step"] == 0.06 / 2527 and 0.06 / 2527 <= 0.125 * h / c < 0.06 / 2526,
+      f"derived step: run.json's step {record['time_step']} is 0.06 s / 2527, the largest within 0.125 h/c")
+analysis = subprocess.run(["/usr/bin/python3", example("hydrostatic_pressure", "analyze.py"), derived_dir,
+                           "--tolerance", str(COARSE_TOLERANCE)], capture_output=True, text=True, timeout=120)
+print(analysis.stdout[-1500:], analysis.stderr[-1000:])
+check(analysis.returncode == 0, "derived step: every patch below H - 2h within the coarse tolerance")
 cleanup(output)

@@ -109,7 +109,9 @@ std::vector<std::string> fluid_block_lines(const fsi::scene::Scene& scene) {
       "rule; docs/user-guide.md, \"The Fluid block\"):"};
   for (const fsi::scene::FluidValue& value : fluid.values)
     lines.push_back("  " + fsi::scene::explain(fluid, value));
-  lines.push_back("  " + fsi::scene::explain_time_step(fluid, scene.solver.step_size));
+  lines.push_back("  " + fsi::scene::explain_time_step(fluid, scene.solver.step_size,
+                                                       scene.solver.step_size_derived,
+                                                       scene.solver.end_time));
   return lines;
 }
 

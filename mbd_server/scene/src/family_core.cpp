@@ -9,9 +9,13 @@ BlockSpec timeint_spec() {
   return block_spec(
              "Timeint", "Time integration of the multibody system (fixed step when coupled).",
              {number("step_size", "s",
-                     "coupled time step, the same on both sides; SPH needs <= 0.25 h/c; "
-                     "--mbd-only with an error-controlled method: the output step")
-                  .positive(),
+                     "coupled time step, the same on both sides; SPH needs <= 0.125 h/c; "
+                     "--mbd-only with an error-controlled method: the output step; absent in a "
+                     "coupled scene with a Fluid block: the largest step within the block's "
+                     "time-step rule that divides end_time into whole structure steps "
+                     "(docs/user-guide.md, \"The Fluid block\")")
+                  .positive()
+                  .optional(),
               text("method",
                    "fixed: the tableau at step_size; adaptive: the tableau with step-doubling "
                    "error control; ida: SUNDIALS IDA (BDF 1-5); the last two for --mbd-only "
@@ -117,7 +121,11 @@ void build_solver(SceneBuilder& builder) {
   const View timeint = options.block("Timeint");
   solver.end_time = options.number("end_time");
   builder.end_time = solver.end_time;
-  solver.step_size = timeint.number("step_size");
+  // Absent: the Fluid block derives it (family_fluid_parameters.cpp), or that family reports it.
+  if (timeint.has("step_size")) {
+    solver.step_size = timeint.number("step_size");
+    solver.step_size_location = timeint.location("step_size");
+  }
   solver.stages = static_cast<int>(timeint.integer("stages"));
   solver.substeps = static_cast<int>(timeint.integer("substeps"));
   solver.substeps_location = timeint.location("substeps");
@@ -180,6 +188,8 @@ void check_substeps(SceneBuilder& builder) {
             ": checkpoints are taken at the ends of structure steps",
         "make checkpoint_every_steps a multiple of substeps (or 0)");
   }
+  // A step the Fluid block derives is a whole number of structure steps by construction.
+  if (!(scene.solver.step_size > 0.0)) return;
   const std::uint64_t steps = scene.solver.step_count();
   if (steps % static_cast<std::uint64_t>(k) != 0) {
     builder.problem(scene.solver.substeps_location,

@@ -60,7 +60,7 @@ void refuse_duplicates(SceneBuilder& builder, const View& fluid) {
   }
 }
 
-void build_fluid_parameters(SceneBuilder& builder) {
+void derive_from_fluid_block(SceneBuilder& builder) {
   if (builder.mode != SceneMode::Coupled || !builder.root.has_block("Fluid")) return;
   const View fluid = builder.root.block("Fluid");
   refuse_duplicates(builder, fluid);
@@ -100,6 +100,39 @@ void build_fluid_parameters(SceneBuilder& builder) {
     }
     builder.scene.fluid_parameters = derivation;
   });
+}
+
+// SolverOptions.Timeint.step_size left out: a coupled scene with a Fluid block steps at the
+// largest step its rule allows that divides end_time into whole structure steps; anything else
+// needs the step written.
+void settle_step_size(SceneBuilder& builder) {
+  SolverSettings& solver = builder.scene.solver;
+  const View timeint = builder.root.block("SolverOptions").block("Timeint");
+  if (timeint.has("step_size")) return;  // given (a bad value is the schema's problem)
+  const bool coupled = builder.mode == SceneMode::Coupled;
+  const bool has_fluid = builder.root.has_block("Fluid");
+  if (coupled && has_fluid && !builder.scene.fluid_parameters) return;  // its problem is reported
+  if (!(solver.end_time > 0.0)) return;                                 // so is end_time's
+  if (!coupled || !has_fluid) {
+    builder.problem(
+        timeint.location(),
+        std::string("SolverOptions.Timeint.step_size is missing") +
+            (coupled ? ", and there is no Fluid block to derive it from"
+                     : ": --mbd-only needs it (a Fluid block derives it for coupled runs only)"),
+        coupled ? "write step_size = ... in SolverOptions.Timeint, or give the fluid's "
+                  "physical inputs in a Fluid block (docs/user-guide.md, \"The Fluid block\")"
+                : "write step_size = ... in SolverOptions.Timeint");
+    return;
+  }
+  solver.step_size =
+      derived_time_step(*builder.scene.fluid_parameters, solver.end_time, solver.substeps);
+  solver.step_size_derived = true;
+  solver.step_size_location = builder.root.block("Fluid").location();
+}
+
+void build_fluid_parameters(SceneBuilder& builder) {
+  derive_from_fluid_block(builder);
+  builder.guard(builder.root.location(), [&] { settle_step_size(builder); });
 }
 
 }  // namespace

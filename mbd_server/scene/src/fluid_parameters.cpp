@@ -295,7 +295,20 @@ double recommended_time_step(const FluidDerivation& derivation) {
   return std::min({limits.acoustic, limits.viscous, limits.force});
 }
 
-std::string explain_time_step(const FluidDerivation& derivation, double scene_step) {
+double derived_time_step(const FluidDerivation& derivation, double end_time, int substeps) {
+  if (!(end_time > 0.0) || substeps < 1) {
+    throw Error("a time step is derived for end_time > 0 and substeps >= 1, not end_time = " +
+                    number(end_time) + " s, substeps = " + std::to_string(substeps),
+                "SolverOptions", "give SolverOptions.end_time > 0 and Timeint.substeps >= 1");
+  }
+  const double structure_limit = substeps * recommended_time_step(derivation);
+  // A relative slack so that an end_time that is already a whole multiple stays one.
+  const double structure_steps = std::ceil(end_time / structure_limit * (1.0 - 1e-12));
+  return end_time / (std::max(structure_steps, 1.0) * substeps);
+}
+
+std::string explain_time_step(const FluidDerivation& derivation, double scene_step, bool derived,
+                              double end_time) {
   const TimeStepLimits limits = time_step_limits(derivation);
   const double dt = recommended_time_step(derivation);
   auto limit = [](double value) { return value == HUGE_VAL ? std::string("none") : number(value); };
@@ -306,7 +319,14 @@ std::string explain_time_step(const FluidDerivation& derivation, double scene_st
       number(artificial_viscosity_divisor_of(derivation.dimension)) +
       "), 0.25 sqrt(h/g) = " + limit(limits.force) +
       " s (body force); the contact's limit is check contact_time_step";
-  if (scene_step > 0.0) {
+  if (derived && scene_step > 0.0) {
+    char steps[32];
+    std::snprintf(steps, sizeof steps, "%.0f", end_time / scene_step);
+    line += "; SolverOptions.Timeint.step_size is not given: the run steps at " +
+            number(scene_step) + " s, end_time / " + steps +
+            " (the largest step within the limit that divides end_time = " + number(end_time) +
+            " s into whole structure steps)";
+  } else if (scene_step > 0.0) {
     line += "; SolverOptions.Timeint.step_size = " + number(scene_step) + " s" +
             (scene_step <= dt * (1.0 + 1e-9) ? " (within)" : " (ABOVE it)");
   }

@@ -223,7 +223,9 @@ class Inputs {
   }
 
   Quantity time_step() const {
-    return {scene_.solver.step_size, where("SolverOptions.Timeint.step_size")};
+    return {scene_.solver.step_size, !scene_.solver.step_size_location.file.empty()
+                                         ? scene_.solver.step_size_location
+                                         : where("SolverOptions.Timeint.step_size")};
   }
   bool has_fluid_region() const { return root_.child("FluidRegion") != nullptr; }
 

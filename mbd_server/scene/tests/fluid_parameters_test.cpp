@@ -109,6 +109,24 @@ TEST(FluidRules, TheTimeStepIsTheLeastOfItsLimits) {
   EXPECT_NEAR(recommended_time_step(derive_fluid(syrup, 2)), 0.125 * 0.0038 * 0.0038 / 0.01, 1e-15);
 }
 
+TEST(FluidRules, ALeftOutStepIsTheLargestWithinTheLimitThatDividesTheEndTime) {
+  const FluidDerivation fluid = derive_fluid(tank(), 2);
+  const double limit = recommended_time_step(fluid);  // 3.393e-5 s
+  // 0.01 s / 3.393e-5 s = 294.7: 295 steps.
+  EXPECT_DOUBLE_EQ(derived_time_step(fluid, 0.01, 1), 0.01 / 295.0);
+  EXPECT_LE(derived_time_step(fluid, 0.01, 1), limit);
+  // 4 substeps: structure steps of at most 4 limits, 73.7 of them: 74, i.e. 296 fluid steps.
+  EXPECT_DOUBLE_EQ(derived_time_step(fluid, 0.01, 4), 0.01 / 296.0);
+  // An end time that is a whole number of limits keeps the limit itself.
+  EXPECT_NEAR(derived_time_step(fluid, 100.0 * limit, 1), limit, 1e-18);
+  // Shorter than one step: one step of end_time.
+  EXPECT_DOUBLE_EQ(derived_time_step(fluid, 1e-6, 1), 1e-6);
+  EXPECT_CONTAINS(explain_time_step(fluid, 0.01 / 295.0, true, 0.01),
+                  "SolverOptions.Timeint.step_size is not given: the run steps at 3.39e-05 s, "
+                  "end_time / 295");
+  EXPECT_THROW(derived_time_step(fluid, 0.0, 1), Error);
+}
+
 TEST(FluidRules, AMissingInputOrAZeroSpeedOfSoundIsRefusedWithItsFix) {
   FluidValues given = tank();
   given.erase("spacing");
@@ -137,19 +155,20 @@ TEST(FluidRules, AMissingInputOrAZeroSpeedOfSoundIsRefusedWithItsFix) {
 // Scenes with a Fluid block: a tank of water 0.1 m deep on a floor.
 class FluidBlock : public testing::FolderPerTest {
  protected:
-  std::filesystem::path scene(const std::string& fluid, const std::string& more = "",
-                              const std::string& region =
-                                  "spacing = Fluid.spacing; density = "
-                                  "Fluid.density") {
+  std::filesystem::path scene(
+      const std::string& fluid, const std::string& more = "",
+      const std::string& region = "spacing = Fluid.spacing; density = Fluid.density",
+      const std::string& solver =
+          "SolverOptions { end_time = 0.01; Timeint { step_size = 2e-5 } }") {
     return write_coupled_scene(
-        "f.scene",
-        "SolverOptions { end_time = 0.01; Timeint { step_size = 2e-5 } }\n"
-        "Gravity { acceleration = [0, -9.81] }\n"
-        "Ground { Mesh { points = [[0, 0.2], [0, 0], [0.05, 0], [0.05, 0.2]] } }\n"
-        "Fluid\n{\n" +
-            fluid + "\n}\n" +
-            "FluidRegion { shape = \"box\"; lower = [0, 0]; upper = [0.05, 0.1]; " + region +
-            " }\n" + more);
+        "f.scene", solver +
+                       "\n"
+                       "Gravity { acceleration = [0, -9.81] }\n"
+                       "Ground { Mesh { points = [[0, 0.2], [0, 0], [0.05, 0], [0.05, 0.2]] } }\n"
+                       "Fluid\n{\n" +
+                       fluid + "\n}\n" +
+                       "FluidRegion { shape = \"box\"; lower = [0, 0]; upper = [0.05, 0.1]; " +
+                       region + " }\n" + more);
   }
   static std::string inputs() {
     return "  density = 1000\n  spacing = 0.002\n  viscosity = 1e-6\n  height = 0.1";
@@ -225,6 +244,43 @@ TEST_F(FluidBlock, BadInputsAreProblemsAtTheirLines) {
                   "FluidRegion.spacing = 0.001 differs from the Fluid block's "
                   "spacing = 0.002");
   EXPECT_CONTAINS(different, "write spacing = Fluid.spacing here");
+}
+
+TEST_F(FluidBlock, ASceneWithoutAStepTakesTheLargestItsRulesAllow) {
+  const std::string region = "spacing = Fluid.spacing; density = Fluid.density";
+  const Scene built = build_scene(scene(inputs(), "", region,
+                                        "SolverOptions { end_time = 0.01; Timeint { substeps = 4 } "
+                                        "}\nOutput { sensor_every_steps = 4 }")
+                                      .string());
+  ASSERT_TRUE(built.fluid_parameters.has_value());
+  EXPECT_TRUE(built.solver.step_size_derived);
+  EXPECT_DOUBLE_EQ(built.solver.step_size, 0.01 / 296.0);  // 74 structure steps of 4
+  EXPECT_EQ(built.solver.step_count(), 296u);
+  EXPECT_EQ(built.solver.step_size_location.line, 6);  // the Fluid block, after Output
+  // Given, the scene's step stands, whatever the rule says.
+  const Scene given = build_scene(scene(inputs()).string());
+  EXPECT_FALSE(given.solver.step_size_derived);
+  EXPECT_EQ(given.solver.step_size, 2e-5);
+}
+
+TEST_F(FluidBlock, WithoutAFluidBlockOrInMbdOnlyALeftOutStepIsAProblem) {
+  write("s.in", "# script\n");
+  const std::string no_fluid = testing::build_error(
+      write("n.scene",
+            "scene_language = 1\nSolverOptions { end_time = 0.01; Timeint { stages = 3 } }\n"
+            "Gravity { acceleration = [0, -9.81] }\n"
+            "Ground { Mesh { points = [[0, 0.2], [0, 0], [0.05, 0]] } }\n"
+            "LIGGGHTS { script1 = \"s.in\"; script2 = \"s.in\" }\n"
+            "Coupling { refinement_resolution = 0.002 }\n"));
+  EXPECT_CONTAINS(no_fluid,
+                  "n.scene:2:34: SolverOptions.Timeint.step_size is missing, and there "
+                  "is no Fluid block to derive it from");
+  EXPECT_CONTAINS(no_fluid, "give the fluid's physical inputs in a Fluid block");
+  const std::string mbd_only = mbd_only_outcome(
+      "m.scene",
+      "scene_language = 1\nSolverOptions { end_time = 0.01; Timeint { stages = 3 } }\n"
+      "RigidBody2D { name = \"p\"; mass = 1; inertia = 1; position = [0, 0] }\n");
+  EXPECT_CONTAINS(mbd_only, "SolverOptions.Timeint.step_size is missing: --mbd-only needs it");
 }
 
 // examples/hydrostatic_pressure uses the Fluid block: its variables are those of its former

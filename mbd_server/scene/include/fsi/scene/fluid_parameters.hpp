@@ -74,6 +74,16 @@ std::string fluid_rules_markdown();
 // 0.25 sqrt(h/g)), nu_max the larger of nu and the artificial viscosity's alpha c h / 16 (3D: 20);
 // `explain_time_step` names each limit and the scene's step.
 double recommended_time_step(const FluidDerivation& derivation);
-std::string explain_time_step(const FluidDerivation& derivation, double scene_step);
+
+// The step a coupled scene takes when it leaves SolverOptions.Timeint.step_size out: the largest
+// step within `recommended_time_step` that divides `end_time` into a whole number of structure
+// steps of `substeps` fluid steps, end_time / N with N = substeps ceil(end_time / (substeps
+// dt_max)). Throws fsi::Error when end_time or substeps is not positive.
+double derived_time_step(const FluidDerivation& derivation, double end_time, int substeps);
+
+// One line for --check: the limits, and the scene's step against them; `derived`: the step was
+// left out and came from `derived_time_step` (the line says how).
+std::string explain_time_step(const FluidDerivation& derivation, double scene_step,
+                              bool derived = false, double end_time = 0.0);
 
 }  // namespace fsi::scene

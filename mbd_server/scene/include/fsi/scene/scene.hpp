@@ -31,6 +31,10 @@ enum class IntegrationMethod {
 struct SolverSettings {
   double end_time = 0.0;
   double step_size = 0.0;  // the coupled (fluid) step
+  // Where the step comes from: Timeint.step_size, or, when the scene leaves it out, the Fluid
+  // block whose time-step rule derived it (`derived_time_step`, docs/user-guide.md).
+  SourceLocation step_size_location;
+  bool step_size_derived = false;
   int stages = 3;
   // Multi-rate coupling: fluid steps per structure step (the structure steps substeps *
   // step_size; 1: both step together).
