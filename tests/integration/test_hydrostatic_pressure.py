@@ -9,8 +9,8 @@ Bad input: `fsi-server --check` names an unknown mesh and a patch that misses it
 the mesh too small to hold a sampling point of the wall law is refused by fsi-client at set-up,
 naming the probe, with a non-zero exit.
 The time step derived from the Fluid block (issue 13 item 4): the same coarse tank with
-SolverOptions.Timeint.step_size left out runs at end_time / 2527 (the largest step within the
-block's 0.125 h/c that divides 0.06 s), says so in --check and run.json, and still passes."""
+SolverOptions.Timeint.step_size left out runs at end_time / 3509 (the largest step within the
+block's 0.09 h/c that divides 0.06 s), says so in --check and run.json, and still passes."""
 import os
 import shutil
 import subprocess
@@ -90,13 +90,13 @@ with open(model_inc, "w") as handle:
 derived_scene = os.path.join(derived_folder, "hydrostatic_pressure_coarse.scene")
 checked = subprocess.run([binary("fsi-server"), derived_scene, "--check"], capture_output=True, text=True,
                          timeout=60, env=ENV)
-check(checked.returncode == 0 and "SolverOptions.Timeint.step_size is not given: the run steps at 2.374e-05 s, "
-      "end_time / 2527" in checked.stdout, "--check says the step is derived and which it is")
+check(checked.returncode == 0 and "SolverOptions.Timeint.step_size is not given: the run steps at 1.71e-05 s, "
+      "end_time / 3509" in checked.stdout, "--check says the step is derived and which it is")
 derived_dir = os.path.join(output, "derived_run")
 record = fsi_run_checked(derived_scene, derived_dir, 1, label="derived step: ")
 h, c = 1.9 * 0.002, 20.0  # the model sets speed_of_sound = 20
-check(record["time_step"] == 0.06 / 2527 and 0.06 / 2527 <= 0.125 * h / c < 0.06 / 2526,
-      f"derived step: run.json's step {record['time_step']} is 0.06 s / 2527, the largest within 0.125 h/c")
+check(record["time_step"] == 0.06 / 3509 and 0.06 / 3509 <= 0.09 * h / c < 0.06 / 3508,
+      f"derived step: run.json's step {record['time_step']} is 0.06 s / 3509, the largest within 0.09 h/c")
 analysis = subprocess.run(["/usr/bin/python3", example("hydrostatic_pressure", "analyze.py"), derived_dir,
                            "--tolerance", str(COARSE_TOLERANCE)], capture_output=True, text=True, timeout=120)
 print(analysis.stdout[-1500:], analysis.stderr[-1000:])

@@ -272,8 +272,14 @@ std::string fluid_rules_markdown() {
 
 namespace {
 
+// The acoustic fraction of a step the run chooses itself: below the dam break's measured
+// stability limit, which lies between dt c/h = 0.092 and 0.115 (docs/validation.md, "Stability
+// maps"), where a fluid at rest holds to 0.25 and the check warns above 0.125.
+constexpr double kDerivedAcousticFraction = 0.09;
+
 struct TimeStepLimits {
   double acoustic = 0.0, viscous = 0.0, force = 0.0;
+  double impact = 0.0;  // kDerivedAcousticFraction h / c
   double nu_max = 0.0;
 };
 
@@ -283,6 +289,7 @@ TimeStepLimits time_step_limits(const FluidDerivation& d) {
   limits.nu_max = std::max(d.value("nu"),
                            d.value("alpha") * c * h / artificial_viscosity_divisor_of(d.dimension));
   limits.acoustic = 0.125 * h / c;
+  limits.impact = kDerivedAcousticFraction * h / c;
   limits.viscous = limits.nu_max > 0.0 ? 0.125 * h * h / limits.nu_max : HUGE_VAL;
   limits.force = g > 0.0 ? 0.25 * std::sqrt(h / g) : HUGE_VAL;
   return limits;
@@ -301,7 +308,8 @@ double derived_time_step(const FluidDerivation& derivation, double end_time, int
                     number(end_time) + " s, substeps = " + std::to_string(substeps),
                 "SolverOptions", "give SolverOptions.end_time > 0 and Timeint.substeps >= 1");
   }
-  const double structure_limit = substeps * recommended_time_step(derivation);
+  const TimeStepLimits limits = time_step_limits(derivation);
+  const double structure_limit = substeps * std::min({limits.impact, limits.viscous, limits.force});
   // A relative slack so that an end_time that is already a whole multiple stays one.
   const double structure_steps = std::ceil(end_time / structure_limit * (1.0 - 1e-12));
   return end_time / (std::max(structure_steps, 1.0) * substeps);
@@ -324,8 +332,10 @@ std::string explain_time_step(const FluidDerivation& derivation, double scene_st
     std::snprintf(steps, sizeof steps, "%.0f", end_time / scene_step);
     line += "; SolverOptions.Timeint.step_size is not given: the run steps at " +
             number(scene_step) + " s, end_time / " + steps +
-            " (the largest step within the limit that divides end_time = " + number(end_time) +
-            " s into whole structure steps)";
+            " (the largest step within 0.09 h/c = " + limit(limits.impact) +
+            " s, below the dam break's measured stable 0.092 h/c, and the other limits that "
+            "divides end_time = " +
+            number(end_time) + " s into whole structure steps)";
   } else if (scene_step > 0.0) {
     line += "; SolverOptions.Timeint.step_size = " + number(scene_step) + " s" +
             (scene_step <= dt * (1.0 + 1e-9) ? " (within)" : " (ABOVE it)");

@@ -76,9 +76,11 @@ std::string fluid_rules_markdown();
 double recommended_time_step(const FluidDerivation& derivation);
 
 // The step a coupled scene takes when it leaves SolverOptions.Timeint.step_size out: the largest
-// step within `recommended_time_step` that divides `end_time` into a whole number of structure
-// steps of `substeps` fluid steps, end_time / N with N = substeps ceil(end_time / (substeps
-// dt_max)). Throws fsi::Error when end_time or substeps is not positive.
+// step within dt_max = min(0.09 h/c, the viscous and the body-force limits) -- the acoustic
+// fraction below the 0.092 h/c a dam break measured stable, not the 0.125 of a fluid at rest --
+// that divides `end_time` into a whole number of structure steps of `substeps` fluid steps:
+// end_time / N, N = substeps ceil(end_time / (substeps dt_max)). Throws fsi::Error when end_time
+// or substeps is not positive.
 double derived_time_step(const FluidDerivation& derivation, double end_time, int substeps);
 
 // One line for --check: the limits, and the scene's step against them; `derived`: the step was
