@@ -331,8 +331,8 @@ std::string explain_time_step(const FluidDerivation& derivation, double scene_st
     char steps[32];
     std::snprintf(steps, sizeof steps, "%.0f", end_time / scene_step);
     line += "; SolverOptions.Timeint.step_size is not given: the run steps at " +
-            number(scene_step) + " s, end_time / " + steps +
-            " (the largest step within 0.09 h/c = " + limit(limits.impact) +
+            number(scene_step) + " s, end_time / " + steps + " (the largest step within " +
+            number(kDerivedAcousticFraction) + " h/c = " + limit(limits.impact) +
             " s, below the dam break's measured stable 0.092 h/c, and the other limits that "
             "divides end_time = " +
             number(end_time) + " s into whole structure steps)";
