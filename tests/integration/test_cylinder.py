@@ -1,0 +1,43 @@
+#!/usr/bin/python3
+"""Laminar flow around a cylinder (issue 14, thesis §6.4, examples/cylinder): the coarse scene
+(d = 6 mm, 30 particles across the channel, about 5 000 particles, fsi-run with 2 ranks split
+along y). A piston driven smoothly to 0.1 m/s pushes a fluid of nu = 1e-3 m^2/s past a fixed
+cylinder (Re = 2.8). The velocity probes on the cylinder's centre line at least 2h from the walls,
+averaged over 2-3 s, must lie within 15 % of the stored OpenFOAM profile (analyze.py; issue 14's
+5 % is for the fine scenes: docs/validation.md "Laminar flow around a cylinder"; the coarse run
+measured +7.1 % on 2026-12-04, 1 rank). Continuity: the flux through the centre line within 5 % of the
+piston's v0 W (-2.5 % measured: the probe's kernel sum is not normalised, so the walls'
+kernel deficiency counts). The run judges itself: completed, no particle lost, no physics warning, action =
+reaction to round-off, no particle closer to a wall than 0.3 r0 (the piston is a moving wall); the
+profile is symmetric about the cylinder to 3 % of the peak."""
+import json
+import os
+
+from fsi_test import check, cleanup, run_example_checked
+
+TOLERANCE = 0.15
+
+
+def own_checks(run):
+    check(run.get("warnings", []) == [], f"no physics warning: {run.get('warnings')}")
+    checks = run["checks"]
+    check(checks["max_action_reaction_relative"] < 1e-12,
+          f"action = reaction on the boundary: {checks['max_action_reaction_relative']:.2e}")
+    check(checks["closest_approach_over_r0"] > 0.3,
+          f"no particle comes closer to a wall than 0.3 r0: {checks['closest_approach_over_r0']:.3f}")
+
+
+example_run = run_example_checked(("cylinder", "cylinder_coarse.scene"), 2, 900,
+                                  ["--window", "2,3", "--tolerance", str(TOLERANCE)],
+                                  f"the judged probes within {100 * TOLERANCE:g} % of OpenFOAM (analyze.py)",
+                                  own_checks)
+with open(os.path.join(example_run.run_dir, "analysis.json")) as handle:
+    analysis = json.load(handle)
+check(analysis["judged_probes"] >= 4, f"at least four probes judged: {analysis['judged_probes']}")
+flux_error = analysis["flux_mean"] / analysis["flux_expected"] - 1
+check(abs(flux_error) < 0.05, f"the flux through the centre line is v0 W within 5 %: {100 * flux_error:+.2f} %")
+probes = analysis["probes"]
+peak = max(p["mean"] for p in probes if p["mean"] is not None)
+asymmetry = max(abs(probes[k]["mean"] - probes[12 - k]["mean"]) for k in range(6) if probes[k]["mean"] is not None)
+check(asymmetry < 0.03 * peak, f"the profile is symmetric about the cylinder: {asymmetry:.2e} m/s apart at most")
+cleanup(example_run.work)
