@@ -296,3 +296,15 @@ def cleanup(path):
         print(f"kept {path}")
     else:
         shutil.rmtree(path, ignore_errors=True)
+
+
+def boundary_checks(run, min_approach=0.3):
+    """What every case with moving or flexible walls checks of its run.json (issue 14): no physics
+    warning, action = reaction on the boundary to round-off, and no particle closer to a wall
+    than `min_approach` r0 (none crossed one)."""
+    check(run.get("warnings", []) == [], f"no physics warning: {run.get('warnings')}")
+    checks = run["checks"]
+    check(checks["max_action_reaction_relative"] < 1e-12,
+          f"action = reaction on the boundary: {checks['max_action_reaction_relative']:.2e}")
+    check(checks["closest_approach_over_r0"] > min_approach,
+          f"no particle comes closer to a wall than {min_approach:g} r0: {checks['closest_approach_over_r0']:.3f}")
