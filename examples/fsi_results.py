@@ -5,6 +5,7 @@ import json
 import math
 import os
 import subprocess
+import sys
 
 
 def read_sensors(path):
@@ -69,6 +70,19 @@ def damped_fit(time, values, omega_guess):
     return {"omega": float(w), "sigma": float(s), "damped_period": 2.0 * math.pi / w,
             "natural_period": 2.0 * math.pi / math.hypot(w, s), "damping_ratio": s / math.hypot(w, s),
             "rms_residual": math.sqrt(best / len(t))}
+
+
+def pyplot(script):
+    """matplotlib.pyplot with the file-only Agg backend, or None after saying (as `script`) that the
+    figures are left out and how to get them."""
+    try:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+    except ImportError:
+        print(f"{script}: no matplotlib (apt-get install python3-matplotlib); no figures", file=sys.stderr)
+        return None
+    return plt
 
 
 def finish_figure(figure, axes, title, path, legend_size=8, legend_location="upper left"):

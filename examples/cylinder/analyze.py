@@ -26,7 +26,7 @@ import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.dirname(HERE))
-from fsi_results import finish_figure, read_run, require_run, write_analysis  # noqa: E402
+from fsi_results import finish_figure, pyplot, read_run, require_run, write_analysis  # noqa: E402
 
 PROBES = 13
 
@@ -53,12 +53,8 @@ def interpolate(xs, values, x):
 
 
 def draw(prefix, rows, reference, sensors, window, probe_index):
-    try:
-        import matplotlib
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-    except ImportError:
-        print("analyze: no matplotlib (apt-get install python3-matplotlib); no figures", file=sys.stderr)
+    plt = pyplot("analyze")
+    if plt is None:
         return
     xs, uys = reference
     figure, axes = plt.subplots(figsize=(7.5, 4.5))

@@ -28,7 +28,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
-from fsi_results import finish_figure, read_run, require_run, write_analysis, zero_crossings  # noqa: E402
+from fsi_results import finish_figure, pyplot, read_run, require_run, write_analysis, zero_crossings  # noqa: E402
 
 
 def swing(run_dir, cycles):
@@ -88,12 +88,8 @@ def column(run, sensors):
 
 def draw(path, runs):
     """Thesis Fig. 7.2: the tip's displacement with and without the water."""
-    try:
-        import matplotlib
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-    except ImportError:
-        print("analyze: no matplotlib (apt-get install python3-matplotlib); no figure", file=sys.stderr)
+    plt = pyplot("analyze")
+    if plt is None:
         return
     figure, axes = plt.subplots(figsize=(9, 4.5))
     for label, sensors, style in runs:

@@ -24,7 +24,7 @@ import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.dirname(HERE))
-from fsi_results import completed, fsi_run_binary, run_variant, study_arguments  # noqa: E402
+from fsi_results import completed, finish_figure, fsi_run_binary, pyplot, run_variant, study_arguments  # noqa: E402
 
 
 def mbd_only(fsi_server, scene, run_dir, settings):
@@ -49,12 +49,8 @@ def analyze(run_dir, extra):
 
 
 def draw(path, rows, zeta_empty):
-    try:
-        import matplotlib
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-    except ImportError:
-        print("tuning.py: no matplotlib (apt-get install python3-matplotlib); no figure", file=sys.stderr)
+    plt = pyplot("tuning.py")
+    if plt is None:
         return
     figure, axes = plt.subplots(figsize=(7, 4.5))
     ratios = [row["frequency_ratio"] for row in rows]
@@ -66,13 +62,8 @@ def draw(path, rows, zeta_empty):
     axes.axhline(3 * zeta_empty, color="r", linestyle="--", label="3x empty (issue 14)")
     axes.set_xlabel("column frequency / building frequency (periods from the runs)")
     axes.set_ylabel("damping ratio of the first mode")
-    axes.grid(True, alpha=0.3)
-    axes.legend(fontsize=8)
-    axes.set_title("TLCD tuning study")
-    figure.tight_layout()
-    figure.savefig(path, dpi=120)
+    finish_figure(figure, axes, "TLCD tuning study", path, legend_location="best")
     plt.close(figure)
-    print(f"figure: {path}")
 
 
 def main():
