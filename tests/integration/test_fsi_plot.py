@@ -96,6 +96,19 @@ check(result.returncode == 0, f"fsi-plot --frames --color pressure exits 0 (got 
 chosen = sorted(os.listdir(os.path.join(chosen_dir, "frames")))
 check(chosen == ["frame_000000250.png", "frame_000001000.png"], f"--frames picks the nearest snapshots: {chosen}")
 
+# --window: a close-up of a 2D run takes the window's shape (here four times as wide as high);
+# a window that is no rectangle is refused before anything is written.
+window_dir = os.path.join(output, "window")
+result = fsi_plot(run_dir, "--frames", "0", "--window", "0,0.04,0,0.01", "--output", window_dir)
+check(result.returncode == 0, f"fsi-plot --window exits 0 (got {result.returncode}: {result.stderr})")
+width, height = png_size(os.path.join(window_dir, "frames", "frame_000000000.png"))
+check(width > 1.8 * height, f"the close-up takes the window's shape: {width}x{height}")
+for bad_window in ("0,0.04,0.01,0", "0,0.04,0", "a,b,c,d"):
+    result = fsi_plot(run_dir, "--window", bad_window, "--output", os.path.join(output, "bad_window"))
+    check(result.returncode == 2 and "--window" in result.stderr and "how to fix" in result.stderr,
+          f"--window {bad_window} is refused with a hint (status {result.returncode}: {result.stderr.strip()})")
+check(not os.path.exists(os.path.join(output, "bad_window")), "nothing is written for a refused --window")
+
 # --mp4: every snapshot's frame in an H.264 file that ffprobe decodes frame by frame.
 movie_dir = os.path.join(output, "movie")
 result = fsi_plot(run_dir, "--mp4", "--max-frames", "2", "--output", movie_dir)
