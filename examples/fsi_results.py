@@ -21,6 +21,29 @@ def read_sensors(path):
     return columns
 
 
+SHARED_REFERENCE_DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "shared",
+                                     "reference-data")
+
+
+def read_reference_points(path, how_to_give):
+    """The (x, y) pairs of a reference-data file: its first two numbers on each line, separated by
+    commas or blanks; blank lines and # comments skipped. Exits saying which file and line is
+    wrong, or that the file is missing and `how_to_give` it (e.g. "give --reference FILE")."""
+    if not os.path.exists(path):
+        raise SystemExit(f"analyze: the reference data {path} is missing; {how_to_give}")
+    points = []
+    with open(path) as handle:
+        for number, line in enumerate(handle, 1):
+            if not line.strip() or line.lstrip().startswith("#"):
+                continue
+            try:
+                x, y = (float(v) for v in line.replace(",", " ").split()[:2])
+            except ValueError:
+                raise SystemExit(f"analyze: {path}:{number}: expected two numbers, got {line.strip()!r}")
+            points.append((x, y))
+    return points
+
+
 def read_run(run_dir):
     """A run's output folder as (run.json as a dict, sensors.csv as {name: [float, ...]})."""
     with open(os.path.join(run_dir, "run.json")) as handle:

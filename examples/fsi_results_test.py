@@ -4,10 +4,11 @@ signals with known answers. Run: /usr/bin/python3 examples/fsi_results_test.py""
 import math
 import os
 import sys
+import tempfile
 import unittest
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from fsi_results import damped_fit, zero_crossings  # noqa: E402
+from fsi_results import damped_fit, read_reference_points, zero_crossings  # noqa: E402
 
 
 def damped_signal(period_natural, zeta, offset, amplitude=0.025, end=4.0, dt=0.005):
@@ -57,6 +58,31 @@ class DampedFit(unittest.TestCase):
 class ZeroCrossings(unittest.TestCase):
     def test_interpolates_between_samples(self):
         self.assertEqual(zero_crossings([0.0, 1.0, 2.0, 3.0], [1.0, -1.0, -3.0, 1.0]), [0.5, 2.75])
+
+
+class ReadReferencePoints(unittest.TestCase):
+    def write(self, text):
+        handle = tempfile.NamedTemporaryFile("w", suffix=".csv", delete=False)
+        handle.write(text)
+        handle.close()
+        self.addCleanup(os.remove, handle.name)
+        return handle.name
+
+    def test_commas_blanks_comments_and_extra_columns(self):
+        path = self.write("# t, value\n0.04, 0.0125\n\n0.08 0.034 7\n  # note\n-0.001,\t2e-5\n")
+        self.assertEqual(read_reference_points(path, "give --reference FILE"),
+                         [(0.04, 0.0125), (0.08, 0.034), (-0.001, 2e-5)])
+
+    def test_a_bad_line_names_its_file_and_number(self):
+        path = self.write("0.04, 0.0125\n0.08, n/a\n")
+        with self.assertRaises(SystemExit) as caught:
+            read_reference_points(path, "give --reference FILE")
+        self.assertIn(f"{path}:2", str(caught.exception))
+
+    def test_a_missing_file_says_how_to_give_it(self):
+        with self.assertRaises(SystemExit) as caught:
+            read_reference_points("/nonexistent/reference.csv", "give --reference FILE")
+        self.assertIn("/nonexistent/reference.csv is missing; give --reference FILE", str(caught.exception))
 
 
 if __name__ == "__main__":

@@ -30,26 +30,17 @@ import os
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
-from fsi_results import damped_fit, finish_figure, read_run, write_analysis, zero_crossings  # noqa: E402
+from fsi_results import (SHARED_REFERENCE_DATA, damped_fit, finish_figure, read_reference_points, read_run,  # noqa: E402
+                         write_analysis, zero_crossings)
 
-HERE = os.path.dirname(os.path.abspath(__file__))
 # Faltinsen, Rognebakke, Lukovsky & Timokha (2000) J. Fluid Mech. 407, Fig. 7, as digitised by
 # PySPH (pysph/examples/st_exp_data.py); ../shared/reference-data/README.md names the source.
-DEFAULT_REFERENCE = os.path.join(HERE, "..", "..", "..", "shared", "reference-data",
-                                 "faltinsen_2000_sloshing_fig7.dat")
+DEFAULT_REFERENCE = os.path.join(SHARED_REFERENCE_DATA, "faltinsen_2000_sloshing_fig7.dat")
 
 
 def read_reference(path):
-    if not os.path.exists(path):
-        raise SystemExit(f"analyze: the reference data {path} is missing; give --reference FILE "
-                         "(the faltinsen_2000_sloshing_fig7.dat of the project's shared reference data)")
-    points = []
-    with open(path) as handle:
-        for line in handle:
-            if line.strip() and not line.startswith("#"):
-                t, eta = (float(v) for v in line.split()[:2])
-                points.append((t, eta))
-    return points
+    return read_reference_points(path, "give --reference FILE (the faltinsen_2000_sloshing_fig7.dat of the "
+                                       "project's shared reference data)")
 
 
 def interpolate(xs, ys, x):
