@@ -161,10 +161,19 @@ std::optional<HealthFinding> FluidHealthMonitor::wall_distance(std::uint64_t ste
                   number(2.0 * *scales_.smoothing_length) +
                   " m first (the examples' value); if the run still breaks through, ";
   }
-  finding.fix += "raise the wall repulsion SPH_wall_rep (k) by a factor of " + number(factor);
-  if (scales_.wall_repulsion)
-    finding.fix += ", from " + number(*scales_.wall_repulsion) + " to " +
-                   number(factor * *scales_.wall_repulsion);
+  if (scales_.true_shape_pressure) {
+    // The true-shape wall's repulsion scale is proportional to its reference pressure.
+    finding.fix +=
+        "raise the true-shape wall's reference pressure (fix fsi/sph pressure: "
+        "Fluid.wall_pressure or SPH_wall_pressure) by a factor of " +
+        number(factor) + ", from " + number(*scales_.true_shape_pressure) + " to " +
+        number(factor * *scales_.true_shape_pressure) + " Pa";
+  } else {
+    finding.fix += "raise the wall repulsion SPH_wall_rep (k) by a factor of " + number(factor);
+    if (scales_.wall_repulsion)
+      finding.fix += ", from " + number(*scales_.wall_repulsion) + " to " +
+                     number(factor * *scales_.wall_repulsion);
+  }
   const std::string advice = time_step_advice();
   finding.fix += ", and keep the step below the contact limit of fsi-server --check" +
                  (advice.empty() ? std::string() : " (" + advice + ")");
@@ -334,6 +343,7 @@ FluidScales fluid_scales(const scene::Scene& scene) {
   scales.time_step = scene.solver.step_size;
   scales.wall_repulsion = sph_number(scene, "SPH_wall_rep");
   scales.wall_cutoff = scene::wall_cutoff(scene);
+  scales.true_shape_pressure = scene::true_shape_pressure(scene);
   scales.box_description =
       describe_liggghts_box(scene.liggghts.script1_name, scene.liggghts.script1_text);
   return scales;

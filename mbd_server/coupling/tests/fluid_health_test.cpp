@@ -111,6 +111,24 @@ TEST(FluidHealth, AParticleThroughTheWallLawStopsNamingTheWallStiffness) {
   EXPECT_FALSE(contains(verdict.stop->fix, "SPH_wall_cutoff"));  // no reach known
 }
 
+TEST(FluidHealth, ATrueShapeWallIsToldToRaiseItsReferencePressure) {
+  // The true-shape wall derives k from its reference pressure: the advice names the pressure.
+  FluidScales scales = water_column_scales();
+  scales.true_shape_pressure = 686.7;
+  FluidHealthMonitor watch = monitor(scales);
+  FluidForces forces = healthy();
+  forces.diagnostics.closest_approach_over_r0 = 0.096;
+  const HealthVerdict verdict = watch.judge(2, forces);
+  ASSERT_TRUE(verdict.stop);
+  EXPECT_EQ(verdict.stop->check, kCheckWallDistance);
+  EXPECT_TRUE(contains(verdict.stop->fix,
+                       "raise the true-shape wall's reference pressure (fix fsi/sph pressure: "
+                       "Fluid.wall_pressure or SPH_wall_pressure) by a factor of 5.21, from "
+                       "687 to 3.58e+03 Pa"))
+      << verdict.stop->fix;
+  EXPECT_FALSE(contains(verdict.stop->fix, "SPH_wall_rep"));
+}
+
 TEST(FluidHealth, AWallWithAShortReachIsNamedBeforeItsStiffness) {
   FluidScales scales = water_column_scales();
   scales.wall_cutoff = 0.001;  // 0.25 h

@@ -1068,6 +1068,13 @@ std::optional<double> smoothing_length(const Scene& scene) {
   return h->value;
 }
 
+std::optional<double> true_shape_pressure(const Scene& scene) {
+  Inputs in(scene);
+  if (!in.fix_line() || !in.fix_line()->arguments || !in.fix_line()->arguments->uses_true_shape)
+    return std::nullopt;
+  return in.fix_line()->arguments->true_shape.pressure;
+}
+
 std::optional<double> wall_cutoff(const Scene& scene) {
   Inputs in(scene);
   if (in.fix_line() && in.fix_line()->arguments && in.fix_line()->arguments->uses_true_shape)

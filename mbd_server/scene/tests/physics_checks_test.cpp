@@ -622,6 +622,19 @@ TEST(PhysicsChecks, TrueShapeExamplesPassEveryCheck) {
   }
 }
 
+TEST(PhysicsChecks, TheTrueShapeReferencePressureIsReadForTheHealthAdvice) {
+  // The fix's `pressure ${SPH_wall_pressure}`, expanded; the thesis' law has none.
+  const std::optional<double> pressure = true_shape_pressure(
+      build_scene(kTrueShapeBlock, {{"LIGGGHTS_SPH_parameters.SPH_wall_pressure", "1234"}}));
+  ASSERT_TRUE(pressure);
+  EXPECT_DOUBLE_EQ(*pressure, 1234.0);
+  EXPECT_FALSE(wall_cutoff(build_scene(kTrueShapeBlock, {})));
+  const Scene thesis_law =
+      build_scene(FSI_EXAMPLES_DIR "/static_tank/static_tank_coarse.scene", {});
+  EXPECT_FALSE(true_shape_pressure(thesis_law));
+  EXPECT_TRUE(wall_cutoff(thesis_law));
+}
+
 TEST(PhysicsChecks, TrueShapeReferencePressureAboveTheColumnIsNamed) {
   // rho0 g H = 1000 * 9.81 * 0.07 = 687 Pa: a reference of 5000 Pa is 7.3 rho0 g H.
   const std::vector<Diagnostic> found =

@@ -29,11 +29,12 @@ inline constexpr const char* kCheckCouplingEnergy = "coupling_energy";
 struct FluidScales {
   double rest_density = 0.0;             // rho0 [kg/m^3]; 0: unknown (the density check is skipped)
   std::optional<double> speed_of_sound;  // c [m/s] (cAB); absent: the Mach check is skipped
-  std::optional<double> smoothing_length;  // h [m]; absent: no dt c / h in the advice
-  double time_step = 0.0;                  // the coupled step [s]
-  std::optional<double> wall_repulsion;    // k (SPH_wall_rep) for the advice, if known
-  std::optional<double> wall_cutoff;       // r_c of the thesis' wall law, if known
-  std::string box_description;             // where script 1 makes the LIGGGHTS box
+  std::optional<double> smoothing_length;     // h [m]; absent: no dt c / h in the advice
+  double time_step = 0.0;                     // the coupled step [s]
+  std::optional<double> wall_repulsion;       // k (SPH_wall_rep) for the advice, if known
+  std::optional<double> wall_cutoff;          // r_c of the thesis' wall law, if known
+  std::optional<double> true_shape_pressure;  // the true-shape wall's reference pressure, if used
+  std::string box_description;                // where script 1 makes the LIGGGHTS box
 };
 
 // One finding: `check` is one of the names above; message says what and by how much, fix what to

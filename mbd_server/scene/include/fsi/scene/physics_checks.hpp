@@ -71,5 +71,9 @@ std::optional<double> smoothing_length(const Scene& scene);
 // LIGGGHTS_SPH_parameters.SPH_wall_cutoff), or nullopt (also for the true-shape wall, whose reach
 // follows from its spacing); the wall-distance check's advice names it when it is short.
 std::optional<double> wall_cutoff(const Scene& scene);
+// The reference pressure [Pa] of the true-shape wall (the `pressure` of fix fsi/sph, e.g.
+// ${SPH_wall_pressure}), or nullopt when the wall is the thesis' law; the wall-distance check's
+// advice raises it instead of k, which the true-shape wall derives from it.
+std::optional<double> true_shape_pressure(const Scene& scene);
 
 }  // namespace fsi::scene
