@@ -44,6 +44,17 @@ def read_reference_points(path, how_to_give):
     return points
 
 
+def interpolate_clamped(xs, ys, x):
+    """ys at x, linear between the samples of the increasing xs around it; the end values beyond
+    them."""
+    if x <= xs[0]:
+        return ys[0]
+    for i in range(1, len(xs)):
+        if xs[i] >= x:
+            return ys[i - 1] + (ys[i] - ys[i - 1]) * (x - xs[i - 1]) / (xs[i] - xs[i - 1])
+    return ys[-1]
+
+
 def read_run(run_dir):
     """A run's output folder as (run.json as a dict, sensors.csv as {name: [float, ...]})."""
     with open(os.path.join(run_dir, "run.json")) as handle:

@@ -8,7 +8,7 @@ import tempfile
 import unittest
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from fsi_results import damped_fit, read_reference_points, zero_crossings  # noqa: E402
+from fsi_results import damped_fit, interpolate_clamped, read_reference_points, zero_crossings  # noqa: E402
 
 
 def damped_signal(period_natural, zeta, offset, amplitude=0.025, end=4.0, dt=0.005):
@@ -58,6 +58,16 @@ class DampedFit(unittest.TestCase):
 class ZeroCrossings(unittest.TestCase):
     def test_interpolates_between_samples(self):
         self.assertEqual(zero_crossings([0.0, 1.0, 2.0, 3.0], [1.0, -1.0, -3.0, 1.0]), [0.5, 2.75])
+
+
+class InterpolateClamped(unittest.TestCase):
+    def test_linear_inside_and_the_end_values_outside(self):
+        xs, ys = [0.0, 1.0, 3.0], [2.0, 4.0, 0.0]
+        self.assertEqual(interpolate_clamped(xs, ys, 0.5), 3.0)
+        self.assertEqual(interpolate_clamped(xs, ys, 2.0), 2.0)
+        self.assertEqual(interpolate_clamped(xs, ys, 1.0), 4.0)
+        self.assertEqual(interpolate_clamped(xs, ys, -1.0), 2.0)
+        self.assertEqual(interpolate_clamped(xs, ys, 5.0), 0.0)
 
 
 class ReadReferencePoints(unittest.TestCase):

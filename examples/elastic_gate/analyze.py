@@ -23,10 +23,9 @@ import os
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
-from fsi_results import (SHARED_REFERENCE_DATA, finish_figure, pyplot, read_reference_points, read_run,  # noqa: E402
-                         require_run, write_analysis)
+from fsi_results import (SHARED_REFERENCE_DATA, finish_figure, interpolate_clamped, pyplot,  # noqa: E402
+                         read_reference_points, read_run, require_run, write_analysis)
 
-DEFAULT_REFERENCE_DIR = SHARED_REFERENCE_DATA
 REFERENCE_FILES = {
     "experiment_x": "antoci_2007_gate_tip_x_displacement_experiment.csv",
     "experiment_y": "antoci_2007_gate_tip_y_displacement_experiment.csv",
@@ -44,16 +43,6 @@ def read_curve(path):
     return [(t, abs(value)) for t, value in points if 0.0 <= t <= END_TIME]
 
 
-def interpolate(times, values, t):
-    if t <= times[0]:
-        return values[0]
-    for i in range(1, len(times)):
-        if times[i] >= t:
-            share = (t - times[i - 1]) / (times[i] - times[i - 1])
-            return values[i - 1] + share * (values[i] - values[i - 1])
-    return values[-1]
-
-
 def peak(times, values):
     index = max(range(len(values)), key=lambda i: values[i])
     return values[index], times[index]
@@ -65,7 +54,7 @@ def rms_against(times, values, reference, scale):
     points = [(t, v) for t, v in reference if t <= times[-1]]
     if not points:
         return float("nan")
-    return math.sqrt(sum((interpolate(times, values, t) - v) ** 2 for t, v in points) / len(points)) / scale
+    return math.sqrt(sum((interpolate_clamped(times, values, t) - v) ** 2 for t, v in points) / len(points)) / scale
 
 
 def analyze_run(run_dir, references):
@@ -151,17 +140,16 @@ def draw(results, references, path):
                       label=f"SPH + ANCF, d = {1000 * result['spacing']:g} mm, "
                             f"E = {result['young_modulus'] / 1e6:g} MPa")
         axes.set_ylabel(f"free end, {label} displacement [mm]")
-    top.grid(True, alpha=0.3)
-    top.legend(loc="lower right", fontsize=8)
-    top.set_title("Elastic gate (Antoci et al. 2007): the free end")
+    bottom.grid(True, alpha=0.3)
     bottom.set_xlabel("t [s]")
-    finish_figure(figure, bottom, "", path, legend_location="upper right")
+    finish_figure(figure, top, "Elastic gate (Antoci et al. 2007): the free end", path,
+                  legend_location="lower right")
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("run_dirs", nargs="+")
-    parser.add_argument("--reference-dir", default=DEFAULT_REFERENCE_DIR,
+    parser.add_argument("--reference-dir", default=SHARED_REFERENCE_DATA,
                         help="folder with the antoci_* reference files (default: ../shared/reference-data)")
     parser.add_argument("--peak-tolerance", type=float, help="fail if the peak of dx is further from the experiment's")
     parser.add_argument("--time-tolerance", type=float, help="fail if the peak's time is further from the experiment's")

@@ -30,8 +30,8 @@ import os
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
-from fsi_results import (SHARED_REFERENCE_DATA, damped_fit, finish_figure, read_reference_points, read_run,  # noqa: E402
-                         write_analysis, zero_crossings)
+from fsi_results import (SHARED_REFERENCE_DATA, damped_fit, finish_figure, interpolate_clamped,  # noqa: E402
+                         read_reference_points, read_run, write_analysis, zero_crossings)
 
 # Faltinsen, Rognebakke, Lukovsky & Timokha (2000) J. Fluid Mech. 407, Fig. 7, as digitised by
 # PySPH (pysph/examples/st_exp_data.py); ../shared/reference-data/README.md names the source.
@@ -41,15 +41,6 @@ DEFAULT_REFERENCE = os.path.join(SHARED_REFERENCE_DATA, "faltinsen_2000_sloshing
 def read_reference(path):
     return read_reference_points(path, "give --reference FILE (the faltinsen_2000_sloshing_fig7.dat of the "
                                        "project's shared reference data)")
-
-
-def interpolate(xs, ys, x):
-    if x <= xs[0]:
-        return ys[0]
-    for i in range(1, len(xs)):
-        if xs[i] >= x:
-            return ys[i - 1] + (ys[i] - ys[i - 1]) * (x - xs[i - 1]) / (xs[i] - xs[i - 1])
-    return ys[-1]
 
 
 def elevation(sensors, name):
@@ -67,7 +58,7 @@ def faltinsen(run, sensors, args):
         raise SystemExit(f"analyze: the run ends at t = {time[-1]:.3g} s, before the experiment's record; run longer")
     t_first, t_last = reference[0][0], reference[-1][0]
     exp_eta = [p[1] for p in reference]
-    sim_at = [interpolate(time, eta, t) for t, _ in reference]
+    sim_at = [interpolate_clamped(time, eta, t) for t, _ in reference]
     window = [e for t, e in zip(time, eta) if t_first <= t <= t_last]
     exp_range = max(exp_eta) - min(exp_eta)
     sim_max, sim_min = max(window), min(window)
