@@ -122,6 +122,31 @@ TEST(MbdAncfCantilever, StaticSolveRestoresTheLoadsAndSatisfiesTheClamp) {
   EXPECT_NEAR(reaction(y0), kTipLoad, 1e-8 * kTipLoad);
 }
 
+// A spring actor at a point of the beam acts on the beam (the pump's outlet valve, examples/pump:
+// thesis §6.5's actor 1 holds the elastic valve's free end). The actor runs from the free end to a
+// point 1 m below it and pushes only when compressed, at k = 3 E I / L^3, the tip's own stiffness:
+// a small load down (linear range, tip 1e-4 L) is carried half by the beam, half by the actor; the
+// same load up stretches it, and the beam alone carries it.
+TEST(MbdAncfCantilever, ASpringActorAtTheFreeEndIsCarriedByTheBeam) {
+  const double stiffness = 3.0 * kYoung * kInertia / (kLength * kLength * kLength);
+  const double load = 1e-4 * kTipLoad;
+  for (const double sign : {-1.0, 1.0}) {
+    Cantilever c = cantilever(8);
+    SpringActorSpec actor;
+    actor.name = "stop";
+    actor.a = {c.beam, {kLength, 0.0}};
+    actor.b = {kGround, {kLength, -1.0}};
+    actor.characteristic = {{-0.01, -0.01 * stiffness}, {0.0, 0.0}, {0.01, 0.0}};
+    c.model.add_spring_actor(actor);
+    c.model.set_point_loads(std::vector<double>{0.0, sign * load});
+    const StaticResult result = solve_static(c.model, c.model.initial_state());
+    const double uy = marker_position(c.model, result.state, c.tip_marker).y();
+    const double free_end = sign * load / stiffness;  // the beam alone: F L^3 / (3 E I)
+    const double expected = sign < 0.0 ? 0.5 * free_end : free_end;
+    EXPECT_NEAR(uy, expected, 1e-4 * std::abs(expected)) << (sign < 0.0 ? "pushed down" : "pulled up");
+  }
+}
+
 TEST(MbdAncfCantilever, FirstTwoBendingFrequenciesFromTheLinearisedSystem) {
   Cantilever c = cantilever(16);
   const std::vector<double> f = natural_frequencies(c.model, c.model.initial_state(), 3);

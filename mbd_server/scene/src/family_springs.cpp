@@ -7,8 +7,9 @@
 namespace fsi::scene::detail {
 namespace {
 
+// Either end on a RigidBody2D or an AncfBeam2D ([s, eta] on a beam), or the ground.
 std::vector<ParameterSpec> two_points(std::vector<ParameterSpec> more) {
-  return planar_two_points(std::move(more), false);
+  return planar_two_points(std::move(more), true);
 }
 
 ParameterSpec rest_length_spec() {
