@@ -34,6 +34,25 @@ std::string number(double value) {
   return text;
 }
 
+// A value the advice compares with a limit or a present value: enough significant digits (up to
+// 6) that it does not print as that reference (0.01004 against the 1 % aim, not "0.01").
+std::string number_beside(double value, double reference) {
+  for (int digits = 3; digits <= 6; ++digits) {
+    char text[32], other[32];
+    std::snprintf(text, sizeof text, "%.*g", digits, value);
+    std::snprintf(other, sizeof other, "%.*g", digits, reference);
+    if (std::string(text) != other) return text;
+  }
+  return number(value);
+}
+
+// A speed to reach at least: rounded up to 3 significant digits (20.08 -> 20.1, never down).
+std::string number_up(double value) {
+  if (!(value > 0.0) || !std::isfinite(value)) return number(value);
+  const double scale = std::pow(10.0, std::floor(std::log10(value)) - 2.0);
+  return number(std::ceil(value / scale - 1e-9) * scale);
+}
+
 std::string at_step(std::uint64_t step) {
   return step == 0 ? std::string("at release (step 0)") : "at step " + std::to_string(step);
 }
@@ -194,7 +213,10 @@ std::optional<HealthFinding> FluidHealthMonitor::density(std::uint64_t step,
   const bool stops = deviation > limits_.max_density_deviation;
   const bool warns = deviation > limits_.warn_density_deviation && !density_warned_;
   if (!stops && !warns) return std::nullopt;  // the texts below only for a finding
-  const std::string what = "max |rho/rho0 - 1| = " + number(deviation) + " " + at_step(step) +
+  const std::string what = "max |rho/rho0 - 1| = " +
+                           number_beside(deviation, stops ? limits_.max_density_deviation
+                                                          : limits_.warn_density_deviation) +
+                           " " + at_step(step) +
                            " (rho from " + number(health.min_density) + " to " +
                            number(health.max_density) + " kg/m^3, rho0 = " + number(rho0) + ")";
   // In a weakly compressible fluid the deviation goes as (v/c)^2 + g H / c^2: raising c by
@@ -219,7 +241,7 @@ std::optional<HealthFinding> FluidHealthMonitor::density(std::uint64_t step,
     fix += "the speed of sound is too low for this flow (rho/rho0 - 1 goes as 1/c^2): raise cAB";
     if (scales_.speed_of_sound) {
       fix += " from " + number(*scales_.speed_of_sound) + " to at least " +
-             number(factor * *scales_.speed_of_sound) + " m/s";
+             number_up(factor * *scales_.speed_of_sound) + " m/s";
     } else {
       fix += " by a factor of " + number(factor);
     }

@@ -233,6 +233,21 @@ TEST(FluidHealth, ADensityDeviationBetweenAimAndLimitWarnsOnce) {
   EXPECT_EQ(watch.record().warnings.size(), 1u);
 }
 
+// Just over the 1 % aim (examples/pump warned at 1.004 %): the message shows the deviation apart
+// from the limit and asks for a speed of sound above the present one, not "0.01 exceeds 0.01" and
+// "from 20 to at least 20".
+TEST(FluidHealth, ADensityWarningJustOverTheAimNamesNumbersThatDiffer) {
+  FluidHealthMonitor watch = monitor();
+  FluidForces forces = healthy();
+  forces.health->max_density = 1010.04;  // 1.004 %: c must grow by sqrt(1.004), 20 -> 20.04
+  const HealthVerdict verdict = watch.judge(1, forces);
+  ASSERT_EQ(verdict.warnings.size(), 1u);
+  EXPECT_TRUE(contains(verdict.warnings[0].message, "max |rho/rho0 - 1| = 0.01004 at step 1"))
+      << verdict.warnings[0].message;
+  EXPECT_TRUE(contains(verdict.warnings[0].fix, "raise cAB from 20 to at least 20.1 m/s"))
+      << verdict.warnings[0].fix;
+}
+
 TEST(FluidHealth, AParticleOverHalfTheSpeedOfSoundStopsAndOverATenthWarns) {
   FluidHealthMonitor watch = monitor();
   FluidForces forces = healthy();
