@@ -224,7 +224,7 @@ ExampleRun = namedtuple("ExampleRun", "work run_dir run analysis")
 
 
 def run_example_checked(scene, ranks, timeout, analyze_args=None, analyze_claim="", own_checks=None,
-                        at_rest=None, label="", tail=3000):
+                        at_rest=None, label="", tail=3000, settings=()):
     """Runs the example `scene` (its folder and file under examples/, e.g. ("u_tube",
     "u_tube_coarse.scene")) with fsi-run on `ranks` ranks into "run" of a fresh work folder, and
     checks what every example test checks: fsi-run exits 0 (the last `tail` characters of its
@@ -232,12 +232,14 @@ def run_example_checked(scene, ranks, timeout, analyze_args=None, analyze_claim=
     of run.json (warnings, health, ...), then, with `at_rest` (its claim, e.g. "the column is at
     rest at release"), the release check. With `analyze_args`, the example's analyze.py
     runs on the run with them and must exit 0 (`analyze_claim` says what that means). `label`
-    starts every message of these checks. Returns ExampleRun(work folder, run folder, run.json,
-    analyze.py's completed process or None); the test calls cleanup(work) at its end."""
+    starts every message of these checks; `settings` ("Block.name=value") go to fsi-run as --set.
+    Returns ExampleRun(work folder, run folder, run.json, analyze.py's completed process or None);
+    the test calls cleanup(work) at its end."""
     folder, name = scene
     work = work_dir(os.path.splitext(name)[0])
     run_dir = os.path.join(work, "run")
-    run = fsi_run_checked(example(folder, name), run_dir, ranks, timeout=timeout, label=label, tail=tail)
+    run = fsi_run_checked(example(folder, name), run_dir, ranks, settings=settings, timeout=timeout, label=label,
+                          tail=tail)
     if own_checks:
         own_checks(run)
     if at_rest:
