@@ -28,7 +28,6 @@ pressure before the piston turns), --min-phase (each valve open or shut
 in its phase for at least this fraction of the phase). Without an option the figure is only
 stated. --figure draws the piston, the valves and the fluxes."""
 import argparse
-import math
 import os
 import sys
 

@@ -1,6 +1,6 @@
 #!/usr/bin/python3
-"""Pump-driven channel flow with two valves (issue 14, thesis §6.5, examples/pump): the coarse scene
-(d = 2.5 mm, about 5 100 particles, fsi-run with 2 ranks) for two piston periods of 0.6 s. A piston
+"""Pump-driven channel flow with two valves (issue 14, thesis §6.5, examples/pump): the scene
+(d = 2.5 mm, 6 262 particles, fsi-run with 2 ranks) for two piston periods of 0.6 s. A piston
 drives water clockwise round a closed loop through a rigid inlet flap (revolute joint, non-linear
 spring, spring actor) and an elastic outlet strip (planar ANCF beam with two spring actors).
 analyze.py judges the second cycle (issue 14: every cycle after the first): the net volume through
@@ -20,7 +20,7 @@ import os
 
 from fsi_test import boundary_checks, check, cleanup, run_example_checked
 
-example_run = run_example_checked(("pump", "pump_coarse.scene"), 2, 900,
+example_run = run_example_checked(("pump", "pump.scene"), 2, 900,
                                   ["--min-net", "0", "--max-backflow", "0.2", "--phase-lead", "0.1"],
                                   "the pump delivers, without backflow, its valves in their phases (analyze.py)",
                                   boundary_checks, at_rest="the loop's water is at rest at release",

@@ -216,9 +216,9 @@ std::optional<HealthFinding> FluidHealthMonitor::density(std::uint64_t step,
   const std::string what = "max |rho/rho0 - 1| = " +
                            number_beside(deviation, stops ? limits_.max_density_deviation
                                                           : limits_.warn_density_deviation) +
-                           " " + at_step(step) +
-                           " (rho from " + number(health.min_density) + " to " +
-                           number(health.max_density) + " kg/m^3, rho0 = " + number(rho0) + ")";
+                           " " + at_step(step) + " (rho from " + number(health.min_density) +
+                           " to " + number(health.max_density) + " kg/m^3, rho0 = " + number(rho0) +
+                           ")";
   // In a weakly compressible fluid the deviation goes as (v/c)^2 + g H / c^2: raising c by
   // sqrt(deviation / 1 %) brings it back to the aim.
   const double factor = std::sqrt(deviation / kDensityAim);

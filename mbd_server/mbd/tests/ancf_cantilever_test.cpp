@@ -143,7 +143,8 @@ TEST(MbdAncfCantilever, ASpringActorAtTheFreeEndIsCarriedByTheBeam) {
     const double uy = marker_position(c.model, result.state, c.tip_marker).y();
     const double free_end = sign * load / stiffness;  // the beam alone: F L^3 / (3 E I)
     const double expected = sign < 0.0 ? 0.5 * free_end : free_end;
-    EXPECT_NEAR(uy, expected, 1e-4 * std::abs(expected)) << (sign < 0.0 ? "pushed down" : "pulled up");
+    EXPECT_NEAR(uy, expected, 1e-4 * std::abs(expected))
+        << (sign < 0.0 ? "pushed down" : "pulled up");
   }
 }
 
