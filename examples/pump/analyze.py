@@ -97,10 +97,9 @@ def analyze(run_dir):
     inlet_open = valve_states(angle, OPEN_ANGLE)
     outlet_open = valve_states([-d for d in tip], OPEN_TIP)
     cycles = []
-    for k in range(int(round(time[-1] / period + 1e-9)) if time[-1] >= period - 1e-9 else 0):
+    # Every whole period the run holds (its last sensor row may fall a sensor interval short).
+    for k in range(int((time[-1] + 0.01 * period) / period)):
         start, middle, end = k * period, (k + 0.5) * period, (k + 1) * period
-        if end > time[-1] + 0.01 * period:  # the last sensor row may fall a sensor interval short
-            break
         cycle = {"cycle": k + 1, "start": start, "end": end}
         for name in PROBES:
             q = sensors[name + "_flux"]

@@ -18,13 +18,11 @@ ParameterSpec rest_length_spec() {
 
 std::vector<BlockSpec> spring_blocks() {
   return {
-      block_spec(
-          "SpringDamper",
-          "Linear spring-damper between the two points: tension k (l - l0) + c dl/dt.",
-          planar_two_points(
-              {number("stiffness", "N/m", "k (2D: per unit depth)").at_least(0.0),
-               number("damping", "N s/m", "c").at_least(0.0).with_default(0.0), rest_length_spec()},
-              true))
+      block_spec("SpringDamper",
+                 "Linear spring-damper between the two points: tension k (l - l0) + c dl/dt.",
+                 two_points({number("stiffness", "N/m", "k (2D: per unit depth)").at_least(0.0),
+                             number("damping", "N s/m", "c").at_least(0.0).with_default(0.0),
+                             rest_length_spec()}))
           .as_list()
           .planar(),
       block_spec(
