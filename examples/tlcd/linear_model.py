@@ -1,64 +1,208 @@
 #!/usr/bin/python3
-"""The linear TLCD model of the tuning study (README.md, "The tuning study"): Sakai's equations
-for a structure of one degree of freedom with a liquid column on it,
+"""The linear TLCD model of the tuning study (README.md, "The tuning study"): the building's top
+and the water column as a linear system of three degrees of freedom, pushed and released as the
+coupled runs are, and measured as analyze.py measures them.
 
-  (M + m) x'' + alpha m u'' + c_s x' + k x = 0
-  m u''  + alpha m x'' + c_d u' + m w_d^2 u = 0
+Coordinates: x the building's tip (the top storey's horizontal displacement), theta the tip's
+slope (the top storey, and the tube on it, tilt by theta: its +x leg goes down), u the column's
+displacement along the tube (the water rises by u in the +x leg). Lagrange's equations, linear in
+all three:
 
-x the building's tip, u the column's displacement along the tube, m = rho_w (2 b (fill - b) +
-(D + b) b) the water, alpha = D / L, w_d = 2 pi / T_d the column's circular frequency (linear
-theory's sqrt(2 g / L) raised by `--column-speedup`, 1.8 % for our d = 5 mm U-tube), c_d =
-2 zeta_d w_d m (--column-damping, our U-tube's 0.06-0.10), M the building's modal mass without
-the water, k from the building's period with the water lumped (the tuning study's --mbd-only
-runs, lumped.csv or the defaults below), c_s for a 1.2 % damping. Released from x = 15 mm at rest,
-it is integrated exactly (matrix exponential) and measured as analyze.py measures the runs: the
-logarithmic decrement over the first four periods of the positive extrema of x.
+  kinetic    (M_x + m) x'^2/2 + (J + J_w) theta'^2/2 + m h_cm x' theta'
+             + m u'^2/2 + alpha m u' (x' + (e_c - h_leg) theta')
+  potential  [x theta] K [x theta]^T / 2 + m w_d^2 u^2/2 - alpha m g theta u - m g h_cm theta^2/2
 
-  linear_model.py [--column-damping 0.06,0.10] [--column-speedup 0.018]"""
+m the water (rho_w (2 b (fill - b) + (D + b) b)), alpha = D/L, L = 2 (fill - b/2) + D the column,
+w_d its circular frequency (linear theory's sqrt(2 g / L) raised by what examples/u_tube
+measured for our d = 5 mm column at that fill, MEASURED_COLUMN, or by `--column-speedup`), h_leg = fill - b/2 the water's length in a leg,
+e_c = b/2 the bottom channel's centre line and h_cm = fill/2 about the water's centre of mass,
+both above the tube's floor, J and J_w the top storey's and the water's moments of inertia about
+the tip. The column is driven by the tip's acceleration (Sakai's alpha m x''), by the tilt's
+angular acceleration (the legs move up and down with it) and by gravity along the tilted tube
+(alpha m g theta); the water's weight shifts from leg to leg and bends the building back through
+the same term. K is the cantilever's tip stiffness (EI/H^3 [[12, -6H], [-6H, 4H^2]]) less the
+geometric stiffness of the weight it carries, scaled so the building with the water lumped on its
+top swings with the period the tuning study's --mbd-only runs measured (LUMPED_PERIOD, or
+`--tuning DIR` to read them); M_x = the top storey plus the cantilever's modal share of its mass;
+the building's 1.2 % damping on x, the column's 2 zeta_d w_d m (zeta_d as measured in the U-tube,
+MEASURED_COLUMN, or as given by --column-damping). `--no-tilt` drops theta: Sakai's equations of a column on a structure that only
+translates.
+
+The push rises linearly to 150 N/m over 2 s from rest and is removed (the scene's); the response is
+integrated exactly (matrix exponential of the system with time as a state) and measured from the
+release: the positive extrema of x, the logarithmic decrement over the first four periods.
+
+  linear_model.py [--column-damping measured,0.06,0.10] [--column-speedup 0.018] [--no-tilt]
+                  [--fills 0.08,...] [--tuning out/tlcd_tuning]"""
 import argparse
+import json
 import math
+import os
 
 import numpy as np
+from scipy.linalg import expm
 
 G = 9.81
 B = 0.04
 D = 0.30
-MODAL_MASS = 230.0 + 0.236 * 2.0 * 20.0   # top storey + the cantilever's modal share of its 40 kg/m
-# The building's period with each fill's water lumped on its top (tuning.py's --mbd-only runs).
-LUMPED_PERIOD = {0.08: 1.0038, 0.11: 1.0088, 0.14: 1.0150, 0.17: 1.0200, 0.20: 1.0250}
+H = 2.0
+BENDING_STIFFNESS = 3.1e4
+TOP_MASS = 230.0
+TOP_WIDTH = D + B
+BEAM_MASS = 20.0 * H
+MODAL_MASS = TOP_MASS + 0.236 * BEAM_MASS   # top storey + the cantilever's modal share of its mass
+BUILDING_DAMPING = 0.012                    # the empty building's, measured (README.md)
+PUSH, RELEASE, END = 150.0, 2.0, 9.0
+# The building's period with each fill's water lumped on its top (tuning.py's --mbd-only runs,
+# 2026-12-04/05); fills between them are interpolated (the period is linear in the fill to 1e-4 s).
+LUMPED_PERIOD = {0.08: 1.0038, 0.11: 1.0088, 0.125: 1.0125, 0.14: 1.0150, 0.155: 1.0169, 0.17: 1.0200, 0.185: 1.0222,
+                 0.20: 1.0250}
+# The column in our SPH fluid, measured in examples/u_tube at d = 5 mm with the TLCD's c and step
+# for each fill (README.md, "The tuning study", 2026-12-05): its natural frequency above linear
+# theory's (1 / (1 + period error) - 1) and its damping ratio (fit of a damped sinusoid, 25 mm).
+MEASURED_COLUMN = {0.11: (0.0229, 0.0761), 0.14: (0.0199, 0.0945), 0.17: (0.0124, 0.1128), 0.20: (0.0126, 0.1365)}
 
 
-def decrement_damping(fill, zeta_d, speedup, cycles=4):
+def lumped_period(fill, table):
+    fills = sorted(table)
+    return float(np.interp(fill, fills, [table[f] for f in fills]))
+
+
+def matrices(fill, zeta_d, speedup, period, tilt):
+    """Mass, damping and stiffness matrices over (x, theta, u) (over (x, u) without the tilt)."""
     length = 2 * (fill - B / 2) + D
     water = 1000.0 * (2 * B * (fill - B) + (D + B) * B)
     alpha = D / length
     w_d = math.sqrt(2 * G / length) * (1 + speedup)
-    k = (MODAL_MASS + water) * (2 * math.pi / LUMPED_PERIOD[fill]) ** 2
-    c_s = 2 * 0.012 * math.sqrt(k * (MODAL_MASS + water))
-    mass = np.array([[MODAL_MASS + water, alpha * water], [alpha * water, water]])
-    damping = np.diag([c_s, 2 * zeta_d * w_d * water])
-    stiffness = np.diag([k, water * w_d ** 2])
+    h_leg, e_c, h_cm = fill - B / 2, B / 2, fill / 2
+    inertia = TOP_MASS * TOP_WIDTH ** 2 / 12
+    inertia_water = water * (TOP_WIDTH ** 2 / 12 + h_cm ** 2)
+    cantilever = BENDING_STIFFNESS / H ** 3 * np.array([[12.0, -6 * H], [-6 * H, 4 * H * H]])
+    load = (TOP_MASS + water + BEAM_MASS / 2) * G
+    geometric = load / (30 * H) * np.array([[36.0, -3 * H], [-3 * H, 4 * H * H]])
+    building = cantilever - geometric
+    # Scale the building's stiffness to the measured period with the water lumped on its top (the
+    # --mbd-only run: the water's mass on the top node, its inertia as the scene's top_inertia).
+    lumped = np.diag([MODAL_MASS + water, inertia + water * TOP_WIDTH ** 2 / 12])
+    omega = 2 * math.pi / period
+    building *= omega ** 2 / min(np.linalg.eigvals(np.linalg.solve(lumped, building)).real)
+    c_x = 2 * BUILDING_DAMPING * omega * (MODAL_MASS + water)
+    if not tilt:
+        k = (MODAL_MASS + water) * omega ** 2
+        mass = np.array([[MODAL_MASS + water, alpha * water], [alpha * water, water]])
+        return mass, np.diag([c_x, 2 * zeta_d * w_d * water]), np.diag([k, water * w_d ** 2]), w_d
+    mass = np.array([[MODAL_MASS + water, water * h_cm, alpha * water],
+                     [water * h_cm, inertia + inertia_water, alpha * water * (e_c - h_leg)],
+                     [alpha * water, alpha * water * (e_c - h_leg), water]])
+    stiffness = np.zeros((3, 3))
+    stiffness[:2, :2] = building
+    stiffness[1, 1] -= water * G * h_cm
+    stiffness[1, 2] = stiffness[2, 1] = -alpha * water * G
+    stiffness[2, 2] = water * w_d ** 2
+    return mass, np.diag([c_x, 0.0, 2 * zeta_d * w_d * water]), stiffness, w_d
+
+
+def response(mass, damping, stiffness, dt=1e-3):
+    """x(t) from rest under the scene's push, sampled every dt from the release to END."""
+    n = len(mass)
     inverse = np.linalg.inv(mass)
-    system = np.block([[np.zeros((2, 2)), np.eye(2)], [-inverse @ stiffness, -inverse @ damping]])
-    values, vectors = np.linalg.eig(system)
-    start = np.linalg.solve(vectors, np.array([0.015, 0.0, 0.0, 0.0]))
-    times = np.arange(0.0, 8.0, 1e-3)
-    x = np.array([(vectors[0] * np.exp(values * t) * start).sum().real for t in times])
-    peaks = [x[0]] + [x[i] for i in range(1, len(x) - 1) if x[i] > 0 and x[i - 1] < x[i] >= x[i + 1]]
+    # State (q, q', t, 1): the push PUSH t / RELEASE on x is linear in the state while it acts.
+    def system(pushing):
+        a = np.zeros((2 * n + 2, 2 * n + 2))
+        a[:n, n:2 * n] = np.eye(n)
+        a[n:2 * n, :n] = -inverse @ stiffness
+        a[n:2 * n, n:2 * n] = -inverse @ damping
+        a[2 * n, 2 * n + 1] = 1.0
+        if pushing:
+            a[n:2 * n, 2 * n] = inverse[:, 0] * PUSH / RELEASE
+        return a
+    state = np.zeros(2 * n + 2)
+    state[-1] = 1.0
+    state = expm(system(True) * RELEASE) @ state
+    step = expm(system(False) * dt)
+    x = []
+    for _ in range(int(round((END - RELEASE) / dt))):
+        x.append(state[0])
+        state = step @ state
+    return np.array(x)
+
+
+def damping_ratios(x, cycles=4):
+    """analyze.py's measures: the largest x of each positive lobe after the release (the first lobe
+    starts at the release); the logarithmic decrement over `cycles` periods and the least-squares
+    slope of ln a_i over the same extrema, each as a damping ratio."""
+    peaks, best, positive = [], x[0], True
+    for value in x[1:]:
+        if positive and value <= 0:
+            peaks.append(best)
+            positive = False
+        elif not positive and value > 0:
+            positive, best = True, value
+        if positive:
+            best = max(best, value)
     delta = math.log(peaks[0] / peaks[cycles]) / cycles
-    return delta / math.sqrt(4 * math.pi ** 2 + delta ** 2), w_d * LUMPED_PERIOD[fill] / (2 * math.pi)
+    slope = -np.polyfit(np.arange(cycles + 1), np.log(peaks[:cycles + 1]), 1)[0]
+    return tuple(v / math.sqrt(4 * math.pi ** 2 + v ** 2) for v in (delta, slope))
+
+
+def measured_column(fill):
+    """(frequency above linear theory, damping ratio) of the column at `fill`, interpolated in
+    MEASURED_COLUMN (held at the ends)."""
+    fills = sorted(MEASURED_COLUMN)
+    return tuple(float(np.interp(fill, fills, [MEASURED_COLUMN[f][i] for f in fills])) for i in (0, 1))
+
+
+def model_damping(fill, zeta_d=None, speedup=None, table=None, tilt=True):
+    """(damping ratio by the decrement, by least squares, column/building frequency ratio) of the
+    model at `fill` with the column's damping ratio `zeta_d` and frequency `speedup` above linear
+    theory (None: the measured column's)."""
+    measured = measured_column(fill)
+    speedup = measured[0] if speedup is None else speedup
+    zeta_d = measured[1] if zeta_d is None else zeta_d
+    period = lumped_period(fill, table or LUMPED_PERIOD)
+    mass, damping, stiffness, w_d = matrices(fill, zeta_d, speedup, period, tilt)
+    return (*damping_ratios(response(mass, damping, stiffness)), w_d * period / (2 * math.pi))
+
+
+def read_tuning(folder):
+    """The lumped periods measured by tuning.py in `folder` (fill_<f>/lumped/analysis.json)."""
+    table = {}
+    for name in os.listdir(folder):
+        path = os.path.join(folder, name, "lumped", "analysis.json")
+        if name.startswith("fill_") and os.path.exists(path):
+            with open(path) as handle:
+                table[float(name[5:])] = json.load(handle)["period"]
+    if not table:
+        raise SystemExit(f"linear_model.py: no fill_<f>/lumped/analysis.json in {folder}; run tuning.py first")
+    return table
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--column-damping", default="0.06,0.10")
-    parser.add_argument("--column-speedup", type=float, default=0.018)
+    parser.add_argument("--column-damping", default="measured,0.06,0.10",
+                        help="the column's damping ratios, comma-separated; 'measured': MEASURED_COLUMN's")
+    parser.add_argument("--column-speedup", type=float,
+                        help="the column's frequency above linear theory (default: MEASURED_COLUMN's, 1.2-2.3 %%)")
+    parser.add_argument("--no-tilt", action="store_true", help="the building's top translates only (Sakai)")
+    parser.add_argument("--fills", default="0.08,0.11,0.125,0.14,0.155,0.17,0.185,0.20")
+    parser.add_argument("--tuning", help="tuning.py's output folder: its measured lumped periods")
     args = parser.parse_args()
-    dampings = [float(v) for v in args.column_damping.split(",")]
-    print("fill [m]  frequency ratio  " + "  ".join(f"zeta (column {z:g})" for z in dampings))
-    for fill in sorted(LUMPED_PERIOD):
-        results = [decrement_damping(fill, z, args.column_speedup) for z in dampings]
-        print(f"{fill:7.2f}  {results[0][1]:15.3f}  " + "  ".join(f"{r[0]:18.4f}" for r in results))
+    dampings = [None if v == "measured" else float(v) for v in args.column_damping.split(",")]
+    fills = [float(v) for v in args.fills.split(",")]
+    table = read_tuning(args.tuning) if args.tuning else LUMPED_PERIOD
+    print(("translating" if args.no_tilt else "translating and tilting") + " building; damping ratio by the "
+          "logarithmic decrement over 4 periods (least squares over the same extrema)")
+    print("fill [m]  frequency ratio  " + "  ".join(f"zeta (column {z if z is not None else 'measured'})" for z in dampings))
+    best = {z: (0.0, None) for z in dampings}
+    for fill in fills:
+        row = []
+        for zeta_d in dampings:
+            zeta, zeta_fit, ratio = model_damping(fill, zeta_d, args.column_speedup, table, not args.no_tilt)
+            best[zeta_d] = max(best[zeta_d], (zeta, fill))
+            row.append(f"{zeta:.4f} ({zeta_fit:.4f})")
+        print(f"{fill:7.3f}  {ratio:15.3f}  " + "  ".join(f"{v:>18}" for v in row))
+    for zeta_d, (zeta, fill) in best.items():
+        print(f"column damping {zeta_d if zeta_d is not None else 'measured'}: the most damping (decrement) at fill {fill:g} m (zeta {zeta:.4f})")
 
 
 if __name__ == "__main__":
