@@ -57,9 +57,9 @@ PUSH, RELEASE, END = 150.0, 2.0, 9.0
 LUMPED_PERIOD = {0.08: 1.0038, 0.11: 1.0088, 0.125: 1.0125, 0.14: 1.0150, 0.155: 1.0169, 0.17: 1.0200, 0.185: 1.0222,
                  0.20: 1.0250}
 # The column in our SPH fluid, measured in examples/u_tube at d = 5 mm with the TLCD's c and step
-# for each fill (README.md, "The tuning study", 2026-12-05): its natural frequency above linear
-# theory's (1 / (1 + period error) - 1) and its damping ratio (fit of a damped sinusoid, 25 mm).
-MEASURED_COLUMN = {0.11: (0.0229, 0.0761), 0.14: (0.0199, 0.0945), 0.17: (0.0124, 0.1128), 0.20: (0.0126, 0.1365)}
+# for each fill (column.py, 2026-12-05): its natural frequency above linear theory's
+# (1 / (1 + period error) - 1) and its damping ratio (fit of a damped sinusoid, 25 mm).
+MEASURED_COLUMN = {0.11: (0.0229, 0.0761), 0.14: (0.0199, 0.0945), 0.17: (0.0123, 0.1128), 0.20: (0.0126, 0.1365)}
 
 
 def expm(matrix):
