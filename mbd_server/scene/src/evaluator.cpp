@@ -157,6 +157,7 @@ class Evaluator {
     });
     for (RawParameter* parameter : all)
       evaluate(*parameter);
+    report_stale_uses();
     return std::move(problems_);
   }
 
@@ -222,15 +223,20 @@ class Evaluator {
               "remove the [...] after " + in_quotes(last.name)};
     }
     RawParameter* found = nullptr;
+    const RawParameter* after_use = nullptr;  // the first assignment after the reference
     for (auto& candidate : block->parameters) {
       if (candidate->key != last.name || candidate.get() == &from) continue;
       if (candidate->sequence < from.sequence) {
         found = candidate.get();  // the latest assignment before the reference counts
-      } else if (!later) {
-        later = candidate.get();
+      } else {
+        if (!later) later = candidate.get();
+        if (!after_use) after_use = candidate.get();
       }
     }
-    if (found) return {found, "", ""};
+    if (found) {
+      if (after_use) note_stale_use(from, *found, *after_use);
+      return {found, "", ""};
+    }
     if (parts.size() == 1) {
       if (!block->children(last.name).empty()) {
         return {nullptr, in_quotes(last.name) + " is a block, not a number",
@@ -322,6 +328,47 @@ class Evaluator {
                 ? "define it above this line (a name is looked up in its block, then in the "
                   "blocks around it)"
                 : "did you mean " + in_quotes(suggestion) + "?"};
+  }
+
+  // ---- uses of a value assigned again later ----
+
+  // A reference sees the value assigned before it; an assignment after it (e.g. `Geometry.x = 2`
+  // below an `include` that used Geometry.x) does not reach it, while the run records the last
+  // value: the scene would silently run with another value than it lists.
+  struct StaleUse {
+    const RawParameter* use;
+    const RawParameter* seen;
+    const RawParameter* reassigned;
+  };
+
+  void note_stale_use(const RawParameter& use, const RawParameter& seen,
+                      const RawParameter& reassigned) {
+    const bool known = std::any_of(stale_uses_.begin(), stale_uses_.end(), [&](const StaleUse& s) {
+      return s.use == &use && s.seen == &seen;
+    });
+    if (!known) stale_uses_.push_back({&use, &seen, &reassigned});
+  }
+
+  void report_stale_uses() {
+    for (const StaleUse& stale : stale_uses_) {
+      // The same value assigned again changes nothing the run uses.
+      if (stale.seen->state == RawParameter::State::Done &&
+          stale.reassigned->state == RawParameter::State::Done &&
+          stale.seen->value == stale.reassigned->value) {
+        continue;
+      }
+      const std::string name = path_of(*stale.seen);
+      problems_.push_back({stale.use->location,
+                           "in " + in_quotes(path_of(*stale.use)) + ": " + in_quotes(name) +
+                               " is assigned again at " + stale.reassigned->location.text() +
+                               ", after this use: the use takes the value of " +
+                               stale.seen->location.text() +
+                               ", while the scene records the later one",
+                           "assign " + name +
+                               " once, before its first use; to change a value of an included "
+                               "file, give it with --set " +
+                               name + "=... (it replaces the value everywhere)"});
+    }
   }
 
   // ---- cycles ----
@@ -676,6 +723,7 @@ class Evaluator {
   std::vector<Pending> pending_;
   bool dependency_failed_ = false;
   std::vector<const RawParameter*> cycle_members_;  // of cycles reported already
+  std::vector<StaleUse> stale_uses_;
   std::vector<Problem> problems_;
 };
 

@@ -204,6 +204,31 @@ TEST(ParameterFile, ReferenceToALaterParameterNamesBothPlaces) {
       message, "t.scene:1:5: in 'a': 'b' is defined later, at t.scene:2:1; move it above line 1");
 }
 
+TEST(ParameterFile, AValueAssignedAgainAfterAUseIsAnError) {
+  // As a variant scene does below an include: the beam's mass took rho = 1100, the scene would
+  // record rho = 4400. Named at the use, with both assignments and the way to change it.
+  const std::string text =
+      "Geometry { rho = 1100; h = 0.005 }\nBeam { mass = Geometry.rho*Geometry.h }\n"
+      "Geometry.rho = 4400\n";
+  const std::string message = error_of(text);
+  EXPECT_CONTAINS(message, "1 problem(s)");
+  EXPECT_CONTAINS(message,
+                  "t.scene:2:8: in 'Beam.mass': 'Geometry.rho' is assigned again at t.scene:3:1, "
+                  "after this use: the use takes the value of t.scene:1:12");
+  EXPECT_CONTAINS(message, "give it with --set Geometry.rho=...");
+  // --set replaces the value everywhere: no problem, and the use sees it.
+  EXPECT_EQ(
+      number_at(
+          parse("Geometry { rho = 1100; h = 0.005 }\nBeam { mass = Geometry.rho*Geometry.h }\n",
+                {{"Geometry.rho", "4400"}}),
+          "Beam.mass"),
+      22.0);
+  // Assigned again before any use, or again with the same value: nothing to report.
+  EXPECT_EQ(error_of("a = 1\na = 2\nb = a\n"), "");
+  EXPECT_EQ(error_of("a = 1\nb = a\na = 1\n"), "");
+  EXPECT_EQ(number_at(parse("a = 1\nb = a\na = 1\n"), "b"), 1.0);
+}
+
 TEST(ParameterFile, ACycleIsNamedAsOneWithItsWholeChain) {
   // a -> Geometry.b -> c -> a, across blocks; reported once, where the cycle is entered.
   const std::string message =
