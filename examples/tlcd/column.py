@@ -22,6 +22,8 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.dirname(HERE))
 from fsi_results import fsi_run_binary, run_variant, study_arguments  # noqa: E402
 
+import linear_model  # noqa: E402
+
 G = 9.81
 TIME_STEP, TUNED_FILL, END_TIME = 5e-5, 0.14, 2.1   # tlcd_coarse.scene's step; u_tube_coarse's end
 
@@ -38,10 +40,7 @@ def main():
                              os.path.join("out", "tlcd_column"))
     parser.add_argument("--fills", default="0.11,0.14,0.17,0.20", help="fill levels [m], comma-separated")
     args = parser.parse_args()
-    try:
-        fills = [float(v) for v in args.fills.split(",")]
-    except ValueError:
-        parser.error(f"--fills {args.fills!r}: give fill levels in metres separated by commas, e.g. 0.11,0.14,0.17")
+    fills = linear_model.fill_levels(parser, args.fills)
     fsi_run = fsi_run_binary(args, "column.py")
     failed, measured = [], {}
     for fill in fills:

@@ -77,6 +77,14 @@ def expm(matrix):
     return result
 
 
+def fill_levels(parser, text):
+    """The fill levels of a --fills value (metres, comma-separated), or the parser's error."""
+    try:
+        return [float(v) for v in text.split(",")]
+    except ValueError:
+        parser.error(f"--fills {text!r}: give fill levels in metres separated by commas, e.g. 0.11,0.14,0.17")
+
+
 def lumped_period(fill, table):
     fills = sorted(table)
     return float(np.interp(fill, fills, [table[f] for f in fills]))
@@ -202,7 +210,7 @@ def main():
     parser.add_argument("--tuning", help="tuning.py's output folder: its measured lumped periods")
     args = parser.parse_args()
     dampings = [None if v == "measured" else float(v) for v in args.column_damping.split(",")]
-    fills = [float(v) for v in args.fills.split(",")]
+    fills = fill_levels(parser, args.fills)
     table = read_tuning(args.tuning) if args.tuning else LUMPED_PERIOD
     print(("translating" if args.no_tilt else "translating and tilting") + " building; damping ratio by the "
           "logarithmic decrement over 4 periods (least squares over the same extrema)")

@@ -84,10 +84,7 @@ def main():
     parser.add_argument("--fills", default="0.08,0.11,0.125,0.14,0.155,0.17,0.185,0.20", help="fill levels [m], comma-separated")
     parser.add_argument("--cycles", type=int, default=4)
     args = parser.parse_args()
-    try:
-        fills = [float(v) for v in args.fills.split(",")]
-    except ValueError:
-        parser.error(f"--fills {args.fills!r}: give fill levels in metres separated by commas, e.g. 0.11,0.14,0.17")
+    fills = linear_model.fill_levels(parser, args.fills)
     fsi_run = fsi_run_binary(args, "tuning.py")
     fsi_server = os.path.join(os.path.dirname(fsi_run), "fsi-server")
     common = [("Resolution.end_time", args.end_time)] if args.end_time is not None else []
