@@ -53,9 +53,9 @@ def analyze(run_dir, extra):
         return None
 
 
-def draw(path, rows, zeta_empty, table):
+def draw(path, rows, zeta_empty, dense, curves):
     """The damping ratio against the fill: the runs (both measures) and the linear model's curves
-    (linear_model.py with the measured column and the building periods `table`)."""
+    (`curves[tilt]` over the fills `dense`)."""
     plt = pyplot("tuning.py")
     if plt is None:
         return
@@ -64,10 +64,8 @@ def draw(path, rows, zeta_empty, table):
     axes.plot(fills, [row["damping_ratio"] for row in rows], "ko-", label="coupled runs (decrement over 4 periods)")
     axes.plot(fills, [row["damping_ratio_least_squares"] for row in rows], "ks--", mfc="none",
               label="coupled runs (least squares)")
-    dense = [min(fills) + i * (max(fills) - min(fills)) / 60 for i in range(61)]
     for tilt, style, name in ((True, "b-", "translating and tilting top"), (False, "g-", "translating top (Sakai)")):
-        axes.plot(dense, [linear_model.model_damping(f, table=table, tilt=tilt)[0] for f in dense], style,
-                  linewidth=1, label=f"linear model, {name}")
+        axes.plot(dense, curves[tilt], style, linewidth=1, label=f"linear model, {name}")
     for row in rows:
         axes.annotate(f"{row['frequency_ratio']:.3f}", (row["fill"], row["damping_ratio"]),
                       textcoords="offset points", xytext=(4, -12), fontsize=7)
@@ -75,7 +73,7 @@ def draw(path, rows, zeta_empty, table):
     axes.axhline(3 * zeta_empty, color="r", linestyle="--", label="3x empty (issue 14)")
     axes.set_xlabel("fill [m] (numbers: frequency ratio column/building, linear theory's column)")
     axes.set_ylabel("damping ratio of the first mode")
-    finish_figure(figure, axes, "TLCD tuning study (d = 5 mm)", path, legend_location="best")
+    finish_figure(figure, axes, "TLCD tuning study", path, legend_location="best")
     plt.close(figure)
 
 
@@ -131,10 +129,14 @@ def main():
         best_fit = max(rows, key=lambda row: row["damping_ratio_least_squares"])
         lines.append(f"empty damper: damping ratio {zeta_empty:.4f}; the most damping at fill {best['fill']:g} m "
                      f"(frequency ratio {best['frequency_ratio']:.3f}; by least squares at {best_fit['fill']:g} m)")
+        # The linear model with these building periods, every 2.5 mm of fill: its optimum here, its
+        # curves in the figure.
         table = {row["fill"]: row["building_period"] for row in rows}
         dense = [rows[0]["fill"] + i * 0.0025 for i in range(int(round((rows[-1]["fill"] - rows[0]["fill"]) / 0.0025)) + 1)]
+        curves = {tilt: [linear_model.model_damping(fill, table=table, tilt=tilt)[0] for fill in dense]
+                  for tilt in (True, False)}
         for tilt, name in ((True, "translating and tilting top"), (False, "translating top")):
-            model = max(dense, key=lambda fill: linear_model.model_damping(fill, table=table, tilt=tilt)[0])
+            model = dense[curves[tilt].index(max(curves[tilt]))]
             lines.append(f"the linear model (linear_model.py, {name}, the measured column, these building periods): "
                          f"the most damping at fill {model:.4g} m")
         if best in (rows[0], rows[-1]) and len(rows) > 2:
@@ -144,7 +146,7 @@ def main():
         print(text)
         with open(os.path.join(args.output, "tuning.md"), "w") as handle:
             handle.write(text)
-        draw(os.path.join(args.output, "tuning.png"), rows, zeta_empty, table)
+        draw(os.path.join(args.output, "tuning.png"), rows, zeta_empty, dense, curves)
     if failed:
         sys.exit(f"tuning.py: {len(failed)} failure(s): {'; '.join(failed)}")
 
