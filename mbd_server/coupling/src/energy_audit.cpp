@@ -87,7 +87,6 @@ void EnergyAudit::exchange(std::span<const double> positions, std::span<const do
   };
   const char* const remedy =
       "halve SolverOptions.Timeint.step_size (with substeps > 1: lower the substeps first), or "
-      "give the light body an AddedMass block (docs/theory.md, \"Artificial added mass\"), or "
       "make the structure heavier or stiffer (docs/theory.md, \"The energy audit\")";
   if (!warned_at_ && fraction > kInjectionWarningFraction) {
     warned_at_ = step;

@@ -512,8 +512,7 @@ class Session {
       fix = "halve SolverOptions.Timeint.step_size (to " + std::string(step) + " s)";
     }
     return fix +
-           "; or give the light body an AddedMass block (docs/theory.md, \"Artificial added "
-           "mass\"), or make the structure heavier or stiffer against the water it moves "
+           "; or make the structure heavier or stiffer against the water it moves "
            "(FluidHealth.max_coupling_energy_growth = 0 turns the check off; not advised: the "
            "energy keeps growing)";
   }

@@ -166,9 +166,6 @@ void StructureSide::advance(std::uint64_t step, double step_size) {
     boundary_state(start.positions, start.velocities);
     trim_to_dynamic(start.positions, start.velocities);
   }
-  const double start_time = state_.time;
-  const Eigen::VectorXd start_velocity =
-      scene_.model.has_added_mass() ? state_.v : Eigen::VectorXd();
   // A model without bodies (a static 3D container) has nothing to integrate.
   if (scene_.model.coordinate_count() > 0) {
     try {
@@ -185,11 +182,6 @@ void StructureSide::advance(std::uint64_t step, double step_size) {
     }
   }
   state_.time = static_cast<double>(step) * step_size;
-  if (start_velocity.size() > 0 && state_.time > start_time) {
-    // Artificial added mass: ratio M_b times this step's mean acceleration, held over the next.
-    scene_.model.set_generalised_loads(
-        scene_.model.added_mass_force((state_.v - start_velocity) / (state_.time - start_time)));
-  }
   if (multi_rate) record_step_motion(start, step_size);
   try {
     crossing_.check(state_);
@@ -338,10 +330,6 @@ void StructureSide::save_state(output::StateWriter& out) {
   out.put(state_.v);
   out.put(state_.lambda);
   out.put(loads_);
-  if (scene_.model.has_added_mass()) {
-    const Eigen::VectorXd& held = scene_.model.generalised_loads();
-    out.put(held.size() > 0 ? held : Eigen::VectorXd::Zero(scene_.model.coordinate_count()));
-  }
   out.put(step_motion_.nodes);
   out.put(step_motion_.positions);
   out.put(step_motion_.velocities);
@@ -371,10 +359,6 @@ void StructureSide::restore_state(output::StateReader& in) {
                 "structure state", "resume with the scene that wrote the checkpoint");
   }
   if (!loads_.empty()) scene_.model.set_point_loads(loads_);
-  if (scene_.model.has_added_mass()) {
-    const Eigen::VectorXd held = in.vector("added-mass loads", n);
-    scene_.model.set_generalised_loads(held);
-  }
   step_motion_.nodes = in.doubles("step nodes");
   step_motion_.positions = in.doubles("step node positions");
   step_motion_.velocities = in.doubles("step node velocities");

@@ -484,7 +484,7 @@ State Model::initial_state() const {
     // [M G^T; G 0] from triplets, SparseLU.
     TripletSink system;
     for (std::size_t b = 0; b < data_->bodies.size(); ++b) {
-      OffsetSink block(system, data_->offsets[b], data_->offsets[b], data_->mass_scale(b));
+      OffsetSink block(system, data_->offsets[b], data_->offsets[b]);
       data_->bodies[b]->mass_matrix(block);
     }
     Eigen::SparseMatrix<double> jacobian;
@@ -604,7 +604,7 @@ const Eigen::MatrixXd& Model::mass_matrix() const {
     data_->mass = Eigen::MatrixXd::Zero(n, n);
     DenseMatrixSink sink(data_->mass);
     for (std::size_t b = 0; b < data_->bodies.size(); ++b) {
-      OffsetSink block(sink, data_->offsets[b], data_->offsets[b], data_->mass_scale(b));
+      OffsetSink block(sink, data_->offsets[b], data_->offsets[b]);
       data_->bodies[b]->mass_matrix(block);
     }
     data_->mass_valid = true;
@@ -617,7 +617,7 @@ const Eigen::SparseMatrix<double>& Model::sparse_mass_matrix() const {
     const int n = coordinate_count();
     TripletSink sink;
     for (std::size_t b = 0; b < data_->bodies.size(); ++b) {
-      OffsetSink block(sink, data_->offsets[b], data_->offsets[b], data_->mass_scale(b));
+      OffsetSink block(sink, data_->offsets[b], data_->offsets[b]);
       data_->bodies[b]->mass_matrix(block);
     }
     sink.to_matrix(n, n, data_->sparse_mass);
@@ -668,7 +668,6 @@ void Model::applied_force(double time, const Eigen::VectorXd& q, const Eigen::Ve
   }
   for (const auto& element : data_->force_elements)
     element->add_force(time, q, v, force);
-  if (data_->generalised_loads.size() == force.size()) force += data_->generalised_loads;
 }
 
 void Model::add_applied_force_derivatives(double time, const Eigen::VectorXd& q,
@@ -824,65 +823,6 @@ void Model::set_point_loads(std::span<const double> loads) {
 
 std::span<const double> Model::point_loads() const {
   return data_->point_loads;
-}
-
-// --- artificial added mass ---
-
-void Model::set_added_mass_ratio(BodyId body, double ratio) {
-  data_->check_body(body, "an added mass");
-  if (!(ratio >= 0.0) || !std::isfinite(ratio)) {
-    throw Error(
-        "the added mass ratio of '" + data_->bodies[body]->name() + "' is " + std::to_string(ratio),
-        "multibody model", "give a finite ratio >= 0 (0: none)");
-  }
-  data_->added_mass_ratio[body] = ratio;
-  data_->mass_valid = false;
-  data_->sparse_mass_valid = false;
-}
-
-double Model::added_mass_ratio(BodyId body) const {
-  data_->check_body(body, "an added mass");
-  return data_->added_mass_ratio[body];
-}
-
-bool Model::has_added_mass() const {
-  for (const double ratio : data_->added_mass_ratio) {
-    if (ratio > 0.0) return true;
-  }
-  return false;
-}
-
-Eigen::VectorXd Model::added_mass_force(const Eigen::VectorXd& acceleration) const {
-  const int n = coordinate_count();
-  FSI_ASSERT(acceleration.size() == n, "acceleration does not match the model");
-  Eigen::VectorXd force = Eigen::VectorXd::Zero(n);
-  for (std::size_t b = 0; b < data_->bodies.size(); ++b) {
-    const double ratio = data_->added_mass_ratio[b];
-    if (ratio == 0.0) continue;
-    const int o = data_->offsets[b];
-    const int nb = data_->bodies[b]->coordinate_count();
-    Eigen::MatrixXd block = Eigen::MatrixXd::Zero(nb, nb);
-    data_->bodies[b]->mass_matrix(block);
-    force.segment(o, nb) = ratio * (block * acceleration.segment(o, nb));
-  }
-  return force;
-}
-
-void Model::set_generalised_loads(const Eigen::VectorXd& loads) {
-  if (loads.size() != 0 && loads.size() != coordinate_count()) {
-    throw Error("got " + std::to_string(loads.size()) + " generalised loads for " +
-                    std::to_string(coordinate_count()) + " coordinates",
-                "multibody model", "pass one value per coordinate, or none");
-  }
-  if (!loads.allFinite()) {
-    throw Error("a generalised load is not finite", "multibody model",
-                "pass finite generalised loads");
-  }
-  data_->generalised_loads = loads;
-}
-
-const Eigen::VectorXd& Model::generalised_loads() const {
-  return data_->generalised_loads;
 }
 
 // --- markers ---

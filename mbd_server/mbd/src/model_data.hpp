@@ -89,13 +89,7 @@ struct Model::Data {
   // loads and marker coordinates have this many values per marker.
   int dimension = 0;
   std::vector<double> point_loads;  // x, y per marker
-  // Artificial added mass (Model::set_added_mass_ratio): per body, its mass matrix is integrated
-  // times 1 + ratio.
-  std::vector<double> added_mass_ratio;
-  // A generalised force added to F, held over the steps (Model::set_generalised_loads); empty:
-  // none.
-  Eigen::VectorXd generalised_loads;
-  mutable Eigen::MatrixXd mass;  // assembled on first use after a structural change
+  mutable Eigen::MatrixXd mass;     // assembled on first use after a structural change
   mutable bool mass_valid = false;
   mutable Eigen::SparseMatrix<double> sparse_mass;  // the same, sparse
   mutable Eigen::VectorXd mass_diagonal;
@@ -110,7 +104,6 @@ struct Model::Data {
                   "multibody model", "refer to a body that has been added");
     }
   }
-  double mass_scale(std::size_t body) const { return 1.0 + added_mass_ratio[body]; }
   void check_marker(int marker) const {
     if (marker < 0 || marker >= static_cast<int>(markers.size())) {
       throw Error("marker index " + std::to_string(marker) + " out of range (the model has " +
@@ -213,7 +206,6 @@ struct Model::Data {
     offsets.push_back(coordinates);
     coordinates += body->coordinate_count();
     bodies.push_back(std::move(body));
-    added_mass_ratio.push_back(0.0);
     mass_valid = false;
     sparse_mass_valid = false;
     return static_cast<BodyId>(bodies.size()) - 1;

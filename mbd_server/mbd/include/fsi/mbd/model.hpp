@@ -267,22 +267,6 @@ class Model final : public ConstrainedSystem {
                                        const Eigen::VectorXd& lambda,
                                        MatrixSink& derivative) const override;
 
-  // --- artificial added mass (docs/theory.md, "Artificial added mass") ---
-  // The body's mass matrix enters the equations of motion times (1 + ratio); the coupling then
-  // holds ratio M_b a over each step as a generalised load (added_mass_force of the last step's
-  // mean acceleration, set_generalised_loads), so that in a steady motion the body moves as its
-  // own mass does while the extra inertia damps the added-mass instability of the staggered
-  // scheme. Throws fsi::Error for an unknown body or a ratio that is negative or not finite.
-  void set_added_mass_ratio(BodyId body, double ratio);
-  double added_mass_ratio(BodyId body) const;
-  bool has_added_mass() const;
-  // ratio_b M_b a_b for every body with a ratio (M_b its own mass matrix), zero elsewhere; size n.
-  Eigen::VectorXd added_mass_force(const Eigen::VectorXd& acceleration) const;
-  // A generalised force added to F until it is set again (size n, or empty: none); no
-  // derivatives. Throws fsi::Error for another size or a value that is not finite.
-  void set_generalised_loads(const Eigen::VectorXd& loads);
-  const Eigen::VectorXd& generalised_loads() const;
-
   // --- point loads: world-frame forces on markers, held constant over a step ---
   // Two values (x, y) per marker, in marker order. Loads on ground markers are ignored.
   void set_point_loads(std::span<const double> loads);
