@@ -87,7 +87,8 @@ void EnergyAudit::exchange(std::span<const double> positions, std::span<const do
   };
   const char* const remedy =
       "halve SolverOptions.Timeint.step_size (with substeps > 1: lower the substeps first), or "
-      "make the structure heavier or stiffer (docs/theory.md, \"The energy audit\")";
+      "make the structure heavier or stiffer, or damp a flexible body's own modes (docs/theory.md, "
+      "\"The energy audit\")";
   if (!warned_at_ && fraction > kInjectionWarningFraction) {
     warned_at_ = step;
     energy_at_warning_ = totals_.coupling_energy;

@@ -512,7 +512,9 @@ class Session {
       fix = "halve SolverOptions.Timeint.step_size (to " + std::string(step) + " s)";
     }
     return fix +
-           "; or make the structure heavier or stiffer against the water it moves "
+           "; or make the structure heavier or stiffer against the water it moves, or damp a "
+           "flexible body's own modes (AncfBeam2D axial_damping, bending_damping: the strip of "
+           "examples/pump/pump_fine.scene) "
            "(FluidHealth.max_coupling_energy_growth = 0 turns the check off; not advised: the "
            "energy keeps growing)";
   }
