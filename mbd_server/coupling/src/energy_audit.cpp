@@ -27,6 +27,10 @@ std::string number(double value) {
 
 }  // namespace
 
+EnergyAudit::EnergyAudit(double stop_growth, std::string remedy)
+    : stop_growth_(stop_growth),
+      remedy_(remedy.empty() ? std::string(kGeneralRemedy) : std::move(remedy)) {}
+
 void EnergyAudit::start(std::span<const double> positions, std::span<const double> velocities,
                         std::span<const double> forces) {
   require_size(velocities, positions.size(), "velocities", 0);
@@ -85,10 +89,6 @@ void EnergyAudit::exchange(std::span<const double> positions, std::span<const do
            number(totals_.coupling_energy) + " J, " + number(100.0 * fraction) +
            " % of the energy moved through the interface";
   };
-  const char* const remedy =
-      "halve SolverOptions.Timeint.step_size (with substeps > 1: lower the substeps first), or "
-      "make the structure heavier or stiffer, or damp a flexible body's own modes (docs/theory.md, "
-      "\"The energy audit\")";
   if (!warned_at_ && fraction > kInjectionWarningFraction) {
     warned_at_ = step;
     energy_at_warning_ = totals_.coupling_energy;
@@ -96,7 +96,7 @@ void EnergyAudit::exchange(std::span<const double> positions, std::span<const do
                number(100.0 * kInjectionWarningFraction) +
                " %), the signature of the added-mass instability of explicit partitioned "
                "coupling (a structure light against the fluid it moves); " +
-               remedy;
+               remedy_;
   }
   if (stop_growth_ > 0.0 && warned_at_ && !stopped_at_ &&
       totals_.coupling_energy > stop_growth_ * energy_at_warning_) {
@@ -108,8 +108,7 @@ void EnergyAudit::exchange(std::span<const double> positions, std::span<const do
             " J), more than FluidHealth.max_coupling_energy_growth = " + number(stop_growth_) +
             ": the added-mass instability of explicit partitioned coupling (a structure light "
             "against the fluid it moves), which grows until the fluid breaks through a wall or "
-            "blows up; " +
-            remedy;
+            "blows up";
   }
 }
 

@@ -59,6 +59,31 @@ std::optional<double> optional_f64(output::StateReader& in, std::string_view wha
   return present ? std::optional<double>(value) : std::nullopt;
 }
 
+// What to change when the energy audit warns or stops the run, and by how much: the lag of the
+// held force first (measured on the light floating box, examples/floating_box/stability_map.json:
+// unstable at 20 substeps, stable at 5 and 1), then the structure.
+std::string coupling_energy_remedy(const scene::Scene& scene) {
+  const int k = scene.solver.substeps;
+  std::string fix;
+  if (k > 1) {
+    fix = "lower SolverOptions.Timeint.substeps from " + std::to_string(k) + " to at most " +
+          std::to_string(std::max(1, k / 4)) +
+          " (the light box of examples/floating_box: unstable at 20, stable at 5)";
+    if (scene.solver.linear_force_predictor)
+      fix += " and set SolverOptions.Timeint.force_predictor = \"none\"";
+  } else {
+    char step[32];
+    std::snprintf(step, sizeof step, "%.3g", scene.solver.step_size / 2.0);
+    fix = "halve SolverOptions.Timeint.step_size (to " + std::string(step) + " s)";
+  }
+  return fix +
+         "; or make the structure heavier or stiffer against the water it moves, or damp a "
+         "flexible body's own modes (AncfBeam2D axial_damping, bending_damping: the strip of "
+         "examples/pump/pump_fine.scene) "
+         "(FluidHealth.max_coupling_energy_growth = 0 turns the check off; not advised: the "
+         "energy keeps growing)";
+}
+
 // What the server learns of the fluid beyond its forces.
 struct FluidWatch {
   FluidRecord record;
@@ -77,7 +102,7 @@ class Session {
       : scene_(scene),
         options_(options),
         fluid_(fluid),
-        audit_(scene.health.max_coupling_energy_growth),
+        audit_(scene.health.max_coupling_energy_growth, coupling_energy_remedy(scene)),
         health_(scene.health, scene.liggghts.allowed_lost_particles, fluid_scales(scene)),
         progress_logger_(spdlog::get("progress") ? spdlog::get("progress")
                                                  : spdlog::default_logger()) {
@@ -490,33 +515,8 @@ class Session {
       health_.record_failed_check(kCheckCouplingEnergy);
       throw Error(std::string("health check '") + kCheckCouplingEnergy +
                       "' failed (energy audit): " + audit_.stop(),
-                  "step " + std::to_string(n), coupling_energy_remedy());
+                  "step " + std::to_string(n), audit_.remedy());
     }
-  }
-
-  // What to change when the energy audit stops the run, and by how much: the lag of the held
-  // force first (measured on the light floating box, examples/floating_box/stability_map.json:
-  // unstable at 20 substeps, stable at 5 and 1), then the structure.
-  std::string coupling_energy_remedy() const {
-    const int k = scene_.solver.substeps;
-    std::string fix;
-    if (k > 1) {
-      fix = "lower SolverOptions.Timeint.substeps from " + std::to_string(k) + " to at most " +
-            std::to_string(std::max(1, k / 4)) +
-            " (the light box of examples/floating_box: unstable at 20, stable at 5)";
-      if (scene_.solver.linear_force_predictor)
-        fix += " and set SolverOptions.Timeint.force_predictor = \"none\"";
-    } else {
-      char step[32];
-      std::snprintf(step, sizeof step, "%.3g", scene_.solver.step_size / 2.0);
-      fix = "halve SolverOptions.Timeint.step_size (to " + std::string(step) + " s)";
-    }
-    return fix +
-           "; or make the structure heavier or stiffer against the water it moves, or damp a "
-           "flexible body's own modes (AncfBeam2D axial_damping, bending_damping: the strip of "
-           "examples/pump/pump_fine.scene) "
-           "(FluidHealth.max_coupling_energy_growth = 0 turns the check off; not advised: the "
-           "energy keeps growing)";
   }
 
   // A sensor row followed by the probes' values of the same step (none without probes).

@@ -66,10 +66,10 @@ TEST(EnergyAudit, AWallDrivenFromRestIsNotMistakenForTheInstability) {
 // Explicit coupling of a damper is stable for c dt / m < 2 and unstable above.
 // With stop_growth > 0 it ends where the audit says stop, as the session does.
 EnergyAudit staggered_damper(double c_dt_over_m, int steps, double stop_growth = 0.0,
-                             double* largest_speed = nullptr) {
+                             double* largest_speed = nullptr, const std::string& remedy = {}) {
   const double m = 1.0, k = 100.0, dt = 1e-3, c = c_dt_over_m * m / dt;
   double x = 0.01, v = 0.0, f = 0.0;
-  EnergyAudit audit(stop_growth);
+  EnergyAudit audit(stop_growth, remedy);
   audit.start(std::vector<double>{x}, std::vector<double>{v}, std::vector<double>{f});
   for (int n = 1; n <= steps && audit.stop().empty(); ++n) {
     v += dt * (-k * x + f) / m;  // symplectic Euler under the held force
@@ -124,7 +124,19 @@ TEST(EnergyAudit, TheInstabilityIsStoppedSoonAfterTheWarningAndNamesTheLimit) {
             std::string::npos)
       << stop;
   EXPECT_NE(stop.find("FluidHealth.max_coupling_energy_growth = 3"), std::string::npos) << stop;
-  EXPECT_NE(stop.find("lower the substeps"), std::string::npos) << stop;
+  EXPECT_EQ(stop.find("halve"), std::string::npos) << stop;  // the remedy comes apart
+  EXPECT_NE(audit.remedy().find("lower the substeps"), std::string::npos);
+}
+
+TEST(EnergyAudit, AGivenRemedyEndsTheWarningAndComesWithTheStop) {
+  // The session gives the remedy that names the scene's own step and substeps.
+  const std::string remedy = "halve SolverOptions.Timeint.step_size (to 5e-05 s)";
+  EnergyAudit audit = staggered_damper(2.5, 5000, 3.0, nullptr, remedy);
+  ASSERT_TRUE(audit.stopped_at());
+  const std::string warning = audit.take_warning();
+  EXPECT_EQ(warning.substr(warning.size() - remedy.size()), remedy) << warning;
+  EXPECT_EQ(audit.remedy(), remedy);
+  EXPECT_EQ(audit.stop().find(remedy), std::string::npos) << audit.stop();
 }
 
 TEST(EnergyAudit, AStableDamperIsNeverStoppedAndAZeroGrowthNeverStops) {
@@ -161,8 +173,8 @@ TEST(EnergyAudit, APredictedForceIsTheStructuresWorkAndTheDifferenceIsCreated) {
   const double dt = 1e-3, v = 0.2, f = 2.0, f_a = 2.5;
   audit.start(std::vector<double>{0.0}, std::vector<double>{v}, std::vector<double>{f});
   for (std::uint64_t n = 1; n <= 10; ++n) {
-    audit.exchange(std::vector<double>{v * dt * static_cast<double>(n)}, std::vector<double>{v},
-                   dt, std::vector<double>{f}, n, std::vector<double>{f_a});
+    audit.exchange(std::vector<double>{v * dt * static_cast<double>(n)}, std::vector<double>{v}, dt,
+                   std::vector<double>{f}, n, std::vector<double>{f_a});
   }
   // The first exchange pairs the start's force (no prediction yet), the other nine f_a.
   EXPECT_NEAR(audit.totals().work_fluid_on_structure, (f + 9 * f_a) * v * dt, 1e-15);

@@ -50,12 +50,18 @@ struct EnergyTotals {
 
 class EnergyAudit {
  public:
+  static constexpr const char* kGeneralRemedy =
+      "halve SolverOptions.Timeint.step_size (with substeps > 1: lower the substeps first), or "
+      "make the structure heavier or stiffer, or damp a flexible body's own modes (docs/theory.md, "
+      "\"The energy audit\")";
   EnergyAudit() = default;
   // stop_growth > 0: the audit stops the run (stop() returns its diagnosis) when, after its
   // warning, the coupling energy has grown to more than stop_growth times its value at the
   // warning: the instability feeds itself, where a one-off injection (a release, an impact)
   // stays put; 0: it never stops.
-  explicit EnergyAudit(double stop_growth) : stop_growth_(stop_growth) {}
+  // remedy: what to change, ending the warning's text and given with the stop (the session's
+  // names the scene's own step and substeps); empty: kGeneralRemedy.
+  explicit EnergyAudit(double stop_growth, std::string remedy = {});
 
   // The dynamic vertices at t = 0 and the fluid's forces on them (dimension values each).
   void start(std::span<const double> positions, std::span<const double> velocities,
@@ -80,8 +86,10 @@ class EnergyAudit {
   // The step at which the warning fired, if it did.
   std::optional<std::uint64_t> warned_at() const { return warned_at_; }
   // The diagnosis that ends the run, once the coupling energy has outgrown the stop growth
-  // (what it means and what to change, naming the parameters); empty while it has not.
+  // (what happened and what it means; remedy() says what to change); empty while it has not.
   const std::string& stop() const { return stop_; }
+  // What to change: the constructor's remedy, or kGeneralRemedy.
+  const std::string& remedy() const { return remedy_; }
   // The step at which the stop growth was exceeded, if it was.
   std::optional<std::uint64_t> stopped_at() const { return stopped_at_; }
 
@@ -101,6 +109,7 @@ class EnergyAudit {
   std::optional<std::uint64_t> warned_at_;
   std::string pending_;
   double stop_growth_ = 0.0;
+  std::string remedy_ = kGeneralRemedy;
   double energy_at_warning_ = 0.0;
   std::optional<std::uint64_t> stopped_at_;
   std::string stop_;
