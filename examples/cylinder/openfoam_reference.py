@@ -5,6 +5,7 @@ steady, at three mesh levels, and the velocity profile across the channel on the
 centre line written as this example's reference.
 
   openfoam_reference.py [--output out/cylinder_openfoam] [--levels 1,2,4] [--write reference.csv]
+                        [--inlet 0.5] [--outlet 0.35] [--width 0.18] [--radius 0.014]
 
 Geometry (Geometry block of cylinder_model.inc): a channel of width W = 0.18 m (walls at
 x = +-W/2), a cylinder of radius r = 0.014 m at the origin, the inlet Lin = 0.5 m below it with a
@@ -23,6 +24,11 @@ u_y at the SPH scene's 13 probe positions for every level, and the finest level'
 one before it (the mesh convergence). --write FILE writes the finest level's profile and the
 others' as columns of a CSV (the example's reference.csv, with its provenance in comment lines).
 
+The geometry options serve the studies of README.md and docs/validation.md: --inlet, the inlet's
+distance below the cylinder, stands for the piston's (the SPH piston approaches from 0.8 m to 0.25 m
+over the run); --width and --radius give the effective geometry of the SPH walls (W - 2d, r + d).
+The probes stay at the scene's positions x = k 0.18/12 whatever the width.
+
 OpenFOAM is not needed by the test suite: reference.csv is stored in the example."""
 import argparse
 import datetime
@@ -39,7 +45,9 @@ SPEED = 0.1
 NU = 1e-3
 THICKNESS = 0.001
 SAMPLES = 181
-PROBES = [k * WIDTH / 12 for k in range(-6, 7)]   # the scene's 13 probes, wall to wall (cylinder_model.inc)
+TIME_STEP = 0.005     # pimpleFoam's step at level 1, divided by the level (Courant number about 0.3)
+SAMPLE_EVERY = 0.05   # the transient profile's sampling interval [s]
+PROBES = [k * 0.18 / 12 for k in range(-6, 7)]   # the scene's 13 probes, wall to wall (cylinder_model.inc)
 
 HEADER = """FoamFile
 {{
@@ -140,10 +148,23 @@ boundary
     return body
 
 
-def write_case(case, level):
+def write_case(case, level, transient):
+    """The case's dictionaries; transient = None (simpleFoam, steady) or (T0, T1) (pimpleFoam to T1)."""
     foam_file(os.path.join(case, "system", "blockMeshDict"), "dictionary", "blockMeshDict", block_mesh(level))
-    foam_file(os.path.join(case, "system", "controlDict"), "dictionary", "controlDict", f"""
-application simpleFoam;
+    if transient:
+        # From rest, the inlet ramped like the scene's piston; the profile sampled every SAMPLE_EVERY s.
+        control = f"""application pimpleFoam;
+startFrom startTime;
+startTime 0;
+stopAt endTime;
+endTime {transient[1]:g};
+deltaT {TIME_STEP / level:g};
+writeControl runTime;
+writeInterval {transient[1]:g};
+"""
+        sampling = f"writeControl timeStep;\n        writeInterval {round(SAMPLE_EVERY * level / TIME_STEP)};"
+    else:
+        control = """application simpleFoam;
 startFrom startTime;
 startTime 0;
 stopAt endTime;
@@ -151,7 +172,10 @@ endTime 20000;
 deltaT 1;
 writeControl timeStep;
 writeInterval 20000;
-purgeWrite 1;
+"""
+        sampling = "writeControl onEnd;"
+    foam_file(os.path.join(case, "system", "controlDict"), "dictionary", "controlDict", f"""
+{control}purgeWrite 1;
 writeFormat ascii;
 writePrecision 10;
 runTimeModifiable false;
@@ -161,7 +185,7 @@ functions
     {{
         type sets;
         libs ("libsampling.so");
-        writeControl onEnd;
+        {sampling}
         interpolationScheme cellPoint;
         setFormat raw;
         fields (U);
@@ -187,8 +211,8 @@ functions
     }}
 }}
 """)
-    foam_file(os.path.join(case, "system", "fvSchemes"), "dictionary", "fvSchemes", """
-ddtSchemes { default steadyState; }
+    ddt = "backward" if transient else "steadyState"
+    foam_file(os.path.join(case, "system", "fvSchemes"), "dictionary", "fvSchemes", f"\nddtSchemes {{ default {ddt}; }}" + """
 gradSchemes { default Gauss linear; }
 divSchemes
 {
@@ -200,7 +224,23 @@ laplacianSchemes { default Gauss linear corrected; }
 interpolationSchemes { default linear; }
 snGradSchemes { default corrected; }
 """)
-    foam_file(os.path.join(case, "system", "fvSolution"), "dictionary", "fvSolution", """
+    if transient:
+        solution = """
+solvers
+{
+    p { solver GAMG; smoother GaussSeidel; tolerance 1e-9; relTol 0.01; }
+    pFinal { $p; relTol 0; }
+    U { solver smoothSolver; smoother symGaussSeidel; tolerance 1e-10; relTol 0; }
+    UFinal { $U; }
+}
+PIMPLE { nOuterCorrectors 1; nCorrectors 3; nNonOrthogonalCorrectors 1; }
+"""
+        # the scene's piston speed: v0 (1 - cos(pi t)) / 2 for t < 1 s, then v0 (cylinder_model.inc)
+        ramp = " ".join(f"({t:g} (0 {SPEED * (1 - math.cos(math.pi * t)) / 2:.9g} 0))" for t in
+                        (k / 50 for k in range(51)))
+        inlet = f"type uniformFixedValue; uniformValue table ({ramp} (1000 (0 {SPEED:g} 0)));"
+    else:
+        solution = """
 solvers
 {
     p { solver GAMG; smoother GaussSeidel; tolerance 1e-10; relTol 0.05; }
@@ -213,7 +253,9 @@ SIMPLE
     residualControl { p 1e-8; U 1e-8; }
 }
 relaxationFactors { equations { U 0.9; } }
-""")
+"""
+        inlet = f"type fixedValue; value uniform (0 {SPEED:g} 0);"
+    foam_file(os.path.join(case, "system", "fvSolution"), "dictionary", "fvSolution", solution)
     foam_file(os.path.join(case, "constant", "transportProperties"), "dictionary", "transportProperties",
               f"\ntransportModel Newtonian;\nnu {NU:g};\n")
     foam_file(os.path.join(case, "constant", "turbulenceProperties"), "dictionary", "turbulenceProperties",
@@ -223,7 +265,7 @@ dimensions [0 1 -1 0 0 0 0];
 internalField uniform (0 0 0);
 boundaryField
 {{
-    inlet {{ type fixedValue; value uniform (0 {SPEED:g} 0); }}
+    inlet {{ {inlet} }}
     outlet {{ type zeroGradient; }}
     walls {{ type noSlip; }}
     cylinder {{ type noSlip; }}
@@ -244,32 +286,54 @@ boundaryField
 """)
 
 
-def profile_file(case):
-    """The folder of the sampled profiles (left_U.xy, right_U.xy) of a finished case, or None."""
+def profile_folders(case):
+    """[(time, folder)] of the sampled profiles (left_U.xy, right_U.xy) of a case, in time order."""
     root = os.path.join(case, "postProcessing", "profile")
-    if not os.path.isdir(root):
-        return None
-    for time in sorted(os.listdir(root), key=lambda t: float(t) if t.replace(".", "").isdigit() else -1, reverse=True):
-        path = os.path.join(root, time)
+    found = []
+    for name in os.listdir(root) if os.path.isdir(root) else []:
+        path = os.path.join(root, name)
+        try:
+            time = float(name)
+        except ValueError:
+            continue
         if all(os.path.isfile(os.path.join(path, f"{side}_U.xy")) for side in ("left", "right")):
-            return path
-    return None
+            found.append((time, path))
+    return sorted(found)
 
 
-def run_case(case, level, environment):
-    if profile_file(case):
+def finished(case, transient):
+    folders = profile_folders(case)
+    return bool(folders) and (not transient or folders[-1][0] >= transient[1] - 1e-9)
+
+
+def run_case(case, level, environment, transient):
+    if finished(case, transient):
         print(f"{case}: done before, not run again", flush=True)
         return
-    write_case(case, level)
-    for command in (["blockMesh"], ["checkMesh"], ["simpleFoam"]):
+    write_case(case, level, transient)
+    solver = "pimpleFoam" if transient else "simpleFoam"
+    for command in (["blockMesh"], ["checkMesh"], [solver]):
         log = os.path.join(case, f"log.{command[0]}")
         with open(log, "w") as handle:
             status = subprocess.run(command + ["-case", case], stdout=handle, stderr=subprocess.STDOUT,
                                     env=environment).returncode
         if status != 0:
             sys.exit(f"openfoam_reference.py: {command[0]} failed in {case} (exit {status}); see {log}")
-    if not profile_file(case):
-        sys.exit(f"openfoam_reference.py: simpleFoam wrote no profile in {case}; see {case}/log.simpleFoam")
+    if not finished(case, transient):
+        sys.exit(f"openfoam_reference.py: {solver} wrote no (complete) profile in {case}; see {case}/log.{solver}")
+
+
+def case_profile(case, transient, window=None):
+    """(x, u_y): the steady case's last profile, or the transient case's profile averaged over the
+    window (default: the --transient window), every sample weighted alike (they are equidistant)."""
+    folders = profile_folders(case)
+    if not transient:
+        return read_profile(folders[-1][1])
+    t0, t1 = window or transient
+    chosen = [path for time, path in folders if t0 - 1e-9 <= time <= t1 + 1e-9]
+    profiles = [read_profile(path) for path in chosen]
+    xs = profiles[0][0]
+    return xs, [sum(p[1][i] for p in profiles) / len(profiles) for i in range(len(xs))]
 
 
 def read_profile(folder):
@@ -299,21 +363,43 @@ def shown(value):
     return f"{value:9.5f}" if value is not None else "        -"
 
 
-def iterations(case):
+def iterations(case, solver):
     count = 0
-    with open(os.path.join(case, "log.simpleFoam")) as handle:
+    with open(os.path.join(case, f"log.{solver}")) as handle:
         for line in handle:
             if line.startswith("Time = "):
                 count += 1
     return count
 
 
+def window_pair(text, option):
+    try:
+        t0, t1 = (float(v) for v in text.split(","))
+    except ValueError:
+        sys.exit(f"openfoam_reference.py: {option} {text!r}: give two times T0,T1 in seconds, e.g. 2,6")
+    if not 0 <= t0 < t1:
+        sys.exit(f"openfoam_reference.py: {option} {text!r}: needs 0 <= T0 < T1")
+    return t0, t1
+
+
 def main():
+    global INLET, OUTLET, WIDTH, RADIUS
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--output", default=os.path.join("out", "cylinder_openfoam"))
     parser.add_argument("--levels", default="1,2,4", help="mesh levels k (20 k cells per quarter), ascending")
     parser.add_argument("--write", help="write the profiles as this CSV (the example's reference.csv)")
+    parser.add_argument("--transient", metavar="T0,T1",
+                        help="pimpleFoam from rest with the piston's ramp to T1, the profile averaged over T0-T1 "
+                             "(the SPH run's window, e.g. 2,6); default: simpleFoam, steady")
+    parser.add_argument("--inlet", type=float, default=INLET, help=f"inlet distance below the cylinder [m] (default {INLET})")
+    parser.add_argument("--outlet", type=float, default=OUTLET, help=f"outlet height above the cylinder [m] (default {OUTLET})")
+    parser.add_argument("--width", type=float, default=WIDTH, help=f"channel width [m] (default {WIDTH})")
+    parser.add_argument("--radius", type=float, default=RADIUS, help=f"cylinder radius [m] (default {RADIUS})")
     args = parser.parse_args()
+    if not 0 < args.radius < args.width / 2 < min(args.inlet, args.outlet):
+        parser.error(f"geometry radius {args.radius} < width/2 {args.width / 2} < inlet {args.inlet} and outlet "
+                     f"{args.outlet} does not hold: the O-grid square |x|, |y| <= width/2 must fit between them")
+    INLET, OUTLET, WIDTH, RADIUS = args.inlet, args.outlet, args.width, args.radius
     try:
         levels = sorted(int(v) for v in args.levels.split(","))
     except ValueError:
@@ -323,12 +409,24 @@ def main():
         sys.exit(f"openfoam_reference.py: no OpenFOAM installation at {foam_dir}; apt-get install openfoam "
                  "(Debian 12), or set WM_PROJECT_DIR to yours")
     environment = dict(os.environ, WM_PROJECT_DIR=foam_dir)
+    transient = window_pair(args.transient, "--transient") if args.transient else None
+    solver = "pimpleFoam" if transient else "simpleFoam"
     profiles = {}
     for level in levels:
-        case = os.path.join(args.output, f"level_{level}")
-        run_case(case, level, environment)
-        profiles[level] = read_profile(profile_file(case))
-        print(f"level {level}: {iterations(case)} SIMPLE iterations", flush=True)
+        case = os.path.join(args.output, f"{'transient_' if transient else ''}level_{level}")
+        run_case(case, level, environment, transient)
+        profiles[level] = case_profile(case, transient)
+        print(f"level {level}: {iterations(case, solver)} {'time steps' if transient else 'SIMPLE iterations'}",
+              flush=True)
+    if transient:
+        # the finest level's mean over each second of the window: how far the flow is from steady
+        case = os.path.join(args.output, f"transient_level_{levels[-1]}")
+        seconds = [(t, t + 1) for t in range(math.ceil(transient[0]), math.floor(transient[1]))]
+        parts = {w: case_profile(case, transient, w) for w in seconds}
+        print(f"level {levels[-1]}, mean over each second:")
+        print("x [m]     " + "  ".join(f"{a:g}-{b:g} s   " for a, b in seconds))
+        for x in PROBES:
+            print(f"{x:+.4f}  " + "  ".join(shown(interpolate(*parts[w], x)) for w in seconds))
     print("x [m]     " + "  ".join(f"level {k:<3d}" for k in levels))
     for x in PROBES:
         print(f"{x:+.4f}  " + "  ".join(shown(interpolate(*profiles[k], x)) for k in levels))
@@ -342,7 +440,9 @@ def main():
     if args.write:
         xs = profiles[levels[-1]][0]
         with open(args.write, "w") as handle:
-            handle.write(f"# OpenFOAM simpleFoam reference of examples/cylinder (thesis §6.4), written by "
+            how = (f"pimpleFoam from rest, inlet ramped like the piston, u_y averaged over {transient[0]:g}-{transient[1]:g} s "
+                   f"(--transient {args.transient})" if transient else "simpleFoam (steady)")
+            handle.write(f"# OpenFOAM reference of examples/cylinder (thesis §6.4): {how}; written by "
                          f"openfoam_reference.py --levels {args.levels} on {datetime.date.today()}\n")
             handle.write(f"# channel W = {WIDTH} m, cylinder r = {RADIUS} m, inlet {INLET} m below at v0 = {SPEED} m/s, "
                          f"outlet {OUTLET} m above at p = 0, nu = {NU} m^2/s; u_y on y = 0, cellPoint samples\n")
