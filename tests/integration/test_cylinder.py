@@ -5,7 +5,9 @@ along y). A piston driven smoothly to 0.1 m/s pushes a fluid of nu = 1e-3 m^2/s 
 cylinder (Re = 2.8). The velocity probes on the cylinder's centre line at least 2h from the walls,
 averaged over 2-3 s, must lie within 15 % of the stored OpenFOAM profile (analyze.py; issue 14's
 5 % is for the fine scenes: docs/validation.md "Laminar flow around a cylinder"; the coarse run
-measured +7.1 % on 2026-12-04, 1 rank). Continuity: the flux through the centre line within 5 % of the
+measured +7.1 % on 2026-12-04, 1 rank). The window 2-3 s keeps the test short but lies in the
+start-up's ringing: the same scene run to 6 s reads +13.8 % over 3-6 s (2026-12-05), so this is
+a regression test of the machinery, not a measure of the steady error. Continuity: the flux through the centre line within 5 % of the
 piston's v0 W (-2.5 % measured: the probe's kernel sum is not normalised, so the walls'
 kernel deficiency counts). The run judges itself: completed, no particle lost, no physics warning, action =
 reaction to round-off, no particle closer to a wall than 0.3 r0 (the piston is a moving wall); the
