@@ -5,7 +5,7 @@ steady, at three mesh levels, and the velocity profile across the channel on the
 centre line written as this example's reference.
 
   openfoam_reference.py [--output out/cylinder_openfoam] [--levels 1,2,4] [--write reference.csv]
-                        [--inlet 0.5] [--outlet 0.35] [--width 0.18] [--radius 0.014]
+                        [--transient T0,T1] [--inlet 0.5] [--outlet 0.35] [--width 0.18] [--radius 0.014]
 
 Geometry (Geometry block of cylinder_model.inc): a channel of width W = 0.18 m (walls at
 x = +-W/2), a cylinder of radius r = 0.014 m at the origin, the inlet Lin = 0.5 m below it with a
@@ -331,6 +331,9 @@ def case_profile(case, transient, window=None):
         return read_profile(folders[-1][1])
     t0, t1 = window or transient
     chosen = [path for time, path in folders if t0 - 1e-9 <= time <= t1 + 1e-9]
+    if not chosen:
+        sys.exit(f"openfoam_reference.py: no profile sampled in {t0:g}-{t1:g} s in {case} (one every "
+                 f"{SAMPLE_EVERY:g} s); give a window of at least {SAMPLE_EVERY:g} s")
     profiles = [read_profile(path) for path in chosen]
     xs = profiles[0][0]
     return xs, [sum(p[1][i] for p in profiles) / len(profiles) for i in range(len(xs))]
@@ -418,7 +421,7 @@ def main():
         profiles[level] = case_profile(case, transient)
         print(f"level {level}: {iterations(case, solver)} {'time steps' if transient else 'SIMPLE iterations'}",
               flush=True)
-    if transient:
+    if transient and transient[1] - transient[0] >= 2:
         # the finest level's mean over each second of the window: how far the flow is from steady
         case = os.path.join(args.output, f"transient_level_{levels[-1]}")
         seconds = [(t, t + 1) for t in range(math.ceil(transient[0]), math.floor(transient[1]))]
