@@ -50,7 +50,17 @@ def elevation(sensors, name):
     return [e - base for e in sensors[name + "_elevation"]]
 
 
+# The experiment's forcing (faltinsen_forcing.inc's Forcing block): the comparison holds for it only.
+EXPERIMENT_FORCING = {"Forcing.amplitude": 0.032, "Forcing.period": 1.3}
+
+
 def faltinsen(run, sensors, args):
+    params = run["parameters_flat"]
+    for key, value in EXPERIMENT_FORCING.items():
+        if key in params and abs(params[key] - value) > 1e-9 * value:
+            raise SystemExit(f"analyze: the run's {key} is {params[key]:g}, the experiment's {value:g}: "
+                             "Faltinsen et al.'s record is for its own forcing only (run faltinsen*.scene "
+                             "without --set Forcing...)")
     time = sensors["time"]
     eta = elevation(sensors, "left")
     reference = [p for p in read_reference(args.reference) if p[0] <= time[-1]]

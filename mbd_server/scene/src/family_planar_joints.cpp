@@ -78,20 +78,23 @@ std::vector<BlockSpec> planar_joint_blocks() {
                   text("to", "name of the holding RigidBody2D; absent: the ground").optional()})
           .as_list()
           .planar(),
-      block_spec("PrescribedMotion",
-                 "Drives a body coordinate along position(t) (position level, 1 row; a "
-                 "joint_force sensor reads the drive's force or torque): muParser expressions of "
-                 "the time t [s]. rate must be d position / dt; it is checked by differences at 11 "
-                 "times over [0, end_time].",
-                 {element_name_spec(), text("body", "name of a RigidBody2D"),
-                  text("coordinate", "body coordinate").one_of({"x", "y", "angle"}),
-                  text("position", "s(t) [m or rad], e.g. \"0.01*sin(20*t)\""),
-                  text("rate", "ds/dt [m/s or rad/s], e.g. \"0.2*cos(20*t)\"")})
+      block_spec(
+          "PrescribedMotion",
+          with_scene_numbers(
+              "Drives a body coordinate along position(t) (position level, 1 row; a "
+              "joint_force sensor reads the drive's force or torque): muParser expressions of "
+              "the time t [s]. rate must be d position / dt; it is checked by differences at 11 "
+              "times over [0, end_time]."),
+          {element_name_spec(), text("body", "name of a RigidBody2D"),
+           text("coordinate", "body coordinate").one_of({"x", "y", "angle"}),
+           text("position", "s(t) [m or rad], e.g. \"0.01*sin(20*t)\""),
+           text("rate", "ds/dt [m/s or rad/s], e.g. \"0.2*cos(20*t)\"")})
           .as_list()
           .planar(),
       block_spec("PrescribedVelocity",
-                 "Prescribes the velocity of a body coordinate as a muParser expression of the "
-                 "time t [s] (velocity level, 1 row; VelocityConstraint for a constant one).",
+                 with_scene_numbers(
+                     "Prescribes the velocity of a body coordinate as a muParser expression of the "
+                     "time t [s] (velocity level, 1 row; VelocityConstraint for a constant one)."),
                  {element_name_spec(), text("body", "name of a RigidBody2D"),
                   text("coordinate", "body coordinate").one_of({"x", "y", "angle"}),
                   text("velocity", "velocity [m/s or rad/s] in t, e.g. \"0.1*t\"")})
@@ -165,8 +168,8 @@ void build_prescribed_motions(SceneBuilder& builder) {
     spec.name = name_of(p);
     spec.body = builder.find_body(p, "body");
     spec.coordinate = coordinate_of(p.string("coordinate"));
-    const RuntimeExpression position = expression(p, "position", {"t"});
-    const RuntimeExpression rate = expression(p, "rate", {"t"});
+    const RuntimeExpression position = builder.expression(p, "position", {"t"});
+    const RuntimeExpression rate = builder.expression(p, "rate", {"t"});
     spec.position = [position](double time) { return position(time); };
     spec.rate = [rate](double time) { return rate(time); };
     spec.check_times.clear();
@@ -177,7 +180,7 @@ void build_prescribed_motions(SceneBuilder& builder) {
   });
   builder.each("PrescribedVelocity", [&](const View& p) {
     const mbd::BodyId body = builder.find_body(p, "body");
-    const RuntimeExpression velocity = expression(p, "velocity", {"t"});
+    const RuntimeExpression velocity = builder.expression(p, "velocity", {"t"});
     builder.add_joint(p,
                       [&] {
                         return builder.model.add_velocity_constraint(

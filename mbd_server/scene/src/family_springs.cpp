@@ -37,8 +37,9 @@ std::vector<BlockSpec> spring_blocks() {
           .as_list()
           .planar(),
       block_spec("NonlinearSpringDamper",
-                 "Spring-damper along the line of the two points with tension = f(elongation, "
-                 "rate), a muParser expression (elongation = l - l0 [m], rate = dl/dt [m/s]).",
+                 with_scene_numbers("Spring-damper along the line of the two points with "
+                                    "tension = f(elongation, rate), a muParser expression "
+                                    "(elongation = l - l0 [m], rate = dl/dt [m/s])."),
                  two_points({text("tension",
                                   "tension [N/m] in elongation and rate, e.g. "
                                   "\"1e4*elongation + 50*rate\""),
@@ -102,7 +103,7 @@ void build_planar_actors(SceneBuilder& builder) {
     spec.name = name_of(f);
     spec.a = builder.point(f, "a");
     spec.b = builder.point(f, "b");
-    const RuntimeExpression law = expression(f, "tension", {"elongation", "rate"});
+    const RuntimeExpression law = builder.expression(f, "tension", {"elongation", "rate"});
     spec.tension = [law](double elongation, double rate) { return law(elongation, rate); };
     spec.rest_length = optional_number(f, "rest_length");
     builder.add_force_element(

@@ -1,9 +1,12 @@
 #pragma once
 // A muParser expression in named variables that the multibody model evaluates while it runs:
 // the tension of a NonlinearSpringDamper in `elongation` and `rate`, a PointForce or Torque in `t`
-// (internal to the scene builder). Copies share one parser; not thread-safe, like the model.
+// (internal to the scene builder). Other names are the scene's numbers (`Geometry.T`), fixed
+// when the expression is built. Copies share one parser; not thread-safe, like the model.
 
+#include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -11,9 +14,19 @@ namespace fsi::scene::detail {
 
 class RuntimeExpression {
  public:
+  // The value of a name that is not a variable (a path such as "Geometry.T"), or nullopt; the
+  // second member says why not when the name is known but not a number ("" otherwise).
+  struct Found {
+    std::optional<double> value;
+    std::string why_not;
+  };
+  using Lookup = std::function<Found(const std::string& name)>;
+
   // Throws fsi::Error (muParser's message, the variables allowed) when the text does not parse or
-  // uses other names.
-  RuntimeExpression(const std::string& text, const std::vector<std::string>& variables);
+  // uses a name that is neither a variable nor found by `constants` (which is asked once per
+  // name, while the text is parsed).
+  RuntimeExpression(const std::string& text, const std::vector<std::string>& variables,
+                    const Lookup& constants = {});
 
   // One value per variable, in the order given to the constructor.
   double operator()(const std::vector<double>& values) const;

@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "fsi/common/error.hpp"
+#include "raw_tree.hpp"
 #include "runtime_expression.hpp"
 
 namespace fsi::scene::detail {
@@ -17,6 +18,32 @@ std::string counterpart_hint(int block_dimension) {
              ? "set dimension = 2, or use its spatial counterpart (RigidBody3D, AncfCable3D, "
                "SphericalJoint, RevoluteJoint3D, FixedJoint3D, DistanceConstraint3D, CableClamp)"
              : "set dimension = 3 at the top of the scene, or use a planar element";
+}
+
+// The number at `path` ("Geometry.T", "RigidBody2D[1].mass": blocks down from `root`, then the
+// key; its last assignment) for a runtime expression, or why not when the path names something
+// else. An element list needs its index, as in --set.
+RuntimeExpression::Found scene_number(const Block& root, const std::string& path) {
+  std::vector<PathPart> parts;
+  if (!parse_path(path, parts) || parts.back().index >= 0) return {};
+  const Block* block = &root;
+  for (std::size_t i = 0; i + 1 < parts.size(); ++i) {
+    const std::vector<const Block*> candidates = block->children(parts[i].name);
+    if (parts[i].index < 0 && candidates.size() > 1)
+      return {std::nullopt, "'" + parts[i].name + "' in '" + path + "' is a list of " +
+                                std::to_string(candidates.size()) + " blocks: pick one, " +
+                                parts[i].name + "[0] ... " + parts[i].name + "[" +
+                                std::to_string(candidates.size() - 1) + "]"};
+    const std::size_t index = parts[i].index < 0 ? 0 : static_cast<std::size_t>(parts[i].index);
+    if (index >= candidates.size()) return {};
+    block = candidates[index];
+  }
+  const Parameter* parameter = block->find(parts.back().name);
+  if (!parameter) return {};
+  if (parameter->value.kind != ValueKind::Number)
+    return {std::nullopt, "'" + path + "' is a " + std::string(name(parameter->value.kind)) +
+                              ": arithmetic needs numbers"};
+  return {parameter->value.number, ""};
 }
 
 }  // namespace
@@ -329,10 +356,18 @@ mbd::Coordinate coordinate_of(const std::string& text) {
   return mbd::Coordinate::Angle;  // "angle" or "torque"
 }
 
-RuntimeExpression expression(const View& element, std::string_view key,
-                             const std::vector<std::string>& variables) {
+std::string with_scene_numbers(std::string text) {
+  return text +
+         " Other names in the expressions are the scene's numbers by their path from the "
+         "top, as --set names them (Geometry.T, RigidBody2D[1].mass).";
+}
+
+RuntimeExpression SceneBuilder::expression(const View& element, std::string_view key,
+                                           const std::vector<std::string>& variables) const {
+  const Block& top = root.raw();
   try {
-    return RuntimeExpression(element.string(key), variables);
+    return RuntimeExpression(element.string(key), variables,
+                             [&top](const std::string& path) { return scene_number(top, path); });
   } catch (const Error& error) {
     throw Error(error.fault(), element.location(key).text(), error.remedy());
   }

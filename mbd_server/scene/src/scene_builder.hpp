@@ -41,6 +41,7 @@ struct NamedElements {
 };
 
 class SceneBuilder;
+class RuntimeExpression;
 
 struct ElementFamily {
   std::string_view name;  // "planar joints", for the README and messages of the registry
@@ -118,6 +119,11 @@ class SceneBuilder {
   std::filesystem::path scene_relative(const SourceLocation& where, const std::string& name) const;
   // The STL file named at `key` (scene_relative); a problem at the key when unreadable.
   std::optional<TriangleMesh> read_stl(const View& block, std::string_view key);
+  // The expression at `key` compiled for the model in the named variables; its other names are
+  // the scene's numbers by their path from the top (scene_number). A mistake is an fsi::Error at
+  // the key.
+  RuntimeExpression expression(const View& element, std::string_view key,
+                               const std::vector<std::string>& variables) const;
   // A vector of `components` values (the scene's dimension); absent: zeros.
   std::optional<std::vector<double>> dimension_vector(const View& block, std::string_view key,
                                                       int components);
@@ -149,11 +155,9 @@ std::string name_of(const View& element);  // "" when unnamed
 std::optional<double> optional_number(const View& element, std::string_view key);
 // The coordinate a scene names: "x", "y", or the angle ("angle", or "torque" for forces).
 mbd::Coordinate coordinate_of(const std::string& text);
-class RuntimeExpression;
-// An expression of the scene compiled for the model in the named variables; a mistake becomes a
-// problem at its key.
-RuntimeExpression expression(const View& element, std::string_view key,
-                             const std::vector<std::string>& variables);
+// The doc of a block holding runtime expressions (SceneBuilder::expression): `text` and what
+// else its expressions may name.
+std::string with_scene_numbers(std::string text);
 // A vector of the scene's dimension (2 or 3 components): the builder checks its length.
 ParameterSpec per_dimension(ParameterSpec spec);
 // body_a/point_a and body_b/point_b of a planar two-point element (body_b absent: point_b is a

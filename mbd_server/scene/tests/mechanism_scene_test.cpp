@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 #include <string>
 
 #include "fsi/mbd/integrator.hpp"
@@ -192,6 +193,69 @@ PrescribedMotion { body = "table"; coordinate = "angle"; position = "0.3*t^2"; r
 )scene");
   EXPECT_NE(text.find("m.scene:5:1:"), std::string::npos) << text;
   EXPECT_NE(text.find("is not the derivative of the position"), std::string::npos) << text;
+}
+
+// A runtime expression names the scene's numbers by their path, so a drive follows the parameter
+// it is written from, also when --set changes it (the pump's piston and its Geometry.T).
+TEST_F(MechanismScene, ExpressionsNameTheScenesNumbersAndFollowTheirOverrides) {
+  const std::string path = write(R"scene(Geometry { A = 0.01; T = 0.5; k = 200 }
+RigidBody2D { name = "table"; mass = 2; inertia = 0.1; Mesh { points = [[0, 0], [1, 0]] } }
+RigidBody2D { name = "bob"; mass = 1; inertia = 0.1; position = [0, 1.1] }
+PrescribedMotion { name = "shaker"; body = "table"; coordinate = "x"
+                   position = "Geometry.A*(1 - cos(2*pi*t/Geometry.T))"
+                   rate = "Geometry.A*2*pi/Geometry.T*sin(2*pi*t/Geometry.T)" }
+CoordinateConstraint { body = "table"; coordinate = "y" }
+CoordinateConstraint { body = "table"; coordinate = "angle" }
+NonlinearSpringDamper { name = "spring"; body_a = "bob"; point_b = [0, 0]; rest_length = 1
+                        tension = "Geometry.k*elongation + RigidBody2D[1].mass*rate" }
+CoordinateConstraint { body = "bob"; coordinate = "x" }
+CoordinateConstraint { body = "bob"; coordinate = "angle" }
+)scene");
+  for (const double period : {0.5, 0.2}) {
+    const double k = period == 0.5 ? 200.0 : 300.0;
+    const Scene scene =
+        period == 0.5
+            ? build_scene(path)
+            : build_scene(path, {Override{"Geometry.T", "0.2"}, Override{"Geometry.k", "300"}});
+    mbd::RadauIIA integrator(scene.solver.integrator_options());
+    mbd::State state = scene.model.initial_state();
+    for (int i = 0; i < 100; ++i)
+      integrator.step(scene.model, state, 1e-3);
+    EXPECT_NEAR(state.q(0), 0.01 * (1.0 - std::cos(2.0 * std::numbers::pi * 0.1 / period)), 1e-12)
+        << "T = " << period;
+    // The bob (m = 1 kg, no gravity) on the spring, e = y - 1 from 0.1 at rest: e'' + c e' + k e
+    // = 0 with c = RigidBody2D[1].mass = 1 N s/m, underdamped.
+    const double c = 1.0, t = 0.1, decay = 0.5 * c, omega = std::sqrt(k - decay * decay);
+    const double e =
+        0.1 * std::exp(-decay * t) * (std::cos(omega * t) + decay / omega * std::sin(omega * t));
+    EXPECT_NEAR(state.q(4) - 1.0, e, 1e-7) << "k = " << k;
+  }
+}
+
+TEST_F(MechanismScene, AnExpressionsNameThatIsNoNumberOfTheSceneIsAProblemAtItsLine) {
+  const std::string text = problems(R"scene(Geometry { A = 0.01; P = [1, 2] }
+RigidBody2D { name = "arm"; mass = 1; inertia = 1; Mesh { points = [[0, 0], [1, 0]] } }
+PointForce { body = "arm"; force_x = "Geometry.AA*t" }
+Torque { body = "arm"; torque = "Geometry.P*t" }
+PointForce { body = "arm"; force_y = "RigidBody2D[0].name + t" }
+RigidBody2D { name = "leg"; mass = 2; inertia = 1 }
+Torque { body = "leg"; torque = "RigidBody2D.mass*t" }
+)scene");
+  EXPECT_NE(text.find("m.scene:5:"), std::string::npos) << text;
+  EXPECT_NE(text.find("'Geometry.AA' is neither one of its variables nor a number of the scene"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("Geometry.T)"), std::string::npos) << text;  // the how names a path
+  EXPECT_NE(text.find("m.scene:6:"), std::string::npos) << text;
+  EXPECT_NE(text.find("'Geometry.P' is a vector: arithmetic needs numbers"), std::string::npos)
+      << text;
+  EXPECT_NE(text.find("m.scene:7:"), std::string::npos) << text;
+  EXPECT_NE(text.find("'RigidBody2D[0].name' is a string"), std::string::npos) << text;
+  EXPECT_NE(text.find("m.scene:9:"), std::string::npos) << text;
+  EXPECT_NE(text.find("'RigidBody2D' in 'RigidBody2D.mass' is a list of 2 blocks: pick one, "
+                      "RigidBody2D[0] ... RigidBody2D[1]"),
+            std::string::npos)
+      << text;
 }
 
 TEST_F(MechanismScene, TheIndexTwoFormIsChosenInTimeint) {
