@@ -24,8 +24,19 @@ std::string counterpart_hint(int block_dimension) {
 // key; its last assignment) for a runtime expression, or why not when the path names something
 // else. An element list needs its index, as in --set.
 RuntimeExpression::Found scene_number(const Block& root, const std::string& path) {
+  const auto unknown = [&]() -> RuntimeExpression::Found {
+    std::vector<std::string> paths;
+    for (const auto& [number_path, value] : flatten_numbers(root))
+      paths.push_back(number_path);
+    const std::string suggestion = nearest(path, paths);
+    if (suggestion.empty()) return {};
+    return {std::nullopt, "'" + path +
+                              "' is neither one of its variables nor a number of the scene (did "
+                              "you mean '" +
+                              suggestion + "'?)"};
+  };
   std::vector<PathPart> parts;
-  if (!parse_path(path, parts) || parts.back().index >= 0) return {};
+  if (!parse_path(path, parts) || parts.back().index >= 0) return unknown();
   const Block* block = &root;
   for (std::size_t i = 0; i + 1 < parts.size(); ++i) {
     const std::vector<const Block*> candidates = block->children(parts[i].name);
@@ -35,11 +46,11 @@ RuntimeExpression::Found scene_number(const Block& root, const std::string& path
                                 parts[i].name + "[0] ... " + parts[i].name + "[" +
                                 std::to_string(candidates.size() - 1) + "]"};
     const std::size_t index = parts[i].index < 0 ? 0 : static_cast<std::size_t>(parts[i].index);
-    if (index >= candidates.size()) return {};
+    if (index >= candidates.size()) return unknown();
     block = candidates[index];
   }
   const Parameter* parameter = block->find(parts.back().name);
-  if (!parameter) return {};
+  if (!parameter) return unknown();
   if (parameter->value.kind != ValueKind::Number)
     return {std::nullopt, "'" + path + "' is a " + std::string(name(parameter->value.kind)) +
                               ": arithmetic needs numbers"};

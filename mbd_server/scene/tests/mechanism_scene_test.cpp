@@ -242,7 +242,8 @@ RigidBody2D { name = "leg"; mass = 2; inertia = 1 }
 Torque { body = "leg"; torque = "RigidBody2D.mass*t" }
 )scene");
   EXPECT_NE(text.find("m.scene:5:"), std::string::npos) << text;
-  EXPECT_NE(text.find("'Geometry.AA' is neither one of its variables nor a number of the scene"),
+  EXPECT_NE(text.find("'Geometry.AA' is neither one of its variables nor a number of the scene "
+                      "(did you mean 'Geometry.A'?)"),
             std::string::npos)
       << text;
   EXPECT_NE(text.find("Geometry.T)"), std::string::npos) << text;  // the how names a path
