@@ -59,6 +59,8 @@ RuntimeExpression::RuntimeExpression(const std::string& text,
     parser_->parser.SetVarFactory(&Parser::on_name, parser_.get());
     parser_->parser.SetExpr(text);
     (void)parser_->parser.Eval();  // parses now: a mistake is a scene problem, not a step failure
+    // The lookup may refer to the scene being built; parsing is over, so it is not kept.
+    parser_->constants = nullptr;
   } catch (const mu::Parser::exception_type& error) {
     throw Error("the expression \"" + text + "\" is invalid: " + error.GetMsg(), "", how);
   }
