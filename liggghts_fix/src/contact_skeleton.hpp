@@ -95,19 +95,23 @@ void check_evaluation_inputs(const MeshShape& shape, const ParticleArrays& parti
                              std::span<const std::uint32_t> elements,
                              std::span<const double> vertex_forces);
 
-// Accumulates everything of one evaluation; the only place forces are made.
+// No pair made yet with the particle (PairKernel's last_element).
+inline constexpr std::uint32_t kNoElement = std::numeric_limits<std::uint32_t>::max();
+
+// Accumulates everything of one evaluation; the only place forces are made. `last_element` holds
+// kNoElement for every particle at the start.
 template <class Point>
 class PairKernel {
  public:
   static constexpr int kDimension = Point::kDimension;
 
   PairKernel(const ForceLaw& law, const ParticleArrays& particles, std::span<double> vertex_forces,
-             std::vector<std::uint8_t>& in_range, ContactDiagnostics& diagnostics)
+             std::vector<std::uint32_t>& last_element, ContactDiagnostics& diagnostics)
       : law_(law),
         range2_(law.range() * law.range()),
         particles_(particles),
         vertex_forces_(vertex_forces.data()),
-        in_range_(in_range),
+        last_element_(last_element),
         diagnostics_(diagnostics) {}
 
   void operator()(const Point& s, std::size_t i) {
@@ -145,11 +149,15 @@ class PairKernel {
       magnitude2 += force[k] * force[k];
     diagnostics_.pair_force_magnitude_sum += std::sqrt(magnitude2);
     ++diagnostics_.pair_count;
-    if (!in_range_[i]) {
-      in_range_[i] = 1;
-      ++diagnostics_.particles_in_range;
+    // The particle's distance to the element is the same for every sampling point of the
+    // element, and a sampling visits an element's points one after another: the distance is
+    // taken once per particle and element (it cost as much as the force itself per pair).
+    std::uint32_t& last = last_element_[i];
+    if (last != s.element_index) {
+      if (last == kNoElement) ++diagnostics_.particles_in_range;
+      last = s.element_index;
+      diagnostics_.closest_distance = s.element->closest_distance(x, diagnostics_.closest_distance);
     }
-    diagnostics_.closest_distance = s.element->closest_distance(x, diagnostics_.closest_distance);
   }
 
   // Starts sampling point `s` of the record (when there is one): the pairs that follow add their
@@ -174,7 +182,7 @@ class PairKernel {
   double range2_;
   const ParticleArrays& particles_;
   double* vertex_forces_;
-  std::vector<std::uint8_t>& in_range_;
+  std::vector<std::uint32_t>& last_element_;
   ContactDiagnostics& diagnostics_;
   double* sample_force_ = nullptr;  // the recorded sampling point's force, when recording
   std::uint32_t* sample_pairs_ = nullptr;
@@ -224,8 +232,8 @@ ContactDiagnostics evaluate_near_particles(
   const double range = law.range();
   mark_particles_near_mesh(particles, vertex_positions, Point::kDimension, range, buffers.near);
   buffers.grid.build(particles.positions, buffers.near, range);
-  buffers.in_range.assign(particles.count, 0);
-  PairKernel<Point> kernel(law, particles, vertex_forces, buffers.in_range, diagnostics);
+  buffers.last_element.assign(particles.count, kNoElement);
+  PairKernel<Point> kernel(law, particles, vertex_forces, buffers.last_element, diagnostics);
   const double reach = range * (1.0 + kSearchMargin);
   // A record holds every sampling point (the probes sum them over the ranks), so it turns the
   // skipping off.
@@ -257,8 +265,8 @@ ContactDiagnostics evaluate_all_pairs(const Sampling& sampling, const ForceLaw& 
   using Point = typename Sampling::Point;
   WallSampleRecord* record = start_record<Point::kDimension>(samples);
   ContactDiagnostics diagnostics = start_evaluation(vertex_forces);
-  std::vector<std::uint8_t> in_range(particles.count, 0);
-  PairKernel<Point> kernel(law, particles, vertex_forces, in_range, diagnostics);
+  std::vector<std::uint32_t> last_element(particles.count, kNoElement);
+  PairKernel<Point> kernel(law, particles, vertex_forces, last_element, diagnostics);
   sampling.for_each_point(
       [&](const Point& s) {
         ++diagnostics.sampling_points;

@@ -160,6 +160,26 @@ TEST(WallContact, CellListEqualsAllPairs) {
   }
 }
 
+// The closest approach is over every element a particle pairs with, not only the first: in the
+// corner of an L two particles each pair with both legs, one nearer the first leg (4 mm against
+// 5 mm), the other nearer the second (3 mm against 6 mm); each counts once among the particles in
+// range.
+TEST(WallContact, ClosestDistanceIsToTheNearestOfEveryElementAParticlePairsWith) {
+  BoundaryMesh2D mesh;
+  mesh.positions = {0.0, 0.0, 0.1, 0.0, 0.1, 0.1};
+  mesh.velocities.assign(6, 0.0);
+  mesh.segments = {0, 1, 1, 2};
+  Particles p;
+  p.add(0.095, 0.004);
+  p.add(0.097, 0.006);
+  std::vector<double> vertex_forces(mesh.positions.size());
+  WallContact2D contact(settings(0.01));
+  const ContactDiagnostics d = contact.compute(mesh, p.arrays(), vertex_forces);
+  EXPECT_NEAR(d.closest_distance, 0.003, 1e-15);
+  EXPECT_EQ(d.particles_in_range, 2u);
+  EXPECT_GT(d.pair_count, 4u);  // several sampling points of each leg per particle
+}
+
 // A rank samples only the pieces of the wall within the range of its particles (thesis §7.1):
 // a floor 1 m long whose water sits over its left tenth generates the sampling points of little
 // more than that tenth, with the forces of the evaluation that samples everything.

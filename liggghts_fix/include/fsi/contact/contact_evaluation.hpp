@@ -88,7 +88,9 @@ template <int Dimension>
 struct NeighbourSearchBuffers {
   std::vector<std::uint8_t> near;  // particles that can reach the mesh (grid members)
   CellGrid<Dimension> grid;
-  std::vector<std::uint8_t> in_range;  // particles already counted in particles_in_range
+  // Per particle: the last element a pair was made with (kNoElement: none yet, so the particle
+  // is not yet counted in particles_in_range).
+  std::vector<std::uint32_t> last_element;
 };
 
 }  // namespace fsi::contact
