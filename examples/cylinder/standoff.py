@@ -1,0 +1,81 @@
+#!/usr/bin/python3
+"""How far the water stands off the cylinder and off the channel's flat walls, from a run's particle
+snapshots: does the cylinder hold the fluid further out than the flat walls (README.md, "What to
+expect": the residual after the effective geometry)?
+
+  standoff.py RUN_DIR [--window T0,T1] [--band B]
+
+Two measures, each averaged over the snapshots in the window (default 2,6 s) and given in units of
+the particle spacing d:
+- first layer: the nearest particle's distance to the wall, per 24th of the cylinder's
+  circumference and per d of wall height (|y| < 0.15 m), averaged over the pieces;
+- excluded thickness: in a band B d wide along the wall (default 3), the band's area less the
+  particles' volume (d^2 rho0/rho each), spread over the wall: the thickness the fluid leaves
+  empty as the flow sees it (for the cylinder, the radius by which a solid cylinder would have to
+  grow to exclude that area).
+W, r and d come from the run's run.json."""
+import argparse
+import glob
+import json
+import os
+import re
+import sys
+
+import numpy as np
+
+
+def snapshots(run_dir, t0, t1):
+    for path in sorted(glob.glob(os.path.join(run_dir, "snapshots", "particles_*.csv"))):
+        with open(path) as handle:
+            found = re.search(r"t = ([0-9.eE+-]+)", handle.readline())
+        if found and t0 <= float(found.group(1)) <= t1:
+            yield float(found.group(1)), np.loadtxt(path, delimiter=",", comments="#", skiprows=2,
+                                                    usecols=(1, 2, 5), ndmin=2)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("run_dir")
+    parser.add_argument("--window", default="2,6", help="T0,T1 in seconds (default 2,6)")
+    parser.add_argument("--band", type=float, default=3.0, help="band width in spacings (default 3)")
+    args = parser.parse_args()
+    t0, t1 = (float(v) for v in args.window.split(","))
+    with open(os.path.join(args.run_dir, "run.json")) as handle:
+        run = json.load(handle)
+    flat = run["parameters_flat"]
+    W, r = flat["Geometry.W"], flat["Geometry.r"]
+    d, rho0 = run["fluid"]["spacing"], run["fluid"]["density"]
+    band, height = args.band * d, 0.15
+    rows = []
+    for t, a in snapshots(args.run_dir, t0, t1):
+        x, y, density = a[:, 0], a[:, 1], a[:, 2]
+        volume = d * d * rho0 / density
+        radius = np.hypot(x, y)
+        near = radius < r + band
+        sector = np.floor((np.arctan2(y, x)[near] + np.pi) / (2 * np.pi / 24)).astype(int)
+        gap = radius[near] - r
+        cylinder_layer = np.mean([gap[sector == s].min() for s in np.unique(sector)])
+        deficit = np.pi * ((r + band) ** 2 - r ** 2) - volume[near].sum()
+        cylinder_excluded = np.sqrt(r * r + deficit / np.pi) - r
+        wall_layer, wall_excluded = [], []
+        for side in (-1.0, 1.0):
+            distance = 0.5 * W - side * x
+            strip = (np.abs(y) < height) & (distance < band)
+            piece = np.floor((y[strip] + height) / d).astype(int)
+            wall_layer.append(np.mean([distance[strip][piece == p].min() for p in np.unique(piece)]))
+            wall_excluded.append((band * 2 * height - volume[strip].sum()) / (2 * height))
+        rows.append((cylinder_layer, np.mean(wall_layer), cylinder_excluded, np.mean(wall_excluded)))
+        print(f"t = {t:5.2f} s   first layer: cylinder {cylinder_layer / d:.3f} d, walls "
+              f"{np.mean(wall_layer) / d:.3f} d   excluded: cylinder {cylinder_excluded / d:.3f} d, "
+              f"walls {np.mean(wall_excluded) / d:.3f} d")
+    if not rows:
+        sys.exit(f"standoff.py: no snapshot of {args.run_dir} lies in {t0}-{t1} s (Output "
+                 "{ snapshot_every_steps } sets how often the run writes them)")
+    m, s = np.mean(rows, axis=0) / d, np.std(rows, axis=0) / d
+    print(f"d = {1000 * d:g} mm, {len(rows)} snapshots in {t0:g}-{t1:g} s (mean ± std over them):")
+    print(f"  first layer:        cylinder {m[0]:.2f} ± {s[0]:.2f} d, flat walls {m[1]:.2f} ± {s[1]:.2f} d")
+    print(f"  excluded thickness: cylinder {m[2]:.2f} ± {s[2]:.2f} d, flat walls {m[3]:.2f} ± {s[3]:.2f} d")
+
+
+if __name__ == "__main__":
+    main()
