@@ -13,7 +13,7 @@ the particle spacing d:
   particles' volume (d^2 rho0/rho each), spread over the wall: the thickness the fluid leaves
   empty as the flow sees it (for the cylinder, the radius by which a solid cylinder would have to
   grow to exclude that area).
-W, r and d come from the run's run.json."""
+W, r and d come from the run's run.json; RUN_DIR/standoff.json holds the numbers (in metres)."""
 import argparse
 import glob
 import json
@@ -75,6 +75,12 @@ def main():
     print(f"d = {1000 * d:g} mm, {len(rows)} snapshots in {t0:g}-{t1:g} s (mean ± std over them):")
     print(f"  first layer:        cylinder {m[0]:.2f} ± {s[0]:.2f} d, flat walls {m[1]:.2f} ± {s[1]:.2f} d")
     print(f"  excluded thickness: cylinder {m[2]:.2f} ± {s[2]:.2f} d, flat walls {m[3]:.2f} ± {s[3]:.2f} d")
+    names = ("cylinder_first_layer", "walls_first_layer", "cylinder_excluded", "walls_excluded")
+    result = {"spacing": d, "window": [t0, t1], "snapshots": len(rows)}
+    for k, name in enumerate(names):
+        result[name] = {"mean": float(m[k] * d), "std": float(s[k] * d)}
+    with open(os.path.join(args.run_dir, "standoff.json"), "w") as handle:
+        json.dump(result, handle, indent=2)
 
 
 if __name__ == "__main__":

@@ -11,11 +11,16 @@ a regression test of the machinery, not a measure of the steady error. Continuit
 piston's v0 W (-2.5 % measured: the probe's kernel sum is not normalised, so the walls'
 kernel deficiency counts). The run judges itself: completed, no particle lost, no physics warning, action =
 reaction to round-off, no particle closer to a wall than 0.3 r0 (the piston is a moving wall); the
-profile is symmetric about the cylinder to 3 % of the peak."""
+profile is symmetric about the cylinder to 3 % of the peak. standoff.py on the same run: the nearest
+particles stand 0.6-1.2 d off the flat walls (the true-shape wall rests its first layer at 0.75 d
+under the reference pressure; 0.90 d measured over 2-3 s at d = 6 mm) and 0.6-1.6 d off the
+cylinder (1.17 d)."""
 import json
 import os
+import subprocess
+import sys
 
-from fsi_test import boundary_checks, check, cleanup, run_example_checked
+from fsi_test import boundary_checks, check, cleanup, example, run_example_checked
 
 TOLERANCE = 0.15
 
@@ -33,4 +38,15 @@ probes = analysis["probes"]
 peak = max(p["mean"] for p in probes if p["mean"] is not None)
 asymmetry = max(abs(probes[k]["mean"] - probes[12 - k]["mean"]) for k in range(6) if probes[k]["mean"] is not None)
 check(asymmetry < 0.03 * peak, f"the profile is symmetric about the cylinder: {asymmetry:.2e} m/s apart at most")
+standoff = subprocess.run([sys.executable, example("cylinder", "standoff.py"),
+                           example_run.run_dir, "--window", "2,3"], capture_output=True, text=True, timeout=120)
+print(standoff.stdout[-600:], standoff.stderr[-600:])
+check(standoff.returncode == 0, f"standoff.py runs on the run (exit {standoff.returncode})")
+with open(os.path.join(example_run.run_dir, "standoff.json")) as handle:
+    stand = json.load(handle)
+d = stand["spacing"]
+walls, cylinder = stand["walls_first_layer"]["mean"] / d, stand["cylinder_first_layer"]["mean"] / d
+check(stand["snapshots"] == 3 and 0.6 < walls < 1.2 and 0.6 < cylinder < 1.6,
+      f"the first layer stands {walls:.2f} d off the flat walls and {cylinder:.2f} d off the cylinder "
+      f"({stand['snapshots']} snapshots)")
 cleanup(example_run.work)
