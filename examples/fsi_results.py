@@ -1,9 +1,11 @@
 """What the example scripts read from a run's output folder (imported by examples/*/analyze.py)."""
 import argparse
 import csv
+import glob
 import json
 import math
 import os
+import re
 import subprocess
 import sys
 
@@ -60,6 +62,19 @@ def read_run(run_dir):
     with open(os.path.join(run_dir, "run.json")) as handle:
         run = json.load(handle)
     return run, read_sensors(os.path.join(run_dir, "sensors.csv"))
+
+
+def read_snapshots(run_dir, t0=float("-inf"), t1=float("inf")):
+    """(time, {column: numpy array}) of each particle snapshot DIR/snapshots/particles_<step>.csv
+    with t0 <= time <= t1, in step order; columns by the file's header (id, x, y, vx, ...)."""
+    import numpy as np
+    for path in sorted(glob.glob(os.path.join(run_dir, "snapshots", "particles_*.csv"))):
+        with open(path) as handle:
+            found = re.search(r"t = (\S+) s", handle.readline())  # "# SPH particles at step N, t = T s"
+            columns = handle.readline().strip().split(",")
+        if found and t0 <= float(found.group(1)) <= t1:
+            data = np.loadtxt(path, delimiter=",", comments="#", skiprows=2, ndmin=2)
+            yield float(found.group(1)), {name: data[:, k] for k, name in enumerate(columns)}
 
 
 def zero_crossings(time, values):

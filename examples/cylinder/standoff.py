@@ -15,22 +15,14 @@ the particle spacing d:
   grow to exclude that area).
 W, r and d come from the run's run.json; RUN_DIR/standoff.json holds the numbers (in metres)."""
 import argparse
-import glob
 import json
 import os
-import re
 import sys
 
 import numpy as np
 
-
-def snapshots(run_dir, t0, t1):
-    for path in sorted(glob.glob(os.path.join(run_dir, "snapshots", "particles_*.csv"))):
-        with open(path) as handle:
-            found = re.search(r"t = ([0-9.eE+-]+)", handle.readline())
-        if found and t0 <= float(found.group(1)) <= t1:
-            yield float(found.group(1)), np.loadtxt(path, delimiter=",", comments="#", skiprows=2,
-                                                    usecols=(1, 2, 5), ndmin=2)
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from fsi_results import read_snapshots  # noqa: E402
 
 
 def main():
@@ -47,8 +39,8 @@ def main():
     d, rho0 = run["fluid"]["spacing"], run["fluid"]["density"]
     band, height = args.band * d, 0.15
     rows = []
-    for t, a in snapshots(args.run_dir, t0, t1):
-        x, y, density = a[:, 0], a[:, 1], a[:, 2]
+    for t, a in read_snapshots(args.run_dir, t0, t1):
+        x, y, density = a["x"], a["y"], a["density"]
         volume = d * d * rho0 / density
         radius = np.hypot(x, y)
         near = radius < r + band

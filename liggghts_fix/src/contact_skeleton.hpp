@@ -151,7 +151,7 @@ class PairKernel {
     ++diagnostics_.pair_count;
     // The particle's distance to the element is the same for every sampling point of the
     // element, and a sampling visits an element's points one after another: the distance is
-    // taken once per particle and element (it cost as much as the force itself per pair).
+    // taken once per particle and element (per pair it cost 5-8 % of the kernel: performance.md).
     std::uint32_t& last = last_element_[i];
     if (last != s.element_index) {
       if (last == kNoElement) ++diagnostics_.particles_in_range;
