@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <numbers>
 #include <optional>
 #include <string>
 
@@ -18,6 +19,8 @@ namespace {
 constexpr std::string_view kCheck = "viscosity_match";
 // Warn when the wall's friction and the fluid's viscosity are more than this factor apart.
 constexpr double kFactor = 2.0;
+// A t within this fraction of the moment rule's (moment_wall_friction) is that rule.
+constexpr double kMomentRuleTolerance = 0.05;
 
 std::string number(double value) {
   char text[32];
@@ -170,6 +173,13 @@ double wall_viscosity(const contact::ForceLaw& law, double density) {
   return law.viscous_scale * law.effective_viscous_cutoff() / density;
 }
 
+double moment_wall_friction(double density, double viscosity, double spacing, double range,
+                            int dimension) {
+  const double moment =
+      dimension == 3 ? std::numbers::pi * std::pow(range, 4) / 20.0 : std::pow(range, 3) / 6.0;
+  return density * viscosity * std::pow(spacing, dimension) / moment;
+}
+
 void check_viscosity_match(const Scene& scene, std::vector<Diagnostic>& diagnostics) {
   const LiggghtsSetup& liggghts = scene.liggghts;
   if (contact::script_commands(liggghts.script1_text).empty()) return;  // no fluid (--mbd-only)
@@ -209,6 +219,11 @@ void check_viscosity_match(const Scene& scene, std::vector<Diagnostic>& diagnost
   const double nu_wall = wall_viscosity(fix.law, *density);
   const double ratio = nu_wall / nu_fluid;
   if (ratio <= kFactor * (1.0 + 1e-9) && ratio >= (1.0 - 1e-9) / kFactor) return;
+  // The moment rule for this fluid (to 5 %) is the other no-slip rule: matched, not slipping.
+  if (fix.uses_true_shape &&
+      std::abs(t / moment_wall_friction(*density, nu_fluid, fix.true_shape.spacing, range, dim) -
+               1.0) < kMomentRuleTolerance)
+    return;
   const double t_for_fluid = *density * nu_fluid / range;
   const double alpha_for_wall = nu_wall * divisor / (scripts.sound_speed->value * h->value);
   // A wall stickier than the fluid (ratio > 2) holds a fluid more viscous than the one that flows:

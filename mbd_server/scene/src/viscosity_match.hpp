@@ -23,6 +23,14 @@ double artificial_viscosity_divisor(int dimension);
 // applied in 3D unmeasured.
 double wall_viscosity(const fsi::contact::ForceLaw& law, double density);
 
+// The moment rule's wall friction for a fluid of nu: t = rho0 nu d^D / M, M the friction's second
+// moment (2D: r_v^3 / 6, 3D: pi r_v^4 / 20), d the particle spacing: the wall's total friction in
+// a linear shear flow equals the fluid's own stress (docs/theory.md, "Viscosity"). Measured in
+// 2D: the channel flows meet it within 0.2 d of the drawn walls, where rho0 nu / r_v holds about
+// one spacing of fluid on them; the rule for flows driven by a flux (examples/cylinder).
+double moment_wall_friction(double density, double viscosity, double spacing, double range,
+                            int dimension);
+
 void check_viscosity_match(const Scene& scene, std::vector<Diagnostic>& diagnostics);
 
 }  // namespace fsi::scene
