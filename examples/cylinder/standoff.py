@@ -50,12 +50,13 @@ def main():
         volume = d * d * rho0 / density
         radius = np.hypot(x, y)
         near = radius < r + band
-        sector = np.floor((np.arctan2(y, x)[near] + np.pi) / (2 * np.pi / 24)).astype(int)
+        # 24ths of the circumference counted from +x (the flow along +y: 0-12 is downstream).
+        sector = np.floor((np.arctan2(y, x)[near] % (2 * np.pi)) / (2 * np.pi / 24)).astype(int)
         gap = radius[near] - r
         cylinder_layer = np.mean([gap[sector == s].min() for s in np.unique(sector)])
         dry = 24 - len(np.unique(sector))  # 24ths with no particle within the band
-        # Per twelfth, counted from +x: the first layer and the pressure within 1.5 d.
-        twelfth = np.floor((np.arctan2(y, x)[near] % (2 * np.pi)) / (2 * np.pi / 12)).astype(int)
+        # Per twelfth: the first layer and the pressure within 1.5 d.
+        twelfth = sector // 2
         touching = gap < 1.5 * d
         twelfths.append([(gap[twelfth == k].min() if np.any(twelfth == k) else np.nan,
                           pressure[near][(twelfth == k) & touching].mean()
