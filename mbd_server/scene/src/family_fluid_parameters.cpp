@@ -19,8 +19,11 @@ std::vector<BlockSpec> fluid_parameter_blocks() {
   for (const FluidQuantity& q : fluid_quantities()) {
     if (q.key.empty()) continue;  // g: the Gravity block's
     std::string doc = std::string(q.meaning);
-    if (!q.is_input())
-      doc += "; absent: " + std::string(q.rule) + " (" + std::string(q.source) + ")";
+    if (!q.is_input()) {
+      const FluidRule& rule = q.rules.front();
+      doc += "; absent: " + std::string(rule.text) + " (" + std::string(rule.source) + ")";
+      if (q.has_choice()) doc += ", or the rule " + q.rule_key() + " names";
+    }
     if (!q.variable.empty()) doc += "; LIGGGHTS ${" + std::string(q.variable) + "}";
     ParameterSpec spec = number(std::string(q.key), std::string(q.unit), doc);
     spec = q.may_be_zero ? spec.at_least(0.0) : spec.positive();
@@ -30,6 +33,20 @@ std::vector<BlockSpec> fluid_parameter_blocks() {
       spec = spec.optional();
     }
     keys.push_back(spec);
+    if (q.has_choice()) {
+      std::vector<std::string> names;
+      std::string doc_rules;
+      for (const FluidRule& rule : q.rules) {
+        names.emplace_back(rule.name);
+        doc_rules += (doc_rules.empty() ? "" : "; ") + ("\"" + std::string(rule.name) + "\": ") +
+                     std::string(rule.text) + " (" + std::string(rule.source) + ")";
+      }
+      keys.push_back(text(q.rule_key(), "the rule that derives " + std::string(q.key) +
+                                            " when it is not given, absent: \"" + names[0] +
+                                            "\"; " + doc_rules)
+                         .one_of(names)
+                         .optional());
+    }
   }
   return {block_spec("Fluid",
                      "The fluid's parameters from a few physical inputs (docs/user-guide.md, \"The "
@@ -51,7 +68,7 @@ void refuse_duplicates(SceneBuilder& builder, const View& fluid) {
       builder.problem(p.location,
                       "'" + p.key + "' is given both here and by the Fluid block at " +
                           fluid.location().text() + " (" + owner + ", " + std::string(q.symbol) +
-                          (q.is_input() ? "" : " = " + std::string(q.rule)) + ")",
+                          (q.is_input() ? "" : " = " + std::string(q.rules.front().text)) + ")",
                       q.key.empty() ? "remove it here: the Fluid block defines ${gravity} as |g| "
                                       "of the Gravity block"
                                     : "remove it here; to set it yourself, write " +
@@ -73,11 +90,16 @@ void derive_from_fluid_block(SceneBuilder& builder) {
     for (const FluidQuantity& q : fluid_quantities()) {
       if (!q.key.empty() && fluid.has(q.key)) given[std::string(q.key)] = fluid.number(q.key);
     }
+    FluidRuleChoices choices;
+    for (const FluidQuantity& q : fluid_quantities()) {
+      if (q.has_choice() && fluid.has(q.rule_key()))
+        choices[std::string(q.key)] = fluid.string(q.rule_key());
+    }
     const auto& g = builder.scene.gravity;
     given["g"] = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
     FluidDerivation derivation;
     try {
-      derivation = derive_fluid(given, builder.dimension);
+      derivation = derive_fluid(given, builder.dimension, choices);
     } catch (const AlreadyReported&) {
       throw;
     } catch (const Error& error) {

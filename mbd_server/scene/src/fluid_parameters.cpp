@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 
 #include "fsi/common/error.hpp"
 
@@ -19,12 +20,6 @@ double at(const FluidValues& values, std::string_view symbol) {
 // (examples/hydrostatic_box_3d, ~58 neighbours); both inside the 30-100 of kernel_neighbours.
 double kernel_ratio(int dimension) {
   return dimension == 3 ? 1.2 : 1.9;
-}
-
-// LIGGGHTS' artificial viscosity as a kinematic viscosity: nu = alpha c h / 16 (3D: / 20),
-// docs/theory.md "Viscosity".
-double artificial_viscosity_divisor_of(int dimension) {
-  return dimension == 3 ? 20.0 : 16.0;
 }
 
 std::string number(double value) {
@@ -54,16 +49,20 @@ std::vector<FluidQuantity> make_quantities() {
     quantity.input_default = fallback;
     q.push_back(quantity);
   };
+  // A quantity with one rule, or (`rules`) with named rules to choose from, the default first.
+  auto rules = [&](std::string_view key, std::string_view variable, std::string_view symbol,
+                   std::string_view unit, std::string_view meaning, std::vector<FluidRule> choices,
+                   bool may_be_zero = false) {
+    FluidQuantity quantity = described(key, variable, symbol, unit, meaning, may_be_zero);
+    quantity.rules = std::move(choices);
+    q.push_back(quantity);
+  };
   auto rule = [&](std::string_view key, std::string_view variable, std::string_view symbol,
                   std::string_view unit, std::string_view meaning, std::string_view text,
                   std::string_view source, std::vector<std::string_view> uses,
                   double (*derive)(const FluidValues&, int), bool may_be_zero = false) {
-    FluidQuantity quantity = described(key, variable, symbol, unit, meaning, may_be_zero);
-    quantity.rule = text;
-    quantity.source = source;
-    quantity.uses = std::move(uses);
-    quantity.derive = derive;
-    q.push_back(quantity);
+    rules(key, variable, symbol, unit, meaning,
+          {FluidRule{"default", text, source, std::move(uses), derive}}, may_be_zero);
   };
   // Inputs.
   input("density", "SPHdensity", "rho0", "kg/m^3", "rest density of the liquid");
@@ -117,13 +116,27 @@ std::vector<FluidQuantity> make_quantities() {
        "range of the wall friction (fix fsi/sph cutoff_visc)", "2 h",
        "thesis eq. (4.7), every example", {"h"},
        [](const FluidValues& v, int) { return 2.0 * at(v, "h"); });
-  rule(
-      "wall_friction", "SPH_wall_visc", "t", "N s/m^3 (3D: N s/m^4)",
-      "wall friction scale (fix fsi/sph t)", "rho0 nu / r_v",
-      "no slip for the fluid's nu: thesis eq. (6.4) with its h read as r_v, measured "
-      "(docs/theory.md, \"Viscosity\"); checks wall_viscosity, viscosity_match",
-      {"rho0", "nu", "r_v"},
-      [](const FluidValues& v, int) { return at(v, "rho0") * at(v, "nu") / at(v, "r_v"); }, true);
+  rules("wall_friction", "SPH_wall_visc", "t", "N s/m^3 (3D: N s/m^4)",
+        "wall friction scale (fix fsi/sph t)",
+        {FluidRule{
+             "thesis",
+             "rho0 nu / r_v",
+             "thesis eq. (6.4) with its h read as r_v: no slip about one spacing inside "
+             "the drawn walls (docs/theory.md, \"Viscosity\"); checks wall_viscosity, "
+             "viscosity_match",
+             {"rho0", "nu", "r_v"},
+             [](const FluidValues& v, int) { return at(v, "rho0") * at(v, "nu") / at(v, "r_v"); }},
+         FluidRule{"moment",
+                   "6 rho0 nu d^2 / r_v^3 (3D: 20 rho0 nu d^3 / (pi r_v^4))",
+                   "the wall's friction moment equals the fluid's stress: no slip within 0.2 d "
+                   "of the drawn walls, for flows driven by a flux (docs/theory.md, "
+                   "\"Viscosity\"; examples/cylinder)",
+                   {"rho0", "nu", "d", "r_v"},
+                   [](const FluidValues& v, int dim) {
+                     return moment_wall_friction(at(v, "rho0"), at(v, "nu"), at(v, "d"),
+                                                 at(v, "r_v"), dim);
+                   }}},
+        true);
   rule("wall_cutoff", "SPH_wall_cutoff", "r_c", "m",
        "range of the thesis' wall law (fix fsi/sph cutoff)", "2 h", "thesis §6.2", {"h"},
        [](const FluidValues& v, int) { return 2.0 * at(v, "h"); });
@@ -169,7 +182,57 @@ std::vector<std::pair<std::string, double>> FluidDerivation::variables() const {
   return result;
 }
 
-FluidDerivation derive_fluid(const FluidValues& given, int dimension) {
+const FluidRule* FluidQuantity::find_rule(std::string_view name) const {
+  for (const FluidRule& rule : rules) {
+    if (rule.name == name) return &rule;
+  }
+  return nullptr;
+}
+
+namespace {
+
+std::string rule_names(const FluidQuantity& quantity) {
+  std::string names;
+  for (const FluidRule& rule : quantity.rules)
+    names += (names.empty() ? "\"" : ", \"") + std::string(rule.name) + "\"";
+  return names;
+}
+
+// The rule a quantity is derived by: the default, or the one `choices` names for its key.
+const FluidRule& chosen_rule(const FluidQuantity& quantity, const FluidRuleChoices& choices,
+                             bool given) {
+  const auto choice = choices.find(quantity.key);
+  if (choice == choices.end()) return quantity.rules.front();
+  const std::string key = quantity.rule_key();
+  if (!quantity.has_choice()) {
+    throw Error(std::string(quantity.key) + " has one rule, " +
+                    std::string(quantity.rules[0].text) + ", and no other to choose",
+                key, "remove " + key);
+  }
+  const FluidRule* rule = quantity.find_rule(choice->second);
+  if (rule == nullptr) {
+    throw Error("no rule \"" + choice->second + "\" for " + std::string(quantity.key), key,
+                "choose one of " + rule_names(quantity));
+  }
+  if (given) {
+    throw Error(std::string(quantity.key) + " is given and its rule is chosen too (\"" +
+                    choice->second + "\"): one place per value",
+                key,
+                "remove " + key + " to keep the given value, or remove " +
+                    std::string(quantity.key) + " to derive it by the rule");
+  }
+  return *rule;
+}
+
+}  // namespace
+
+FluidDerivation derive_fluid(const FluidValues& given, int dimension,
+                             const FluidRuleChoices& choices) {
+  for (const auto& [key, name] : choices) {
+    const bool known = std::any_of(fluid_quantities().begin(), fluid_quantities().end(),
+                                   [&](const FluidQuantity& q) { return q.key == key; });
+    FSI_ASSERT(known, "a rule chosen for '" + key + "', which is no quantity's key");
+  }
   FluidDerivation derivation;
   derivation.dimension = dimension;
   FluidValues in_force;
@@ -178,33 +241,33 @@ FluidDerivation derive_fluid(const FluidValues& given, int dimension) {
     const auto user = given.find(name);
     FluidValue value;
     value.quantity = &quantity;
+    value.given = user != given.end();
     if (quantity.is_input()) {
-      if (user == given.end() && !quantity.input_default) {
+      if (!value.given && !quantity.input_default) {
         throw Error("the Fluid block needs its input '" + std::string(name) + "' (" +
                         std::string(quantity.meaning) + ")",
                     std::string(name),
                     "add " + std::string(name) + " = ... [" + std::string(quantity.unit) +
                         "] to the Fluid block");
       }
-      value.given = user != given.end();
       value.value = value.given ? user->second : *quantity.input_default;
     } else {
-      value.by_rule = quantity.derive(in_force, dimension);
-      value.given = user != given.end();
+      value.rule = &chosen_rule(quantity, choices, value.given);
+      value.by_rule = value.rule->derive(in_force, dimension);
       value.value = value.given ? user->second : *value.by_rule;
     }
     const bool valid = std::isfinite(value.value) &&
                        (quantity.may_be_zero ? value.value >= 0.0 : value.value > 0.0);
     if (!valid) {
       std::string inputs;
-      for (std::string_view used : quantity.uses)
+      for (std::string_view used : value.rule->uses)
         inputs +=
             (inputs.empty() ? "" : ", ") + std::string(used) + " = " + number(at(in_force, used));
       throw Error(
           std::string(quantity.key) + " (" + std::string(quantity.symbol) +
               ") = " + number(value.value) +
               (value.given ? std::string(" as given")
-                           : " by its rule " + std::string(quantity.rule) + " with " + inputs) +
+                           : " by its rule " + std::string(value.rule->text) + " with " + inputs) +
               ": it must be " + (quantity.may_be_zero ? "at least 0" : "positive"),
           std::string(name),
           value.given
@@ -229,20 +292,27 @@ std::string explain(const FluidDerivation& derivation, const FluidValue& value) 
     if (q.key.empty()) return line + ": from the Gravity block";
     return line + (value.given ? ": given" : ": default") + " (Fluid." + std::string(q.key) + ")";
   }
+  const FluidRule& rule = *value.rule;
+  const std::string named = q.has_choice()
+                                ? " (rule \"" + std::string(rule.name) + "\"" +
+                                      (&rule == &q.rules.front() ? std::string(", the default")
+                                                                 : ", Fluid." + q.rule_key()) +
+                                      ")"
+                                : std::string();
   if (value.given) {
     return line + ": set by Fluid." + std::string(q.key) + ", which wins over the rule " +
-           std::string(q.rule) + " = " + number(*value.by_rule) + unit;
+           std::string(rule.text) + named + " = " + number(*value.by_rule) + unit;
   }
-  line += ": " + std::string(q.rule);
+  line += ": " + std::string(rule.text) + named;
   std::string inputs;
-  for (std::string_view used : q.uses) {
+  for (std::string_view used : rule.uses) {
     const FluidQuantity& input = fluid_quantity(used);
     inputs += (inputs.empty() ? "" : ", ") + std::string(used) + " = " +
               number(derivation.value(used)) +
               (input.unit.empty() ? "" : " " + std::string(input.unit));
   }
   if (!inputs.empty()) line += " with " + inputs;
-  return line + " (" + std::string(q.source) + ")";
+  return line + " (" + std::string(rule.source) + ")";
 }
 
 std::string fluid_rules_markdown() {
@@ -254,18 +324,29 @@ std::string fluid_rules_markdown() {
       return text.empty() ? std::string("—")
                           : std::string(wrap) + std::string(text) + std::string(wrap);
     };
-    std::string rule;
+    std::string rule, source;
     if (q.is_input()) {
       rule = q.key.empty()     ? "input: \\|g\\| of the Gravity block (0 without one)"
              : q.input_default ? "input, default " + number(*q.input_default)
                                : std::string("input, required");
+      source = q.meaning;
+    } else if (!q.has_choice()) {
+      rule = q.rules[0].text;
+      source = q.rules[0].source;
     } else {
-      rule = std::string(q.rule);
+      // Each named rule, the default first: `<key>_rule = "name"` chooses.
+      for (const FluidRule& r : q.rules) {
+        const bool first = &r == &q.rules.front();
+        rule += std::string(first ? "" : "; ") + "`" + q.rule_key() + " = \"" +
+                std::string(r.name) + "\"`" + (first ? " (default)" : "") + ": " +
+                std::string(r.text);
+        source +=
+            std::string(first ? "" : "; ") + std::string(r.name) + ": " + std::string(r.source);
+      }
     }
     table += "| " + cell(q.key, "`") + " | " +
              cell(q.variable.empty() ? "" : "${" + std::string(q.variable) + "}", "`") + " | " +
-             std::string(q.symbol) + " | " + cell(q.unit) + " | " + rule + " | " +
-             (q.is_input() ? std::string(q.meaning) : std::string(q.source)) + " |\n";
+             std::string(q.symbol) + " | " + cell(q.unit) + " | " + rule + " | " + source + " |\n";
   }
   return table;
 }
@@ -286,8 +367,8 @@ struct TimeStepLimits {
 TimeStepLimits time_step_limits(const FluidDerivation& d) {
   TimeStepLimits limits;
   const double h = d.value("h"), c = d.value("c"), g = d.value("g");
-  limits.nu_max = std::max(d.value("nu"),
-                           d.value("alpha") * c * h / artificial_viscosity_divisor_of(d.dimension));
+  limits.nu_max =
+      std::max(d.value("nu"), d.value("alpha") * c * h / artificial_viscosity_divisor(d.dimension));
   limits.acoustic = 0.125 * h / c;
   limits.impact = kDerivedAcousticFraction * h / c;
   limits.viscous = limits.nu_max > 0.0 ? 0.125 * h * h / limits.nu_max : HUGE_VAL;
@@ -296,6 +377,17 @@ TimeStepLimits time_step_limits(const FluidDerivation& d) {
 }
 
 }  // namespace
+
+double artificial_viscosity_divisor(int dimension) {
+  return dimension == 3 ? 20.0 : 16.0;
+}
+
+double moment_wall_friction(double density, double viscosity, double spacing, double range,
+                            int dimension) {
+  const double moment =
+      dimension == 3 ? std::numbers::pi * std::pow(range, 4) / 20.0 : std::pow(range, 3) / 6.0;
+  return density * viscosity * std::pow(spacing, dimension) / moment;
+}
 
 double recommended_time_step(const FluidDerivation& derivation) {
   const TimeStepLimits limits = time_step_limits(derivation);
@@ -319,21 +411,25 @@ std::string explain_time_step(const FluidDerivation& derivation, double scene_st
                               double end_time) {
   const TimeStepLimits limits = time_step_limits(derivation);
   const double dt = recommended_time_step(derivation);
-  auto limit = [](double value) { return value == HUGE_VAL ? std::string("none") : number(value); };
-  std::string line =
-      "dt <= " + number(dt) + " s: the least of 0.125 h/c = " + limit(limits.acoustic) +
-      " s (acoustic, check acoustic_time_step), " + "0.125 h^2/nu_max = " + limit(limits.viscous) +
-      " s (viscous, nu_max = " + number(limits.nu_max) + " m^2/s: nu or alpha c h / " +
-      number(artificial_viscosity_divisor_of(derivation.dimension)) +
-      "), 0.25 sqrt(h/g) = " + limit(limits.force) +
-      " s (body force); the contact's limit is check contact_time_step";
+  // A limit in seconds, or "none" and why (an inviscid fluid, no gravity).
+  auto limit = [](double value, std::string_view why_none = "") {
+    return value == HUGE_VAL ? "none (" + std::string(why_none) + ")" : number(value) + " s";
+  };
+  std::string line = "dt <= " + number(dt) +
+                     " s: the least of 0.125 h/c = " + limit(limits.acoustic) +
+                     " (acoustic, check acoustic_time_step), " +
+                     "0.125 h^2/nu_max = " + limit(limits.viscous, "nu_max = 0") +
+                     " (viscous, nu_max = " + number(limits.nu_max) + " m^2/s: nu or alpha c h / " +
+                     number(artificial_viscosity_divisor(derivation.dimension)) +
+                     "), 0.25 sqrt(h/g) = " + limit(limits.force, "g = 0") +
+                     " (body force); the contact's limit is check contact_time_step";
   if (derived && scene_step > 0.0) {
     char steps[32];
     std::snprintf(steps, sizeof steps, "%.0f", end_time / scene_step);
     line += "; SolverOptions.Timeint.step_size is not given: the run steps at " +
             number(scene_step) + " s, end_time / " + steps + " (the largest step within " +
             number(kDerivedAcousticFraction) + " h/c = " + limit(limits.impact) +
-            " s, below the dam break's measured stable 0.092 h/c, and the other limits that "
+            ", below the dam break's measured stable 0.092 h/c, and the other limits that "
             "divides end_time = " +
             number(end_time) + " s into whole structure steps)";
   } else if (scene_step > 0.0) {

@@ -6,12 +6,12 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
-#include <numbers>
 #include <optional>
 #include <string>
 
 #include "fsi/contact/fix_arguments.hpp"
 #include "fsi/contact/script_text.hpp"
+#include "fsi/scene/fluid_parameters.hpp"
 
 namespace fsi::scene {
 namespace {
@@ -165,19 +165,8 @@ void skip(const Scene& scene, std::vector<Diagnostic>& diagnostics, const std::s
 
 }  // namespace
 
-double artificial_viscosity_divisor(int dimension) {
-  return dimension == 3 ? 20.0 : 16.0;
-}
-
 double wall_viscosity(const contact::ForceLaw& law, double density) {
   return law.viscous_scale * law.effective_viscous_cutoff() / density;
-}
-
-double moment_wall_friction(double density, double viscosity, double spacing, double range,
-                            int dimension) {
-  const double moment =
-      dimension == 3 ? std::numbers::pi * std::pow(range, 4) / 20.0 : std::pow(range, 3) / 6.0;
-  return density * viscosity * std::pow(spacing, dimension) / moment;
 }
 
 void check_viscosity_match(const Scene& scene, std::vector<Diagnostic>& diagnostics) {

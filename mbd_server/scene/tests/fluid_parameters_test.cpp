@@ -9,6 +9,7 @@
 #include <cmath>
 #include <fstream>
 #include <map>
+#include <numbers>
 #include <sstream>
 #include <string>
 
@@ -90,10 +91,71 @@ TEST(FluidRules, EachDerivedValueIsExplainedWithItsRuleAndInputs) {
                   "c (${cAB}) = 14.01 m/s: 10 max(sqrt(2 g H), U) with g = 9.81 m/s^2, H = 0.1 "
                   "m, U = 0 m/s (thesis §6.2");
   EXPECT_CONTAINS(explain(fluid, of(fluid, "t")),
-                  "t (${SPH_wall_visc}) = 0.1316 N s/m^3 (3D: N s/m^4): rho0 nu / r_v with rho0 "
-                  "= 1000 kg/m^3, nu = 1e-06 m^2/s, r_v = 0.0076 m");
+                  "t (${SPH_wall_visc}) = 0.1316 N s/m^3 (3D: N s/m^4): rho0 nu / r_v (rule "
+                  "\"thesis\", the default) with rho0 = 1000 kg/m^3, nu = 1e-06 m^2/s, r_v = "
+                  "0.0076 m");
   EXPECT_CONTAINS(explain(fluid, of(fluid, "g")), "g (${gravity}) = 9.81 m/s^2: from the Gravity");
   EXPECT_CONTAINS(explain(fluid, of(fluid, "d")), "d (${particlespacing}) = 0.002 m: given");
+}
+
+// The wall friction has two rules (docs/theory.md, "Viscosity"): the thesis' rho0 nu / r_v by
+// default, the moment rule by name. Water 0.1 m deep, nu = 1e-3 (the cylinder's fluid).
+TEST(FluidRules, TheMomentRuleIsChosenByNameAndExplained) {
+  FluidValues given = tank();
+  given["viscosity"] = 1e-3;
+  const FluidDerivation thesis = derive_fluid(given, 2);
+  EXPECT_EQ(of(thesis, "t").rule->name, "thesis");
+  EXPECT_DOUBLE_EQ(thesis.value("t"), 1000.0 * 1e-3 / 0.0076);
+  const FluidDerivation moment = derive_fluid(given, 2, {{"wall_friction", "moment"}});
+  EXPECT_EQ(of(moment, "t").rule->name, "moment");
+  // 2D: t = 6 rho0 nu d^2 / r_v^3, r_v = 2h = 3.8 d: 6 / 3.8^3 = 0.1094 of rho0 nu / d.
+  EXPECT_NEAR(moment.value("t"), 6.0 * 1000.0 * 1e-3 * 0.002 * 0.002 / std::pow(0.0076, 3), 1e-12);
+  EXPECT_NEAR(moment.value("t") / thesis.value("t"), 6.0 / (3.8 * 3.8), 1e-12);
+  // 3D: t = 20 rho0 nu d^3 / (pi r_v^4), r_v = 2.4 d.
+  const FluidDerivation moment3 = derive_fluid(given, 3, {{"wall_friction", "moment"}});
+  EXPECT_NEAR(moment3.value("t"),
+              20.0 * 1000.0 * 1e-3 * std::pow(0.002, 3) / (std::numbers::pi * std::pow(0.0048, 4)),
+              1e-12);
+  // The values before it and after it do not change.
+  EXPECT_DOUBLE_EQ(moment.value("r_v"), thesis.value("r_v"));
+  EXPECT_DOUBLE_EQ(moment.value("k"), thesis.value("k"));
+  EXPECT_CONTAINS(explain(moment, of(moment, "t")),
+                  "t (${SPH_wall_visc}) = 54.67 N s/m^3 (3D: N s/m^4): 6 rho0 nu d^2 / r_v^3 (3D: "
+                  "20 rho0 nu d^3 / (pi r_v^4)) (rule \"moment\", Fluid.wall_friction_rule) with "
+                  "rho0 = 1000 kg/m^3, nu = 0.001 m^2/s, d = 0.002 m, r_v = 0.0076 m");
+  EXPECT_CONTAINS(explain(thesis, of(thesis, "t")), "rho0 nu / r_v (rule \"thesis\", the default)");
+  // The markdown table lists both, the default first.
+  EXPECT_CONTAINS(fluid_rules_markdown(),
+                  "`wall_friction_rule = \"thesis\"` (default): rho0 nu / r_v; "
+                  "`wall_friction_rule = \"moment\"`: 6 rho0 nu d^2 / r_v^3");
+}
+
+TEST(FluidRules, AnUnknownRuleOrARuleForAGivenValueIsRefused) {
+  try {
+    derive_fluid(tank(), 2, {{"wall_friction", "momnet"}});
+    ADD_FAILURE() << "accepted the rule 'momnet'";
+  } catch (const Error& error) {
+    EXPECT_EQ(error.location(), "wall_friction_rule");
+    EXPECT_CONTAINS(error.fault(), "no rule \"momnet\" for wall_friction");
+    EXPECT_CONTAINS(error.remedy(), "choose one of \"thesis\", \"moment\"");
+  }
+  FluidValues given = tank();
+  given["wall_friction"] = 0.5;
+  try {
+    derive_fluid(given, 2, {{"wall_friction", "moment"}});
+    ADD_FAILURE() << "accepted a given wall_friction and a chosen rule";
+  } catch (const Error& error) {
+    EXPECT_EQ(error.location(), "wall_friction_rule");
+    EXPECT_CONTAINS(error.fault(), "wall_friction is given and its rule is chosen too");
+    EXPECT_CONTAINS(error.remedy(), "remove wall_friction_rule to keep the given value");
+  }
+  try {
+    derive_fluid(tank(), 2, {{"smoothing_length", "thesis"}});
+    ADD_FAILURE() << "accepted a rule for a quantity with one";
+  } catch (const Error& error) {
+    EXPECT_EQ(error.location(), "smoothing_length_rule");
+    EXPECT_CONTAINS(error.fault(), "has one rule");
+  }
 }
 
 TEST(FluidRules, TheTimeStepIsTheLeastOfItsLimits) {
@@ -247,6 +309,20 @@ TEST_F(FluidBlock, BadInputsAreProblemsAtTheirLines) {
                   "FluidRegion.spacing = 0.001 differs from the Fluid block's "
                   "spacing = 0.002");
   EXPECT_CONTAINS(different, "write spacing = Fluid.spacing here");
+}
+
+TEST_F(FluidBlock, TheWallFrictionRuleIsChosenInTheBlock) {
+  const Scene built = build_scene(scene(inputs() + "\n  wall_friction_rule = \"moment\"").string());
+  // 6 rho0 nu d^2 / r_v^3 with nu = 1e-6, d = 0.002, r_v = 0.0076: 0.05466 (thesis: 0.1316).
+  EXPECT_NEAR(std::stod(variable(built, "SPH_wall_visc")),
+              6.0 * 1000.0 * 1e-6 * 4e-6 / std::pow(0.0076, 3), 1e-12);
+  const std::string typo =
+      testing::build_error(scene(inputs() + "\n  wall_friction_rule = \"momnet\""));
+  EXPECT_CONTAINS(typo, "f.scene:11:3: 'Fluid.wall_friction_rule' = \"momnet\" is not one of");
+  EXPECT_CONTAINS(typo, "did you mean \"moment\"?");
+  const std::string both = testing::build_error(
+      scene(inputs() + "\n  wall_friction = 0.1\n  wall_friction_rule = \"moment\""));
+  EXPECT_CONTAINS(both, "f.scene:12:3: wall_friction is given and its rule is chosen too");
 }
 
 TEST_F(FluidBlock, ASceneWithoutAStepTakesTheLargestItsRulesAllow) {
