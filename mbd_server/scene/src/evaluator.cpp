@@ -323,11 +323,15 @@ class Evaluator {
     }
     if (!first_problem.message.empty()) return first_problem;
     const std::string suggestion = suggestion_for(path, parts.back().name, visible_names(from));
-    return {nullptr, in_quotes(path) + " is not defined",
-            suggestion.empty()
-                ? "define it above this line (a name is looked up in its block, then in the "
-                  "blocks around it)"
-                : "did you mean " + in_quotes(suggestion) + "?"};
+    std::string remedy = suggestion.empty()
+                             ? "define it above this line (a name is looked up in its block, "
+                               "then in the blocks around it)"
+                             : "did you mean " + in_quotes(suggestion) + "?";
+    // `--set Block.key=word`: the shell ate the quotes of a text value.
+    if (!from.override_label.empty() && parts.size() == 1)
+      remedy += "; a text value keeps its quotes through the shell: --set '" + path_of(from) +
+                "=\"" + std::string(path) + "\"'";
+    return {nullptr, in_quotes(path) + " is not defined", remedy};
   }
 
   // ---- uses of a value assigned again later ----

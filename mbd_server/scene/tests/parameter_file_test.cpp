@@ -447,6 +447,15 @@ TEST(ParameterFile, OverrideErrorsNameTheOverride) {
                   "t.scene:4:1; an override sees only parameters defined above the overridden "
                   "one (t.scene:1:12)");
   EXPECT_CONTAINS(error_of(text, {{"Geometry.width", ""}}), "the override has no value");
+  // A bare word: the shell took the quotes of a text value.
+  const std::string bare = error_of("Fluid { wall_friction_rule = \"thesis\" }\n",
+                                    {{"Fluid.wall_friction_rule", "moment"}});
+  EXPECT_CONTAINS(bare, "'moment' is not defined");
+  EXPECT_CONTAINS(bare,
+                  "a text value keeps its quotes through the shell: --set "
+                  "'Fluid.wall_friction_rule=\"moment\"'");
+  EXPECT_EQ(error_of(text, {{"Geometry.width", "Body.mass"}}).find("keeps its quotes"),
+            std::string::npos);  // a path: not a text value
 
   EXPECT_THROW(parse_override("no_equals_sign"), fsi::Error);
   EXPECT_THROW(parse_override("=3"), fsi::Error);
