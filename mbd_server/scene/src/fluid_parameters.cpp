@@ -228,7 +228,8 @@ const FluidRule& chosen_rule(const FluidQuantity& quantity, const FluidRuleChoic
 
 FluidDerivation derive_fluid(const FluidValues& given, int dimension,
                              const FluidRuleChoices& choices) {
-  for (const auto& [key, name] : choices) {
+  for (const auto& choice : choices) {
+    const std::string& key = choice.first;  // not a structured binding: clang's lambdas
     const bool known = std::any_of(fluid_quantities().begin(), fluid_quantities().end(),
                                    [&](const FluidQuantity& q) { return q.key == key; });
     FSI_ASSERT(known, "a rule chosen for '" + key + "', which is no quantity's key");
