@@ -87,11 +87,9 @@ void derive_from_fluid_block(SceneBuilder& builder) {
   }
   builder.guard(fluid.location(), [&] {
     FluidValues given;
-    for (const FluidQuantity& q : fluid_quantities()) {
-      if (!q.key.empty() && fluid.has(q.key)) given[std::string(q.key)] = fluid.number(q.key);
-    }
     FluidRuleChoices choices;
     for (const FluidQuantity& q : fluid_quantities()) {
+      if (!q.key.empty() && fluid.has(q.key)) given[std::string(q.key)] = fluid.number(q.key);
       if (q.has_choice() && fluid.has(q.rule_key()))
         choices[std::string(q.key)] = fluid.string(q.rule_key());
     }
