@@ -27,9 +27,20 @@ std::string number(double value) {
 
 }  // namespace
 
-EnergyAudit::EnergyAudit(double stop_growth, std::string remedy)
+double audit_energy_scale(double fluid_mass, double speed_of_sound) {
+  if (!(fluid_mass > 0.0) || !(speed_of_sound > 0.0)) return 0.0;
+  const double design_speed = 0.1 * speed_of_sound;
+  return 0.5 * fluid_mass * design_speed * design_speed;
+}
+
+double audit_noise_floor(double energy_scale) {
+  return std::max(kAuditRoundOff, kAuditNoiseFraction * energy_scale);
+}
+
+EnergyAudit::EnergyAudit(double stop_growth, std::string remedy, double noise_floor)
     : stop_growth_(stop_growth),
-      remedy_(remedy.empty() ? std::string(kGeneralRemedy) : std::move(remedy)) {}
+      remedy_(remedy.empty() ? std::string(kGeneralRemedy) : std::move(remedy)),
+      noise_floor_(std::max(kAuditRoundOff, noise_floor)) {}
 
 void EnergyAudit::start(std::span<const double> positions, std::span<const double> velocities,
                         std::span<const double> forces) {
@@ -76,7 +87,7 @@ void EnergyAudit::exchange(std::span<const double> positions, std::span<const do
   applied_.assign(applied.begin(), applied.end());  // empty: the structure moves under f(n)
 
   const bool judged =
-      totals_.exchanges >= kAuditFirstJudgedExchange && totals_.coupling_energy > kAuditRoundOff;
+      totals_.exchanges >= kAuditFirstJudgedExchange && totals_.coupling_energy > noise_floor_;
   if (!judged) return;
   const double fraction = totals_.coupling_energy / std::max(totals_.traffic, kAuditRoundOff);
   totals_.max_coupling_fraction = std::max(totals_.max_coupling_fraction, fraction);

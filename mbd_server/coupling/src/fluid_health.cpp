@@ -132,6 +132,12 @@ std::string FluidHealthMonitor::time_step_advice() const {
   return text;
 }
 
+std::string FluidHealthMonitor::step_with_new_speed_of_sound() const {
+  if (scales_.step_follows_speed_of_sound)
+    return " (the step follows c by the Fluid block's time-step rule and keeps dt c / h)";
+  return " and reduce SolverOptions.Timeint.step_size by the same factor to keep dt c / h";
+}
+
 std::optional<HealthFinding> FluidHealthMonitor::non_finite(std::uint64_t step,
                                                             const FluidForces& forces) const {
   std::string what;
@@ -238,14 +244,15 @@ std::optional<HealthFinding> FluidHealthMonitor::density(std::uint64_t step,
             number(scales_.time_step * kImpactStableCourant / courant) +
             " s; if the deviation persists, ";
     }
-    fix += "the speed of sound is too low for this flow (rho/rho0 - 1 goes as 1/c^2): raise cAB";
+    fix += "the speed of sound is too low for this flow (rho/rho0 - 1 goes as 1/c^2): raise " +
+           scales_.speed_of_sound_name;
     if (scales_.speed_of_sound) {
       fix += " from " + number(*scales_.speed_of_sound) + " to at least " +
              number_up(factor * *scales_.speed_of_sound) + " m/s";
     } else {
       fix += " by a factor of " + number(factor);
     }
-    fix += " and reduce SolverOptions.Timeint.step_size by the same factor to keep dt c / h";
+    fix += step_with_new_speed_of_sound();
     if (!advice.empty()) fix += " (now " + advice + ")";
   }
   if (stops) {
@@ -276,12 +283,13 @@ std::optional<HealthFinding> FluidHealthMonitor::mach(std::uint64_t step,
   const double c = *scales_.speed_of_sound;
   const double mach_number = health.max_speed / c;
   const std::string what = "the fastest particle moves at " + number(health.max_speed) +
-                           " m/s = " + number(mach_number) + " c (c = cAB = " + number(c) +
-                           " m/s) " + at_step(step);
+                           " m/s = " + number(mach_number) +
+                           " c (c = " + scales_.speed_of_sound_name + " = " + number(c) + " m/s) " +
+                           at_step(step);
   // c >= 10 v_max keeps the density within 1 % (thesis §6.2).
-  std::string fix = "raise cAB from " + number(c) +
-                    " to at least 10 v_max = " + number(10.0 * health.max_speed) +
-                    " m/s and reduce SolverOptions.Timeint.step_size by the same factor";
+  std::string fix = "raise " + scales_.speed_of_sound_name + " from " + number(c) +
+                    " to at least 10 v_max = " + number(10.0 * health.max_speed) + " m/s" +
+                    step_with_new_speed_of_sound();
   const std::string advice = time_step_advice();
   if (!advice.empty()) fix += " (now " + advice + ")";
   fix +=
@@ -368,6 +376,8 @@ FluidScales fluid_scales(const scene::Scene& scene) {
   scales.true_shape_pressure = scene::true_shape_pressure(scene);
   scales.box_description =
       describe_liggghts_box(scene.liggghts.script1_name, scene.liggghts.script1_text);
+  if (scene.fluid_parameters) scales.speed_of_sound_name = "Fluid.speed_of_sound";
+  scales.step_follows_speed_of_sound = scene.solver.step_size_derived;
   return scales;
 }
 

@@ -102,7 +102,10 @@ class Session {
       : scene_(scene),
         options_(options),
         fluid_(fluid),
-        audit_(scene.health.max_coupling_energy_growth, coupling_energy_remedy(scene)),
+        audit_(scene.health.max_coupling_energy_growth, coupling_energy_remedy(scene),
+               audit_noise_floor(
+                   audit_energy_scale(scene.fluid.mass * static_cast<double>(scene.fluid.count()),
+                                      scene::speed_of_sound(scene).value_or(0.0)))),
         health_(scene.health, scene.liggghts.allowed_lost_particles, fluid_scales(scene)),
         progress_logger_(spdlog::get("progress") ? spdlog::get("progress")
                                                  : spdlog::default_logger()) {
@@ -232,9 +235,11 @@ class Session {
         "fluid health checks at every exchange: stop at NaN, a particle closer than {:.3g} r0 "
         "to a wall, |rho/rho0 - 1| > {:.3g}, |v| > {:.3g} c, more than {} particle(s) lost, "
         "a coupling energy grown {:.3g} times after the energy audit's warning (0: not checked; "
-        "scene block FluidHealth, LIGGGHTS.allowed_lost_particles)",
+        "judged above {:.3g} {}, {:.3g} of the fluid's 1/2 M (c/10)^2; scene block FluidHealth, "
+        "LIGGGHTS.allowed_lost_particles)",
         limits.min_wall_distance, limits.max_density_deviation, limits.max_mach,
-        health_.allowed_lost_particles(), limits.max_coupling_energy_growth);
+        health_.allowed_lost_particles(), limits.max_coupling_energy_growth, audit_.noise_floor(),
+        scene_.dimension == 3 ? "J" : "J/m", kAuditNoiseFraction);
     record.liggghts_version = ready.liggghts_version;
     record.seconds_client_setup = ready.seconds_setup;
     record.seconds_client_equilibration = ready.seconds_equilibration;

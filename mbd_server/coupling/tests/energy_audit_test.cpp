@@ -66,10 +66,11 @@ TEST(EnergyAudit, AWallDrivenFromRestIsNotMistakenForTheInstability) {
 // Explicit coupling of a damper is stable for c dt / m < 2 and unstable above.
 // With stop_growth > 0 it ends where the audit says stop, as the session does.
 EnergyAudit staggered_damper(double c_dt_over_m, int steps, double stop_growth = 0.0,
-                             double* largest_speed = nullptr, const std::string& remedy = {}) {
+                             double* largest_speed = nullptr, const std::string& remedy = {},
+                             double noise_floor = kAuditRoundOff) {
   const double m = 1.0, k = 100.0, dt = 1e-3, c = c_dt_over_m * m / dt;
   double x = 0.01, v = 0.0, f = 0.0;
-  EnergyAudit audit(stop_growth, remedy);
+  EnergyAudit audit(stop_growth, remedy, noise_floor);
   audit.start(std::vector<double>{x}, std::vector<double>{v}, std::vector<double>{f});
   for (int n = 1; n <= steps && audit.stop().empty(); ++n) {
     v += dt * (-k * x + f) / m;  // symplectic Euler under the held force
@@ -164,6 +165,59 @@ TEST(EnergyAudit, AOneOffInjectionWarnsButDoesNotStop) {
   ASSERT_TRUE(audit.warned_at());
   EXPECT_EQ(*audit.warned_at(), kAuditFirstJudgedExchange);
   EXPECT_FALSE(audit.stopped_at());
+}
+
+TEST(EnergyAudit, TheNoiseFloorIsAMillionthOfTheFluidsEnergyAtATenthOfItsSoundSpeed) {
+  // 42 kg/m of water with c = 67.7 m/s: 1/2 M (c/10)^2 = 962.5 J/m.
+  EXPECT_NEAR(audit_energy_scale(42.0, 67.7), 0.5 * 42.0 * 6.77 * 6.77, 1e-9);
+  EXPECT_NEAR(audit_noise_floor(audit_energy_scale(42.0, 67.7)), 9.625e-4, 1e-7);
+  EXPECT_EQ(audit_energy_scale(42.0, 0.0), 0.0);  // c unknown: round-off only
+  EXPECT_EQ(audit_noise_floor(0.0), kAuditRoundOff);
+  EXPECT_EQ(EnergyAudit(3.0, {}, 0.0).noise_floor(), kAuditRoundOff);
+}
+
+// A water front's first touch on a structure at rest (a dam break reaching an obstacle): for a
+// few exchanges the structure creeps under the first particles' force while the fluid sees it
+// at rest, so all of the tiny traffic is created energy, doubling each step, and then it rests.
+EnergyAudit first_touch(double noise_floor) {
+  EnergyAudit audit(3.0, {}, noise_floor);
+  const std::vector<double> v{0.0};
+  const std::vector<double> f{1e-2};  // N/m: the front's first particles
+  double x = 0.0;
+  audit.start(std::vector<double>{x}, v, std::vector<double>{0.0});
+  for (std::uint64_t n = 1; n <= 2000; ++n) {
+    if (n > 1000 && n <= 1010) x += 1e-9 * std::pow(2.0, static_cast<double>(n - 1000));
+    audit.exchange(std::vector<double>{x}, v, 1e-5, n > 1000 ? f : std::vector<double>{0.0}, n);
+  }
+  return audit;
+}
+
+TEST(EnergyAudit, AFirstTouchBelowTheNoiseFloorIsNotJudged) {
+  // The healthy run a user's dam break through an elastic obstacle was stopped by: 2e-8 J/m
+  // created at the first touch, against 42 kg/m of water at c = 67.7 m/s (floor 9.6e-4 J/m).
+  const EnergyAudit judged_from_round_off = first_touch(kAuditRoundOff);
+  EXPECT_NEAR(judged_from_round_off.totals().coupling_energy, 1e-2 * 1e-9 * 2044.0, 1e-15);
+  EXPECT_TRUE(judged_from_round_off.warned_at());
+  EXPECT_TRUE(judged_from_round_off.stopped_at());  // what happened before the floor
+  const EnergyAudit audit = first_touch(audit_noise_floor(audit_energy_scale(42.0, 67.7)));
+  EXPECT_EQ(audit.totals().coupling_energy, judged_from_round_off.totals().coupling_energy);
+  EXPECT_FALSE(audit.warned_at());
+  EXPECT_FALSE(audit.stopped_at());
+  EXPECT_EQ(audit.totals().max_coupling_fraction, 0.0);
+}
+
+TEST(EnergyAudit, AnInstabilityGrowsThroughTheNoiseFloorAndIsStopped) {
+  // The unstable damper starts with 5e-3 J and its energy grows by 2.25 per step; a floor of
+  // 1e5 J, 2e7 times that, delays the verdict by a few steps, before the speed reaches 1e3.
+  double largest_speed = 0.0;
+  const EnergyAudit audit = staggered_damper(2.5, 5000, 3.0, &largest_speed, {}, 1e5);
+  ASSERT_TRUE(audit.warned_at());
+  ASSERT_TRUE(audit.stopped_at());
+  EXPECT_GT(audit.totals().coupling_energy, 1e5);
+  EXPECT_LT(largest_speed, 1e3);
+  const EnergyAudit from_round_off = staggered_damper(2.5, 5000, 3.0);
+  EXPECT_GT(*audit.stopped_at(), *from_round_off.stopped_at());
+  EXPECT_LE(*audit.stopped_at(), *from_round_off.stopped_at() + 20);
 }
 
 TEST(EnergyAudit, APredictedForceIsTheStructuresWorkAndTheDifferenceIsCreated) {

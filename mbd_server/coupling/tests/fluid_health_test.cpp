@@ -248,6 +248,34 @@ TEST(FluidHealth, ADensityWarningJustOverTheAimNamesNumbersThatDiffer) {
       << verdict.warnings[0].fix;
 }
 
+TEST(FluidHealth, WithAFluidBlockTheFixNamesItsKeyAndTheStepFollows) {
+  // A scene with a Fluid block and no Timeint.step_size: c is Fluid.speed_of_sound and the step
+  // is the block's rule's, so the fix does not ask for a step the scene never wrote.
+  FluidScales scales = water_column_scales();
+  scales.speed_of_sound_name = "Fluid.speed_of_sound";
+  scales.step_follows_speed_of_sound = true;
+  scales.time_step = 1.8e-5;  // the rule's dt c / h = 0.09
+  FluidHealthMonitor watch = monitor(scales);
+  FluidForces forces = healthy();
+  forces.health->max_density = 1040.0;
+  HealthVerdict verdict = watch.judge(12, forces);
+  ASSERT_TRUE(verdict.stop);
+  EXPECT_TRUE(contains(verdict.stop->fix,
+                       "raise Fluid.speed_of_sound from 20 to at least 40 m/s (the step follows c "
+                       "by the Fluid block's time-step rule and keeps dt c / h)"))
+      << verdict.stop->fix;
+  EXPECT_FALSE(contains(verdict.stop->fix, "step_size")) << verdict.stop->fix;
+  FluidHealthMonitor fast = monitor(scales);
+  forces = healthy();
+  forces.health->max_speed = 12.0;
+  verdict = fast.judge(2, forces);
+  ASSERT_TRUE(verdict.stop);
+  EXPECT_TRUE(contains(verdict.stop->message, "(c = Fluid.speed_of_sound = 20 m/s)"))
+      << verdict.stop->message;
+  EXPECT_FALSE(contains(verdict.stop->fix, "SolverOptions.Timeint.step_size by"))
+      << verdict.stop->fix;
+}
+
 TEST(FluidHealth, AParticleOverHalfTheSpeedOfSoundStopsAndOverATenthWarns) {
   FluidHealthMonitor watch = monitor();
   FluidForces forces = healthy();

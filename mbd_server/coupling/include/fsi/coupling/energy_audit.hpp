@@ -35,6 +35,21 @@ inline constexpr double kInjectionWarningFraction = 0.1;
 inline constexpr std::uint64_t kAuditFirstJudgedExchange = 20;
 // Below this [J; 2D J/m] a coupling energy is round-off.
 inline constexpr double kAuditRoundOff = 1e-12;
+// A coupling energy below this fraction of the fluid's energy scale (audit_noise_floor) is not
+// judged: when a water front first touches a structure at rest (a dam break reaching an obstacle)
+// the forces rise from nothing while the traffic is still ~1e-9 J, and the lag of one step made a
+// few 1e-10 J that read as 10-40 % of the traffic (a healthy run stopped at its first contact).
+// An instability that ends a run makes far more: a single particle thrown at half the speed of
+// sound carries 25 / N of the scale (N particles).
+inline constexpr double kAuditNoiseFraction = 1e-6;
+
+// The fluid's energy scale of the audit: the kinetic energy of the whole fluid (total mass
+// `fluid_mass`, kg; 2D kg/m) at the flow speed its speed of sound was chosen for, c / 10 (thesis
+// §6.2, Mach 0.1): 1/2 M (c / 10)^2 [J; 2D J/m]. 0 when c is not known.
+double audit_energy_scale(double fluid_mass, double speed_of_sound);
+// The coupling energy the audit judges above: kAuditNoiseFraction of the energy scale, at least
+// kAuditRoundOff.
+double audit_noise_floor(double energy_scale);
 
 struct EnergyTotals {
   double work_fluid_on_structure = 0.0;  // sum of W_fs [J; 2D J/m]
@@ -61,7 +76,10 @@ class EnergyAudit {
   // stays put; 0: it never stops.
   // remedy: what to change, ending the warning's text and given with the stop (the session's
   // names the scene's own step and substeps); empty: kGeneralRemedy.
-  explicit EnergyAudit(double stop_growth, std::string remedy = {});
+  // noise_floor [J; 2D J/m]: a coupling energy at or below it is not judged (audit_noise_floor);
+  // never below kAuditRoundOff.
+  explicit EnergyAudit(double stop_growth, std::string remedy = {},
+                       double noise_floor = kAuditRoundOff);
 
   // The dynamic vertices at t = 0 and the fluid's forces on them (dimension values each).
   void start(std::span<const double> positions, std::span<const double> velocities,
@@ -92,6 +110,8 @@ class EnergyAudit {
   const std::string& remedy() const { return remedy_; }
   // The step at which the stop growth was exceeded, if it was.
   std::optional<std::uint64_t> stopped_at() const { return stopped_at_; }
+  // The coupling energy the audit judges above [J; 2D J/m].
+  double noise_floor() const { return noise_floor_; }
 
   // Checkpoints: everything the audit carries from exchange to exchange, bit for bit.
   void save_state(output::StateWriter& out) const;
@@ -110,6 +130,7 @@ class EnergyAudit {
   std::string pending_;
   double stop_growth_ = 0.0;
   std::string remedy_ = kGeneralRemedy;
+  double noise_floor_ = kAuditRoundOff;
   double energy_at_warning_ = 0.0;
   std::optional<std::uint64_t> stopped_at_;
   std::string stop_;

@@ -35,6 +35,12 @@ struct FluidScales {
   std::optional<double> wall_cutoff;          // r_c of the thesis' wall law, if known
   std::optional<double> true_shape_pressure;  // the true-shape wall's reference pressure, if used
   std::string box_description;                // where script 1 makes the LIGGGHTS box
+  // The speed of sound's name in the fix texts: the LIGGGHTS variable cAB, or the Fluid block's
+  // key when the block derives it.
+  std::string speed_of_sound_name = "cAB";
+  // The coupled step is the Fluid block's time-step rule's (Timeint.step_size not given): it
+  // follows a new speed of sound by itself.
+  bool step_follows_speed_of_sound = false;
 };
 
 // One finding: `check` is one of the names above; message says what and by how much, fix what to
@@ -98,6 +104,9 @@ class FluidHealthMonitor {
   std::string time_step_advice() const;
   // dt c / h, if c and h are known.
   std::optional<double> courant_number() const;
+  // What happens to the step when c is raised: " and reduce SolverOptions.Timeint.step_size by
+  // the same factor to keep dt c / h", or that the Fluid block's rule follows.
+  std::string step_with_new_speed_of_sound() const;
 
   scene::FluidHealthLimits limits_;
   std::uint64_t allowed_lost_;
