@@ -193,6 +193,37 @@ Wrench joint_reaction(const Model& model, const State& state, int first_row, int
                                 : planar_joint_reaction(model, state, first_row, rows, body);
 }
 
+Wrench beam_joint_reaction(const Model& model, const State& state, int first_row, int rows,
+                           BodyId beam, int node) {
+  if (!model.is_beam(beam)) {
+    throw Error("body " + std::to_string(beam) + " is not an AncfBeam2D", "a beam joint reaction",
+                "this is a bug of fsi-server: please report it");
+  }
+  const int nodes = model.beam_node_count(beam);
+  if (node < 0 || node >= nodes) {
+    throw Error(
+        "node " + std::to_string(node) + " of a beam of " + std::to_string(nodes) + " nodes",
+        "a beam joint reaction", "this is a bug of fsi-server: please report it");
+  }
+  const Data& data = data_of(model);
+  const Eigen::VectorXd generalised = joint_generalised_force(model, state, first_row, rows);
+  const auto own = data.segment(generalised, beam);
+  const auto q = data.segment(state.q, beam);
+  const Eigen::Vector2d pivot = q.segment<2>(4 * node);
+  const auto cross = [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+    return a.x() * b.y() - a.y() * b.x();
+  };
+  Wrench reaction;
+  for (int j = 0; j < nodes; ++j) {
+    const Eigen::Vector2d on_position = own.segment<2>(4 * j);
+    const Eigen::Vector2d on_slope = own.segment<2>(4 * j + 2);
+    reaction.force.head<2>() += on_position;
+    reaction.torque.z() += cross(Eigen::Vector2d(q.segment<2>(4 * j)) - pivot, on_position) +
+                           cross(q.segment<2>(4 * j + 2), on_slope);
+  }
+  return reaction;
+}
+
 Wrench point_load_resultant(const Model& model, const State& state, BodyId body) {
   const Data& data = data_of(model);
   data.check_body(body, "a point-load resultant");

@@ -80,5 +80,44 @@ TEST(MbdBeamClampToBody, CantileverOnATurnedHeldBodyBendsAsOnTheGround) {
   }
 }
 
+TEST(MbdBeamClampReaction, TheClampHoldsTheLoadAndItsMomentAboutTheNode) {
+  // A cantilever in large deflection under a tip load F: in equilibrium the clamp exerts -F on
+  // the beam and the moment -(r_tip - r_clamp) x F about its node, in the deformed shape. The
+  // clamp is not at node 0: the beam runs from the tip (node 0) to the clamped end (node 8).
+  for (const BeamClamp clamp : {BeamClamp::Direction, BeamClamp::Full}) {
+    Model model;
+    AncfBeamSpec spec;
+    spec.name = "beam";
+    spec.start = {kLength, 0.0};
+    spec.end = {0.0, 0.0};
+    spec.element_count = 8;
+    spec.axial_stiffness = 2.07e11 * 0.01;
+    spec.bending_stiffness = kBending;
+    spec.mass_per_length = 78.0;
+    const BodyId beam = model.add_ancf_beam(spec);
+    const int first_row = model.constraint_count();
+    model.add_beam_clamp(beam, 8, clamp);
+    const int rows = model.constraint_count() - first_row;
+    const int tip = model.add_marker(beam, {0.0, 0.0});
+    const Eigen::Vector2d load(0.3 * kBending / (kLength * kLength),
+                               -2.0 * kBending / (kLength * kLength));
+    model.set_point_loads(std::vector<double>{load.x(), load.y()});
+    const StaticResult result = solve_static(model, model.initial_state());
+    const Wrench reaction = beam_joint_reaction(model, result.state, first_row, rows, beam, 8);
+    const Eigen::Vector2d arm = marker_position(model, result.state, tip).head<2>();  // clamp at 0
+    const double moment = -(arm.x() * load.y() - arm.y() * load.x());
+    std::printf("clamp reaction (%s): force (%.6f, %.6f) N, moment %.6f N m (expected %.6f)\n",
+                clamp == BeamClamp::Full ? "full" : "direction", reaction.force.x(),
+                reaction.force.y(), reaction.torque.z(), moment);
+    EXPECT_GT(arm.norm(), 0.1);
+    EXPECT_LT((kLength * Eigen::Vector2d(1.0, 0.0) - arm).norm(), 0.9 * kLength);  // it bent
+    EXPECT_NEAR(reaction.force.x(), -load.x(), 1e-8 * load.norm());
+    EXPECT_NEAR(reaction.force.y(), -load.y(), 1e-8 * load.norm());
+    EXPECT_NEAR(reaction.torque.z(), moment, 1e-7 * std::abs(moment));
+  }
+  Model model;
+  EXPECT_THROW(beam_joint_reaction(model, model.initial_state(), 0, 0, 0, 0), Error);
+}
+
 }  // namespace
 }  // namespace fsi::mbd

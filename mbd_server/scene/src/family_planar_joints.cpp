@@ -38,8 +38,9 @@ std::vector<BlockSpec> planar_joint_blocks() {
           "BeamClamp",
           "Clamps a node of an AncfBeam2D to the ground (or to the RigidBody2D `to`) at "
           "its initial position and slope direction (rows x, y, slope direction); slope = "
-          "\"full\" also holds the slope's length (4 rows).",
-          {text("beam", "name of an AncfBeam2D"),
+          "\"full\" also holds the slope's length (4 rows). A joint_force sensor on its name "
+          "reads the force on the beam and the clamp's moment about the node (torque).",
+          {element_name_spec(), text("beam", "name of an AncfBeam2D"),
            text("to", "name of the holding RigidBody2D; absent: the ground").optional(),
            integer("node", "node index: 0 at start, elements at end").at_least(0).with_default(0),
            text("slope",
@@ -123,7 +124,11 @@ void build_beam_clamps(SceneBuilder& builder) {
     const auto slope =
         c.string("slope") == "full" ? mbd::BeamClamp::Full : mbd::BeamClamp::Direction;
     const mbd::BodyId to = c.has("to") ? builder.find_body(c, "to") : mbd::kGround;
-    builder.placed(c, [&] { builder.model.add_beam_clamp(beam, node, slope, to); });
+    builder.add_joint(c, [&] { return builder.model.add_beam_clamp(beam, node, slope, to); },
+                      {.rows = slope == mbd::BeamClamp::Full ? 4 : 3,
+                       .body = beam,
+                       .kind = "beam clamp",
+                       .beam_node = node});
   });
 }
 

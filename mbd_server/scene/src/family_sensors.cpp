@@ -295,13 +295,14 @@ bool SensorBuilder::joint_fits() {
             "give the joint a RigidBody3D or PointMass as body_a (body of a FixedJoint3D)");
     return false;
   }
-  if (!builder.spatial() && sensor.body != mbd::kGround && model.is_beam(sensor.body)) {
+  if (!builder.spatial() && sensor.body != mbd::kGround && model.is_beam(sensor.body) &&
+      !joint.beam_node) {
     problem(s.location("joint"),
             "joint '" + name +
                 "' holds an AncfBeam2D as its first body; joint_force reads a rigid body's force "
                 "and torque",
-            "give the joint a rigid body as body_a, or measure the beam with a fluid_force "
-            "sensor");
+            "give the joint a rigid body as body_a, measure a BeamClamp (force and moment on "
+            "the beam at its node), or measure the beam with a fluid_force sensor");
     return false;
   }
   if (sensor.axis == kDriveTorqueAxis && !joint.drive) {
@@ -314,6 +315,7 @@ bool SensorBuilder::joint_fits() {
   }
   sensor.first_row = joint.first_row;
   sensor.rows = joint.rows;
+  sensor.beam_node = joint.beam_node;
   return true;
 }
 

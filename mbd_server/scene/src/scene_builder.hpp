@@ -32,6 +32,7 @@ struct NamedJoint {
   mbd::BodyId body = mbd::kGround;
   std::string kind;    // "prismatic joint", for units and messages
   bool drive = false;  // a driven RevoluteJoint3D: its last row is the drive (component torque)
+  std::optional<int> beam_node = std::nullopt;  // a BeamClamp: the node of the beam it holds
 };
 
 struct NamedElements {

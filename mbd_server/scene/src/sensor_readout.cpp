@@ -48,6 +48,11 @@ double structure_sensor_value(const mbd::Model& model, const SensorSpec& sensor,
     case SensorType::ConstraintForce:
       return constraint_force(model, state, sensor.body, sensor.component);
     case SensorType::JointForce:
+      if (sensor.beam_node) {
+        return beam_joint_reaction(model, state, sensor.first_row, sensor.rows, sensor.body,
+                                   *sensor.beam_node)
+            .planar()(component);
+      }
       return joint_reaction(model, state, sensor.first_row, sensor.rows, sensor.body)
           .planar()(component);
     case SensorType::SpringForce:

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "fsi/mbd/integrator.hpp"
+#include "fsi/mbd/static_analysis.hpp"
 #include "fsi/scene/scene.hpp"
 #include "test_files.hpp"
 
@@ -301,6 +302,37 @@ Torque { body = "hub"; torque = "0.5" })scene") +
                blade);
   EXPECT_NE(text.find("beam clamp on blade node 0 to 'hub'"), std::string::npos) << text;
   EXPECT_NE(text.find("velocity residual"), std::string::npos) << text;
+}
+
+TEST_F(MechanismScene, ANamedBeamClampReadsTheForceAndTheMomentItHoldsTheBeamWith) {
+  // A stiff horizontal cantilever under its own weight (mu g = 4.905 N/m over L = 1 m): the
+  // clamp holds it with mu g L = 4.905 N/m upwards and mu g L^2 / 2 = 2.4525 N m/m
+  // counter-clockwise about its node (the weight's moment about the clamp, the other way).
+  Scene scene = build_scene(write(R"scene(Gravity { acceleration = [0, -9.81] }
+AncfBeam2D { name = "arm"; start = [0, 0]; end = [1, 0]; elements = 4; thickness = 0.01
+             axial_stiffness = 1e9; bending_stiffness = 1e6; mass_per_length = 0.5 }
+BeamClamp { name = "root"; beam = "arm"; node = 0 }
+Sensor { name = "root_x"; type = "joint_force"; joint = "root"; component = "x" }
+Sensor { name = "root_y"; type = "joint_force"; joint = "root"; component = "y" }
+Sensor { name = "root_moment"; type = "joint_force"; joint = "root"; component = "torque" }
+)scene"));
+  ASSERT_EQ(scene.sensors.size(), 3u);
+  EXPECT_EQ(scene.sensors[2].unit, "N m/m");
+  const mbd::StaticResult result = mbd::solve_static(scene.model, scene.model.initial_state());
+  const double weight = 0.5 * 9.81;
+  EXPECT_NEAR(structure_sensor_value(scene.model, scene.sensors[0], result.state), 0.0, 1e-9);
+  EXPECT_NEAR(structure_sensor_value(scene.model, scene.sensors[1], result.state), weight, 1e-9);
+  EXPECT_NEAR(structure_sensor_value(scene.model, scene.sensors[2], result.state), 0.5 * weight,
+              1e-9);
+  // A joint on a beam other than a clamp still has no torque to read: refused with the ways out.
+  const std::string text = problems(R"scene(
+AncfBeam2D { name = "arm"; start = [0, 0]; end = [1, 0]; elements = 2; thickness = 0.01
+             axial_stiffness = 1e9; bending_stiffness = 1e6; mass_per_length = 0.5 }
+RevoluteJoint { name = "pin"; body_a = "arm"; point_a = [0, 0]; point_b = [0, 0] }
+Sensor { name = "pin_x"; type = "joint_force"; joint = "pin"; component = "x" }
+)scene");
+  EXPECT_NE(text.find("holds an AncfBeam2D as its first body"), std::string::npos) << text;
+  EXPECT_NE(text.find("measure a BeamClamp"), std::string::npos) << text;
 }
 
 }  // namespace

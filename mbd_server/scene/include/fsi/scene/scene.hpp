@@ -191,6 +191,8 @@ struct SensorSpec {
   std::string unit;
   int first_row = 0;  // JointForce: the joint's constraint rows
   int rows = 0;
+  // JointForce of a BeamClamp: the clamped node of the beam `body` (torque about its position).
+  std::optional<int> beam_node;
   int force_element = -1;  // SpringForce: index among the model's force elements
 };
 
