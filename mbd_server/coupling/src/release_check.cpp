@@ -56,6 +56,13 @@ ReleaseCheck check_release(const protocol::ReleaseState& release,
   check.warning = "the fluid is not at rest when the bodies are released: " + problems +
                   ". Give it more time (LIGGGHTS { equilibration_steps }, now " + steps + "); " +
                   drag + " (docs/user-guide.md, \"Equilibration\")";
+  if (check.weight_fraction && *check.weight_fraction < kUnheldWeightFraction) {
+    check.warning +=
+        "; if no structure holds this fluid where it starts (a dam break's column), more time "
+        "lets it flow away: hold it during the equilibration with a LIGGGHTS wall that script 2 "
+        "removes (docs/user-guide.md, \"Holding water that the structure does not hold\"; "
+        "examples/dam_break)";
+  }
   return check;
 }
 

@@ -54,6 +54,16 @@ TEST(ReleaseCheck, AColumnCarryingTooLittleWeightIsNotAtRestAndTheWarningSaysWha
   EXPECT_NE(check.warning.find("settling_drag = 0 } turns the settling drag off"),
             std::string::npos)
       << check.warning;
+  // Far below the weight: perhaps nothing holds the water; the warning says how to hold it.
+  EXPECT_NE(check.warning.find("if no structure holds this fluid where it starts (a dam break's "
+                               "column), more time lets it flow away: hold it during the "
+                               "equilibration with a LIGGGHTS wall that script 2 removes"),
+            std::string::npos)
+      << check.warning;
+  const std::array<double, 3> almost{0.0, -16.9 * 9.81 * 0.95, 0.0};
+  EXPECT_EQ(check_release(settled_column(), almost, kGravity, 1000, std::nullopt)
+                .warning.find("if no structure holds"),
+            std::string::npos);
   // Too much is as wrong as too little: the column is on its way up.
   const std::array<double, 3> heavy{0.0, -16.9 * 9.81 * 1.02, 0.0};
   EXPECT_FALSE(check_release(settled_column(), heavy, kGravity, 1000, std::nullopt).at_rest);
