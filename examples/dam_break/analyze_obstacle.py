@@ -27,11 +27,6 @@ from fsi_results import finish_figure, pyplot, read_run, write_analysis  # noqa:
 CONTACT_FORCE = 1.0  # N/m: the water's force that counts as contact
 
 
-def parameter(run, name):
-    """A scene parameter by its dotted path (run.json parameters_flat)."""
-    return float(run["parameters_flat"][name])
-
-
 def obstacle_of(run_dir):
     run, sensors = read_run(run_dir)
     time = sensors["time"]
@@ -40,10 +35,11 @@ def obstacle_of(run_dir):
     force, moment = sensors["obstacle_fluid_force_x"], sensors["clamp_moment"]
     peak = max(range(len(dx)), key=lambda i: dx[i])
     contact = next((time[i] for i, f in enumerate(force) if abs(f) > CONTACT_FORCE), None)
-    length = parameter(run, "Geometry.hb")
-    stiffness = parameter(run, "Geometry.E") * parameter(run, "Geometry.w") ** 3 / 12.0
+    params = run["parameters_flat"]
+    length = params["Geometry.hb"]
+    stiffness = params["Geometry.E"] * params["Geometry.w"] ** 3 / 12.0
     ratio = dx[peak] * stiffness / (moment[peak] * length ** 2) if moment[peak] != 0.0 else float("nan")
-    return {"run": run_dir, "spacing": parameter(run, "Resolution.spacing"), "contact_time": contact,
+    return {"run": run_dir, "spacing": params["Resolution.spacing"], "contact_time": contact,
             "peak_dx": dx[peak], "peak_time": time[peak], "dy_at_peak": dy[peak],
             "force_at_peak": force[peak], "moment_at_peak": moment[peak], "beam_ratio": ratio,
             "max_force": max(force), "time": time, "dx": dx}
@@ -73,8 +69,9 @@ def main():
     for run_dir in args.run_dirs:
         result = obstacle_of(run_dir)
         results.append(result)
+        contact = "none" if result["contact_time"] is None else f"{result['contact_time']:.4f}"
         print(f"{run_dir} (d = {1000.0 * result['spacing']:g} mm): first contact at t = "
-              f"{result['contact_time']} s; peak dx {1000.0 * result['peak_dx']:.2f} mm at "
+              f"{contact} s; peak dx {1000.0 * result['peak_dx']:.2f} mm at "
               f"t = {result['peak_time']:.4f} s (dy {1000.0 * result['dy_at_peak']:.2f} mm), force "
               f"{result['force_at_peak']:.1f} N/m, clamp moment {result['moment_at_peak']:.3f} N m/m; "
               f"dx EI / (M L^2) = {result['beam_ratio']:.3f}; largest force {result['max_force']:.1f} N/m")
