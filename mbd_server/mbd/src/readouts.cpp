@@ -194,22 +194,17 @@ Wrench joint_reaction(const Model& model, const State& state, int first_row, int
 }
 
 Wrench beam_joint_reaction(const Model& model, const State& state, int first_row, int rows,
-                           BodyId beam, int node) {
+                           BodyId beam, const Eigen::Vector2d& point) {
   if (!model.is_beam(beam)) {
     throw Error("body " + std::to_string(beam) + " is not an AncfBeam2D", "a beam joint reaction",
                 "this is a bug of fsi-server: please report it");
   }
   const int nodes = model.beam_node_count(beam);
-  if (node < 0 || node >= nodes) {
-    throw Error(
-        "node " + std::to_string(node) + " of a beam of " + std::to_string(nodes) + " nodes",
-        "a beam joint reaction", "this is a bug of fsi-server: please report it");
-  }
   const Data& data = data_of(model);
   const Eigen::VectorXd generalised = joint_generalised_force(model, state, first_row, rows);
   const auto own = data.segment(generalised, beam);
   const auto q = data.segment(state.q, beam);
-  const Eigen::Vector2d pivot = q.segment<2>(4 * node);
+  const Eigen::Vector2d pivot = point_position(model, state, BodyPointSpec{beam, point}).head<2>();
   const auto cross = [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
     return a.x() * b.y() - a.y() * b.x();
   };

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <span>
 #include <string>
@@ -110,8 +111,12 @@ StaticResult solve_static(Model& model, const State& start, const StaticOptions&
       lambda += dlambda;
       ++result.newton_iterations;
       last_step = max_abs(dq) / (1.0 + max_abs(q));
+      // Once q no longer moves beyond its round-off, the multipliers just solved the force
+      // balance at it: what they still change by is the round-off of the stiffness-scaled
+      // solve (scale eps, far above a small load's tolerance when EA is large), not progress.
+      const bool at_round_off = last_step <= 16.0 * std::numeric_limits<double>::epsilon();
       converged = last_step <= options.tolerance &&
-                  max_abs(dlambda) <= options.tolerance * (1.0 + max_abs(lambda));
+                  (at_round_off || max_abs(dlambda) <= options.tolerance * (1.0 + max_abs(lambda)));
     }
     if (!converged) {
       throw Error("Newton did not converge at load factor " + number_text(factor) + " (load step " +

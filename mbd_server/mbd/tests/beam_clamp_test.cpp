@@ -103,7 +103,8 @@ TEST(MbdBeamClampReaction, TheClampHoldsTheLoadAndItsMomentAboutTheNode) {
                                -2.0 * kBending / (kLength * kLength));
     model.set_point_loads(std::vector<double>{load.x(), load.y()});
     const StaticResult result = solve_static(model, model.initial_state());
-    const Wrench reaction = beam_joint_reaction(model, result.state, first_row, rows, beam, 8);
+    const Wrench reaction =
+        beam_joint_reaction(model, result.state, first_row, rows, beam, {kLength, 0.0});
     const Eigen::Vector2d arm = marker_position(model, result.state, tip).head<2>();  // clamp at 0
     const double moment = -(arm.x() * load.y() - arm.y() * load.x());
     std::printf("clamp reaction (%s): force (%.6f, %.6f) N, moment %.6f N m (expected %.6f)\n",
@@ -116,7 +117,7 @@ TEST(MbdBeamClampReaction, TheClampHoldsTheLoadAndItsMomentAboutTheNode) {
     EXPECT_NEAR(reaction.torque.z(), moment, 1e-7 * std::abs(moment));
   }
   Model model;
-  EXPECT_THROW(beam_joint_reaction(model, model.initial_state(), 0, 0, 0, 0), Error);
+  EXPECT_THROW(beam_joint_reaction(model, model.initial_state(), 0, 0, 0, {0.0, 0.0}), Error);
 }
 
 }  // namespace

@@ -117,6 +117,20 @@ void build_coordinate_constraints(SceneBuilder& builder) {
   });
 }
 
+// Where a joint acts on an AncfBeam2D, as [s, eta] (a joint_force sensor's torque is about it).
+std::optional<std::array<double, 2>> beam_point_of(const mbd::Model& model,
+                                                   const mbd::BodyPointSpec& point) {
+  if (point.body == mbd::kGround || !model.is_beam(point.body)) return std::nullopt;
+  return std::array<double, 2>{point.local.x(), point.local.y()};
+}
+
+std::optional<std::array<double, 2>> beam_node_point(const mbd::Model& model, mbd::BodyId beam,
+                                                     int node) {
+  if (beam == mbd::kGround || !model.is_beam(beam)) return std::nullopt;  // add_beam_clamp says
+  const mbd::AncfBeamSpec& spec = model.beam(beam);
+  return std::array<double, 2>{node * (spec.end - spec.start).norm() / spec.element_count, 0.0};
+}
+
 void build_beam_clamps(SceneBuilder& builder) {
   builder.each("BeamClamp", [&](const View& c) {
     const mbd::BodyId beam = builder.find_body(c, "beam");
@@ -128,7 +142,7 @@ void build_beam_clamps(SceneBuilder& builder) {
                       {.rows = slope == mbd::BeamClamp::Full ? 4 : 3,
                        .body = beam,
                        .kind = "beam clamp",
-                       .beam_node = node});
+                       .beam_point = beam_node_point(builder.model, beam, node)});
   });
 }
 
@@ -138,14 +152,20 @@ void build_point_joints(SceneBuilder& builder) {
     const auto a = builder.point(j, "a");
     const auto b = builder.point(j, "b");
     builder.add_joint(j, [&] { return model.add_revolute_joint(a, b, name_of(j)); },
-                      {.rows = 2, .body = a.body, .kind = "revolute joint"});
+                      {.rows = 2,
+                       .body = a.body,
+                       .kind = "revolute joint",
+                       .beam_point = beam_point_of(builder.model, a)});
   });
   builder.each("DistanceConstraint", [&](const View& c) {
     const auto a = builder.point(c, "a");
     const auto b = builder.point(c, "b");
     const std::optional<double> length = optional_number(c, "length");
     builder.add_joint(c, [&] { return model.add_distance_constraint(a, b, length, name_of(c)); },
-                      {.rows = 1, .body = a.body, .kind = "distance constraint"});
+                      {.rows = 1,
+                       .body = a.body,
+                       .kind = "distance constraint",
+                       .beam_point = beam_point_of(builder.model, a)});
   });
   builder.each("PrismaticJoint", [&](const View& j) {
     mbd::PrismaticJointSpec spec;

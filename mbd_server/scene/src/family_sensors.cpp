@@ -60,7 +60,9 @@ std::vector<BlockSpec> sensor_blocks() {
           {text("name", "column name"),
            text("type",
                 "what is measured (total_fluid_force: on every boundary, walls included; "
-                "joint_force: what the joint exerts on its body_a (Clamp: body); spring_force: "
+                "joint_force: what the joint exerts on its body_a (Clamp: body; the torque about "
+                "its centre of mass, on an AncfBeam2D about the joint's point on it, a "
+                "BeamClamp's node); spring_force: "
                 "tension, or torque of a RotationalSpringDamper; energies of the whole system, "
                 "potential = gravity + springs)")
                .one_of(sensor_types()),
@@ -296,13 +298,14 @@ bool SensorBuilder::joint_fits() {
     return false;
   }
   if (!builder.spatial() && sensor.body != mbd::kGround && model.is_beam(sensor.body) &&
-      !joint.beam_node) {
+      !joint.beam_point) {
     problem(s.location("joint"),
             "joint '" + name +
                 "' holds an AncfBeam2D as its first body; joint_force reads a rigid body's force "
                 "and torque",
-            "give the joint a rigid body as body_a, measure a BeamClamp (force and moment on "
-            "the beam at its node), or measure the beam with a fluid_force sensor");
+            "give the joint a rigid body as body_a, measure a BeamClamp, RevoluteJoint or "
+            "DistanceConstraint on the beam (force on it, moment about the joint's point), or "
+            "measure the beam with a fluid_force sensor");
     return false;
   }
   if (sensor.axis == kDriveTorqueAxis && !joint.drive) {
@@ -315,7 +318,7 @@ bool SensorBuilder::joint_fits() {
   }
   sensor.first_row = joint.first_row;
   sensor.rows = joint.rows;
-  sensor.beam_node = joint.beam_node;
+  sensor.beam_point = joint.beam_point;
   return true;
 }
 

@@ -32,7 +32,9 @@ struct NamedJoint {
   mbd::BodyId body = mbd::kGround;
   std::string kind;    // "prismatic joint", for units and messages
   bool drive = false;  // a driven RevoluteJoint3D: its last row is the drive (component torque)
-  std::optional<int> beam_node = std::nullopt;  // a BeamClamp: the node of the beam it holds
+  // body is an AncfBeam2D: the beam point [s, eta] the joint acts at (a BeamClamp's node, a
+  // pin's point_a); joint_force reads the torque about it.
+  std::optional<std::array<double, 2>> beam_point = std::nullopt;
 };
 
 struct NamedElements {

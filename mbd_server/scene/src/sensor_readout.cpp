@@ -48,9 +48,9 @@ double structure_sensor_value(const mbd::Model& model, const SensorSpec& sensor,
     case SensorType::ConstraintForce:
       return constraint_force(model, state, sensor.body, sensor.component);
     case SensorType::JointForce:
-      if (sensor.beam_node) {
+      if (sensor.beam_point) {
         return beam_joint_reaction(model, state, sensor.first_row, sensor.rows, sensor.body,
-                                   *sensor.beam_node)
+                                   {(*sensor.beam_point)[0], (*sensor.beam_point)[1]})
             .planar()(component);
       }
       return joint_reaction(model, state, sensor.first_row, sensor.rows, sensor.body)

@@ -57,13 +57,14 @@ double constraint_force(const Model& model, const State& state, BodyId body, Coo
 // exert on `body`: its part of -G^T lambda (spatial rigid body: force from the centre-of-mass
 // components, torque sum_k e_k x Q_(e_k)). Zero for the ground.
 Wrench joint_reaction(const Model& model, const State& state, int first_row, int rows, BodyId body);
-// The same rows' force and torque on an AncfBeam2D, the torque about the position of its node
-// `node` (a BeamClamp's node: the clamp's moment): the force is the sum of the generalised forces
-// Q_r on the nodes' positions, the torque sum_j (r_j - r_node) x Q_r,j + s_j x Q_s,j (a moment M
-// about z acts on a slope s as the generalised force M z x s / |s|^2). Throws fsi::Error if
-// `beam` is not an AncfBeam2D or `node` is not one of its nodes.
+// The same rows' force and torque on an AncfBeam2D, the torque about the beam's point `point`
+// ([s, eta]: a BeamClamp's node gives the clamp's moment, a pin's own point ~0): the force is the
+// sum of the generalised forces Q_r on the nodes' positions, the torque
+// sum_j (r_j - r_p) x Q_r,j + s_j x Q_s,j (a moment M about z acts on a slope s as the
+// generalised force M z x s / |s|^2). Throws fsi::Error if `beam` is not an AncfBeam2D or s lies
+// off the beam.
 Wrench beam_joint_reaction(const Model& model, const State& state, int first_row, int rows,
-                           BodyId beam, int node);
+                           BodyId beam, const Eigen::Vector2d& point);
 // The resultant of the point loads on a body's markers: their sum and their torque about the
 // body's reference point (the centre of mass of a rigid body).
 Wrench point_load_resultant(const Model& model, const State& state, BodyId body);

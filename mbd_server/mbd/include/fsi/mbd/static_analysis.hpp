@@ -19,7 +19,8 @@ struct StaticOptions {
   int load_steps = 10;
   int max_iterations = 25;  // Newton iterations per load step
   // Converged when |dq|_inf <= tolerance (1 + |q|_inf) and |dlambda|_inf <= tolerance (1 +
-  // |lambda|_inf); one more (quadratically convergent) iteration is then taken.
+  // |lambda|_inf), or when dq is at round-off (16 eps: lambda then changes by the scaled
+  // solve's round-off only).
   double tolerance = 1e-10;
 };
 

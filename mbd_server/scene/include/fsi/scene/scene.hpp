@@ -191,8 +191,9 @@ struct SensorSpec {
   std::string unit;
   int first_row = 0;  // JointForce: the joint's constraint rows
   int rows = 0;
-  // JointForce of a BeamClamp: the clamped node of the beam `body` (torque about its position).
-  std::optional<int> beam_node;
+  // JointForce of a joint on an AncfBeam2D `body`: the beam point [s, eta] it acts at (a
+  // BeamClamp's node, a pin's point_a); the torque is about that point.
+  std::optional<std::array<double, 2>> beam_point;
   int force_element = -1;  // SpringForce: index among the model's force elements
 };
 
