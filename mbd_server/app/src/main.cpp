@@ -347,6 +347,8 @@ SceneNotes scene_notes(const fsi::scene::Scene& scene, bool mbd_only) {
   if (!mbd_only && scene.solver.method != fsi::scene::IntegrationMethod::FixedStep)
     notes.diagnostics.push_back(coupled_step_notice(scene));
   notes.run_warnings = fsi::scene::end_time_check(scene);
+  for (fsi::scene::Diagnostic& warning : fsi::scene::integrator_check(scene))
+    notes.run_warnings.push_back(std::move(warning));
   return notes;
 }
 

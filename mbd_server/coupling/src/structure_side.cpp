@@ -53,7 +53,8 @@ bool finite(const mbd::State& state) {
 }  // namespace
 
 int advance_in_substeps(const std::function<void(mbd::State&, double)>& take_step,
-                        mbd::State& state, double step_size, int max_substeps) {
+                        mbd::State& state, double step_size, int max_substeps,
+                        const std::string& held) {
   const mbd::State start = state;
   std::string tried;
   for (int substeps = 1;; substeps *= 2) {
@@ -65,18 +66,18 @@ int advance_in_substeps(const std::function<void(mbd::State&, double)>& take_ste
       state = start;
       tried += (tried.empty() ? std::string() : std::string(", ")) + std::to_string(substeps);
       if (2 * substeps > max_substeps) {
-        throw Error(std::string(failure.fault()) + " (the step failed as " + tried +
-                        " substeps with the fluid forces held; the limit is " +
-                        std::to_string(max_substeps) + ")",
+        throw Error(std::string(failure.fault()) + " (the step failed as " + tried + " substeps" +
+                        held + "; the limit is " + std::to_string(max_substeps) + ")",
                     std::string(failure.location()), std::string(failure.remedy()));
       }
     }
   }
 }
 
-StructureSide::StructureSide(scene::Scene& scene, scene::IntegrationMethod method)
+StructureSide::StructureSide(scene::Scene& scene, scene::IntegrationMethod method, bool coupled)
     : scene_(scene),
       method_(method),
+      held_(coupled ? " with the fluid forces held" : ""),
       state_(scene.model.initial_state()),
       integrator_(scene.solver.integrator_options()),
       crossing_(scene, state_) {
@@ -107,14 +108,14 @@ void StructureSide::integrate_to(double end_time, double step_size) {
     case scene::IntegrationMethod::FixedStep: {
       const int substeps = advance_in_substeps(
           [this](mbd::State& state, double h) { integrator_.step(scene_.model, state, h); }, state_,
-          step_size);
+          step_size, kMaxStructureSubsteps, held_);
       if (substeps > 1) {
         if (substepped_steps_ == 0) {
           spdlog::warn(
               "t = {:.9g} s: the multibody Newton iteration failed on the whole step of {:g} s "
-              "and converged in {} substeps of {:g} s with the fluid forces held (later such "
-              "steps are counted in run.json, newton.substepped_steps)",
-              state_.time, step_size, substeps, step_size / substeps);
+              "and converged in {} substeps of {:g} s{} (later such steps are counted in "
+              "run.json, newton.substepped_steps)",
+              state_.time, step_size, substeps, step_size / substeps, held_);
         }
         ++substepped_steps_;
       }

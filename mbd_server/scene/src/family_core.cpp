@@ -26,7 +26,8 @@ BlockSpec timeint_spec() {
                   .one_of({"RadauIIA", "LobattoIIIA"})
                   .with_default("RadauIIA"),
               integer("stages",
-                      "Radau IIA: 1, 2, 3 (orders 1, 3, 5); Lobatto IIIA: 2, 3 (orders 2, 4)")
+                      "Radau IIA: 1, 2, 3 (orders 1, 3, 5; 1 is implicit Euler, which damps "
+                      "oscillations: --check states how much); Lobatto IIIA: 2, 3 (orders 2, 4)")
                   .with_default(3)
                   .between(1, 3),
               integer("substeps",
@@ -127,6 +128,7 @@ void build_solver(SceneBuilder& builder) {
     solver.step_size_location = timeint.location("step_size");
   }
   solver.stages = static_cast<int>(timeint.integer("stages"));
+  solver.stages_location = timeint.location("stages");
   solver.substeps = static_cast<int>(timeint.integer("substeps"));
   solver.substeps_location = timeint.location("substeps");
   solver.linear_force_predictor = timeint.string("force_predictor") == "linear";

@@ -340,6 +340,36 @@ bool below(double value, double limit) {
   return value < limit * (1.0 - kRuleTolerance);
 }
 
+// --- 0. the structure's integrator ------------------------------------------------------------
+
+// Radau IIA with one stage is implicit Euler: per step an oscillation of angular frequency w
+// keeps 1 / sqrt(1 + (w h)^2) of its amplitude, per period T = 2 pi / w about exp(-2 pi^2 h / T)
+// (to first order in h / T). Dynamics at a fixed step loses what the user came to measure.
+void check_integrator_damping(const Scene& scene, Report& report) {
+  const SolverSettings& solver = scene.solver;
+  if (solver.family != mbd::TableauFamily::RadauIIA || solver.stages != 1 ||
+      solver.method != IntegrationMethod::FixedStep || !(solver.step_size > 0.0))
+    return;
+  const double h = solver.step_size * solver.substeps;  // the structure's step
+  const auto kept = [h](double period) {
+    const double w = 2.0 * std::numbers::pi / period;
+    return std::pow(1.0 + w * h * w * h, -0.5 * period / h);
+  };
+  std::string losses;
+  for (const double period : {10.0, 1.0, 0.1}) {
+    if (period < 4.0 * h) break;
+    losses += (losses.empty() ? "" : ", ") + number(100.0 * (1.0 - kept(period))) +
+              " % per period of " + number(period) + " s";
+  }
+  report.warn("integrator_damping", solver.stages_location,
+              "Radau IIA with 1 stage is implicit Euler (first order): at the structure step " +
+                  number(h) + " s an oscillation loses " + losses +
+                  " of its amplitude (about a factor exp(-2 pi^2 h / T) per period T), numerical "
+                  "damping that is not in the model",
+              "use stages = 2 or 3 (orders 3 and 5) for dynamics; keep 1 stage only to settle "
+              "quickly to a static state");
+}
+
 // --- 1. time step against the acoustic limit -------------------------------------------------
 
 void check_acoustic_time_step(const Scene& scene, Report& report) {
@@ -1019,6 +1049,12 @@ std::vector<Diagnostic> physics_checks(const Scene& scene) {
   std::vector<Diagnostic> diagnostics = report.take();
   check_viscosity_match(scene, diagnostics);
   return diagnostics;
+}
+
+std::vector<Diagnostic> integrator_check(const Scene& scene) {
+  Report report(scene);
+  check_integrator_damping(scene, report);
+  return report.take();
 }
 
 std::vector<Diagnostic> end_time_check(const Scene& scene) {

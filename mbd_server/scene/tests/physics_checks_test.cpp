@@ -107,6 +107,32 @@ TEST(PhysicsChecks, TheStaticTanksGetOnlyTheExplainedRepulsionWarning) {
   }
 }
 
+TEST(PhysicsChecks, ImplicitEulerIsWarnedWithTheDampingItAdds) {
+  // Radau IIA with 1 stage at h = 0.005 s (the Turek-Hron CSM3 beam, 1.1 Hz, measured by a user:
+  // the amplitude halved over 10 s): per period T the factor (1 + (2 pi h / T)^2)^(-T / 2h).
+  const auto warnings = [](const std::vector<Override>& overrides) {
+    return integrator_check(build_scene(kCoarseTank, overrides));
+  };
+  const std::vector<Diagnostic> found =
+      warnings({{"SolverOptions.Timeint.stages", "1"}, {"Resolution.time_step", "0.005"}});
+  ASSERT_EQ(found.size(), 1u) << listing(found);
+  const Diagnostic& warning = found.front();
+  EXPECT_EQ(warning.check, "integrator_damping");
+  EXPECT_CONTAINS(warning.message, "implicit Euler (first order): at the structure step 0.005 s");
+  EXPECT_CONTAINS(warning.message,
+                  "loses 0.982 % per period of 10 s, 9.39 % per period of 1 s, 61 % per "
+                  "period of 0.1 s");
+  EXPECT_CONTAINS(warning.fix, "use stages = 2 or 3");
+  EXPECT_CONTAINS(warning.location.text(), "--set SolverOptions.Timeint.stages=1");  // its source
+  // Orders 3 and 5, and an error-controlled method, are not warned; nor is it a fluid rule.
+  EXPECT_TRUE(warnings({{"SolverOptions.Timeint.stages", "2"}}).empty());
+  EXPECT_TRUE(warnings({{"SolverOptions.Timeint.stages", "1"},
+                        {"SolverOptions.Timeint.method", "\"adaptive\""}})
+                  .empty());
+  EXPECT_TRUE(of(coarse_diagnostics({{"SolverOptions.Timeint.stages", "1"}}), "integrator_damping")
+                  .empty());
+}
+
 TEST(PhysicsChecks, AcousticTimeStepAboveTheMeasuredLimit) {
   const Diagnostic warning =
       coarse_warning("acoustic_time_step", {{"Resolution.time_step", "1.5e-5"}});

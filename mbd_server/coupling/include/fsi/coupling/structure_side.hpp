@@ -12,6 +12,7 @@
 #include <memory>
 #include <optional>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "fsi/coupling/fluid_side.hpp"
@@ -33,15 +34,18 @@ inline constexpr int kMaxStructureSubsteps = 16;
 // fails. A failed step is taken again from the same start as 2, 4, ... equal substeps, up to
 // `max_substeps`; returns the number of substeps used (1: the step as given). When
 // `max_substeps` substeps fail too, throws the last failure with the substep counts tried
-// added, and `state` is the start again.
+// (and `held`, what the substeps keep constant: " with the fluid forces held") added, and
+// `state` is the start again.
 int advance_in_substeps(const std::function<void(mbd::State&, double)>& take_step,
                         mbd::State& state, double step_size,
-                        int max_substeps = kMaxStructureSubsteps);
+                        int max_substeps = kMaxStructureSubsteps,
+                        const std::string& held = " with the fluid forces held");
 
 class StructureSide {
  public:
-  // Starts from the model's initial state at t = 0.
-  StructureSide(scene::Scene& scene, scene::IntegrationMethod method);
+  // Starts from the model's initial state at t = 0. `coupled`: a fluid loads it (messages say
+  // its forces are held over a step; --mbd-only has none).
+  StructureSide(scene::Scene& scene, scene::IntegrationMethod method, bool coupled = true);
 
   // Integrates from t(step - 1) to t(step) = step * step_size (the clock does not drift over
   // many steps); an error-controlled method takes the steps its tolerances need in between. The
@@ -107,6 +111,7 @@ class StructureSide {
 
   scene::Scene& scene_;
   scene::IntegrationMethod method_;
+  std::string held_;  // what a substepped step keeps constant, for messages
   mbd::State state_;
   mbd::RadauIIA integrator_;
   std::unique_ptr<mbd::AdaptiveRadau> adaptive_;

@@ -36,6 +36,7 @@ struct SolverSettings {
   SourceLocation step_size_location;
   bool step_size_derived = false;
   int stages = 3;
+  SourceLocation stages_location;
   // Multi-rate coupling: fluid steps per structure step (the structure steps substeps *
   // step_size; 1: both step together).
   int substeps = 1;
