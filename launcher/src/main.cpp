@@ -156,6 +156,15 @@ int main(int argc, char** argv) {
                  "alike share core 0 and each takes twice as long)")
       ->capture_default_str()
       ->check(CLI::IsMember({"none", "core", "socket"}));
+  bool no_live = false;
+  app.add_flag("--no-live", no_live,
+               "fsi-server's progress as a log line every --progress-interval seconds instead of "
+               "a line rewritten in place on a terminal (default: off)");
+  double progress_interval = 10.0;
+  app.add_option("--progress-interval", progress_interval,
+                 "Seconds between fsi-server's progress lines in its log")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
   std::string token_file;
   app.add_option("--token-file", token_file,
                  "Shared token file given to both fsi-server and fsi-client (--token-file): they "
@@ -222,6 +231,11 @@ int main(int argc, char** argv) {
     server_command.insert(server_command.end(), {"--token-file", token_file});
   if (overwrite) server_command.push_back("--overwrite");
   server_command.insert(server_command.end(), {"--log-level", log_level});
+  if (no_live) server_command.push_back("--no-live");
+  if (app.count("--progress-interval") > 0) {
+    server_command.insert(server_command.end(),
+                          {"--progress-interval", std::to_string(progress_interval)});
+  }
   server_command.insert(server_command.end(), server_arguments.begin(), server_arguments.end());
   const pid_t server_pid = spawn(server_command);
   if (server_pid < 0) return 2;

@@ -4,7 +4,8 @@ without a terminal, periodic log lines on stderr and in DIR/fsi-server.log with 
 percent, steps/s, ETA, the closest wall approach in r0 and the latest snapshot's max |rho/rho0-1|
 and max speed against the speed of sound (the scene's cAB = 20 m/s); the last line says 100 %.
 With stderr on a terminal (a pty), a live status line rewritten in place ("\\r" + erase to end of
-line), the same numbers, and the log file still gets the periodic lines."""
+line), the same numbers, and the log file still gets the periodic lines. The log file is flushed line by line:
+while the run goes on it holds every progress line stderr has shown."""
 import os
 import pty
 import re
@@ -45,12 +46,28 @@ output = work_dir("progress")
 run_dir = os.path.join(output, "log")
 server, port = start_server(SCENE, run_dir, OVERRIDES, extra=["--progress-interval", "0.1"])
 client = start_client(port, 2, run_dir)
-status = wait(server, 120)
+# While the run goes on, a progress line on stderr is in fsi-server.log too (flushed per line: a
+# log that stops mid-line reads as a hung run; a user saw that for minutes).
+lagging, seen_running = [], 0
+deadline = time.time() + 120
+while server.poll() is None and time.time() < deadline:
+    on_stderr = sum(1 for line in read(run_dir, "server.stderr").splitlines() if LINE.search(line))
+    if on_stderr > 0:
+        time.sleep(0.05)  # the file sink is written right after the console's
+        in_log = sum(1 for line in read(run_dir, "fsi-server.log").splitlines() if LINE.search(line))
+        if server.poll() is None:
+            seen_running += 1
+            if in_log < on_stderr:
+                lagging.append((on_stderr, in_log))
+    time.sleep(0.05)
+status = wait(server, 1)
 if status is None:
     kill_group(server)
     kill_group(client)
     fail("fsi-server did not finish within 120 s")
 wait(client, 30)
+check(seen_running >= 2 and not lagging,
+      f"fsi-server.log kept up with stderr while the run went on ({seen_running} looks; behind: {lagging[:3]})")
 stderr = read(run_dir, "server.stderr")
 check(status == 0, f"fsi-server exits 0 (got {status})")
 check("\r" not in stderr and "\x1b[" not in stderr, "no carriage returns or escape sequences without a terminal")

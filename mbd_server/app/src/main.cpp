@@ -92,6 +92,9 @@ std::shared_ptr<TerminalSink> configure_logging(const std::string& level,
   for (const auto& each : {logger, progress}) {
     each->set_pattern("[%H:%M:%S.%e] [fsi-server] [%l] %v");
     each->set_level(spdlog::level::from_str(level));
+    // A line reaches fsi-server.log (and fsi-run, which shows it) when it is written, not when
+    // the file's buffer fills: a log that stops mid-line for minutes reads as a hung run.
+    each->flush_on(spdlog::level::info);
   }
   spdlog::drop_all();
   spdlog::set_default_logger(logger);
