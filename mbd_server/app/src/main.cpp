@@ -131,8 +131,11 @@ void print_summary(const fsi::scene::Scene& scene) {
   std::printf("  fluid: %zu particles, spacing %g m, mass %g %s, density %g kg/m^3\n",
               scene.fluid.count(), scene.fluid.spacing, scene.fluid.mass, spatial ? "kg" : "kg/m",
               scene.fluid.density);
-  std::printf("  time: %g s in steps of %g s (Radau IIA, %d stages); %llu equilibration steps\n",
-              scene.solver.end_time, scene.solver.step_size, scene.solver.stages,
+  const std::string fill = fsi::scene::fluid_box_fill(scene);
+  if (!fill.empty()) std::printf("    %s\n", fill.c_str());
+  std::printf("  time: %g s in steps of %g s (%s); %llu equilibration steps\n",
+              scene.solver.end_time, scene.solver.step_size,
+              scene.solver.integrator_description().c_str(),
               static_cast<unsigned long long>(scene.liggghts.equilibration_steps));
   if (scene.assembly) {
     for (const std::string& line : scene.assembly->lines())
@@ -479,6 +482,8 @@ int run(fsi::scene::Scene& scene, const CommandLine& line, const SceneNotes& not
     spdlog::warn("{}", warning.text());
   for (const std::string& fluid_line : fluid_block_lines(scene))
     spdlog::info("{}", fluid_line);
+  if (const std::string fill = fsi::scene::fluid_box_fill(scene); !fill.empty() && !line.mbd_only)
+    spdlog::info("{}", fill);
   log_diagnostics(scene, notes.diagnostics);
   if (scene.assembly) {
     for (const std::string& text : scene.assembly->lines())

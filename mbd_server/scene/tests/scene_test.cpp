@@ -50,6 +50,26 @@ TEST(Scene, BuildsTheCoarseStaticTank) {
   }
 }
 
+TEST(Scene, AFluidBoxThatIsNotWholeCellsSaysHowMuchOfItTheWaterFills) {
+  // The coarse tank's box is 0.0468 x 0.0308 m at d = 0.0016/1.9: 55.6 x 36.6 cells, filled with
+  // 55 x 36 from the lower corner (a user's 0.465 m deep tank at d = 0.0175 m got 0.455 m).
+  const std::string path = FSI_EXAMPLES_DIR "/static_tank/static_tank_coarse.scene";
+  const std::string fill = fluid_box_fill(build_scene(path));
+  EXPECT_NE(fill.find("the fluid box (x, y) 0.0468 x 0.0308 m holds 55 x 36 cells of 0.0008421 m: "
+                      "the water fills 0.04632 x 0.03032 m, x 1.035 %, y 1.572 % short"),
+            std::string::npos)
+      << fill;
+  // A fill height of whole spacings in y leaves only x short; whole in both: nothing to say.
+  const std::string d = "(0.0016/1.9)";
+  const std::string whole_y =
+      fluid_box_fill(build_scene(path, {{"Geometry.fill_height", "36*" + d}}));
+  EXPECT_NE(whole_y.find("x 1.035 % short"), std::string::npos) << whole_y;
+  EXPECT_EQ(whole_y.find("y "), std::string::npos) << whole_y;
+  EXPECT_EQ(fluid_box_fill(build_scene(path, {{"Geometry.fill_height", "36*" + d},
+                                              {"Geometry.width", "55*" + d + " + 0.0032"}})),
+            "");
+}
+
 TEST(Scene, OverridesReachTheBuiltScene) {
   const Scene scene =
       build_scene(FSI_EXAMPLES_DIR "/static_tank/static_tank_coarse.scene",

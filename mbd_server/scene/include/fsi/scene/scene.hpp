@@ -253,6 +253,13 @@ enum class SceneMode { Coupled, MbdOnly };
 Scene build_scene(const std::string& path, const std::vector<Override>& overrides = {},
                   SceneMode mode = SceneMode::Coupled);
 
+// How much of a box FluidRegion its lattice fills, for --check's summary and the run's log: the
+// box is filled with whole cells of the spacing d from its lower corner, so an extent that is
+// not a whole number of spacings leaves up to d of it empty at the upper side (the water is
+// shallower or narrower than drawn). "" when every extent is within d/4 of whole cells or the
+// region is not a box.
+std::string fluid_box_fill(const Scene& scene);
+
 // Which blocks a run in `mode` needs of this scene and which of the given ones it does not read,
 // a few lines of text for `fsi-server --check`.
 std::string blocks_needed(const Scene& scene, SceneMode mode);
