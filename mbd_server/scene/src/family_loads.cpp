@@ -12,8 +12,10 @@ std::vector<BlockSpec> load_blocks() {
                  with_scene_numbers(
                      "A world-frame force at a body point, muParser expressions of the time t [s] "
                      "(evaluated at every stage time)."),
-                 {element_name_spec(), text("body", "name of a RigidBody2D"),
-                  vector("point", 2, "m", "point of application, body coordinates")
+                 {element_name_spec(), text("body", "name of a RigidBody2D or an AncfBeam2D"),
+                  vector("point", 2, "m",
+                         "point of application: body coordinates; [s, eta] on a beam (arc "
+                         "length from its start, offset along the normal)")
                       .with_default({0.0, 0.0}),
                   text("force_x", "x component [N/m] in t").with_default("0"),
                   text("force_y", "y component [N/m] in t").with_default("0")})

@@ -43,8 +43,13 @@ std::vector<BlockSpec> planar_body_blocks() {
            vector("start", 2, "m", "first node (s = 0)"),
            vector("end", 2, "m", "last node (s = L)"),
            integer("elements", "number of equal elements").at_least(1),
-           number("axial_stiffness", "N/m", "EA (per unit depth in 2D)").positive(),
-           number("bending_stiffness", "N m", "EI (per unit depth in 2D)").positive(),
+           number("axial_stiffness", "N/m",
+                  "EA (per unit depth in 2D; a plate in plane strain: E h / (1 - nu^2))")
+               .positive(),
+           number("bending_stiffness", "N m",
+                  "EI (per unit depth in 2D; a plate in plane strain: the plate's D = E h^3 / "
+                  "(12 (1 - nu^2)))")
+               .positive(),
            number("mass_per_length", "kg/m^2", "rho A (per unit depth in 2D)").positive(),
            number("axial_damping", "N s/m", "viscous axial damping: N = EA eps + this * deps/dt")
                .at_least(0.0)

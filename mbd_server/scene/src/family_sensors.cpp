@@ -68,7 +68,7 @@ std::vector<BlockSpec> sensor_blocks() {
                .one_of(sensor_types()),
            text("body",
                 "name of a RigidBody2D (position, velocity, fluid and constraint forces), or of "
-                "an AncfBeam2D (fluid_force)")
+                "an AncfBeam2D (fluid_force; position and velocity of a beam point)")
                .optional(),
            per_dimension(vector("point", 2, "m",
                                 "position, velocity: a point of the body instead of its centre of "

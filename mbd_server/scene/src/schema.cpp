@@ -117,7 +117,12 @@ class Validator {
         add(block.location,
             "required block " + in_quotes(path + declared.name) + " is missing (" + declared.doc +
                 ")",
-            "add " + declared.name + " { ... } to " + where);
+            "add " + declared.name + " { ... } to " + where +
+                (declared.coupled_only
+                     ? ", or run the structure alone with fsi-server --mbd-only (fsi-run always "
+                       "couples), which needs no " +
+                           declared.name + " block"
+                     : ""));
       }
     }
   }
@@ -463,6 +468,8 @@ const Value& View::value(std::string_view key) const {
     return given->value;
   }
   if (declared && declared->default_value) return *declared->default_value;
+  // A required block the scene leaves out: validate() reported the block, not each of its keys.
+  if (owned_ && spec_->required) throw AlreadyReported(block_->location);
   throw Error("'" + std::string(key) + "' is missing in " +
                   (block_->name.empty() ? std::string("the scene") : "block " + block_->name),
               block_->location.text(),

@@ -544,6 +544,34 @@ Coupling { refinement_resolution = 0.2 }
   fs::remove_all(folder);
 }
 
+TEST(Scene, AStructureOnlySceneInACoupledRunIsToldOfMbdOnlyOnceABlock) {
+  // A user's cantilever without LIGGGHTS and Coupling, checked without --mbd-only: one problem
+  // per missing block, with the way out, not also every key the absent blocks would hold.
+  const fs::path folder = fs::temp_directory_path() / "fsi_scene_structure_only_test";
+  fs::create_directories(folder);
+  std::ofstream(folder / "beam.scene") << R"(scene_language = 1
+SolverOptions { end_time = 1; Timeint { step_size = 0.01 } }
+AncfBeam2D { name = "b"; start = [0, 0]; end = [1, 0]; elements = 2; thickness = 0.01
+             axial_stiffness = 1e5; bending_stiffness = 1; mass_per_length = 1 }
+BeamClamp { beam = "b"; node = 0 }
+)";
+  const std::string text = build_error(folder / "beam.scene");
+  EXPECT_NE(text.find("2 problem(s)"), std::string::npos) << text;
+  for (const char* block : {"LIGGGHTS", "Coupling"}) {
+    EXPECT_NE(text.find("required block '" + std::string(block) + "' is missing (The"),
+              std::string::npos)
+        << text;
+    EXPECT_NE(text.find("run the structure alone with fsi-server --mbd-only (fsi-run always "
+                        "couples), which needs no " +
+                        std::string(block) + " block"),
+              std::string::npos)
+        << text;
+  }
+  EXPECT_EQ(text.find("is missing in block"), std::string::npos) << text;
+  EXPECT_NO_THROW(build_scene((folder / "beam.scene").string(), {}, SceneMode::MbdOnly));
+  fs::remove_all(folder);
+}
+
 // Every 3D mistake at its place, all in one run: planar bodies and joints, vectors of the wrong
 // length, a missing STL, an open STL for the fluid, a 2D-only shape and component.
 TEST(Scene, ThreeDimensionalMistakesAreReportedTogether) {
