@@ -157,7 +157,8 @@ std::string diagnostics_headline(const fsi::scene::Scene& scene,
   return "physics checks of " + scene.file +
          " (thesis §6.2 rules of thumb; docs/user-guide.md, \"Physics checks\"): " +
          std::to_string(count(diagnostics, fsi::scene::Severity::Warning)) + " warning(s), " +
-         std::to_string(count(diagnostics, fsi::scene::Severity::Info)) + " check(s) skipped";
+         std::to_string(count(diagnostics, fsi::scene::Severity::Info)) +
+         " note(s) (a check skipped, or what a check found worth knowing; each on a line below)";
 }
 
 // --check: every warning and skipped check, on stdout after the summary.

@@ -592,7 +592,9 @@ void Model::check_consistency(const State& state) const {
                 "multibody model",
                 "set the bodies' initial positions and velocities to what the constraints "
                 "prescribe (a held coordinate needs zero velocity, a driven one the drive's "
-                "velocity) and constrain each coordinate once");
+                "velocity; a body turned about a pin away from its centre of mass also moves "
+                "that centre), or let an Assembly block find them (docs/user-guide.md, "
+                "\"Initial assembly\"), and constrain each coordinate once");
   }
 }
 
