@@ -205,6 +205,14 @@ std::optional<HealthFinding> FluidHealthMonitor::wall_distance(std::uint64_t ste
   return finding;
 }
 
+std::string FluidHealthMonitor::settle_first(const std::string& fix) const {
+  if (unsettled_release_.empty()) return fix;
+  return "the water was not at rest when the bodies were released (" + unsettled_release_ +
+         "; the release warning says how to let it settle): settle it first, with "
+         "LIGGGHTS.equilibration_steps; if the finding persists from a settled start: " +
+         fix;
+}
+
 std::optional<HealthFinding> FluidHealthMonitor::density(std::uint64_t step,
                                                          const protocol::FluidHealth& health,
                                                          std::vector<HealthFinding>& warnings) {
@@ -255,6 +263,7 @@ std::optional<HealthFinding> FluidHealthMonitor::density(std::uint64_t step,
     fix += step_with_new_speed_of_sound();
     if (!advice.empty()) fix += " (now " + advice + ")";
   }
+  fix = settle_first(fix);
   if (stops) {
     return HealthFinding{kCheckDensityDeviation,
                          what + " exceeds FluidHealth.max_density_deviation = " +
@@ -295,6 +304,7 @@ std::optional<HealthFinding> FluidHealthMonitor::mach(std::uint64_t step,
   fix +=
       "; a speed far above sqrt(2 g H) of the flow means a wall or the time step kicked the "
       "fluid: halve the step first";
+  fix = settle_first(fix);
   if (mach_number > limits_.max_mach) {
     return HealthFinding{kCheckMach,
                          what + ", above FluidHealth.max_mach = " + number(limits_.max_mach), fix};

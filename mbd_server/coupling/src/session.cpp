@@ -280,7 +280,14 @@ class Session {
         check.weight, scene_.dimension == 3 ? "N" : "N/m",
         check.kinetic_over_potential ? fmt::format("{:.3e}", *check.kinetic_over_potential)
                                      : std::string("-"));
-    if (!check.at_rest) spdlog::warn("{}", check.warning);
+    if (!check.at_rest) {
+      spdlog::warn("{}", check.warning);
+      health_.set_unsettled_release(
+          check.weight_fraction
+              ? fmt::format("the structure carried {:.1f} % of the fluid's weight",
+                            100.0 * *check.weight_fraction)
+              : std::string("its kinetic energy was not small against its potential energy"));
+    }
     release_ = check;
   }
 

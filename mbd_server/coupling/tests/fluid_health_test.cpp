@@ -165,6 +165,40 @@ TEST(FluidHealth, ADensityDeviationOverTheLimitStopsNamingTheSpeedOfSound) {
   EXPECT_EQ(watch.record().max_density_deviation_step, 12u);
 }
 
+TEST(FluidHealth, AfterAnUnsettledReleaseTheFixSaysToSettleFirst) {
+  // A user's tank released without equilibration: the release check saw 405.8 % of the weight
+  // carried, then the density check stopped it saying only "raise c": c was not the cause.
+  for (const double speed : {0.0, 12.0}) {  // the density finding, then the Mach finding
+    FluidHealthMonitor watch = monitor();
+    watch.set_unsettled_release("the structure carried 405.8 % of the fluid's weight");
+    FluidForces forces = healthy();
+    if (speed > 0.0) {
+      forces.health->max_speed = speed;
+    } else {
+      forces.health->max_density = 1040.0;
+    }
+    const HealthVerdict verdict = watch.judge(3, forces);
+    ASSERT_TRUE(verdict.stop);
+    EXPECT_EQ(verdict.stop->fix.rfind("the water was not at rest when the bodies were released "
+                                      "(the structure carried 405.8 % of the fluid's weight",
+                                      0),
+              0u)
+        << verdict.stop->fix;
+    EXPECT_TRUE(contains(verdict.stop->fix,
+                         "settle it first, with LIGGGHTS.equilibration_steps; "
+                         "if the finding persists from a settled start: "))
+        << verdict.stop->fix;
+    EXPECT_TRUE(contains(verdict.stop->fix, "raise cAB from 20 to at least")) << verdict.stop->fix;
+  }
+  // Settled (no call): the fix is c's alone, as above.
+  FluidHealthMonitor settled = monitor();
+  FluidForces forces = healthy();
+  forces.health->max_density = 1040.0;
+  const HealthVerdict verdict = settled.judge(3, forces);
+  ASSERT_TRUE(verdict.stop);
+  EXPECT_FALSE(contains(verdict.stop->fix, "not at rest")) << verdict.stop->fix;
+}
+
 TEST(FluidHealth, ADensityDeviationWithATooLargeStepNamesTheStep) {
   FluidScales scales = water_column_scales();
   scales.time_step = 5e-5;  // dt c / h = 0.25

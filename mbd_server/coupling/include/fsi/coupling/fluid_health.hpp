@@ -75,6 +75,10 @@ class FluidHealthMonitor {
 
   // The particle count the losses are counted from (the client's Ready).
   void set_initial_particles(std::uint64_t count) { initial_particles_ = count; }
+  // The release check found the water not at rest (`why`: "the structure carried 405.8 % of
+  // the fluid's weight"): a density or Mach finding then says to let it settle first, before
+  // raising c (a column released from its lattice compresses and splashes whatever c is).
+  void set_unsettled_release(std::string why) { unsettled_release_ = std::move(why); }
 
   // Judges the exchange of `step`: checks in the order non-finite values, wall distance, density
   // deviation, Mach number, lost particles; the first that fails is the verdict's stop.
@@ -107,6 +111,8 @@ class FluidHealthMonitor {
   // What happens to the step when c is raised: " and reduce SolverOptions.Timeint.step_size by
   // the same factor to keep dt c / h", or that the Fluid block's rule follows.
   std::string step_with_new_speed_of_sound() const;
+  // `fix`, after the advice to settle the water first when the release found it moving.
+  std::string settle_first(const std::string& fix) const;
 
   scene::FluidHealthLimits limits_;
   std::uint64_t allowed_lost_;
@@ -114,6 +120,7 @@ class FluidHealthMonitor {
   std::uint64_t initial_particles_ = 0;
   double closest_over_r0_ = 0.0;  // smallest so far, for the lost-particle diagnosis
   bool density_warned_ = false, mach_warned_ = false, lost_warned_ = false;
+  std::string unsettled_release_;  // not kept in checkpoints: they are taken after the release
   HealthRecord record_;
 };
 
