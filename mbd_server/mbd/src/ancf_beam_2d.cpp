@@ -317,6 +317,16 @@ AncfBeam2D::CentreLinePoint AncfBeam2D::centre_line_point(const ConstVector& q,
   return {e, expand(s.value), first, first * q.segment<8>(4 * e)};
 }
 
+Eigen::Vector2d AncfBeam2D::slope(const ConstVector& q, double arc_length) const {
+  return centre_line_point(q, arc_length).slope;
+}
+
+Eigen::Vector2d AncfBeam2D::slope_rate(const ConstVector& q, const ConstVector& v,
+                                       double arc_length) const {
+  const CentreLinePoint point = centre_line_point(q, arc_length);
+  return point.first * v.segment<8>(4 * point.element);
+}
+
 void AncfBeam2D::position_jacobian(const ConstVector& q, const Eigen::Vector2d& local,
                                    Eigen::Ref<Eigen::MatrixXd> jacobian) const {
   const CentreLinePoint point = centre_line_point(q, local.x());

@@ -58,6 +58,9 @@ class AncfBeam2D final : public Body {
   Eigen::Vector2d position(const ConstVector& q, const Eigen::Vector2d& local) const override;
   Eigen::Vector2d velocity(const ConstVector& q, const ConstVector& v,
                            const Eigen::Vector2d& local) const override;
+  // The centre line's slope r' = dr/dx at arc length s, and its rate.
+  Eigen::Vector2d slope(const ConstVector& q, double arc_length) const;
+  Eigen::Vector2d slope_rate(const ConstVector& q, const ConstVector& v, double arc_length) const;
   void position_jacobian(const ConstVector& q, const Eigen::Vector2d& local,
                          Eigen::Ref<Eigen::MatrixXd> jacobian) const override;
   void velocity_jacobian(const ConstVector& q, const ConstVector& v, const Eigen::Vector2d& local,

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <string>
 
+#include "ancf_beam_2d.hpp"
 #include "ancf_cable_3d.hpp"
 #include "fsi/common/error.hpp"
 #include "measured_force.hpp"
@@ -285,6 +286,24 @@ Eigen::Vector3d point_position(const Model& model, const State& state, const Bod
 Eigen::Vector3d point_position(const Model& model, const State& state,
                                const SpatialPointSpec& point) {
   return data_of(model).spatial_point(point, "a position readout").position(state.q);
+}
+
+double beam_tangent_angle(const Model& model, const State& state, BodyId beam, double s) {
+  const Data& data = data_of(model);
+  const detail::AncfBeam2D& element = data.ancf_beam(beam, "a beam tangent readout");
+  element.check_local_coordinates({s, 0.0}, "a beam tangent readout");
+  const Eigen::Vector2d slope = element.slope(data.segment(state.q, beam), s);
+  return std::atan2(slope.y(), slope.x());
+}
+
+double beam_tangent_rate(const Model& model, const State& state, BodyId beam, double s) {
+  const Data& data = data_of(model);
+  const detail::AncfBeam2D& element = data.ancf_beam(beam, "a beam tangent readout");
+  element.check_local_coordinates({s, 0.0}, "a beam tangent readout");
+  const auto q = data.segment(state.q, beam);
+  const Eigen::Vector2d slope = element.slope(q, s);
+  const Eigen::Vector2d rate = element.slope_rate(q, data.segment(state.v, beam), s);
+  return (slope.x() * rate.y() - slope.y() * rate.x()) / slope.squaredNorm();
 }
 
 Eigen::Vector3d point_velocity(const Model& model, const State& state, const BodyPointSpec& point) {

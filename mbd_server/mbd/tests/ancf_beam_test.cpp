@@ -184,6 +184,40 @@ TEST(MbdAncfBeam, CircularArcHasTheCurvatureOfTheCircle) {
   EXPECT_NEAR(beam.strain_energy(q) / expected, 1.0, 1e-3);
 }
 
+TEST(MbdAncfBeam, TheCrossSectionsAngleAndItsRateFollowTheCentreLine) {
+  // On the circular arc the tangent at s turns by s / R; spun rigidly at omega about a point
+  // (v = omega z x (r - c), slope rates omega z x r'), every cross-section turns at omega. The
+  // rate is the derivative of the angle: checked by a difference in time too.
+  Model model;
+  const AncfBeamSpec spec = beam_spec(16);
+  const BodyId id = model.add_ancf_beam(spec);
+  const detail::AncfBeam2D beam(spec);
+  const double radius = beam.length() / 2.0;
+  State state = model.initial_state();
+  const Eigen::Vector2d centre(0.3, -0.2);
+  const double omega = 0.7;
+  const auto turn = [](const Eigen::Vector2d& r) { return Eigen::Vector2d(-r.y(), r.x()); };
+  for (int node = 0; node < beam.node_count(); ++node) {
+    const double phi = node * beam.element_length() / radius;
+    state.q.segment<2>(4 * node) = radius * Eigen::Vector2d(std::sin(phi), 1.0 - std::cos(phi));
+    state.q.segment<2>(4 * node + 2) = Eigen::Vector2d(std::cos(phi), std::sin(phi));
+    state.v.segment<2>(4 * node) = omega * turn(state.q.segment<2>(4 * node) - centre);
+    state.v.segment<2>(4 * node + 2) = omega * turn(state.q.segment<2>(4 * node + 2));
+  }
+  for (const double s : {0.0, 0.3 * beam.length(), beam.length()}) {
+    EXPECT_NEAR(beam_tangent_angle(model, state, id, s), s / radius, 1e-4) << "s = " << s;
+    EXPECT_NEAR(beam_tangent_rate(model, state, id, s), omega, 1e-12) << "s = " << s;
+    State later = state;
+    const double dt = 1e-7;
+    later.q += dt * state.v;
+    EXPECT_NEAR(
+        (beam_tangent_angle(model, later, id, s) - beam_tangent_angle(model, state, id, s)) / dt,
+        omega, 1e-5)
+        << "s = " << s;
+  }
+  EXPECT_THROW(beam_tangent_angle(model, state, id, 1.01 * beam.length()), Error);
+}
+
 TEST(MbdAncfBeam, MassMatrixMovesRigidlyWithTheTotalMass) {
   const AncfBeamSpec spec = beam_spec(5);
   const detail::AncfBeam2D beam(spec);

@@ -72,8 +72,9 @@ std::vector<BlockSpec> sensor_blocks() {
                .optional(),
            per_dimension(vector("point", 2, "m",
                                 "position, velocity: a point of the body instead of its centre of "
-                                "mass (body coordinates; [s, eta] on an AncfBeam2D; 3D: [x, y, "
-                                "z], [s, 0, 0] on a cable)"))
+                                "mass (body coordinates; [s, eta] on an AncfBeam2D, where "
+                                "component angle reads the cross-section's angle, the centre "
+                                "line's tangent at s; 3D: [x, y, z], [s, 0, 0] on a cable)"))
                .optional(),
            text("joint", "joint_force: the name of a joint block").optional(),
            text("element", "spring_force: the name of a spring block").optional(),
@@ -239,8 +240,10 @@ bool SensorBuilder::body_fits() {
   sensor.body = builder.find_body(s, "body");
   const bool rotational = !builder.spatial() && sensor.component == mbd::Coordinate::Angle;
   if (variant.kinematic() && s.has("point")) {
-    if (rotational) {
-      problem(s.location("component"), "a point has components x and y, no angle",
+    // On a beam a point's angle is its cross-section's: the tangent of the centre line at s.
+    if (rotational && !model.is_beam(sensor.body)) {
+      problem(s.location("component"),
+              "a point of a rigid body has components x and y, no angle of its own",
               "write x or y, or remove point for the body's angle");
       return false;
     }
@@ -272,7 +275,8 @@ bool SensorBuilder::body_fits() {
     problem(s.location("type"),
             "a " + type + " sensor reads rigid-body coordinates, and '" + s.string("body") +
                 "' is an AncfBeam2D",
-            "give a beam point = [s, eta], or use type = \"fluid_force\"");
+            "give a beam point = [s, eta] (component x, y, or angle: the cross-section's), or "
+            "use type = \"fluid_force\"");
     return false;
   }
   return true;

@@ -32,6 +32,13 @@ double structure_sensor_value(const mbd::Model& model, const SensorSpec& sensor,
         break;  // energies below; the builder refuses the rest in 3D
     }
   }
+  if (sensor.point && sensor.component == mbd::Coordinate::Angle &&
+      (sensor.type == SensorType::Position || sensor.type == SensorType::Velocity)) {
+    // A beam's cross-section at s (the builder allows an angle with a point on beams only).
+    return sensor.type == SensorType::Position
+               ? beam_tangent_angle(model, state, sensor.body, (*sensor.point)[0])
+               : beam_tangent_rate(model, state, sensor.body, (*sensor.point)[0]);
+  }
   if (sensor.point &&
       (sensor.type == SensorType::Position || sensor.type == SensorType::Velocity)) {
     const mbd::BodyPointSpec point{sensor.body, {(*sensor.point)[0], (*sensor.point)[1]}};

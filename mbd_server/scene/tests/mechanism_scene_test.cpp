@@ -326,6 +326,39 @@ Sensor { name = "root_moment"; type = "joint_force"; joint = "root"; component =
               1e-9);
 }
 
+TEST_F(MechanismScene, ABeamPointReadsItsCrossSectionsAngle) {
+  // A cantilever under its own weight w = mu g: theta(x) = -w (x^3 - 3 L x^2 + 3 L^2 x) / (6 EI)
+  // (small deflection; cubic elements give the nodal slopes exactly): 0 at the clamp, -w L^3 /
+  // (6 EI) at the tip, 7/8 of it at mid-span. A rigid body's point still has no angle.
+  Scene scene = build_scene(write(R"scene(Gravity { acceleration = [0, -9.81] }
+AncfBeam2D { name = "arm"; start = [0, 0]; end = [1, 0]; elements = 4; thickness = 0.01
+             axial_stiffness = 1e9; bending_stiffness = 1e3; mass_per_length = 0.5 }
+BeamClamp { name = "root"; beam = "arm"; node = 0 }
+Sensor { name = "root_angle"; type = "position"; body = "arm"; point = [0, 0]; component = "angle" }
+Sensor { name = "mid_angle"; type = "position"; body = "arm"; point = [0.5, 0]; component = "angle" }
+Sensor { name = "tip_angle"; type = "position"; body = "arm"; point = [1, 0]; component = "angle" }
+Sensor { name = "tip_turn"; type = "velocity"; body = "arm"; point = [1, 0]; component = "angle" }
+)scene"));
+  ASSERT_EQ(scene.sensors.size(), 4u);
+  EXPECT_EQ(scene.sensors[2].unit, "rad");
+  const mbd::StaticResult result = mbd::solve_static(scene.model, scene.model.initial_state());
+  const auto value = [&](int k) {
+    return structure_sensor_value(scene.model, scene.sensors[k], result.state);
+  };
+  const double tip = -0.5 * 9.81 / (6.0 * 1e3);
+  EXPECT_NEAR(value(0), 0.0, 1e-12);
+  EXPECT_NEAR(value(1), 0.875 * tip, 1e-3 * std::abs(tip));
+  EXPECT_NEAR(value(2), tip, 1e-3 * std::abs(tip));
+  EXPECT_EQ(value(3), 0.0);  // at rest
+  const std::string text = problems(R"scene(
+RigidBody2D { name = "lid"; mass = 1; inertia = 1 }
+Sensor { name = "corner"; type = "position"; body = "lid"; point = [0.1, 0]; component = "angle" }
+)scene");
+  EXPECT_NE(text.find("a point of a rigid body has components x and y, no angle of its own"),
+            std::string::npos)
+      << text;
+}
+
 TEST_F(MechanismScene, APinOnABeamReadsItsShareOfAStaticallyIndeterminateLoad) {
   // A propped cantilever: clamped at x = 0, pinned at x = L, under its own weight w = mu g. The
   // beam theory shares the load 5/8 : 3/8 and the clamp holds the moment w L^2 / 8 (not the

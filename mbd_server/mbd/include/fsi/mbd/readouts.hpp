@@ -86,6 +86,11 @@ Eigen::Vector3d point_position(const Model& model, const State& state, const Bod
 Eigen::Vector3d point_position(const Model& model, const State& state,
                                const SpatialPointSpec& point);
 Eigen::Vector3d point_velocity(const Model& model, const State& state, const BodyPointSpec& point);
+// An AncfBeam2D's cross-section at arc length s: the angle of its centre line's tangent r' from
+// the x axis [rad, counter-clockwise, in (-pi, pi]] and its rate (r' x dr'/dt) / |r'|^2
+// [rad/s]. Throws fsi::Error if `beam` is not an AncfBeam2D or s lies off it.
+double beam_tangent_angle(const Model& model, const State& state, BodyId beam, double s);
+double beam_tangent_rate(const Model& model, const State& state, BodyId beam, double s);
 Eigen::Vector3d point_velocity(const Model& model, const State& state,
                                const SpatialPointSpec& point);
 // The rotation matrix [e1 e2 e3] of a spatial rigid body (orthonormal up to the constraint
