@@ -78,5 +78,38 @@ check("step 1 (t = 0 s)" in result.stderr and "Newton iterations of Radau IIA" i
 bad = manifest(bad_run)
 check(bad["status"] == "failed" and "step 1" in bad.get("reason", ""), "run.json says failed, with the step")
 check("nan" not in read(bad_run, "sensors.csv").lower(), "no NaN in sensors.csv")
+
+# Output.snapshot_every_steps in an --mbd-only run: the structure's shape for ParaView (a user saw
+# it ignored without a word). The CSM3 flag, 1 s, a snapshot every 50 steps: beams.pvd and
+# boundary.pvd with an entry each at t = 0, 0.25, ..., 1 s, the flag's tip in beams_*.vtp where
+# sensors.csv has point A, and no fluid or bodies series (none in the scene).
+import xml.etree.ElementTree as ElementTree  # noqa: E402
+
+import vtk  # noqa: E402
+from vtk.util.numpy_support import vtk_to_numpy  # noqa: E402
+from fsi_test import read_vtk  # noqa: E402
+
+vtk_run = os.path.join(output, "csm3")
+result = subprocess.run([binary("fsi-server"), example("mbd_mechanisms", "turek_hron_csm3.scene"), "--mbd-only",
+                         "--output", vtk_run, "--set", "SolverOptions.end_time=1",
+                         "--set", "Output.snapshot_every_steps=50"],
+                        env=ENV, capture_output=True, text=True, timeout=60)
+if result.returncode != 0:
+    fail(f"fsi-server --mbd-only of the CSM3 flag exited {result.returncode}:\n{result.stderr[-3000:]}")
+vtk_dir = os.path.join(vtk_run, "vtk")
+series = {}
+for name in ("beams", "boundary"):
+    root = ElementTree.parse(os.path.join(vtk_dir, f"{name}.pvd")).getroot()
+    series[name] = [(float(item.get("timestep")), item.get("file")) for item in root.iter("DataSet")]
+times = [t for t, _ in series["beams"]]
+check(times == [t for t, _ in series["boundary"]] and len(times) == 5 and abs(times[-1] - 1.0) < 1e-12,
+      f"vtk/beams.pvd and boundary.pvd: an entry every 50 steps ({times})")
+check(not os.path.exists(os.path.join(vtk_dir, "fluid.pvd")) and not os.path.exists(os.path.join(vtk_dir, "bodies.pvd")),
+      "no fluid or bodies series without fluid or rigid bodies")
+csm3 = load_sensors(vtk_run)
+last = read_vtk(os.path.join(vtk_dir, series["beams"][-1][1]), vtk.vtkXMLPolyDataReader)
+tip = vtk_to_numpy(last.GetPoints().GetData())[-1]
+check(abs(tip[0] - csm3["A_x"][-1]) < 1e-12 and abs(tip[1] - csm3["A_y"][-1]) < 1e-12,
+      f"the flag's tip in the last beams file is point A of sensors.csv ({tip[:2]})")
 cleanup(output)
-print("mbd-only: 3 passed, 0 failed")
+print("mbd-only: 4 passed, 0 failed")

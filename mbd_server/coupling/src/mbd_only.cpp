@@ -2,6 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -11,6 +12,7 @@
 #include "fsi/coupling/output.hpp"
 #include "fsi/coupling/run_manifest.hpp"
 #include "fsi/coupling/structure_side.hpp"
+#include "fsi/coupling/vtk_output.hpp"
 
 namespace fsi::coupling {
 namespace {
@@ -42,6 +44,19 @@ int run_mbd_only(scene::Scene& scene, const MbdOnlyOptions& options) {
                                            scene.sensors);
     structure = std::make_unique<StructureSide>(scene, scene.solver.method, false);
     sensors->write(0.0, structure->initial_sensor_readout(kNoFluidForce));
+    // Output.snapshot_every_steps: the structure's shape in ParaView (vtk/: boundary, bodies,
+    // beams; planar scenes), as a coupled run writes it with its particle snapshots.
+    const auto every = static_cast<std::uint64_t>(std::max(0L, scene.output.snapshot_every_steps));
+    std::unique_ptr<VtkOutput> vtk;
+    if (every > 0 && scene.dimension == 2) {
+      vtk = std::make_unique<VtkOutput>(fs::path(options.output_dir) / "vtk");
+      vtk->write_structure(0, scene.model, structure->state(), scene.boundary);
+    } else if (every > 0) {
+      spdlog::warn(
+          "Output.snapshot_every_steps = {}: an --mbd-only run of a 3D scene writes no VTK files "
+          "(sensors.csv only); a coupled run writes the structure with its particle snapshots",
+          every);
+    }
     spdlog::info("multibody alone: {} steps of {:.3g} s to t = {:.6g} s ({})", steps, dt,
                  static_cast<double>(steps) * dt, scene.solver.integrator_description());
     ScopedTimer stepping_timer(stepping);
@@ -53,6 +68,8 @@ int run_mbd_only(scene::Scene& scene, const MbdOnlyOptions& options) {
       ScopedTimer timer(output);
       if (n % static_cast<std::uint64_t>(scene.output.sensor_every_steps) == 0)
         sensors->write(structure->time(), structure->sensor_readout(kNoFluidForce));
+      if (vtk && n % every == 0)
+        vtk->write_structure(n, scene.model, structure->state(), scene.boundary);
       run.steps = n;
     }
     run.status = "completed";

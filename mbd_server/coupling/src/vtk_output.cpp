@@ -42,7 +42,21 @@ void VtkOutput::write(const ParticleSnapshot& particles, const mbd::Model& model
   fluid.density = particles.density;
   fluid.pressure = particles.pressure;
   fluid_.write(particles.step, particles.time, output::encode_particles(fluid));
+  write_mesh(particles.step, model, state, boundary, fluid_forces);
+  write_bodies(particles.step, model, state, true);
+  write_centre_lines(particles.step, model, state);
+}
 
+void VtkOutput::write_structure(std::uint64_t step, const mbd::Model& model,
+                                const mbd::State& state, const scene::BoundaryMesh& boundary) {
+  if (boundary.vertex_count > 0) write_mesh(step, model, state, boundary, {});
+  write_bodies(step, model, state, false);
+  write_centre_lines(step, model, state);
+}
+
+void VtkOutput::write_mesh(std::uint64_t step, const mbd::Model& model, const mbd::State& state,
+                           const scene::BoundaryMesh& boundary,
+                           std::span<const double> fluid_forces) {
   std::vector<double> positions, velocities;
   scene::boundary_state(boundary, model, state, positions, velocities);
   const std::vector<double> no_forces(positions.size(), 0.0);
@@ -55,8 +69,11 @@ void VtkOutput::write(const ParticleSnapshot& particles, const mbd::Model& model
       fluid_forces.size() == positions.size() ? fluid_forces : std::span<const double>(no_forces);
   mesh.dynamic_vertex_count = boundary.dynamic_vertex_count;
   mesh.elements = boundary.elements();
-  boundary_.write(particles.step, state.time, output::encode_boundary(mesh));
+  boundary_.write(step, state.time, output::encode_boundary(mesh));
+}
 
+void VtkOutput::write_bodies(std::uint64_t step, const mbd::Model& model, const mbd::State& state,
+                             bool even_without_bodies) {
   output::BodyFrame frames;
   frames.time = state.time;
   std::vector<double> body_positions, body_velocities, angles;
@@ -72,8 +89,8 @@ void VtkOutput::write(const ParticleSnapshot& particles, const mbd::Model& model
   frames.positions = body_positions;
   frames.velocities = body_velocities;
   frames.angles = angles;
-  bodies_.write(particles.step, state.time, output::encode_bodies(frames));
-  write_centre_lines(particles.step, model, state);
+  if (even_without_bodies || !frames.names.empty())
+    bodies_.write(step, state.time, output::encode_bodies(frames));
 }
 
 void VtkOutput::save_state(output::StateWriter& out) const {

@@ -26,6 +26,11 @@ class VtkOutput {
   void write(const ParticleSnapshot& particles, const mbd::Model& model, const mbd::State& state,
              const scene::BoundaryMesh& boundary, std::span<const double> fluid_forces);
 
+  // The structure alone (fsi-server --mbd-only): the boundary mesh (if any, no fluid forces), the
+  // rigid bodies' frames (if any) and the beams' centre lines (if any); no fluid series.
+  void write_structure(std::uint64_t step, const mbd::Model& model, const mbd::State& state,
+                       const scene::BoundaryMesh& boundary);
+
   // Checkpoints: every series' entries (restore_state removes the files written after it).
   void save_state(output::StateWriter& out) const;
   void restore_state(output::StateReader& in);
@@ -34,6 +39,10 @@ class VtkOutput {
   static constexpr int kCentreLineSamplesPerElement = 8;
 
  private:
+  void write_mesh(std::uint64_t step, const mbd::Model& model, const mbd::State& state,
+                  const scene::BoundaryMesh& boundary, std::span<const double> fluid_forces);
+  void write_bodies(std::uint64_t step, const mbd::Model& model, const mbd::State& state,
+                    bool even_without_bodies);
   void write_centre_lines(std::uint64_t step, const mbd::Model& model, const mbd::State& state);
 
   std::filesystem::path directory_;
