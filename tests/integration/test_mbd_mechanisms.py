@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """`fsi-server --mbd-only` on examples/mbd_mechanisms: the prismatic joint, torsion spring and
 one-sided spring actor against their closed forms (the example's analyze.py), the new sensor
-columns finite; and bad mechanisms named: a spring law that turns NaN stops the run with exit 1
+columns finite; Turek & Hron's CSM3 flag and the elastica (analyze_csm3.py, analyze_elastica.py);
+and bad mechanisms named: a spring law that turns NaN stops the run with exit 1
 naming the spring, at its step, with no NaN in sensors.csv; a redundant joint is refused before
 step 0 naming the joint."""
 import math
@@ -23,6 +24,23 @@ analysis = subprocess.run(["/usr/bin/python3", example("mbd_mechanisms", "analyz
                           capture_output=True, text=True, timeout=60)
 print(analysis.stdout, end="")
 check(analysis.returncode == 0, "every expected number of examples/mbd_mechanisms/README.md holds")
+
+# The two structural benchmarks of the same folder, each with its own analysis (about 1 s each):
+# Turek & Hron's CSM3 flag and the elastica at lam = 1 and 10 (a static shape the damped beam
+# settles to).
+for name, scene_file, script, settings in (
+        ("csm3", "turek_hron_csm3.scene", "analyze_csm3.py", []),
+        ("elastica1", "elastica.scene", "analyze_elastica.py", ["--set", "Geometry.lam=1"]),
+        ("elastica10", "elastica.scene", "analyze_elastica.py", [])):
+    bench_dir = os.path.join(output, name)
+    result = subprocess.run([binary("fsi-server"), example("mbd_mechanisms", scene_file), "--mbd-only",
+                             "--output", bench_dir] + settings, env=ENV, capture_output=True, text=True, timeout=120)
+    if result.returncode != 0:
+        fail(f"fsi-server --mbd-only {scene_file} exited {result.returncode}:\n{result.stderr[-3000:]}")
+    analysis = subprocess.run(["/usr/bin/python3", example("mbd_mechanisms", script), bench_dir],
+                              capture_output=True, text=True, timeout=60)
+    print(analysis.stdout, end="")
+    check(analysis.returncode == 0, f"{name}: {script} finds the benchmark's numbers")
 
 # The same scene with bad mechanisms, in a copy of the example folder.
 bad_dir = os.path.join(output, "bad")
