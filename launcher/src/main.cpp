@@ -96,7 +96,11 @@ int main(int argc, char** argv) {
   CLI::App app{
       "Runs one coupled simulation on this machine: fsi-server on an OS-chosen loopback "
       "port and `mpirun -np N fsi-client` connected to it. Exits with the server's "
-      "status."};
+      "status. Check a scene first with `fsi-server SCENE --check` (its particle count, step "
+      "and rules of thumb); a structure-only scene runs with `fsi-server SCENE --mbd-only "
+      "--output DIR`. What a run costs and how to trade speed for accuracy (particle spacing, "
+      "step, speed of sound, ranks, fsi-study): docs/user-guide.md, \"Speed and accuracy\", "
+      "and the measured costs in docs/performance.md."};
   app.set_version_flag("--version", fsi::version_text());
   std::string scene;
   int ranks = 1;
