@@ -49,8 +49,9 @@ BlockSpec timeint_spec() {
                    "rates G v + dC/dt = 0 (positions drift by the integration error; HOTINT's "
                    "alternative)")
                   .one_of({"index3", "index2"})
-                  .with_default("index3")})
-      .as_required();
+                  .with_default("index3")});
+  // Not required: every key has a default but step_size, which a Fluid block may derive (a
+  // scene without either is told so at SolverOptions).
 }
 
 BlockSpec newton_spec() {

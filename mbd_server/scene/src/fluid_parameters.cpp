@@ -283,9 +283,23 @@ FluidDerivation derive_fluid(const FluidValues& given, int dimension,
   return derivation;
 }
 
+namespace {
+
+// The unit of a scene of `dimension`: "kg/m (3D: kg)" is kg/m in 2D and kg in 3D.
+std::string unit_in(std::string_view unit, int dimension) {
+  constexpr std::string_view kSpatial = " (3D: ";
+  const std::size_t split = unit.find(kSpatial);
+  if (split == std::string_view::npos || unit.back() != ')') return std::string(unit);
+  if (dimension != 3) return std::string(unit.substr(0, split));
+  const std::size_t start = split + kSpatial.size();
+  return std::string(unit.substr(start, unit.size() - 1 - start));
+}
+
+}  // namespace
+
 std::string explain(const FluidDerivation& derivation, const FluidValue& value) {
   const FluidQuantity& q = *value.quantity;
-  const std::string unit = q.unit.empty() ? "" : " " + std::string(q.unit);
+  const std::string unit = q.unit.empty() ? "" : " " + unit_in(q.unit, derivation.dimension);
   std::string line = std::string(q.symbol);
   if (!q.variable.empty()) line += " (${" + std::string(q.variable) + "})";
   line += " = " + number(value.value) + unit;
@@ -310,7 +324,7 @@ std::string explain(const FluidDerivation& derivation, const FluidValue& value) 
     const FluidQuantity& input = fluid_quantity(used);
     inputs += (inputs.empty() ? "" : ", ") + std::string(used) + " = " +
               number(derivation.value(used)) +
-              (input.unit.empty() ? "" : " " + std::string(input.unit));
+              (input.unit.empty() ? "" : " " + unit_in(input.unit, derivation.dimension));
   }
   if (!inputs.empty()) line += " with " + inputs;
   return line + " (" + std::string(rule.source) + ")";

@@ -86,12 +86,17 @@ TEST(FluidRules, AValueTheUserSetsWinsAndFeedsTheRulesAfterIt) {
 }
 
 TEST(FluidRules, EachDerivedValueIsExplainedWithItsRuleAndInputs) {
+  // Units for the scene's dimension: a user's 3D log read "m = 0.125 kg/m (3D: kg)".
+  const FluidDerivation spatial = derive_fluid(tank(), 3);
+  EXPECT_CONTAINS(explain(spatial, of(spatial, "m")), " kg: rho0 d^2 (3D: rho0 d^3)");
+  EXPECT_CONTAINS(explain(spatial, of(spatial, "t")), " N s/m^4: rho0 nu / r_v");
   const FluidDerivation fluid = derive_fluid(tank(), 2);
+  EXPECT_CONTAINS(explain(fluid, of(fluid, "m")), " kg/m: rho0 d^2 (3D: rho0 d^3)");
   EXPECT_CONTAINS(explain(fluid, of(fluid, "c")),
                   "c (${cAB}) = 14.01 m/s: 10 max(sqrt(2 g H), U) with g = 9.81 m/s^2, H = 0.1 "
                   "m, U = 0 m/s (thesis §6.2");
   EXPECT_CONTAINS(explain(fluid, of(fluid, "t")),
-                  "t (${SPH_wall_visc}) = 0.1316 N s/m^3 (3D: N s/m^4): rho0 nu / r_v (rule "
+                  "t (${SPH_wall_visc}) = 0.1316 N s/m^3: rho0 nu / r_v (rule "
                   "\"thesis\", the default) with rho0 = 1000 kg/m^3, nu = 1e-06 m^2/s, r_v = "
                   "0.0076 m");
   EXPECT_CONTAINS(explain(fluid, of(fluid, "g")), "g (${gravity}) = 9.81 m/s^2: from the Gravity");
@@ -120,7 +125,7 @@ TEST(FluidRules, TheMomentRuleIsChosenByNameAndExplained) {
   EXPECT_DOUBLE_EQ(moment.value("r_v"), thesis.value("r_v"));
   EXPECT_DOUBLE_EQ(moment.value("k"), thesis.value("k"));
   EXPECT_CONTAINS(explain(moment, of(moment, "t")),
-                  "t (${SPH_wall_visc}) = 54.67 N s/m^3 (3D: N s/m^4): 6 rho0 nu d^2 / r_v^3 (3D: "
+                  "t (${SPH_wall_visc}) = 54.67 N s/m^3: 6 rho0 nu d^2 / r_v^3 (3D: "
                   "20 rho0 nu d^3 / (pi r_v^4)) (rule \"moment\", Fluid.wall_friction_rule) with "
                   "rho0 = 1000 kg/m^3, nu = 0.001 m^2/s, d = 0.002 m, r_v = 0.0076 m");
   EXPECT_CONTAINS(explain(thesis, of(thesis, "t")), "rho0 nu / r_v (rule \"thesis\", the default)");
