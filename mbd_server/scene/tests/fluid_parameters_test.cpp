@@ -340,6 +340,12 @@ TEST_F(FluidBlock, ASceneWithoutAStepTakesTheLargestItsRulesAllow) {
   EXPECT_DOUBLE_EQ(built.solver.step_size, 0.01 / 412.0);  // 103 structure steps of 4
   EXPECT_EQ(built.solver.step_count(), 412u);
   EXPECT_EQ(built.solver.step_size_location.line, 6);  // the Fluid block, after Output
+  // Without a Timeint block at all (a user was told to add an empty one): the same rule.
+  const Scene bare =
+      build_scene(scene(inputs(), "", region, "SolverOptions { end_time = 0.01 }").string());
+  EXPECT_TRUE(bare.solver.step_size_derived);
+  EXPECT_EQ(bare.solver.stages, 3);
+  EXPECT_GT(bare.solver.step_size, 0.0);
   // Given, the scene's step stands, whatever the rule says.
   const Scene given = build_scene(scene(inputs()).string());
   EXPECT_FALSE(given.solver.step_size_derived);
