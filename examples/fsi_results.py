@@ -10,6 +10,27 @@ import subprocess
 import sys
 
 
+class Checks:
+    """The analyses' verdicts: check() prints one line per figure, `ok  ` or `FAIL`, the value
+    against the reference within a tolerance (`digits`: the values' format, `against`: the
+    reference's name, `tolerance_digits` its format); exit() leaves with status 1 if any failed."""
+
+    def __init__(self, digits=".10g", against="expected", tolerance_digits="g"):
+        self.digits, self.against, self.tolerance_digits = digits, against, tolerance_digits
+        self.failures = 0
+
+    def check(self, name, value, expected, tolerance):
+        ok = abs(value - expected) <= tolerance
+        self.failures += not ok
+        print(f"{'ok  ' if ok else 'FAIL'} {name}: {value:{self.digits}} "
+              f"({self.against} {expected:{self.digits}} +- {tolerance:{self.tolerance_digits}})")
+
+    def exit(self, count=False):
+        if count:
+            print(f"{self.failures} failed")
+        sys.exit(1 if self.failures else 0)
+
+
 def read_sensors(path):
     """The columns of a sensors.csv (comment lines skipped) as {name: [float, ...]}."""
     with open(path) as handle:

@@ -5,10 +5,12 @@ import math
 import os
 import sys
 import tempfile
+import contextlib
+import io
 import unittest
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from fsi_results import damped_fit, interpolate_clamped, read_reference_points, zero_crossings  # noqa: E402
+from fsi_results import Checks, damped_fit, interpolate_clamped, read_reference_points, zero_crossings  # noqa: E402
 
 
 def damped_signal(period_natural, zeta, offset, amplitude=0.025, end=4.0, dt=0.005):
@@ -68,6 +70,27 @@ class InterpolateClamped(unittest.TestCase):
         self.assertEqual(interpolate_clamped(xs, ys, 1.0), 4.0)
         self.assertEqual(interpolate_clamped(xs, ys, -1.0), 2.0)
         self.assertEqual(interpolate_clamped(xs, ys, 5.0), 0.0)
+
+
+class ChecksVerdict(unittest.TestCase):
+    def test_a_figure_outside_its_tolerance_fails_the_analysis(self):
+        checks = Checks(digits=".4f", against="benchmark")
+        out = io.StringIO()
+        with contextlib.redirect_stdout(out):
+            checks.check("inside", 1.005, 1.0, 0.01)
+            checks.check("outside", 1.02, 1.0, 0.01)
+        self.assertEqual(out.getvalue().splitlines(),
+                         ["ok   inside: 1.0050 (benchmark 1.0000 +- 0.01)",
+                          "FAIL outside: 1.0200 (benchmark 1.0000 +- 0.01)"])
+        with self.assertRaises(SystemExit) as leaving, contextlib.redirect_stdout(io.StringIO()):
+            checks.exit()
+        self.assertEqual(leaving.exception.code, 1)
+        passing = Checks()
+        with contextlib.redirect_stdout(io.StringIO()):
+            passing.check("inside", 0.0, 0.0, 0.0)
+        with self.assertRaises(SystemExit) as leaving:
+            passing.exit()
+        self.assertEqual(leaving.exception.code, 0)
 
 
 class ReadReferencePoints(unittest.TestCase):

@@ -8,7 +8,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from fsi_results import read_sensors  # noqa: E402 (examples/fsi_results.py)
+from fsi_results import Checks, read_sensors  # noqa: E402 (examples/fsi_results.py)
 
 G = 9.81
 
@@ -18,13 +18,8 @@ def main():
         sys.exit("usage: analyze.py RUN_DIR")
     s = read_sensors(sys.argv[1] + "/sensors.csv")
     t = s["time"]
-    failures = 0
-
-    def check(name, value, expected, tolerance):
-        nonlocal failures
-        ok = abs(value - expected) <= tolerance
-        failures += not ok
-        print(f"{'ok  ' if ok else 'FAIL'} {name}: {value:.10g} (expected {expected:.10g} +- {tolerance:g})")
+    checks = Checks()
+    check = checks.check
 
     angle = math.radians(30.0)
     along = -0.5 * G * math.sin(angle) * t[-1] ** 2
@@ -53,8 +48,7 @@ def main():
     energy = [a + b for a, b in zip(s["kinetic_energy"], s["potential_energy"])]
     start = 0.5 * 9.0 * 0.2 ** 2 + mass * G * 0.1
     check("energy drift max |E - E0| [J/m]", max(abs(e - start) for e in energy), 0.0, 1e-5)
-    print(f"{failures} failed")
-    sys.exit(1 if failures else 0)
+    checks.exit(count=True)
 
 
 if __name__ == "__main__":

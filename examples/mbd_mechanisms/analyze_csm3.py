@@ -8,7 +8,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from fsi_results import read_run, zero_crossings  # noqa: E402 (examples/fsi_results.py)
+from fsi_results import Checks, read_run, zero_crossings  # noqa: E402 (examples/fsi_results.py)
 
 
 def main():
@@ -22,13 +22,8 @@ def main():
     time = [s["time"][k] for k in rows]
     uy = [s["A_y"][k] for k in rows]
     ux = [s["A_x"][k] - length for k in rows]
-    failures = 0
-
-    def check(name, value, expected, tolerance):
-        nonlocal failures
-        ok = abs(value - expected) <= tolerance
-        failures += not ok
-        print(f"{'ok  ' if ok else 'FAIL'} {name}: {value:.4f} (benchmark {expected:.4f} +- {tolerance:.3g})")
+    checks = Checks(digits=".4f", against="benchmark", tolerance_digits=".3g")
+    check = checks.check
 
     for name, values, mean, amplitude in (("uy", uy, -63.607, 65.160), ("ux", ux, -14.305, 14.305)):
         high, low = 1e3 * max(values), 1e3 * min(values)
@@ -38,7 +33,7 @@ def main():
     crossings = zero_crossings(time, [v - centre for v in uy])  # two per period
     frequency = (len(crossings) - 1) / (2.0 * (crossings[-1] - crossings[0]))
     check("frequency [Hz]", frequency, 1.0995, 0.01 * 1.0995)
-    sys.exit(1 if failures else 0)
+    checks.exit()
 
 
 if __name__ == "__main__":

@@ -9,7 +9,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from fsi_results import read_run  # noqa: E402 (examples/fsi_results.py)
+from fsi_results import Checks, read_run  # noqa: E402 (examples/fsi_results.py)
 
 # lam: (u/L, v/L, tip angle [rad], kappa_0 L)
 TABLE = {0.1: (0.00067, 0.03330, 0.049954, 0.099933), 0.5: (0.01592, 0.16214, 0.244534, 0.492041),
@@ -29,13 +29,8 @@ def main():
     if lam not in TABLE:
         sys.exit(f"analyze_elastica.py: lam = {lam} is not in the table; use one of {sorted(TABLE)}")
     u_ref, v_ref, angle_ref, moment_ref = TABLE[lam]
-    failures = 0
-
-    def check(name, value, expected, tolerance):
-        nonlocal failures
-        ok = abs(value - expected) <= tolerance
-        failures += not ok
-        print(f"{'ok  ' if ok else 'FAIL'} {name}: {value:.6f} (elastica {expected:.6f} +- {tolerance:g})")
+    checks = Checks(digits=".6f", against="elastica")
+    check = checks.check
 
     time = s["time"]
     before = max(k for k, t in enumerate(time) if t <= time[-1] - 1.0 + 1e-9)
@@ -45,7 +40,7 @@ def main():
     check("v/L", -s["tip_y"][-1] / length, v_ref, 5e-4)
     check("tip angle [rad]", -s["tip_angle"][-1], angle_ref, 2e-4)
     check("clamp moment M L / EI", s["root_moment"][-1] * length / ei, moment_ref, 5e-4 * moment_ref)
-    sys.exit(1 if failures else 0)
+    checks.exit()
 
 
 if __name__ == "__main__":
