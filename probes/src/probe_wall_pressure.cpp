@@ -3,7 +3,8 @@
 // 4.2), not from the vertex forces, so that a patch smaller than an element is resolved:
 //   p = sum_s -F_s . n_s / sum_s A_s
 // over the sampling points s of the patch: those of the named mesh's elements (one body's or the
-// ground's) that lie within `radius` of `centre` at the evaluation (a patch fixed in space).
+// ground's) that lie within `radius` of `centre` at the evaluation (a patch fixed in space) and
+// whose element faces the fluid side to within 45 degrees (at a corner, the wall it is on).
 // F_s is the force of the fluid on the wall at s, A_s the length (area) s stands for, and n_s the
 // unit normal of its element turned to the fluid's side (n_s . fluid_side >= 0), so that p > 0
 // is a pressure pushing on the wall and p < 0 a suction. The columns also give the normal force
@@ -68,15 +69,30 @@ bool in_ranges(const ProbeDefinition& probe, std::uint32_t element) {
   return false;
 }
 
+// Whether a sample's element faces the fluid side to within 45 degrees (either orientation of
+// its normal): a patch at a corner reads the wall it is on, not the floor or the other wall its
+// radius also reaches, whose forces point another way.
+bool faces_the_side(const double* normal, const double* side, int dimension) {
+  double facing = 0.0, side2 = 0.0;
+  for (int k = 0; k < dimension; ++k) {
+    facing += normal[k] * side[k];
+    side2 += side[k] * side[k];
+  }
+  return 2.0 * facing * facing >= side2;
+}
+
 // Calls visit(s) for every sampling point of the patch.
 template <class Visit>
 void for_each_in_patch(const ProbeDefinition& probe, int dimension, const WallSamples& wall,
                        Visit&& visit) {
   const double* centre = probe.parameters.data();
   const double radius2 = probe.parameters[3] * probe.parameters[3];
+  const double* side = &probe.parameters[4];
   for (std::size_t s = 0; s < wall.count; ++s) {
     if (squared_distance(&wall.positions[s * dimension], centre, dimension) > radius2) continue;
-    if (in_ranges(probe, wall.elements[s])) visit(s);
+    if (in_ranges(probe, wall.elements[s]) &&
+        faces_the_side(&wall.normals[s * dimension], side, dimension))
+      visit(s);
   }
 }
 

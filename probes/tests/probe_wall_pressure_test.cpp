@@ -133,6 +133,50 @@ TEST(WallPressureProbe, ReadsOnlyItsOwnMeshAndSignsSuctionNegative) {
   EXPECT_NEAR(evaluate(wall, pulled)[0], -hydrostatic(0.05), 1e-9 * hydrostatic(0.05));
 }
 
+TEST(WallPressureProbe, AtACornerReadsTheWallItIsOnNotTheFloor) {
+  // The tank's floor y = 0 in the same mesh as the wall (elements 10-12, 1 cm segments from the
+  // corner, drawn both ways), loaded with ten times the water's pressure at the bottom. A gauge
+  // 2 mm above the floor with a 1 cm radius reaches three floor segments; it reads the wall's
+  // Gauss points within its radius only (before 2026-12-06 it averaged the floor in: 5.3 times
+  // the wall's pressure).
+  Samples samples = tank_wall();
+  samples.forces.resize(2 * 30);
+  samples.positions.resize(2 * 30);
+  samples.normals.resize(2 * 30);
+  samples.measures.resize(30);
+  samples.elements.resize(30);
+  samples.pairs.resize(30);
+  const double bottom = 10.0 * hydrostatic(0.0);
+  for (std::uint32_t segment = 0; segment < 3; ++segment) {
+    for (int q = 0; q < 3; ++q) {
+      const double x = kSegment * (segment + kGaussPosition[q]);
+      const double measure = kSegment * kGaussWeight[q];
+      samples.add({x, 0.0, 0.0}, {0.0, segment % 2 == 0 ? 1.0 : -1.0, 0.0},
+                  {0.0, -bottom * measure, 0.0}, measure, 10 + segment, 7u);
+    }
+  }
+  const ProbeSet corner(
+      {wall_pressure_probe("corner", {0.0, 0.002, 0.0}, 0.01, kIntoTheTank, {{0u, 13u}})}, kPlane);
+  // The wall's Gauss points within 1 cm of y = 0.002: the first segment's three and the second
+  // one's first (y = 0.0113).
+  double force = 0.0, length = 0.0;
+  for (std::uint32_t s = 0; s < 30; ++s) {
+    const double y = samples.positions[2 * s + 1];
+    if (std::abs(y - 0.002) > 0.01) continue;
+    force -= samples.forces[2 * s];
+    length += samples.measures[s];
+  }
+  const auto values = evaluate(corner, samples);
+  EXPECT_NEAR(values[0], force / length, 1e-9 * hydrostatic(0.0));
+  EXPECT_NEAR(values[0], hydrostatic(0.004), 0.05 * hydrostatic(0.0));
+  EXPECT_EQ(values[2], 4 * 7);
+  // A patch on the floor alone (its fluid side up) reads the floor.
+  const ProbeSet floor(
+      {wall_pressure_probe("floor", {0.015, 0.0, 0.0}, 0.004, {0.0, 1.0, 0.0}, {{0u, 13u}})},
+      kPlane);
+  EXPECT_NEAR(evaluate(floor, samples)[0], bottom, 1e-9 * bottom);
+}
+
 TEST(WallPressureProbe, TwoRanksGiveWhatOneRankGives) {
   // Each rank holds every sampling point with the forces of its own particles.
   const Samples whole = tank_wall();

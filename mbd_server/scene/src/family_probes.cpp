@@ -4,6 +4,7 @@
 // by fsi::probes::columns, and must not collide with a sensor's or another probe's.
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -263,17 +264,46 @@ void build_wall_pressure_probe(SceneBuilder& builder, const View& block) {
   // The patch must reach the mesh where the run starts (the bodies' initial configuration).
   std::vector<double> positions, velocities;
   boundary_state(boundary, model, model.initial_configuration(), positions, velocities);
-  double nearest = std::numeric_limits<double>::infinity();
+  // The probe reads the elements that face its fluid side to within 45 degrees
+  // (probes/src/probe_wall_pressure.cpp): the nearest of those, and of all.
+  double nearest = std::numeric_limits<double>::infinity(), nearest_facing = nearest;
   for (const auto& [first, end] : ranges) {
     for (std::uint32_t e = first; e < end; ++e) {
       const std::uint32_t* vertex = &elements[static_cast<std::size_t>(e) * corners];
       const double* a = &positions[vertex[0] * static_cast<std::size_t>(corners)];
       const double* b = &positions[vertex[1] * static_cast<std::size_t>(corners)];
-      nearest = std::min(
-          nearest, corners == 2 ? distance_to_segment(centre->data(), a, b, 2)
-                                : distance_to_triangle(centre->data(), a, b,
-                                                       &positions[vertex[2] * std::size_t{3}]));
+      const double* c = corners == 3 ? &positions[vertex[2] * std::size_t{3}] : nullptr;
+      const double distance = corners == 2 ? distance_to_segment(centre->data(), a, b, 2)
+                                           : distance_to_triangle(centre->data(), a, b, c);
+      nearest = std::min(nearest, distance);
+      std::array<double, 3> normal{};
+      if (corners == 2) {
+        normal = {a[1] - b[1], b[0] - a[0], 0.0};
+      } else {
+        const std::array<double, 3> u{b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+        const std::array<double, 3> v{c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+        normal = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+      }
+      const double facing =
+          normal[0] * (*side)[0] + normal[1] * (*side)[1] + normal[2] * (*side)[2];
+      const double norms =
+          (normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]) *
+          ((*side)[0] * (*side)[0] + (*side)[1] * (*side)[1] + (*side)[2] * (*side)[2]);
+      if (2.0 * facing * facing >= norms) nearest_facing = std::min(nearest_facing, distance);
     }
+  }
+  if (nearest <= radius && !(nearest_facing <= radius)) {
+    char text[400];
+    std::snprintf(text, sizeof text,
+                  "its patch (radius %.6g m) reaches elements of the mesh of '%s' only where they "
+                  "face another way than fluid_side [%.6g, %.6g, %.6g] (more than 45 degrees "
+                  "off), and it reads only the elements that face it; the nearest element facing "
+                  "it lies %.6g m from the centre",
+                  radius, owner.c_str(), (*side)[0], (*side)[1], (*side)[2], nearest_facing);
+    builder.problem(block.location("fluid_side"), "wall pressure probe '" + name + "': " + text,
+                    "give fluid_side as the direction from this wall into the fluid (e.g. [0, 1] "
+                    "on a floor, [1, 0] on a left wall)");
+    return;
   }
   if (!(nearest <= radius)) {
     char text[320];

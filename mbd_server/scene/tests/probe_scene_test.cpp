@@ -166,6 +166,27 @@ TEST_F(WallPressureScene, AnUnknownMeshAndAPatchOffTheMeshAreProblems) {
   EXPECT_NE(text.find("wall pressure probe 'c' has no fluid side"), std::string::npos) << text;
 }
 
+// The probe reads the elements that face its fluid side (to within 45 degrees): a patch that
+// reaches its mesh only where it faces another way (a fluid side along a floor) is refused with
+// the fluid side to write; a patch at a corner that also reaches a facing element is accepted.
+TEST_F(WallPressureScene, APatchThatFacesNoneOfItsElementsIsAProblem) {
+  const std::string text = build(
+      "WallPressureProbe { name = \"floor\"; mesh = \"ground\"; centre = [0.5, 0]; "
+      "radius = 0.05; fluid_side = [1, 0] }\n");
+  EXPECT_NE(text.find("w.scene:6:88: wall pressure probe 'floor': its patch (radius 0.05 m) "
+                      "reaches elements of the mesh of 'ground' only where they face another way "
+                      "than fluid_side [1, 0, 0] (more than 45 degrees off), and it reads only "
+                      "the elements that face it; the nearest element facing it lies 0.5 m from "
+                      "the centre; give fluid_side as the direction from this wall into the fluid"),
+            std::string::npos)
+      << text;
+  EXPECT_EQ(build("WallPressureProbe { name = \"corner\"; mesh = \"ground\"; centre = [0, 0.02]; "
+                  "radius = 0.05; fluid_side = [1, 0] }\n"
+                  "WallPressureProbe { name = \"floor\"; mesh = \"ground\"; centre = [0.5, 0]; "
+                  "radius = 0.05; fluid_side = [0, 1] }\n"),
+            "(accepted)");
+}
+
 INSTANTIATE_TEST_SUITE_P(BothDimensions, ProbeScene, ::testing::Values(2, 3));
 
 // A probe with `body` moves with that rigid body (protocol 1.4): declared where the body starts,
