@@ -409,6 +409,7 @@ void FluidHealthMonitor::save_state(output::StateWriter& out) const {
   out.put(static_cast<std::uint64_t>(record_.warnings.size()));
   for (const std::string& warning : record_.warnings)
     out.put(warning);
+  out.put(unsettled_release_);
 }
 
 void FluidHealthMonitor::restore_state(output::StateReader& in) {
@@ -430,6 +431,7 @@ void FluidHealthMonitor::restore_state(output::StateReader& in) {
   record_.warnings.resize(in.count("warnings"));
   for (std::string& warning : record_.warnings)
     warning = in.text("warning");
+  unsettled_release_ = in.text("unsettled release");
 }
 
 }  // namespace fsi::coupling

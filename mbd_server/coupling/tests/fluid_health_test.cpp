@@ -190,6 +190,21 @@ TEST(FluidHealth, AfterAnUnsettledReleaseTheFixSaysToSettleFirst) {
         << verdict.stop->fix;
     EXPECT_TRUE(contains(verdict.stop->fix, "raise cAB from 20 to at least")) << verdict.stop->fix;
   }
+  // A run resumed from a checkpoint after such a release advises as the first run did.
+  FluidHealthMonitor first = monitor();
+  first.set_unsettled_release("the structure carried 405.8 % of the fluid's weight");
+  output::StateWriter out;
+  first.save_state(out);
+  FluidHealthMonitor resumed = monitor();
+  output::StateReader in(out.bytes(), "test state");
+  resumed.restore_state(in);
+  in.finish();
+  FluidForces dense = healthy();
+  dense.health->max_density = 1040.0;
+  const HealthVerdict again = resumed.judge(3, dense);
+  ASSERT_TRUE(again.stop);
+  EXPECT_TRUE(contains(again.stop->fix, "(the structure carried 405.8 % of the fluid's weight"))
+      << again.stop->fix;
   // Settled (no call): the fix is c's alone, as above.
   FluidHealthMonitor settled = monitor();
   FluidForces forces = healthy();

@@ -18,8 +18,9 @@
 
 namespace fsi::output {
 
-// Version of checkpoint.json and of the folder layout; a reader refuses another one by name.
-inline constexpr int kCheckpointFormatVersion = 1;
+// Version of checkpoint.json, of the folder layout and of the parts' states; a reader refuses
+// another one by name. 2 (2026-12-06): the fluid health keeps an unsettled release.
+inline constexpr int kCheckpointFormatVersion = 2;
 
 struct CheckpointFile {
   std::string name;  // relative to the checkpoint folder, no subfolders

@@ -120,7 +120,7 @@ class FluidHealthMonitor {
   std::uint64_t initial_particles_ = 0;
   double closest_over_r0_ = 0.0;  // smallest so far, for the lost-particle diagnosis
   bool density_warned_ = false, mach_warned_ = false, lost_warned_ = false;
-  std::string unsettled_release_;  // not kept in checkpoints: they are taken after the release
+  std::string unsettled_release_;  // kept in checkpoints: a resumed run advises as the first
   HealthRecord record_;
 };
 
