@@ -236,8 +236,13 @@ class ClientSession {
     if (!last) return fmt::format("no heartbeat had gone out to fsi-server ({} sent)", sent);
     const double ago =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - *last).count();
-    return fmt::format("{} heartbeat(s) had gone out to fsi-server, the last {:.2f} s before this",
-                       sent, ago);
+    // Heartbeats fill only the silences of a long computation (a busy spell longer than the
+    // interval); steps that answer sooner need none, so the last one can be long ago.
+    return fmt::format(
+        "{} heartbeat(s) had gone out to fsi-server, the last {:.2f} s before this (they go out "
+        "only while the client computes for longer than {} ms without a message to the server, "
+        "so a long time since the last one means its steps answered within that)",
+        sent, ago, protocol::kHeartbeatInterval.count());
   }
 
   // What the server and the log are told of a fault on this rank: LIGGGHTS' own line with the
