@@ -89,5 +89,27 @@ TEST(MbdPrescribedMotion, ARateThatIsNotTheDerivativeIsRefused) {
   EXPECT_NE(text.find("is not the derivative of the position"), std::string::npos) << text;
 }
 
+// A fast drive's exact rate is accepted (a user's crank spun up by 1e-3 (1 - cos(1000 t)): at the
+// check's first step h = 1e-3, omega h = 1, its 4th-order difference was off by 5 %), and a rate
+// off by 0.1 % is still refused.
+TEST(MbdPrescribedMotion, AFastDrivesExactRateIsAcceptedAndAWrongOneRefused) {
+  for (const double factor : {1.0, 1.001}) {
+    RigidBody2DSpec spec;
+    Model model = shaker(spec);
+    PrescribedMotionSpec drive;
+    drive.body = 0;
+    drive.coordinate = Coordinate::Angle;
+    drive.position = [](double t) { return 1e-3 * (1.0 - std::cos(1000.0 * t)); };
+    drive.rate = [factor](double t) { return factor * std::sin(1000.0 * t); };
+    drive.check_times = {0.0, 0.0123, 0.5, 2.0};
+    const std::string text = testing::error_message([&] { model.add_prescribed_motion(drive); });
+    if (factor == 1.0) {
+      EXPECT_EQ(text, "accepted") << text;
+    } else {
+      EXPECT_NE(text.find("is not the derivative of the position"), std::string::npos) << text;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace fsi::mbd
