@@ -287,6 +287,8 @@ bool SensorBuilder::joint_fits() {
   if (variant.joint != Use::Required) return true;
   const std::string& name = s.string("joint");
   const auto found = builder.names.joints.find(name);
+  if (found == builder.names.joints.end() && builder.element_skipped(name))
+    throw AlreadyReported(s.location("joint"));  // its own problem is reported
   if (found == builder.names.joints.end()) {
     problem(s.location("joint"), "no joint named '" + name + "'",
             "give the joint block name = \"" + name + "\"");
@@ -331,6 +333,8 @@ bool SensorBuilder::spring_fits() {
   if (variant.element != Use::Required) return true;
   const std::string& name = s.string("element");
   const auto found = builder.names.force_elements.find(name);
+  if (found == builder.names.force_elements.end() && builder.element_skipped(name))
+    throw AlreadyReported(s.location("element"));  // its own problem is reported
   if (found == builder.names.force_elements.end() || found->second < 0) {
     problem(s.location("element"), "no spring named '" + name + "'",
             "give the " + std::string(builder.spatial() ? "SpringDamper3D block" : "spring block") +

@@ -97,7 +97,7 @@ std::vector<View> SceneBuilder::blocks(std::string_view name) const {
 
 void SceneBuilder::each(std::string_view name, const std::function<void(const View&)>& build) {
   for (const View& element : blocks(name)) {
-    guard(element.location(), [&] {
+    const bool built = guard(element.location(), [&] {
       const int first_row = model.constraint_count();
       build(element);
       if (!element.has("release_time")) return;
@@ -107,15 +107,26 @@ void SceneBuilder::each(std::string_view name, const std::function<void(const Vi
           model.set_release_time(row, release);
       });
     });
+    // A named element that failed (reported) is remembered, so that a sensor naming it is
+    // skipped rather than told the name does not exist.
+    const ParameterSpec* named = element.spec().parameter("name");
+    if (!built && named != nullptr && named->kind == Kind::String && element.has("name"))
+      skipped_elements_.push_back(element.string("name"));
   }
 }
 
-void SceneBuilder::guard(const SourceLocation& element, const std::function<void()>& step) {
+bool SceneBuilder::element_skipped(const std::string& name) const {
+  return std::find(skipped_elements_.begin(), skipped_elements_.end(), name) !=
+         skipped_elements_.end();
+}
+
+bool SceneBuilder::guard(const SourceLocation& element, const std::function<void()>& step) {
   const int first_row = model.constraint_count();
   try {
     step();
     const int rows = model.constraint_count() - first_row;
     if (rows > 0) row_owners_.push_back({element, first_row, rows});
+    return true;
   } catch (const AlreadyReported&) {
     skipped_any_ = true;
   } catch (const Error& error) {
@@ -123,6 +134,7 @@ void SceneBuilder::guard(const SourceLocation& element, const std::function<void
         error.location().empty() ? element : SourceLocation{error.location()};
     problems_.push_back({where, error.fault(), error.remedy()});
   }
+  return false;
 }
 
 void SceneBuilder::problem(const SourceLocation& where, const std::string& message,

@@ -84,8 +84,11 @@ class SceneBuilder {
   // a block's `release_time` (releasable()) then releases the constraint rows it added.
   void each(std::string_view name, const std::function<void(const View&)>& build);
   // Runs one element's construction: a value in error skips it, an fsi::Error becomes a problem
-  // at the element (or at the error's own place).
-  void guard(const SourceLocation& element, const std::function<void()>& step);
+  // at the element (or at the error's own place). False when it did either.
+  bool guard(const SourceLocation& element, const std::function<void()>& step);
+  // Was the element of this name (a joint, spring, ...) skipped by each() for a reported problem?
+  // A sensor naming it is then skipped too, not told the name does not exist.
+  bool element_skipped(const std::string& name) const;
   void problem(const SourceLocation& where, const std::string& message, const std::string& fix);
   void problem(Problem found);
   // The block whose element added constraint row `row` (the innermost guarded step that did), or
@@ -143,8 +146,9 @@ class SceneBuilder {
   std::vector<Problem>& problems_;
   std::vector<RowOwner> row_owners_;
   bool skipped_any_ = false;
-  std::vector<std::string> skipped_bodies_;  // bodies not built for a value in error
-  bool unnamed_body_skipped_ = false;        // a body whose name is in error: its name is unknown
+  std::vector<std::string> skipped_bodies_;    // bodies not built for a value in error
+  std::vector<std::string> skipped_elements_;  // named elements each() skipped (reported)
+  bool unnamed_body_skipped_ = false;          // a body whose name is in error: its name is unknown
 };
 
 // Helpers the families share.

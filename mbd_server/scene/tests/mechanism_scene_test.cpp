@@ -190,10 +190,15 @@ Sensor { name = "drive"; type = "joint_force"; joint = "shaker"; component = "x"
               -8.0 * std::sin(20.0 * 0.1), 1e-3);
   const std::string text = problems(R"scene(RigidBody2D { name = "table"; mass = 2; inertia = 0.1
               Mesh { points = [[0, 0], [1, 0]] } }
-PrescribedMotion { body = "table"; coordinate = "angle"; position = "0.3*t^2"; rate = "0.3*t" }
+PrescribedMotion { name = "turn"; body = "table"; coordinate = "angle"; position = "0.3*t^2"; rate = "0.3*t" }
+Sensor { name = "torque"; type = "joint_force"; joint = "turn"; component = "torque" }
 )scene");
   EXPECT_NE(text.find("m.scene:5:1:"), std::string::npos) << text;
   EXPECT_NE(text.find("is not the derivative of the position"), std::string::npos) << text;
+  // The sensor on the refused drive is skipped, not told that no joint has its name (a user's
+  // slider crank, 2026-12-06).
+  EXPECT_EQ(text.find("no joint named"), std::string::npos) << text;
+  EXPECT_NE(text.find("1 problem(s)"), std::string::npos) << text;
 }
 
 // A runtime expression names the scene's numbers by their path, so a drive follows the parameter
