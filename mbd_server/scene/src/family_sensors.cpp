@@ -36,6 +36,7 @@ constexpr SensorVariant kSensorVariants[] = {
     {"spring_force", SensorType::SpringForce, F, F, R, F, F, true, "N/m", "N m/m", "N", ""},
     {"kinetic_energy", SensorType::KineticEnergy, F, F, F, F, F, true, "J/m", "", "J", ""},
     {"potential_energy", SensorType::PotentialEnergy, F, F, F, F, F, true, "J/m", "", "J", ""},
+    {"strain_energy", SensorType::StrainEnergy, F, F, F, F, F, true, "J/m", "", "J", ""},
 };
 
 std::vector<std::string> sensor_types() {
@@ -64,7 +65,8 @@ std::vector<BlockSpec> sensor_blocks() {
                 "its centre of mass, on an AncfBeam2D about the joint's point on it, a "
                 "BeamClamp's node); spring_force: "
                 "tension, or torque of a RotationalSpringDamper; energies of the whole system, "
-                "potential = gravity + springs)")
+                "potential = gravity + springs, strain = the beams' and cables' elastic "
+                "deformation)")
                .one_of(sensor_types()),
            text("body",
                 "name of a RigidBody2D (position, velocity, fluid and constraint forces), or of "

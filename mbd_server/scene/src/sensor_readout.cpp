@@ -68,6 +68,8 @@ double structure_sensor_value(const mbd::Model& model, const SensorSpec& sensor,
       return kinetic_energy(model, state);
     case SensorType::PotentialEnergy:
       return potential_energy(model, state);
+    case SensorType::StrainEnergy:
+      return strain_energy(model, state);
     case SensorType::TotalFluidForce:
       break;
   }

@@ -172,7 +172,8 @@ enum class SensorType {
   JointForce,
   SpringForce,
   KineticEnergy,
-  PotentialEnergy
+  PotentialEnergy,
+  StrainEnergy
 };
 
 // SensorSpec::axis of a driven RevoluteJoint3D's drive torque.
