@@ -118,25 +118,34 @@ std::vector<std::string> fluid_block_lines(const fsi::scene::Scene& scene) {
   return lines;
 }
 
-void print_summary(const fsi::scene::Scene& scene) {
+void print_summary(const fsi::scene::Scene& scene, bool mbd_only) {
   std::printf("scene %s is valid:\n", scene.file.c_str());
   std::printf("  %d bodies, %d constraints, %zu sensors\n", scene.model.body_count(),
               scene.model.constraint_count(), scene.sensors.size());
   const bool spatial = scene.dimension == 3;
   std::printf("  dimension %d\n", scene.dimension);
-  std::printf("  boundary mesh: %zu vertices (%zu dynamic), %zu %s, refinement resolution %g m\n",
-              scene.boundary.vertex_count, scene.boundary.dynamic_vertex_count,
-              scene.boundary.element_count(), spatial ? "triangles" : "segments",
-              scene.boundary.refinement_resolution);
-  std::printf("  fluid: %zu particles, spacing %g m, mass %g %s, density %g kg/m^3\n",
-              scene.fluid.count(), scene.fluid.spacing, scene.fluid.mass, spatial ? "kg" : "kg/m",
-              scene.fluid.density);
-  const std::string fill = fsi::scene::fluid_box_fill(scene);
-  if (!fill.empty()) std::printf("    %s\n", fill.c_str());
-  std::printf("  time: %g s in steps of %g s (%s); %llu equilibration steps\n",
-              scene.solver.end_time, scene.solver.step_size,
-              scene.solver.integrator_description().c_str(),
-              static_cast<unsigned long long>(scene.liggghts.equilibration_steps));
+  // An --mbd-only run has no fluid and no coupling: its summary leaves them out.
+  if (mbd_only) {
+    std::printf("  boundary mesh: %zu vertices, %zu %s (for the VTK output)\n",
+                scene.boundary.vertex_count, scene.boundary.element_count(),
+                spatial ? "triangles" : "segments");
+    std::printf("  time: %g s in steps of %g s (%s)\n", scene.solver.end_time,
+                scene.solver.step_size, scene.solver.integrator_description().c_str());
+  } else {
+    std::printf("  boundary mesh: %zu vertices (%zu dynamic), %zu %s, refinement resolution %g m\n",
+                scene.boundary.vertex_count, scene.boundary.dynamic_vertex_count,
+                scene.boundary.element_count(), spatial ? "triangles" : "segments",
+                scene.boundary.refinement_resolution);
+    std::printf("  fluid: %zu particles, spacing %g m, mass %g %s, density %g kg/m^3\n",
+                scene.fluid.count(), scene.fluid.spacing, scene.fluid.mass, spatial ? "kg" : "kg/m",
+                scene.fluid.density);
+    const std::string fill = fsi::scene::fluid_box_fill(scene);
+    if (!fill.empty()) std::printf("    %s\n", fill.c_str());
+    std::printf("  time: %g s in steps of %g s (%s); %llu equilibration steps\n",
+                scene.solver.end_time, scene.solver.step_size,
+                scene.solver.integrator_description().c_str(),
+                static_cast<unsigned long long>(scene.liggghts.equilibration_steps));
+  }
   if (scene.assembly) {
     for (const std::string& line : scene.assembly->lines())
       std::printf("  %s\n", line.c_str());
@@ -360,7 +369,7 @@ SceneNotes scene_notes(const fsi::scene::Scene& scene, bool mbd_only) {
 }
 
 int print_check(const fsi::scene::Scene& scene, const SceneNotes& notes, const CommandLine& line) {
-  print_summary(scene);
+  print_summary(scene, line.mbd_only);
   std::printf("%s", fsi::scene::blocks_needed(scene, line.mode()).c_str());
   for (const fsi::scene::Diagnostic& warning : notes.run_warnings)
     std::printf("  %s\n", warning.text().c_str());

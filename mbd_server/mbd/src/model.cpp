@@ -424,9 +424,20 @@ std::string Model::coordinate_description(int index) const {
   const bool rigid_3d = dynamic_cast<const detail::RigidBody3D*>(data_->bodies[b].get()) != nullptr;
   static const char* kNatural[12] = {"x",    "y",    "z",    "e1.x", "e1.y", "e1.z",
                                      "e2.x", "e2.y", "e2.z", "e3.x", "e3.y", "e3.z"};
+  // ANCF nodes: position, then the slope dr/ds (2D 4, 3D 6 coordinates per node).
+  static const char* kNodal[6] = {"x", "y", "z", "slope x", "slope y", "slope z"};
+  const int body = static_cast<int>(b);
+  const int per_node = is_beam(body) ? 4 : is_cable(body) ? 6 : 0;
+  const auto nodal = [&] {
+    const int component = local % per_node;
+    return "node " + std::to_string(local / per_node) + " " +
+           (per_node == 4 ? std::string(kNodal[component < 2 ? component : component + 1])
+                          : std::string(kNodal[component]));
+  };
   return "body '" + data_->bodies[b]->name() + "' coordinate " +
          (rigid      ? std::string(name(static_cast<Coordinate>(local)))
           : rigid_3d ? std::string(kNatural[local])
+          : per_node ? nodal()
                      : std::to_string(local));
 }
 

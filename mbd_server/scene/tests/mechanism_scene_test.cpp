@@ -10,6 +10,7 @@
 
 #include "fsi/mbd/integrator.hpp"
 #include "fsi/mbd/static_analysis.hpp"
+#include "fsi/scene/physics_checks.hpp"
 #include "fsi/scene/scene.hpp"
 #include "test_files.hpp"
 
@@ -418,6 +419,40 @@ Sensor { name = "strain"; type = "strain_energy" }
   const double w = 0.5 * 9.81;
   EXPECT_NEAR(strain, w * w / (640.0 * 100.0), 5e-3 * strain);
   EXPECT_NEAR(strain, -0.5 * potential, 1e-4 * strain);
+}
+
+// A beam that the Assembly block has to set moving (its end pinned to a crank that starts
+// turning) gets the velocity of least kinetic energy, not a rigid motion: warned at the block
+// with the fix (start at rest, spin up). A crank that starts at rest is not warned.
+TEST_F(MechanismScene, AnAssembledBeamVelocityIsWarnedAsAStrike) {
+  const auto scene_with = [&](const std::string& rate) {
+    return build_scene(write(R"scene(RigidBody2D { name = "crank"; mass = 1; inertia = 0.01
+             position = [0, 0]; angular_velocity = )scene" +
+                             rate + R"scene( }
+RevoluteJoint { name = "pivot"; body_a = "crank"; point_b = [0, 0] }
+PrescribedMotion { name = "drive"; body = "crank"; coordinate = "angle"
+                   position = ")scene" +
+                             rate + R"scene(*t"; rate = ")scene" + rate + R"scene(" }
+AncfBeam2D { name = "rod"; start = [0.15, 0]; end = [0.45, 0]; elements = 4; thickness = 0.008
+             axial_stiffness = 1e7; bending_stiffness = 70; mass_per_length = 0.5 }
+RevoluteJoint { name = "pin"; body_a = "rod"; point_a = [0, 0]; body_b = "crank"; point_b = [0.15, 0] }
+Assembly { }
+)scene"));
+  };
+  const std::vector<Diagnostic> struck = integrator_check(scene_with("150"));
+  ASSERT_EQ(struck.size(), 1u);
+  EXPECT_EQ(struck.front().check, "assembly_velocity");
+  EXPECT_NE(struck.front().message.find("the initial assembly gave beam 'rod' the velocity its "
+                                        "joints need at the least kinetic energy (a change of up "
+                                        "to "),
+            std::string::npos)
+      << struck.front().message;
+  EXPECT_NE(struck.front().message.find("in its coordinate node 0 slope"), std::string::npos)
+      << struck.front().message;
+  EXPECT_NE(struck.front().fix.find("start the mechanism at rest"), std::string::npos);
+  EXPECT_NE(struck.front().location.text().find("m.scene:11:1"), std::string::npos)
+      << struck.front().location.text();
+  EXPECT_TRUE(integrator_check(scene_with("0")).empty());
 }
 
 }  // namespace

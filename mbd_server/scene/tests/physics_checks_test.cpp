@@ -124,6 +124,13 @@ TEST(PhysicsChecks, ImplicitEulerIsWarnedWithTheDampingItAdds) {
                   "period of 0.1 s");
   EXPECT_CONTAINS(warning.fix, "use stages = 2 or 3");
   EXPECT_CONTAINS(warning.location.text(), "--set SolverOptions.Timeint.stages=1");  // its source
+  // A short step names the short periods it damps too (a user's connecting rod rang at 5 ms and
+  // the warning spoke of 0.1 s only), down to 4 steps.
+  const std::vector<Diagnostic> short_step =
+      warnings({{"SolverOptions.Timeint.stages", "1"}, {"Resolution.time_step", "1e-4"}});
+  ASSERT_EQ(short_step.size(), 1u) << listing(short_step);
+  EXPECT_CONTAINS(short_step.front().message, "per period of 0.01 s, ");
+  EXPECT_CONTAINS(short_step.front().message, "per period of 0.001 s of its amplitude");
   // Orders 3 and 5, and an error-controlled method, are not warned; nor is it a fluid rule.
   EXPECT_TRUE(warnings({{"SolverOptions.Timeint.stages", "2"}}).empty());
   EXPECT_TRUE(warnings({{"SolverOptions.Timeint.stages", "1"},

@@ -61,9 +61,11 @@ std::vector<Diagnostic> physics_checks(const Scene& scene);
 // end times fit; empty when the step divides end_time (to 1e-9 relative).
 std::vector<Diagnostic> end_time_check(const Scene& scene);
 
-// The structure's integrator, for coupled and --mbd-only runs alike: Radau IIA with 1 stage
-// (implicit Euler) at a fixed step is warned at Timeint.stages with the amplitude an
-// oscillation of 10, 1 and 0.1 s loses per period at the structure's step; empty otherwise.
+// The structure's integrator and start, for coupled and --mbd-only runs alike: Radau IIA with 1
+// stage (implicit Euler) at a fixed step is warned at Timeint.stages with the amplitude an
+// oscillation of 10 s, 1 s, ... (down to 4 steps) loses per period at the structure's step; a
+// beam or cable whose velocity the Assembly block changed is warned at the block (it starts as
+// if struck); empty otherwise.
 std::vector<Diagnostic> integrator_check(const Scene& scene);
 
 // The speed of sound c [m/s] the checks use (LIGGGHTS_SPH_parameters.cAB), or nullopt when the
