@@ -11,6 +11,7 @@
 
 #include "fsi/common/error.hpp"
 #include "raw_tree.hpp"
+#include "runtime_expression.hpp"
 
 namespace fsi::scene::detail {
 namespace {
@@ -491,7 +492,23 @@ class Evaluator {
     if (found.silent) {
       dependency_failed_ = true;
     } else if (!found.parameter) {
-      pending_.push_back({offset, found.message, found.fix});
+      // A name before "(" is a call: muParser asked for it as a variable because it knows no
+      // function of that name.
+      std::size_t next = offset + name.size();
+      while (next < scalar_.end && is_blank((*text_)[next]))
+        ++next;
+      const std::string functions = std::string(" ") + kFunctionList + " ";
+      const bool known = functions.find(" " + std::string(name) + " ") != std::string::npos;
+      if (next < scalar_.end && (*text_)[next] == '(' && known) {
+        pending_.push_back({offset, in_quotes(name) + " is followed by a blank before its '('",
+                            "write " + std::string(name) + "(...) without the blank"});
+      } else if (next < scalar_.end && (*text_)[next] == '(') {
+        pending_.push_back({offset, in_quotes(name) + " is not a function of the scene language",
+                            std::string("use one of ") + kFunctionList +
+                                (name == "round" ? "; round(x) is rint(x)" : "")});
+      } else {
+        pending_.push_back({offset, found.message, found.fix});
+      }
     } else if (found.parameter->state != RawParameter::State::Done) {
       dependency_failed_ = true;  // its own error is reported already
     } else if (found.parameter->value.kind != ValueKind::Number) {

@@ -43,8 +43,9 @@ RuntimeExpression::RuntimeExpression(const std::string& text,
   for (const std::string& name : variables)
     allowed += (allowed.empty() ? "" : ", ") + name;
   const std::string how = "write a muParser expression in " + allowed +
-                          " (numbers, + - * / ^, sin, exp, sqrt, min, max, ...) and the scene's "
-                          "numbers by their path from the top of the file (e.g. Geometry.T)";
+                          " (numbers, + - * / ^, ?: and the functions " + kFunctionList +
+                          ") and the scene's numbers by their path from the top of the file (e.g. "
+                          "Geometry.T)";
   try {
     // The constants and name characters of the scene language's own expressions.
     parser_->parser.DefineNameChars(

@@ -12,6 +12,12 @@
 
 namespace fsi::scene::detail {
 
+// muParser's built-in functions: what every expression of a scene may call (the scene's own
+// values and the expressions a run evaluates), for the messages that name them.
+inline constexpr const char* kFunctionList =
+    "sin cos tan asin acos atan sinh cosh tanh asinh acosh atanh exp ln log log2 log10 sqrt abs "
+    "sign rint (to the nearest integer) min max sum avg";
+
 class RuntimeExpression {
  public:
   // The value of a name that is not a variable (a path such as "Geometry.T"), or nullopt; the

@@ -240,6 +240,20 @@ TEST(ParameterFile, ACycleIsNamedAsOneWithItsWholeChain) {
   EXPECT_CONTAINS(error_of("x = x + 1\n"), "'x' is not defined");
 }
 
+TEST(ParameterFile, AnUnknownFunctionIsNamedAsOneWithTheFunctionsThereAre) {
+  // A user's round(x): it was "not defined; define it above this line".
+  const std::string message = error_of("n = round(2.6)\nm = rint (2.6)\n");
+  EXPECT_CONTAINS(message, "2 problem(s)");
+  EXPECT_CONTAINS(message,
+                  "t.scene:2:5: in 'm': 'rint' is followed by a blank before its '('; "
+                  "write rint(...) without the blank");
+  EXPECT_CONTAINS(message,
+                  "t.scene:1:5: in 'n': 'round' is not a function of the scene language; "
+                  "use one of sin cos tan");
+  EXPECT_CONTAINS(message, "rint (to the nearest integer) min max sum avg; round(x) is rint(x)");
+  EXPECT_EQ(number_at(parse("m = rint(2.6)\n"), "m"), 3.0);
+}
+
 TEST(ParameterFile, UndefinedNameSuggestsTheNearestOne) {
   const std::string message = error_of("Geometry {\n  width = 0.05\n  height = 2*widht\n}\n");
   EXPECT_CONTAINS(message,
