@@ -171,6 +171,21 @@ def write_analysis(run_dir, result):
         json.dump(result, handle, indent=2)
 
 
+def judge_runs(results, report, judge, curves=()):
+    """What a script comparing runs with a reference ends with: for each result (a dict with its
+    "run_dir") report(result) prints its figures, judge(result) returns the failures (messages),
+    and analysis.json gets the result without the `curves` keys (the time series). Prints each
+    failure as "FAIL: ..." and returns the exit status (1 if any)."""
+    failures = []
+    for result in results:
+        report(result)
+        failures += judge(result)
+        write_analysis(result["run_dir"], {k: v for k, v in result.items() if k not in curves})
+    for failure in failures:
+        print(f"FAIL: {failure}")
+    return 1 if failures else 0
+
+
 def weight_check_arguments(description, settle_start_default, settle_start_help):
     """The command line every weight check shares: the run folder, where the averaging interval
     starts, and the tolerance on the measured weight; a script adds its own checks' options."""

@@ -10,7 +10,8 @@ import io
 import unittest
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from fsi_results import Checks, damped_fit, interpolate_clamped, read_reference_points, zero_crossings  # noqa: E402
+from fsi_results import (Checks, damped_fit, interpolate_clamped, judge_runs, read_reference_points,  # noqa: E402
+                         zero_crossings)
 
 
 def damped_signal(period_natural, zeta, offset, amplitude=0.025, end=4.0, dt=0.005):
@@ -91,6 +92,25 @@ class ChecksVerdict(unittest.TestCase):
         with self.assertRaises(SystemExit) as leaving:
             passing.exit()
         self.assertEqual(leaving.exception.code, 0)
+
+
+class JudgeRuns(unittest.TestCase):
+    def test_reports_each_run_writes_its_figures_and_fails_on_any_failure(self):
+        with tempfile.TemporaryDirectory() as first, tempfile.TemporaryDirectory() as second:
+            results = [{"run_dir": first, "peak": 1.0, "time": [0, 1]},
+                       {"run_dir": second, "peak": 3.0, "time": [0, 1]}]
+            out = io.StringIO()
+            with contextlib.redirect_stdout(out):
+                status = judge_runs(results, lambda r: print(f"peak {r['peak']}"),
+                                    lambda r: [] if r["peak"] < 2 else [f"peak {r['peak']} above 2"],
+                                    curves=("time",))
+            self.assertEqual(status, 1)
+            self.assertEqual(out.getvalue().splitlines(), ["peak 1.0", "peak 3.0", "FAIL: peak 3.0 above 2"])
+            with open(os.path.join(first, "analysis.json")) as handle:
+                self.assertEqual(handle.read().replace(" ", "").replace("\n", ""),
+                                 '{"run_dir":"' + first + '","peak":1.0}')
+            with contextlib.redirect_stdout(io.StringIO()):
+                self.assertEqual(judge_runs(results[:1], lambda r: None, lambda r: []), 0)
 
 
 class ReadReferencePoints(unittest.TestCase):

@@ -24,7 +24,7 @@ import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
 from fsi_results import (SHARED_REFERENCE_DATA, finish_figure, interpolate_clamped, pyplot,  # noqa: E402
-                         read_reference_points, read_run, require_run, write_analysis)
+                         judge_runs, read_reference_points, read_run, require_run)
 
 REFERENCE_FILES = {
     "experiment_x": "antoci_2007_gate_tip_x_displacement_experiment.csv",
@@ -161,16 +161,10 @@ def main():
 
     references = {key: read_curve(os.path.join(args.reference_dir, name)) for key, name in REFERENCE_FILES.items()}
     results = [analyze_run(run_dir, references) for run_dir in args.run_dirs]
-    failures = []
-    for result in results:
-        report(result)
-        failures += judge(result, args)
-        write_analysis(result["run_dir"], {k: v for k, v in result.items() if k not in ("time", "dx", "dy")})
+    status = judge_runs(results, report, lambda result: judge(result, args), curves=("time", "dx", "dy"))
     if args.figure:
         draw(results, references, args.figure)
-    for failure in failures:
-        print(f"FAIL: {failure}")
-    return 1 if failures else 0
+    return status
 
 
 if __name__ == "__main__":
