@@ -205,8 +205,11 @@ std::optional<HealthFinding> FluidHealthMonitor::wall_distance(std::uint64_t ste
   return finding;
 }
 
-std::string FluidHealthMonitor::settle_first(const std::string& fix) const {
+std::string FluidHealthMonitor::settle_first(const std::string& fix, std::uint64_t step) const {
   if (unsettled_release_.empty()) return fix;
+  if (scales_.settling_time > 0.0 &&
+      static_cast<double>(step) * scales_.time_step > scales_.settling_time)
+    return fix;
   return "the water was not at rest when the bodies were released (" + unsettled_release_ +
          "; the release warning says how to let it settle): settle it first, with "
          "LIGGGHTS.equilibration_steps; if the finding persists from a settled start: " +
@@ -263,7 +266,7 @@ std::optional<HealthFinding> FluidHealthMonitor::density(std::uint64_t step,
     fix += step_with_new_speed_of_sound();
     if (!advice.empty()) fix += " (now " + advice + ")";
   }
-  fix = settle_first(fix);
+  fix = settle_first(fix, step);
   if (stops) {
     return HealthFinding{kCheckDensityDeviation,
                          what + " exceeds FluidHealth.max_density_deviation = " +
@@ -304,7 +307,7 @@ std::optional<HealthFinding> FluidHealthMonitor::mach(std::uint64_t step,
   fix +=
       "; a speed far above sqrt(2 g H) of the flow means a wall or the time step kicked the "
       "fluid: halve the step first";
-  fix = settle_first(fix);
+  fix = settle_first(fix, step);
   if (mach_number > limits_.max_mach) {
     return HealthFinding{kCheckMach,
                          what + ", above FluidHealth.max_mach = " + number(limits_.max_mach), fix};
@@ -388,7 +391,36 @@ FluidScales fluid_scales(const scene::Scene& scene) {
       describe_liggghts_box(scene.liggghts.script1_name, scene.liggghts.script1_text);
   if (scene.fluid_parameters) scales.speed_of_sound_name = "Fluid.speed_of_sound";
   scales.step_follows_speed_of_sound = scene.solver.step_size_derived;
+  const double gravity = std::hypot(scene.gravity[0], scene.gravity[1], scene.gravity[2]);
+  if (scene.fluid.column_height > 0.0 && gravity > 0.0)
+    scales.settling_time = 2.0 * std::sqrt(scene.fluid.column_height / gravity);
   return scales;
+}
+
+std::vector<std::string> FluidHealthMonitor::near_limits() const {
+  constexpr double kNear = 0.8;  // of a stop limit (for the wall distance: 1 / 0.8 of it)
+  std::vector<std::string> near;
+  if (record_.steps_checked == 0) return near;
+  if (scales_.rest_density > 0.0 && limits_.max_density_deviation > 0.0 &&
+      record_.max_density_deviation >= kNear * limits_.max_density_deviation) {
+    near.push_back("max |rho/rho0 - 1| = " + number(record_.max_density_deviation) + " at step " +
+                   std::to_string(record_.max_density_deviation_step) + " (the stop: above " +
+                   number(limits_.max_density_deviation) + ")");
+  }
+  if (scales_.speed_of_sound && *scales_.speed_of_sound > 0.0 && limits_.max_mach > 0.0) {
+    const double mach = record_.max_particle_speed / *scales_.speed_of_sound;
+    if (mach >= kNear * limits_.max_mach) {
+      near.push_back("max |v| / c = " + number(mach) + " at step " +
+                     std::to_string(record_.max_particle_speed_step) + " (the stop: above " +
+                     number(limits_.max_mach) + ")");
+    }
+  }
+  if (std::isfinite(closest_over_r0_) && limits_.min_wall_distance > 0.0 &&
+      closest_over_r0_ * kNear <= limits_.min_wall_distance) {
+    near.push_back("closest particle-wall distance " + number(closest_over_r0_) +
+                   " r0 (the stop: below " + number(limits_.min_wall_distance) + " r0)");
+  }
+  return near;
 }
 
 void FluidHealthMonitor::save_state(output::StateWriter& out) const {

@@ -149,6 +149,17 @@ class Session {
     if (status == 0) {
       spdlog::info("run completed: {} steps in {:.1f} s; results in {}", steps_done_,
                    timings_.total.seconds(), options_.output_dir);
+      if (const std::vector<std::string> near = health_.near_limits(); !near.empty()) {
+        std::string figures;
+        for (const std::string& figure : near)
+          figures += (figures.empty() ? "" : "; ") + figure;
+        spdlog::warn(
+            "the run came within 20 % of its health limits: {}. It completed, but a result this "
+            "close to a stop is at the edge of what the resolution and the speed of sound hold: "
+            "check it at a finer spacing or a larger c (docs/user-guide.md, \"When a run stops: "
+            "the health checks\")",
+            figures);
+      }
     } else if (options_.resume && !resumed_state_) {
       spdlog::error("resume refused: the run in {} is as it was", options_.output_dir);
     } else {

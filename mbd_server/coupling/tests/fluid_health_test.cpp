@@ -205,6 +205,19 @@ TEST(FluidHealth, AfterAnUnsettledReleaseTheFixSaysToSettleFirst) {
   ASSERT_TRUE(again.stop);
   EXPECT_TRUE(contains(again.stop->fix, "(the structure carried 405.8 % of the fluid's weight"))
       << again.stop->fix;
+  // A finding after the settling time 2 sqrt(H / g) is not the release's (a user's dam break
+  // was told to settle at its wall impact): the fix is c's alone.
+  FluidScales timed = water_column_scales();
+  timed.settling_time = 0.01;  // 400 steps of 2.5e-5 s
+  for (const std::uint64_t step : {3u, 1000u}) {
+    FluidHealthMonitor watch = monitor(timed);
+    watch.set_unsettled_release("the structure carried 98.2 % of the fluid's weight");
+    FluidForces forces = healthy();
+    forces.health->max_density = 1040.0;
+    const HealthVerdict verdict = watch.judge(step, forces);
+    ASSERT_TRUE(verdict.stop);
+    EXPECT_EQ(contains(verdict.stop->fix, "not at rest"), step == 3u) << step << verdict.stop->fix;
+  }
   // Settled (no call): the fix is c's alone, as above.
   FluidHealthMonitor settled = monitor();
   FluidForces forces = healthy();
@@ -212,6 +225,26 @@ TEST(FluidHealth, AfterAnUnsettledReleaseTheFixSaysToSettleFirst) {
   const HealthVerdict verdict = settled.judge(3, forces);
   ASSERT_TRUE(verdict.stop);
   EXPECT_FALSE(contains(verdict.stop->fix, "not at rest")) << verdict.stop->fix;
+}
+
+TEST(FluidHealth, ARunThatPassedCloseToItsLimitsSaysWhichFigures) {
+  // A user's dam break ended "run completed" with its density at 0.0498 of a 0.05 stop and a
+  // particle at 0.114 r0 of a 0.1 r0 stop: the end of such a run names those figures.
+  FluidHealthMonitor calm = monitor();
+  ASSERT_FALSE(calm.judge(1, healthy()).stop);
+  EXPECT_TRUE(calm.near_limits().empty());
+  FluidHealthMonitor close = monitor();
+  FluidForces forces = healthy();
+  forces.health->max_density = 1026.0;                 // 0.026 of the 0.03 stop
+  forces.diagnostics.closest_approach_over_r0 = 0.12;  // of the 0.1 r0 stop
+  forces.health->max_speed = 0.39 * 20.0;              // 0.39 c of the 0.5 c stop: not near
+  ASSERT_FALSE(close.judge(7, forces).stop);
+  const std::vector<std::string> near = close.near_limits();
+  ASSERT_EQ(near.size(), 2u);
+  EXPECT_TRUE(contains(near[0], "max |rho/rho0 - 1| = 0.026 at step 7 (the stop: above 0.03)"))
+      << near[0];
+  EXPECT_TRUE(contains(near[1], "closest particle-wall distance 0.12 r0 (the stop: below 0.1 r0)"))
+      << near[1];
 }
 
 TEST(FluidHealth, ADensityDeviationWithATooLargeStepNamesTheStep) {

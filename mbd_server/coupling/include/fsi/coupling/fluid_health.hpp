@@ -41,6 +41,9 @@ struct FluidScales {
   // The coupled step is the Fluid block's time-step rule's (Timeint.step_size not given): it
   // follows a new speed of sound by itself.
   bool step_follows_speed_of_sound = false;
+  // 2 sqrt(H / |g|) [s] of the water column H: an unsettled release explains a density or Mach
+  // finding within this time after it, not a later one (a dam break's impact); 0: at any time.
+  double settling_time = 0.0;
 };
 
 // One finding: `check` is one of the names above; message says what and by how much, fix what to
@@ -85,6 +88,12 @@ class FluidHealthMonitor {
   HealthVerdict judge(std::uint64_t step, const FluidForces& forces);
 
   const HealthRecord& record() const { return record_; }
+  // At the end of a run that passed: each judged figure that came within 20 % of its stop limit
+  // (the worst density deviation, particle speed over c, closest wall approach), e.g. "max
+  // |rho/rho0 - 1| = 0.0498 at step 41526 (the stop: above 0.05)"; empty when none did. A run
+  // this close to a stop completed, but its result is at the edge of what its resolution and c
+  // hold.
+  std::vector<std::string> near_limits() const;
   // A check judged elsewhere (kCheckCouplingEnergy) that ends the run.
   void record_failed_check(std::string check) { record_.failed_check = std::move(check); }
   const scene::FluidHealthLimits& limits() const { return limits_; }
@@ -111,8 +120,9 @@ class FluidHealthMonitor {
   // What happens to the step when c is raised: " and reduce SolverOptions.Timeint.step_size by
   // the same factor to keep dt c / h", or that the Fluid block's rule follows.
   std::string step_with_new_speed_of_sound() const;
-  // `fix`, after the advice to settle the water first when the release found it moving.
-  std::string settle_first(const std::string& fix) const;
+  // `fix`, after the advice to settle the water first when the release found it moving and the
+  // finding of `step` came within the settling time after it.
+  std::string settle_first(const std::string& fix, std::uint64_t step) const;
 
   scene::FluidHealthLimits limits_;
   std::uint64_t allowed_lost_;
