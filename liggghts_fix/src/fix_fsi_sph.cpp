@@ -29,12 +29,13 @@ constexpr const char* kStyle = "fsi/sph";
 class FixFsiSph : public LAMMPS_NS::Fix {
  public:
   FixFsiSph(LAMMPS_NS::LAMMPS* lammps, int argc, char** argv, const ContactSettings& settings,
-            const ContactSettings3D& settings3d, double warn_fraction,
+            const ContactSettings3D& settings3d, double warn_fraction, bool true_shape,
             std::shared_ptr<CouplingBoundary> boundary)
       : Fix(lammps, argc, argv),
         contact_(settings),
         contact3d_(settings3d),
         warn_distance_(warn_fraction * settings.law.equilibrium_distance),
+        true_shape_(true_shape),
         boundary_(std::move(boundary)) {}
 
   int setmask() override { return LAMMPS_NS::FixConst::POST_FORCE; }
@@ -166,13 +167,17 @@ class FixFsiSph : public LAMMPS_NS::Fix {
     if (!(closest < warn_distance_)) return;
     if (last_warning_ >= 0 && update->ntimestep - last_warning_ < kWarnEvery) return;
     last_warning_ = update->ntimestep;
-    char text[320];
+    // The true-shape wall derives k from its reference pressure: that is what to raise.
+    const char* stiffer = true_shape_ ? "raise the wall's reference pressure (the fix's "
+                                        "`pressure`, Fluid.wall_pressure)"
+                                      : "raise k";
+    char text[480];
     std::snprintf(text, sizeof text,
-                  "fix fsi/sph: a particle is %.3g r0 from a wall at step " BIGINT_FORMAT
-                  " (warn below %.3g r0): raise k or reduce the time step; repeats at most every "
-                  "%d steps",
+                  "fix fsi/sph: a particle is %.3g r0 from a wall at LIGGGHTS step " BIGINT_FORMAT
+                  " (counted with the equilibration's; warn below %.3g r0): %s or reduce the "
+                  "time step; repeats at most every %d steps",
                   closest / contact_.settings().law.equilibrium_distance, update->ntimestep,
-                  warn_distance_ / contact_.settings().law.equilibrium_distance,
+                  warn_distance_ / contact_.settings().law.equilibrium_distance, stiffer,
                   static_cast<int>(kWarnEvery));
     error->warning(FLERR, text);
   }
@@ -180,6 +185,7 @@ class FixFsiSph : public LAMMPS_NS::Fix {
   WallContact2D contact_;
   WallContact3D contact3d_;
   double warn_distance_;
+  bool true_shape_;
   LAMMPS_NS::bigint last_warning_ = -1;
   std::shared_ptr<CouplingBoundary> boundary_;
   PeriodicImages images_;
@@ -323,15 +329,17 @@ void add_fix_fsi_sph(LAMMPS_NS::LAMMPS& lammps, std::span<const std::string> wor
     modify.fix[slot]->pre_delete(true);
     delete modify.fix[slot];
     modify.fix[slot] = nullptr;
-    modify.fix[slot] = new FixFsiSph(&lammps, argc, argv.data(), settings, settings3d,
-                                     arguments.warn_fraction, std::move(boundary));
+    modify.fix[slot] =
+        new FixFsiSph(&lammps, argc, argv.data(), settings, settings3d, arguments.warn_fraction,
+                      arguments.uses_true_shape, std::move(boundary));
     modify.fmask[slot] = modify.fix[slot]->setmask();
     modify.fix[slot]->post_create_pre_restart();
     modify.fix[slot]->post_create();
     return;
   }
   append_fix(lammps, new FixFsiSph(&lammps, argc, argv.data(), settings, settings3d,
-                                   arguments.warn_fraction, std::move(boundary)));
+                                   arguments.warn_fraction, arguments.uses_true_shape,
+                                   std::move(boundary)));
 }
 
 }  // namespace fsi::contact
