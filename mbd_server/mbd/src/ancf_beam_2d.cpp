@@ -136,9 +136,18 @@ Eigen::VectorXd AncfBeam2D::reference_coordinates() const {
   return q;
 }
 
+// The rigid motion of the spec: a node at r moves at velocity + w z x (r - start), its slope r'
+// turns at w z x r' (z x (a, b) = (-b, a)): no strain rate anywhere.
 void AncfBeam2D::initial_state(Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::VectorXd> v) const {
   q = reference_coordinates();
-  v.setZero();
+  const double w = spec_.angular_velocity;
+  const auto turned = [w](const Eigen::Vector2d& a) {
+    return Eigen::Vector2d(-w * a.y(), w * a.x());
+  };
+  for (int node = 0; node < node_count(); ++node) {
+    v.segment<2>(4 * node) = spec_.velocity + turned(q.segment<2>(4 * node) - spec_.start);
+    v.segment<2>(4 * node + 2) = turned(q.segment<2>(4 * node + 2));
+  }
 }
 
 void AncfBeam2D::mass_matrix(MatrixSink& block) const {

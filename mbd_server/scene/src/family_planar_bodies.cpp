@@ -35,8 +35,9 @@ std::vector<BlockSpec> planar_body_blocks() {
       block_spec(
           "AncfBeam2D",
           "A planar ANCF beam (Gerstmayr's elastic line, docs/theory.md): straight and "
-          "stress-free from start to end, at rest; 4 coordinates per node (x, y, slope x, slope "
-          "y). Its points (joints, springs) are [s, eta]: s along the undeformed centre line "
+          "stress-free from start to end, at rest unless given a rigid initial motion (velocity, "
+          "angular_velocity); 4 coordinates per node (x, y, slope x, slope y). Its points (joints, "
+          "springs) are [s, eta]: s along the undeformed centre line "
           "from start, eta along the deformed line's normal, left of start -> end. Its surface "
           "mesh is the closed outline of both faces eta = +-thickness/2.",
           {text("name", "unique name, used by clamps, joints and sensors"),
@@ -62,7 +63,15 @@ std::vector<BlockSpec> planar_body_blocks() {
            integer("face_points_per_element",
                    "mesh segments per element on each face (0: no surface mesh)")
                .at_least(0)
-               .with_default(4)})
+               .with_default(4),
+           vector("velocity", 2, "m/s",
+                  "initial velocity of the start (s = 0); with angular_velocity a rigid motion "
+                  "of the whole beam, without strain rate")
+               .with_default({0.0, 0.0}),
+           number("angular_velocity", "rad/s",
+                  "initial angular velocity about the start: a point r moves at velocity + "
+                  "angular_velocity z x (r - start)")
+               .with_default(0.0)})
           .as_list()
           .planar(),
   };
@@ -118,6 +127,9 @@ void build_beam(SceneBuilder& builder, const View& beam) {
     spec.mass_per_length = beam.number("mass_per_length");
     spec.axial_damping = beam.number("axial_damping");
     spec.bending_damping = beam.number("bending_damping");
+    const auto velocity = beam.vector("velocity");
+    spec.velocity = {velocity[0], velocity[1]};
+    spec.angular_velocity = beam.number("angular_velocity");
     // Read before the beam exists: a value in error skips the beam, not just its mesh.
     (void)beam.number("thickness");
     (void)beam.integer("face_points_per_element");

@@ -1072,10 +1072,14 @@ void check_assembly_velocities(const Scene& scene, Report& report) {
             number(body.largest_velocity_change) + " in its " + body.velocity_coordinate +
             "): for a flexible body that velocity is concentrated where the joints pull, not the "
             "body's rigid motion, so it starts deforming as if struck and vibrates",
-        "start the mechanism at rest (each drive's rate 0 at t = 0, no Assembly velocity to "
-        "find) and bring the drive up smoothly, e.g. an angle driven to w over T: position = "
-        "\"t < T ? w*(t - T/pi*sin(pi*t/T))/2 : w*(t - T/2)\" (docs/user-guide.md, \"Initial "
-        "assembly\")");
+        std::string(scene.model.is_beam(body.body)
+                        ? "give the beam the rigid motion its joints need (AncfBeam2D velocity "
+                          "of its start and angular_velocity about it), so that the assembly "
+                          "has nothing to add, or "
+                        : "") +
+            "start the mechanism at rest (each drive's rate 0 at t = 0) and bring the drive up "
+            "smoothly, e.g. an angle driven to w over T: position = \"t < T ? w*(t - "
+            "T/pi*sin(pi*t/T))/2 : w*(t - T/2)\" (docs/user-guide.md, \"Initial assembly\")");
   }
 }
 

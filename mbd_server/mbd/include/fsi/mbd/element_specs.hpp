@@ -51,6 +51,10 @@ struct AncfBeamSpec {
   // M = EI kappa + bending_damping dkappa/dt.
   double axial_damping = 0.0;    // [N s] (2D: N s/m)
   double bending_damping = 0.0;  // [N m^2 s] (2D: N m s)
+  // The initial rigid motion: the start's velocity and the angular velocity about the start
+  // (every point r moves at velocity + angular_velocity z x (r - start)); default at rest.
+  Eigen::Vector2d velocity = Eigen::Vector2d::Zero();  // [m/s]
+  double angular_velocity = 0.0;                       // [rad/s]
 };
 
 // The four coordinates of a beam node.
