@@ -110,8 +110,12 @@ void SceneBuilder::each(std::string_view name, const std::function<void(const Vi
     // A named element that failed (reported) is remembered, so that a sensor naming it is
     // skipped rather than told the name does not exist.
     const ParameterSpec* named = element.spec().parameter("name");
-    if (!built && named != nullptr && named->kind == Kind::String && element.has("name"))
-      skipped_elements_.push_back(element.string("name"));
+    if (!built && named != nullptr && named->kind == Kind::String && element.has("name")) {
+      try {
+        skipped_elements_.push_back(element.string("name"));
+      } catch (const AlreadyReported&) {  // the name itself is in error: nothing can name it
+      }
+    }
   }
 }
 

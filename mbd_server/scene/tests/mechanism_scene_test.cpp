@@ -200,6 +200,12 @@ Sensor { name = "torque"; type = "joint_force"; joint = "turn"; component = "tor
   // slider crank, 2026-12-06).
   EXPECT_EQ(text.find("no joint named"), std::string::npos) << text;
   EXPECT_NE(text.find("1 problem(s)"), std::string::npos) << text;
+  // A drive whose name itself is in error: its problem is reported, the scene's others too.
+  const std::string unnamed = problems(R"scene(RigidBody2D { name = "table"; mass = 2; inertia = 0.1
+              Mesh { points = [[0, 0], [1, 0]] } }
+PrescribedMotion { name = 5; body = "table"; coordinate = "angle"; position = "0.3*t^2"; rate = "0.3*t" }
+)scene");
+  EXPECT_NE(unnamed.find("m.scene:5:"), std::string::npos) << unnamed;
 }
 
 // A runtime expression names the scene's numbers by their path, so a drive follows the parameter
