@@ -22,7 +22,12 @@ std::vector<BlockSpec> mesh_blocks() {
            .with_default({0.0, 0.0, 0.0})});
   return {block_spec("Ground",
                      "Static geometry fixed in space (its meshes are static boundary vertices).",
-                     {}, {ground_mesh.as_list()})
+                     {text("name",
+                           "a name for this block's meshes: a WallPressureProbe's `mesh` may "
+                           "name it to read them alone (a wall of the tank, not every Ground "
+                           "mesh); not a body's name, nor \"ground\"")
+                          .optional()},
+                     {ground_mesh.as_list()})
               .as_list()};
 }
 
@@ -75,10 +80,33 @@ void require_surface(SceneBuilder& builder) {
   }
 }
 
+// The boundary mesh's elements so far (its segments in 2D, triangles in 3D).
+std::size_t element_count(const SceneBuilder& builder) {
+  const BoundaryMesh& boundary = builder.scene.boundary;
+  return builder.spatial() ? boundary.triangles.size() / 3 : boundary.segments.size() / 2;
+}
+
+// Is a Ground block's name one a WallPressureProbe can tell from the others?
+bool ground_name_is_free(SceneBuilder& builder, const View& ground, const std::string& name) {
+  const auto taken = [&](const std::string& why) {
+    builder.problem(ground.location("name"), "Ground '" + name + "': " + why,
+                    "give this Ground block another name");
+    return false;
+  };
+  if (name.empty()) return taken("the name is empty");
+  if (name == "ground") return taken("\"ground\" names every Ground mesh at once");
+  if (builder.names.ground_meshes.count(name) != 0) return taken("another Ground has this name");
+  for (int body = 0; body < builder.model.body_count(); ++body) {
+    if (builder.model.body_name(body) == name) return taken("a body has this name");
+  }
+  return true;
+}
+
 void build_meshes(SceneBuilder& builder) {
   BoundaryMesh& boundary = builder.scene.boundary;
   boundary.dynamic_vertex_count = static_cast<std::size_t>(builder.model.marker_count());
   for (const View& ground : builder.root.blocks("Ground")) {
+    const std::size_t first = element_count(builder);
     for (const View& mesh : ground.blocks("Mesh")) {
       builder.guard(mesh.location(), [&] {
         if (builder.spatial()) {
@@ -88,6 +116,13 @@ void build_meshes(SceneBuilder& builder) {
         }
       });
     }
+    if (!ground.has("name")) continue;
+    const std::string& name = ground.string("name");
+    if (!ground_name_is_free(builder, ground, name)) continue;
+    const std::size_t end = element_count(builder);
+    auto& ranges = builder.names.ground_meshes[name];
+    if (end > first)
+      ranges.emplace_back(static_cast<std::uint32_t>(first), static_cast<std::uint32_t>(end));
   }
   boundary.vertex_count = static_cast<std::size_t>(builder.model.marker_count()) +
                           (builder.spatial() ? boundary.static_positions.size() / 3 : 0);

@@ -110,7 +110,9 @@ std::vector<BlockSpec> probe_blocks() {
           "NAME_pairs (particle-sampling point pairs within the wall law's range; 0: the patch "
           "is dry, pressure and force then read 0).",
           {probe_name_spec(),
-           text("mesh", "whose mesh: \"ground\" (every Ground mesh) or a body's name (its meshes)"),
+           text("mesh",
+                "whose mesh: \"ground\" (every Ground mesh), a Ground block's `name` (its "
+                "meshes alone) or a body's name (its meshes)"),
            per_dimension(
                vector("centre", 2, "m", "the patch's centre, on the mesh (3D: [x, y, z])")),
            number("radius", "m",
@@ -242,6 +244,11 @@ void build_wall_pressure_probe(SceneBuilder& builder, const View& block) {
       ranges.emplace_back(index, index + 1);
     }
   }
+  // A named Ground block: its meshes alone.
+  for (const auto& [ground, its_ranges] : builder.names.ground_meshes) {
+    if (!its_ranges.empty()) owners.push_back(ground);
+    if (ground == owner) ranges = its_ranges;
+  }
   if (ranges.empty()) {
     std::string known;
     for (const std::string& candidate : owners)
@@ -250,8 +257,8 @@ void build_wall_pressure_probe(SceneBuilder& builder, const View& block) {
                     "wall pressure probe '" + name + "': '" + owner + "' has no mesh",
                     known.empty() ? "give the scene a Mesh first"
                                   : "write mesh = one of " + known +
-                                        " (\"ground\": every Ground "
-                                        "mesh; a body: its meshes)");
+                                        " (\"ground\": every Ground mesh; a named Ground: its "
+                                        "meshes; a body: its meshes)");
     return;
   }
   const double radius = block.number("radius");

@@ -41,6 +41,9 @@ struct NamedElements {
   std::map<std::string, NamedJoint> joints;
   std::map<std::string, int> force_elements;  // index among the model's force elements
   std::map<std::string, bool> rotational;     // force element measures a torque
+  // A named Ground block: its meshes' elements, as [first, end) ranges of the boundary mesh's
+  // elements (a WallPressureProbe's `mesh` may name it).
+  std::map<std::string, std::vector<std::pair<std::uint32_t, std::uint32_t>>> ground_meshes;
 };
 
 class SceneBuilder;

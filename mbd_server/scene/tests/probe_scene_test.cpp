@@ -166,6 +166,62 @@ TEST_F(WallPressureScene, AnUnknownMeshAndAPatchOffTheMeshAreProblems) {
   EXPECT_NE(text.find("wall pressure probe 'c' has no fluid side"), std::string::npos) << text;
 }
 
+// A named Ground block's meshes are a mesh of their own for a probe (a transducer on one wall of
+// a tank whose floor its patch also reaches); the name must tell the block from the others.
+TEST_F(WallPressureScene, ANamedGroundIsAMeshOfItsOwn) {
+  const std::string tank =
+      "scene_language = 1\n"
+      "SolverOptions { end_time = 1; Timeint { step_size = 1e-3 } }\n"
+      "RigidBody2D { name = \"plate\"; mass = 1; inertia = 1; position = [0.5, 0.5]\n"
+      "  Mesh { points = [[-0.1, 0], [0.1, 0]] } }\n"
+      "Ground { Mesh { points = [[0, 1], [0, 0], [1, 0]] } }\n"
+      "Ground { name = \"end\"; Mesh { points = [[1, 0], [1, 1]] } }\n";
+  Scene scene;
+  ASSERT_EQ(mbd_only_outcome("n.scene",
+                             tank + "WallPressureProbe { name = \"p\"; mesh = \"end\"; "
+                                    "centre = [1, 0.01]; radius = 0.05; fluid_side = [-1, 0] }\n"
+                                    "WallPressureProbe { name = \"all\"; mesh = \"ground\"; "
+                                    "centre = [1, 0.01]; radius = 0.05; fluid_side = [-1, 0] }\n",
+                             &scene),
+            "(accepted)");
+  // The plate's segment is element 0, the first Ground's two are 1 and 2, the end wall is 3.
+  ASSERT_EQ(scene.probes.size(), 2u);
+  EXPECT_TRUE(scene.probes[0] == probes::wall_pressure_probe("p", {1.0, 0.01, 0.0}, 0.05,
+                                                             {-1.0, 0.0, 0.0}, {{3u, 4u}}));
+  EXPECT_TRUE(scene.probes[1] == probes::wall_pressure_probe("all", {1.0, 0.01, 0.0}, 0.05,
+                                                             {-1.0, 0.0, 0.0}, {{1u, 4u}}));
+  // The end wall's patch must lie on the end wall; the unknown name lists the named Ground.
+  std::string text = mbd_only_outcome(
+      "n.scene", tank +
+                     "WallPressureProbe { name = \"q\"; mesh = \"end\"; centre = [0, 0.5]; "
+                     "radius = 0.05; fluid_side = [1, 0] }\n"
+                     "WallPressureProbe { name = \"r\"; mesh = \"ends\"; centre = [1, 0.5]; "
+                     "radius = 0.05; fluid_side = [-1, 0] }\n");
+  EXPECT_NE(text.find("wall pressure probe 'q': its patch (radius 0.05 m) reaches no element of "
+                      "the mesh of 'end' in the initial configuration; the nearest element of "
+                      "its mesh lies 1 m from the centre"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("'ends' has no mesh; write mesh = one of \"plate\", \"ground\", \"end\""),
+            std::string::npos)
+      << text;
+  // A name a probe could not tell apart: "ground", a body's, another Ground's.
+  text = mbd_only_outcome("n.scene",
+                          tank +
+                              "Ground { name = \"ground\"; Mesh { points = [[2, 0], [3, 0]] } }\n"
+                              "Ground { name = \"plate\"; Mesh { points = [[2, 0], [3, 0]] } }\n"
+                              "Ground { name = \"end\"; Mesh { points = [[2, 0], [3, 0]] } }\n");
+  EXPECT_NE(text.find("n.scene:7:10: Ground 'ground': \"ground\" names every Ground mesh at once; "
+                      "give this Ground block another name"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("n.scene:8:10: Ground 'plate': a body has this name"), std::string::npos)
+      << text;
+  EXPECT_NE(text.find("n.scene:9:10: Ground 'end': another Ground has this name"),
+            std::string::npos)
+      << text;
+}
+
 // The probe reads the elements that face its fluid side (to within 45 degrees): a patch that
 // reaches its mesh only where it faces another way (a fluid side along a floor) is refused with
 // the fluid side to write; a patch at a corner that also reaches a facing element is accepted.
