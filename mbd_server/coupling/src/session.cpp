@@ -124,6 +124,8 @@ class Session {
         // From now on the folder says which run it holds, also when this run is killed.
         write_run_manifest(options_.output_dir, scene_, record());
         set_up();
+        // With the release's check and the set-up's time, for a script reading it mid-run.
+        write_run_manifest(options_.output_dir, scene_, record());
       }
       couple();
       fluid_.finish();
@@ -585,6 +587,9 @@ class Session {
     if (log_due) {
       progress_logger_->info("{}", line);
       last_log_ = now;
+      // run.json follows the run at the log's pace: steps, timings, health so far ("status"
+      // stays "started" until the run ends).
+      write_run_manifest(options_.output_dir, scene_, record());
       // The closest approach of a log line covers the whole interval since the previous one.
       watch_.closest_since_report = std::numeric_limits<double>::infinity();
     }

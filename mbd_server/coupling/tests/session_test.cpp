@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -144,6 +145,25 @@ TEST_F(SessionLoop, SetsUpEquilibratesAndCouplesOneHundredSteps) {
   EXPECT_TRUE(fs::exists(output_ / "snapshots" / "particles_000000000.csv"));
   EXPECT_TRUE(fs::exists(output_ / "snapshots" / "particles_000000050.csv"));
   EXPECT_TRUE(fs::exists(output_ / "vtk" / "boundary.pvd"));
+}
+
+// run.json follows a run at the progress log's pace, so that a script reading it mid-run finds
+// the steps done and the time spent so far, not the zeros of its start.
+TEST_F(SessionLoop, RunJsonFollowsTheRunAtTheProgressLogsPace) {
+  scene::Scene scene = static_tank();
+  options_.progress_interval = std::chrono::milliseconds(0);  // a log line at every step
+  nlohmann::json mid_run;
+  FakeFluidSide fluid(2, [&](const BoundaryMotion& motion) {
+    if (motion.step == 51) mid_run = manifest();
+    return std::vector<double>(motion.positions.size(), 0.0);
+  });
+  ASSERT_EQ(run_session(scene, options_, fluid), 0);
+  ASSERT_TRUE(mid_run.is_object());
+  EXPECT_EQ(mid_run["status"], "started");  // no end recorded yet
+  EXPECT_EQ(mid_run["steps"], 50);
+  EXPECT_GT(mid_run["timings_seconds"]["total"].get<double>(), 0.0);
+  EXPECT_GT(mid_run["timings_seconds"]["coupled_phase"].get<double>(), 0.0);
+  EXPECT_EQ(manifest()["steps"], kSteps);
 }
 
 // Multi-rate coupling: one structure step and one exchange per 4 fluid steps; each exchange
