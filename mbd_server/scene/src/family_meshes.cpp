@@ -70,6 +70,9 @@ void require_surface(SceneBuilder& builder) {
   bool surface_given = false;
   for (const View& ground : builder.root.blocks("Ground"))
     surface_given = surface_given || (builder.spatial() && ground.has_block("Mesh"));
+  // A beam without a thickness has its own problem (family_planar_bodies.cpp).
+  for (const View& beam : builder.blocks("AncfBeam2D"))
+    surface_given = surface_given || !beam.has("thickness");
   if (builder.scene.boundary.elements().empty() && !builder.skipped_any() && !surface_given) {
     builder.problem(builder.scene.parameters.location,
                     "the scene has no surface mesh: the fluid would see no structure",

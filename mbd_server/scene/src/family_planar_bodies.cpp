@@ -59,7 +59,11 @@ std::vector<BlockSpec> planar_body_blocks() {
                   "viscous bending damping: M = EI kappa + this * dkappa/dt")
                .at_least(0.0)
                .with_default(0.0),
-           number("thickness", "m", "h: distance of the two faces the mesh follows").positive(),
+           number("thickness", "m",
+                  "h: distance of the two faces the mesh follows; needed for the mesh of a "
+                  "coupled run, not by --mbd-only (a beam without it has no mesh there)")
+               .positive()
+               .optional(),
            integer("face_points_per_element",
                    "mesh segments per element on each face (0: no surface mesh)")
                .at_least(0)
@@ -131,13 +135,24 @@ void build_beam(SceneBuilder& builder, const View& beam) {
     spec.velocity = {velocity[0], velocity[1]};
     spec.angular_velocity = beam.number("angular_velocity");
     // Read before the beam exists: a value in error skips the beam, not just its mesh.
-    (void)beam.number("thickness");
+    if (beam.has("thickness")) (void)beam.number("thickness");
     (void)beam.integer("face_points_per_element");
     return std::optional<mbd::BodyId>(builder.model.add_ancf_beam(spec));
   });
   if (!id) return;
   const auto per_element = static_cast<int>(beam.integer("face_points_per_element"));
   if (per_element == 0) return;
+  if (!beam.has("thickness")) {
+    // The structure alone needs no surface; the fluid would not see a beam without one.
+    if (builder.mode == SceneMode::MbdOnly) return;
+    builder.problem(beam.location(),
+                    "AncfBeam2D '" + spec.name +
+                        "' has no thickness: a coupled run needs it for the beam's surface mesh "
+                        "(its faces at eta = +-thickness/2), which the fluid sees",
+                    "give thickness = h, or face_points_per_element = 0 for a beam the fluid "
+                    "does not touch");
+    return;
+  }
   add_beam_outline(builder, *id, spec, 0.5 * beam.number("thickness"), per_element);
 }
 

@@ -283,6 +283,25 @@ DistanceConstraint { body_a = "bob" }
   EXPECT_EQ(scene.solver.integrator_description(), "Radau IIA, 3 stages, index-2 constraints");
 }
 
+// A beam's thickness places its surface mesh: the structure alone (--mbd-only) needs none, a
+// coupled run is told to give it (or to say the fluid does not see the beam).
+TEST_F(MechanismScene, ABeamNeedsAThicknessOnlyForTheFluid) {
+  const std::string rod =
+      "AncfBeam2D { name = \"rod\"; start = [0, 0]; end = [1, 0]; elements = 4\n"
+      "             axial_stiffness = 1e7; bending_stiffness = 1e3; mass_per_length = 0.5 }\n"
+      "BeamClamp { beam = \"rod\"; node = 0 }\n";
+  const Scene alone = build_scene(write(rod), {}, SceneMode::MbdOnly);
+  EXPECT_EQ(alone.model.body_count(), 1);
+  EXPECT_TRUE(alone.boundary.segments.empty());
+  EXPECT_NE(problems(rod).find("m.scene:3:1: AncfBeam2D 'rod' has no thickness: a coupled run "
+                               "needs it for the beam's surface mesh (its faces at eta = "
+                               "+-thickness/2), which the fluid sees; give thickness = h, or "
+                               "face_points_per_element = 0 for a beam the fluid does not touch"),
+            std::string::npos)
+      << problems(rod);
+  EXPECT_EQ(problems(rod).find("no surface mesh"), std::string::npos) << problems(rod);
+}
+
 TEST_F(MechanismScene, ABeamClampedToABodyTurnsWithIt) {
   const char* const blade = R"scene(
 AncfBeam2D { name = "blade"; start = [0, 0]; end = [1, 0]; elements = 4; thickness = 0.01
