@@ -69,18 +69,6 @@ bool in_ranges(const ProbeDefinition& probe, std::uint32_t element) {
   return false;
 }
 
-// Whether a sample's element faces the fluid side to within 45 degrees (either orientation of
-// its normal): a patch at a corner reads the wall it is on, not the floor or the other wall its
-// radius also reaches, whose forces point another way.
-bool faces_the_side(const double* normal, const double* side, int dimension) {
-  double facing = 0.0, side2 = 0.0;
-  for (int k = 0; k < dimension; ++k) {
-    facing += normal[k] * side[k];
-    side2 += side[k] * side[k];
-  }
-  return 2.0 * facing * facing >= side2;
-}
-
 // Calls visit(s) for every sampling point of the patch.
 template <class Visit>
 void for_each_in_patch(const ProbeDefinition& probe, int dimension, const WallSamples& wall,
@@ -91,7 +79,7 @@ void for_each_in_patch(const ProbeDefinition& probe, int dimension, const WallSa
   for (std::size_t s = 0; s < wall.count; ++s) {
     if (squared_distance(&wall.positions[s * dimension], centre, dimension) > radius2) continue;
     if (in_ranges(probe, wall.elements[s]) &&
-        faces_the_side(&wall.normals[s * dimension], side, dimension))
+        faces_fluid_side(&wall.normals[s * dimension], side, dimension))
       visit(s);
   }
 }
@@ -157,3 +145,17 @@ KindRules wall_pressure_probe_rules() {
 }
 
 }  // namespace fsi::probes::detail
+
+namespace fsi::probes {
+
+bool faces_fluid_side(const double* normal, const double* fluid_side, int dimension) {
+  double facing = 0.0, normal2 = 0.0, side2 = 0.0;
+  for (int k = 0; k < dimension; ++k) {
+    facing += normal[k] * fluid_side[k];
+    normal2 += normal[k] * normal[k];
+    side2 += fluid_side[k] * fluid_side[k];
+  }
+  return 2.0 * facing * facing >= normal2 * side2;
+}
+
+}  // namespace fsi::probes

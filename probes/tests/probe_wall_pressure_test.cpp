@@ -177,6 +177,19 @@ TEST(WallPressureProbe, AtACornerReadsTheWallItIsOnNotTheFloor) {
   EXPECT_NEAR(evaluate(floor, samples)[0], bottom, 1e-9 * bottom);
 }
 
+// The one rule of which elements a probe reads (the scene's check and the evaluation share it):
+// within 45 degrees of the fluid side, either orientation, whatever the normal's length.
+TEST(WallPressureProbe, AnElementFacesItsFluidSideToWithin45Degrees) {
+  const double side[3] = {1.0, 0.0, 0.0};
+  const double wall[3] = {-3.0, 0.0, 0.0}, floor[3] = {0.0, 2.0, 0.0};
+  const double at_44[3] = {std::cos(0.767945), std::sin(0.767945), 0.0};  // 44 degrees
+  const double at_46[3] = {std::cos(0.802851), std::sin(0.802851), 0.0};  // 46 degrees
+  EXPECT_TRUE(probes::faces_fluid_side(wall, side, 2));
+  EXPECT_FALSE(probes::faces_fluid_side(floor, side, 3));
+  EXPECT_TRUE(probes::faces_fluid_side(at_44, side, 3));
+  EXPECT_FALSE(probes::faces_fluid_side(at_46, side, 3));
+}
+
 TEST(WallPressureProbe, TwoRanksGiveWhatOneRankGives) {
   // Each rank holds every sampling point with the forces of its own particles.
   const Samples whole = tank_wall();

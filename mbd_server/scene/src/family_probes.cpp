@@ -271,8 +271,8 @@ void build_wall_pressure_probe(SceneBuilder& builder, const View& block) {
   // The patch must reach the mesh where the run starts (the bodies' initial configuration).
   std::vector<double> positions, velocities;
   boundary_state(boundary, model, model.initial_configuration(), positions, velocities);
-  // The probe reads the elements that face its fluid side to within 45 degrees
-  // (probes/src/probe_wall_pressure.cpp): the nearest of those, and of all.
+  // The probe reads the elements that face its fluid side (probes::faces_fluid_side): the nearest
+  // of those, and of all.
   double nearest = std::numeric_limits<double>::infinity(), nearest_facing = nearest;
   for (const auto& [first, end] : ranges) {
     for (std::uint32_t e = first; e < end; ++e) {
@@ -291,12 +291,8 @@ void build_wall_pressure_probe(SceneBuilder& builder, const View& block) {
         const std::array<double, 3> v{c[0] - a[0], c[1] - a[1], c[2] - a[2]};
         normal = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
       }
-      const double facing =
-          normal[0] * (*side)[0] + normal[1] * (*side)[1] + normal[2] * (*side)[2];
-      const double norms =
-          (normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]) *
-          ((*side)[0] * (*side)[0] + (*side)[1] * (*side)[1] + (*side)[2] * (*side)[2]);
-      if (2.0 * facing * facing >= norms) nearest_facing = std::min(nearest_facing, distance);
+      if (probes::faces_fluid_side(normal.data(), side->data(), 3))
+        nearest_facing = std::min(nearest_facing, distance);
     }
   }
   if (nearest <= radius && !(nearest_facing <= radius)) {

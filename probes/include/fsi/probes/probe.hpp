@@ -67,6 +67,11 @@ ProbeDefinition wall_pressure_probe(
     const std::array<double, 3>& fluid_side,
     const std::vector<std::pair<std::uint32_t, std::uint32_t>>& element_ranges);
 
+// Does an element whose normal is `normal` (any length, either orientation) face `fluid_side` to
+// within 45 degrees? A wall pressure probe reads only those elements of its patch: at a corner,
+// the wall it is on, not the floor its radius also reaches. `dimension` components each.
+bool faces_fluid_side(const double* normal, const double* fluid_side, int dimension);
+
 // A rigid motion of a body from its initial configuration to its current one, x -> R x + b: a
 // probe declared with `body = "NAME"` is placed by it at every probe step (protocol 1.4,
 // ProbePlacement).
