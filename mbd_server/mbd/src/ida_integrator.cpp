@@ -70,6 +70,7 @@ struct IdaIntegrator::Impl {
   std::vector<double> last_loads;
   bool running = false;
   double mass_scale = 1.0;  // largest diagonal entry of M
+  double first_step = 0.0;  // the step IDA starts with (error_weights' h before it has one)
   std::string last_message;
   std::string bad_residual;  // set by residual() when it returns a failure
   // Scratch for the callbacks (the vectors are copied: N_Vector data is not an Eigen::VectorXd).
@@ -144,9 +145,13 @@ struct IdaIntegrator::Impl {
     const double rtol = self.options.relative_tolerance, atol = self.options.absolute_tolerance;
     for (int i = 0; i < 2 * n; ++i)
       w(i) = 1.0 / (rtol * std::abs(y_(i)) + atol);
+    // Before its first step IDA has no current step, and the weights it takes then hold for
+    // every try of that step: they are the first step's. (With h = 1 there, the rounding of the
+    // constraint rows, carried into mu as ~ |g| / h, failed every try down to hmin: Andrews'
+    // squeezer at the default tolerances.)
     realtype h = 0.0;
     IDAGetCurrentStep(self.ida, &h);
-    if (!(h > 0.0)) h = 1.0;
+    if (!(h > 0.0)) h = self.first_step > 0.0 ? self.first_step : 1.0;
     const double position = rtol * y_.head(n).lpNorm<Eigen::Infinity>() + atol;
     const double velocity = rtol * y_.segment(n, n).lpNorm<Eigen::Infinity>() + atol;
     w.segment(self.equations.lambda_offset(), self.equations.constraints())
@@ -170,7 +175,27 @@ struct IdaIntegrator::Impl {
 
   // Builds IDA from a consistent restart at `state`, with the rows released over the interval
   // to be integrated.
-  void start(const ConstrainedSystem& candidate, const State& state, std::vector<bool> released) {
+  // The step IDA starts with: the options' initial_step, or IDA's own rule (SUNDIALS' IDA guide,
+  // "initial step size"): 0.001 of the interval, shortened so that it moves the differential
+  // variables by at most half their tolerance's weight at their initial rates.
+  double initial_step(const Eigen::VectorXd& y0, const Eigen::VectorXd& yp0,
+                      double interval) const {
+    if (options.initial_step > 0.0) return options.initial_step;
+    const int differential = 2 * equations.coordinates();
+    double sum = 0.0;
+    for (int i = 0; i < differential; ++i) {
+      const double weighted =
+          yp0(i) / (options.relative_tolerance * std::abs(y0(i)) + options.absolute_tolerance);
+      sum += weighted * weighted;
+    }
+    const double rate = differential > 0 ? std::sqrt(sum / differential) : 0.0;
+    double h = 0.001 * interval;
+    if (rate * h > 0.5) h = 0.5 / rate;
+    return h;
+  }
+
+  void start(const ConstrainedSystem& candidate, const State& state, std::vector<bool> released,
+             double end_time) {
     free_solver();
     equations.bind(candidate, std::move(released));
     const sunindextype size = equations.size();
@@ -208,9 +233,9 @@ struct IdaIntegrator::Impl {
     check(IDASetMaxOrd(ida, options.max_order), "IDASetMaxOrd");
     check(IDASetMaxNumSteps(ida, static_cast<long>(options.max_steps)), "IDASetMaxNumSteps");
     if (options.max_step > 0.0) check(IDASetMaxStep(ida, options.max_step), "IDASetMaxStep");
-    if (options.initial_step > 0.0) {
-      check(IDASetInitStep(ida, options.initial_step), "IDASetInitStep");
-    }
+    first_step = initial_step(y0, yp0, end_time - state.time);
+    if (options.max_step > 0.0) first_step = std::min(first_step, options.max_step);
+    check(IDASetInitStep(ida, first_step), "IDASetInitStep");
     matrix = SUNDenseMatrix(size, size, context);
     solver = SUNLinSol_Dense(y, matrix, context);
     if (matrix == nullptr || solver == nullptr) {
@@ -297,7 +322,7 @@ void IdaIntegrator::advance_without_release(const ConstrainedSystem& system, Sta
   Impl& w = *impl_;
   std::vector<bool> released = system.released_rows(state.time, end_time);
   if (!w.continues(system, state) || w.equations.released() != released)
-    w.start(system, state, std::move(released));
+    w.start(system, state, std::move(released), end_time);
   w.last_message.clear();
   w.bad_residual.clear();
   w.check(IDASetStopTime(w.ida, end_time), "IDASetStopTime");
@@ -313,11 +338,17 @@ void IdaIntegrator::advance_without_release(const ConstrainedSystem& system, Sta
     std::snprintf(text, sizeof text,
                   "IDA failed between t = %.9g s and %.9g s, at t = %.9g s: %s (flag %d)%s%s",
                   state.time, end_time, reached, reason.c_str(), flag,
-                  w.bad_residual.empty() ? "" : ": ",
+                  (w.bad_residual.empty() ? w.last_message : w.bad_residual).empty() ? "" : ": ",
                   (w.bad_residual.empty() ? w.last_message : w.bad_residual).c_str());
+    // The scene's names (SolverOptions): IDA's options have no other way to the user.
     throw Error(text, "multibody integration (IDA)",
-                "check the constraints and forces for non-finite values; loosen the tolerances "
-                "or raise max_steps");
+                w.bad_residual.empty()
+                    ? "loosen SolverOptions.ErrorControl.absolute_tolerance (a corrector that "
+                      "fails at ever smaller steps, at the start in particular, is held by it) "
+                      "and relative_tolerance, or integrate with Radau IIA (Timeint.method = "
+                      "\"fixed\" or \"adaptive\")"
+                    : "find why that row is not finite at that time (a force or constraint "
+                      "expression, a body that left its range)");
   }
   w.equations.to_state(view(w.y), end_time, state);
   w.last = state;
