@@ -32,6 +32,8 @@ check(run.get("mode") == "mbd-only", "run.json says mode mbd-only")
 check(run["status"] == "completed", "run.json says completed")
 check(run["steps"] == STEPS, f"run.json counts {STEPS} steps")
 check(run["newton"]["iterations"] >= STEPS, "run.json has the Newton statistics")
+check(run["scene"]["overrides"] == [f"Resolution.end_time={STEPS}*{DT}"],
+      f"run.json records the --set overrides ({run['scene']['overrides']})")
 
 sensors = load_sensors(run_dir)
 times = sensors["time"] if "time" in sensors else sensors[list(sensors)[0]]

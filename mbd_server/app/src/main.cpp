@@ -506,6 +506,7 @@ int run(fsi::scene::Scene& scene, const CommandLine& line, const SceneNotes& not
     mbd_options.output_dir = line.output;
     mbd_options.command_line = options.command_line;
     mbd_options.warnings = options.warnings;
+    mbd_options.overrides = options.overrides;
     return fsi::coupling::run_mbd_only(scene, mbd_options);
   }
   int status = 1;

@@ -32,6 +32,7 @@ int run_mbd_only(scene::Scene& scene, const MbdOnlyOptions& options) {
   run.command_line = options.command_line;
   run.started_utc = utc_now();
   run.warnings = options.warnings;
+  run.overrides = options.overrides;
   const double dt = scene.solver.step_size;
   const std::uint64_t steps = scene.solver.step_count();
   std::unique_ptr<SensorFile> sensors;

@@ -27,7 +27,8 @@ BlockSpec timeint_spec() {
                   .with_default("RadauIIA"),
               integer("stages",
                       "Radau IIA: 1, 2, 3 (orders 1, 3, 5; 1 is implicit Euler, which damps "
-                      "oscillations: --check states how much); Lobatto IIIA: 2, 3 (orders 2, 4)")
+                      "oscillations: --check states how much); Lobatto IIIA: 2, 3 (orders 2, 4 on "
+                      "free bodies; 2 and 2 on constrained ones, docs/theory.md)")
                   .with_default(3)
                   .between(1, 3),
               integer("substeps",
@@ -150,7 +151,8 @@ void build_solver(SceneBuilder& builder) {
   if (lobatto && solver.stages < 2) {
     builder.problem(timeint.location("stages"),
                     "Lobatto IIIA has 2 or 3 stages, not " + std::to_string(solver.stages),
-                    "write stages = 2 (order 2) or stages = 3 (order 4)");
+                    "write stages = 2 or 3 (order 2 on constrained bodies either way; 3 reaches "
+                    "order 4 on unconstrained ones)");
   }
   const View newton = options.block("Newton");
   solver.newton.relative_tolerance = newton.number("relative_tolerance");

@@ -15,6 +15,7 @@ struct MbdOnlyOptions {
   std::string output_dir;
   std::string command_line;           // recorded in run.json
   std::vector<std::string> warnings;  // recorded in run.json
+  std::vector<std::string> overrides;  // --set KEY=EXPR, recorded in run.json (scene.overrides)
 };
 
 // Returns the process exit status (0 success, 1 failure). Never throws for faults of the run

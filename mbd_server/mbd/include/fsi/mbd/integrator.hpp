@@ -66,7 +66,8 @@ struct NewtonOptions {
 enum class ConstraintForm { Index3, Index2 };
 
 struct RadauOptions {
-  int stages = 3;  // Radau IIA: 1, 2 or 3 (orders 1, 3, 5); Lobatto IIIA: 2 or 3 (orders 2, 4)
+  int stages = 3;  // Radau IIA: 1, 2 or 3 (orders 1, 3, 5); Lobatto IIIA: 2 or 3 (orders 2, 4;
+                   // with constraints (index 3) 2 and 2: docs/theory.md)
   NewtonOptions newton;
   TableauFamily family = TableauFamily::RadauIIA;
   ConstraintForm constraint_form = ConstraintForm::Index3;
