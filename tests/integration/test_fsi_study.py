@@ -7,7 +7,8 @@ script that writes analysis.json). Checked: study.csv has a row per point with t
 cost and the failed point's reason; the Pareto front is cheapest-first and no point beats a
 front point in both; the cheapest point meeting a target is printed; a second call runs nothing
 (resume), --retry-failed runs the failed point again; a target no point meets exits 3; bad
-study files exit 2 with what, where and how to fix, and run nothing."""
+study files (and values the scene refuses, checked before any point runs) exit 2 with what, where
+and how to fix, and run nothing."""
 import csv
 import json
 import os
@@ -100,7 +101,11 @@ for name, change, where, fix in (
         ("unknown key", {"grids": {}}, "study_bad.json", "use the keys"),
         ("missing scene file", {"scene": "nope.scene"}, "study_bad.json: scene", "give an existing scene file"),
         ("a grid value that is not a number", {"grid": {"SolverOptions.Timeint.step_size": [0.01, True]}},
-         "study_bad.json: grid.SolverOptions.Timeint.step_size[1]", "give a number")):
+         "study_bad.json: grid.SolverOptions.Timeint.step_size[1]", "give a number"),
+        # The scene checks every point's values before the first point runs.
+        ("a text value without its quotes",
+         {"grid": {"SolverOptions.Timeint.step_size": [0.01], "SolverOptions.Timeint.tableau": ["LobattoIIIA"]}},
+         "study_bad.json", "with its quotes inside the JSON string")):
     bad = dict(STUDY, **change)
     bad_file = os.path.join(output, "study_bad.json")
     with open(bad_file, "w") as handle:
