@@ -95,7 +95,11 @@ std::vector<BlockSpec> planar_joint_blocks() {
       block_spec("PrescribedVelocity",
                  with_scene_numbers(
                      "Prescribes the velocity of a body coordinate as a muParser expression of the "
-                     "time t [s] (velocity level, 1 row; VelocityConstraint for a constant one)."),
+                     "time t [s] (velocity level, 1 row; VelocityConstraint for a constant one). "
+                     "The coordinate itself is not held: it drifts from the integral of the "
+                     "velocity by the integrator's error (implicit Euler: about h/2 times the "
+                     "velocity's change; Radau IIA 3: negligible), which the constraint drift of "
+                     "run.json does not show; PrescribedMotion holds the position."),
                  {element_name_spec(), text("body", "name of a RigidBody2D"),
                   text("coordinate", "body coordinate").one_of({"x", "y", "angle"}),
                   text("velocity", "velocity [m/s or rad/s] in t, e.g. \"0.1*t\"")})
