@@ -37,6 +37,7 @@ constexpr SensorVariant kSensorVariants[] = {
     {"kinetic_energy", SensorType::KineticEnergy, F, F, F, F, F, true, "J/m", "", "J", ""},
     {"potential_energy", SensorType::PotentialEnergy, F, F, F, F, F, true, "J/m", "", "J", ""},
     {"strain_energy", SensorType::StrainEnergy, F, F, F, F, F, true, "J/m", "", "J", ""},
+    {"chord_deflection", SensorType::ChordDeflection, R, F, F, F, R, false, "m", "", "", ""},
 };
 
 std::vector<std::string> sensor_types() {
@@ -66,7 +67,9 @@ std::vector<BlockSpec> sensor_blocks() {
                 "BeamClamp's node); spring_force: "
                 "tension, or torque of a RotationalSpringDamper; energies of the whole system, "
                 "potential = gravity + springs, strain = the beams' and cables' elastic "
-                "deformation)")
+                "deformation; chord_deflection: the distance of an AncfBeam2D's point from the "
+                "chord through its end nodes, positive to the left of start -> end, the "
+                "deflection of a flexible link whatever its rigid motion)")
                .one_of(sensor_types()),
            text("body",
                 "name of a RigidBody2D (position, velocity, fluid and constraint forces), or of "
@@ -240,6 +243,24 @@ bool SensorBuilder::body_fits() {
   const std::string type(variant.type);
   mbd::Model& model = builder.model;
   sensor.body = builder.find_body(s, "body");
+  if (variant.kind == SensorType::ChordDeflection) {
+    if (!model.is_beam(sensor.body)) {
+      problem(s.location("body"),
+              "a chord_deflection sensor reads an AncfBeam2D, and '" + s.string("body") +
+                  "' is a " + model.body_kind(sensor.body),
+              "name a beam, or read a rigid body's position");
+      return false;
+    }
+    const auto point = s.vector("point");
+    try {
+      model.check_point({sensor.body, {point[0], point[1]}}, "sensor '" + sensor.name + "'");
+    } catch (const Error& error) {
+      problem(s.location("point"), error.fault(), error.remedy());
+      return false;
+    }
+    sensor.point = std::array<double, 3>{point[0], point[1], 0.0};
+    return true;
+  }
   const bool rotational = !builder.spatial() && sensor.component == mbd::Coordinate::Angle;
   if (variant.kinematic() && s.has("point")) {
     // On a beam a point's angle is its cross-section's: the tangent of the centre line at s.

@@ -70,6 +70,18 @@ double structure_sensor_value(const mbd::Model& model, const SensorSpec& sensor,
       return potential_energy(model, state);
     case SensorType::StrainEnergy:
       return strain_energy(model, state);
+    case SensorType::ChordDeflection: {
+      const mbd::AncfBeamSpec& beam = model.beam(sensor.body);
+      const double length = (beam.end - beam.start).norm();
+      auto at = [&](double s, double eta) {
+        return point_position(model, state, mbd::BodyPointSpec{sensor.body, {s, eta}});
+      };
+      const Eigen::Vector3d start = at(0.0, 0.0), end = at(length, 0.0);
+      const Eigen::Vector3d p = at((*sensor.point)[0], (*sensor.point)[1]);
+      const Eigen::Vector2d chord = (end - start).head<2>();
+      const Eigen::Vector2d normal(-chord.y(), chord.x());
+      return normal.dot((p - start).head<2>()) / chord.norm();
+    }
     case SensorType::TotalFluidForce:
       break;
   }

@@ -302,6 +302,46 @@ TEST_F(MechanismScene, ABeamNeedsAThicknessOnlyForTheFluid) {
   EXPECT_EQ(problems(rod).find("no surface mesh"), std::string::npos) << problems(rod);
 }
 
+// chord_deflection: a beam point's distance from the chord through the beam's end nodes, the
+// same whatever rigid motion carries the bent beam; refused on a rigid body.
+TEST_F(MechanismScene, ChordDeflectionIgnoresTheBeamsRigidMotion) {
+  const std::string rod =
+      "AncfBeam2D { name = \"rod\"; start = [0, 0]; end = [1, 0]; elements = 2; thickness = 0.01\n"
+      "             axial_stiffness = 1e7; bending_stiffness = 1e3; mass_per_length = 0.5 }\n"
+      "Sensor { name = \"bow\"; type = \"chord_deflection\"; body = \"rod\"; point = [0.5, 0] }\n";
+  const Scene scene = build_scene(write(rod), {}, SceneMode::MbdOnly);
+  const mbd::Model& model = scene.model;
+  const mbd::BodyId beam = model.find_body("rod");
+  ASSERT_EQ(scene.sensors.size(), 1u);
+  EXPECT_EQ(scene.sensors[0].unit, "m");
+  mbd::State state = model.initial_state();
+  EXPECT_NEAR(structure_sensor_value(model, scene.sensors[0], state), 0.0, 1e-15);
+  // Bow the middle node (the centre line at s = 0.5) by 0.1 to the left of start -> end, then
+  // turn the whole beam by 0.7 rad about [0.3, -0.2].
+  auto index = [&](int node, mbd::BeamNodeCoordinate c) {
+    return model.beam_coordinate_index(beam, node, c);
+  };
+  state.q(index(1, mbd::BeamNodeCoordinate::Y)) = 0.1;
+  const Eigen::Rotation2Dd turn(0.7);
+  const Eigen::Vector2d centre(0.3, -0.2);
+  for (int node = 0; node < 3; ++node) {
+    const int x = index(node, mbd::BeamNodeCoordinate::X);
+    const int sx = index(node, mbd::BeamNodeCoordinate::SlopeX);
+    const Eigen::Vector2d r =
+        centre + turn * (Eigen::Vector2d(state.q(x), state.q(x + 1)) - centre);
+    const Eigen::Vector2d slope = turn * Eigen::Vector2d(state.q(sx), state.q(sx + 1));
+    state.q.segment<2>(x) = r;
+    state.q.segment<2>(sx) = slope;
+  }
+  EXPECT_NEAR(structure_sensor_value(model, scene.sensors[0], state), 0.1, 1e-14);
+  EXPECT_NE(
+      problems("RigidBody2D { name = \"bar\"; mass = 1; inertia = 1; Mesh { points = [[0, 0], "
+               "[1, 0]] } }\nSensor { name = \"bow\"; type = \"chord_deflection\"; body = "
+               "\"bar\"; point = [0.5, 0] }\n")
+          .find("a chord_deflection sensor reads an AncfBeam2D, and 'bar' is a rigid_body_2d"),
+      std::string::npos);
+}
+
 TEST_F(MechanismScene, ABeamClampedToABodyTurnsWithIt) {
   const char* const blade = R"scene(
 AncfBeam2D { name = "blade"; start = [0, 0]; end = [1, 0]; elements = 4; thickness = 0.01

@@ -173,7 +173,8 @@ enum class SensorType {
   SpringForce,
   KineticEnergy,
   PotentialEnergy,
-  StrainEnergy
+  StrainEnergy,
+  ChordDeflection  // a beam point's distance from the chord through the beam's ends
 };
 
 // SensorSpec::axis of a driven RevoluteJoint3D's drive torque.
