@@ -188,6 +188,18 @@ def manifest(output):
         return json.load(handle)
 
 
+def mbd_only_checked(scene, run_dir, overrides=(), timeout=300, label=""):
+    """Runs `fsi-server SCENE --mbd-only` into run_dir with --set `overrides`; fails the test with
+    its stderr unless it exits 0. Returns (sensors as columns, run.json)."""
+    command = [binary("fsi-server"), scene, "--mbd-only", "--output", run_dir]
+    for item in overrides:
+        command += ["--set", item]
+    result = subprocess.run(command, env=ENV, capture_output=True, text=True, timeout=timeout)
+    if result.returncode != 0:
+        fail(f"{label or run_dir}: fsi-server --mbd-only exited {result.returncode}:\n{result.stderr[-3000:]}")
+    return load_sensors(run_dir), manifest(run_dir)
+
+
 def run_pair(scene, output, ranks, overrides=(), timeout=1200, client_args=()):
     """Runs server and client (with `client_args`) to completion; returns (server status, client
     status)."""

@@ -10,9 +10,8 @@ error weights took h = 1: the corrector failed at ever smaller steps down to hmi
 runs are that failure's test. The accuracy must follow the tolerance: the tight run at least 100
 times closer than the default one."""
 import os
-import subprocess
 
-from fsi_test import ENV, binary, check, example, fail, load_sensors, manifest, work_dir
+from fsi_test import check, cleanup, example, fail, mbd_only_checked, work_dir
 
 # IVP Test Set (F. Mazzia, F. Iavernaro, C. Magherini, "Test Set for IVP Solvers", problem
 # "andrews", reference solution y(0.03), first 7 components): beta, Theta, gamma, Phi, delta, Omega,
@@ -26,20 +25,12 @@ scene = example("mbd_mechanisms", "andrews_squeezer.scene")
 
 
 def largest_error(name, *overrides):
-    run_dir = os.path.join(output, name)
-    command = [binary("fsi-server"), scene, "--mbd-only", "--output", run_dir]
-    for item in overrides:
-        command += ["--set", item]
-    result = subprocess.run(command, env=ENV, capture_output=True, text=True, timeout=300)
-    if result.returncode != 0:
-        fail(f"{name}: fsi-server --mbd-only exited {result.returncode}:\n{result.stderr[-3000:]}")
-    sensors = load_sensors(run_dir)
+    sensors, run = mbd_only_checked(scene, os.path.join(output, name), overrides, label=name)
     if abs(sensors["time"][-1] - END_TIME) > 1e-12:
         fail(f"{name}: the last row is t = {sensors['time'][-1]}, not {END_TIME}")
     k = {i: sensors[f"K{i}_angle"][-1] for i in range(1, 8)}
     angles = [k[1], k[2] - k[1], k[3], k[4] - k[5], k[5], k[6] - k[7], k[7]]
     error = max(abs(a - r) / abs(r) for a, r in zip(angles, REFERENCE))
-    run = manifest(run_dir)
     print(f"{name}: {run['model']['integrator']}; {run['newton']['steps']} integrator steps; largest "
           f"relative error of the 7 angles {error:.2e}", flush=True)
     return error
@@ -54,3 +45,4 @@ tight = largest_error("ida_tight", 'SolverOptions.Timeint.method="ida"',
                       "SolverOptions.ErrorControl.absolute_tolerance=1e-12")
 check(tight < 1e-8 and tight < 0.01 * ida,
       f"IDA at rtol 1e-10, atol 1e-12: {tight:.2e} < 1e-8, and 100 times below the default's {ida:.2e}")
+cleanup(output)

@@ -14,7 +14,7 @@ import math
 import os
 import subprocess
 
-from fsi_test import ENV, binary, check, cleanup, example, fail, load_sensors, manifest, work_dir
+from fsi_test import ENV, binary, check, cleanup, example, fail, mbd_only_checked, work_dir
 
 # IVP Test Set (Mazzia & Magherini), car axis, y(3): xl, yl, xr, yr, ul, vl, ur, vr, lambda_1,
 # lambda_2 (/work/shared/reference-data/ivp_testset_caraxis_crank_reference.dat, as typed into
@@ -30,14 +30,8 @@ scene = example("mbd_mechanisms", "car_axis.scene")
 
 
 def run(name, *overrides):
-    run_dir = os.path.join(output, name)
-    command = [binary("fsi-server"), scene, "--mbd-only", "--output", run_dir]
-    for item in overrides:
-        command += ["--set", item]
-    result = subprocess.run(command, env=ENV, capture_output=True, text=True, timeout=300)
-    if result.returncode != 0:
-        fail(f"{name}: fsi-server --mbd-only exited {result.returncode}:\n{result.stderr[-3000:]}")
-    sensors = load_sensors(run_dir)
+    sensors, run_manifest = mbd_only_checked(scene, os.path.join(output, name), overrides, timeout=300,
+                                             label=name)
     if abs(sensors["time"][-1] - END_TIME) > 1e-9:
         fail(f"{name}: the last row is t = {sensors['time'][-1]}, not {END_TIME}")
     last = {key: column[-1] for key, column in sensors.items()}
@@ -48,7 +42,6 @@ def run(name, *overrides):
     computed = [last[key] for key in ("xl", "yl", "xr", "yr", "ul", "vl", "ur", "vr")] + [lambda_1, lambda_2]
     errors = [abs(c - r) / abs(r) for c, r in zip(computed, REFERENCE)]
     digits = [-math.log10(e) if e > 0 else 99.0 for e in errors]
-    run_manifest = manifest(run_dir)
     print(f"{name}: {run_manifest['model']['integrator']}; Newton {run_manifest['newton']}; significant digits "
           + " ".join(f"{d:.1f}" for d in digits), flush=True)
     return run_manifest, errors, digits
