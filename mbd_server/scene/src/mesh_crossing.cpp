@@ -113,18 +113,19 @@ CrossingWatch::CrossingWatch(const Scene& scene, const mbd::State& start) : scen
           });
       if (has_contact) continue;
       std::array<double, 3> where{};
-      if (find_crossing(parts_[i], parts_[j], positions, where)) {
+      ElementPairs touching;
+      if (find_crossing(parts_[i], parts_[j], positions, where, {}, &touching))
         excluded_.push_back(pair_name(parts_[i], parts_[j]));
-      } else {
-        watched_.emplace_back(i, j);
-      }
+      std::sort(touching.begin(), touching.end());
+      watched_.push_back({i, j, std::move(touching)});
     }
   }
 }
 
 bool CrossingWatch::find_crossing(const Part& a, const Part& b,
                                   const std::vector<double>& positions,
-                                  std::array<double, 3>& where) const {
+                                  std::array<double, 3>& where, const ElementPairs& ignored,
+                                  ElementPairs* all) const {
   const int dimension = scene_.boundary.dimension;
   const auto corners = static_cast<std::size_t>(dimension);
   auto element_box = [&](const Part& part, std::size_t e) {
@@ -165,30 +166,34 @@ bool CrossingWatch::find_crossing(const Part& a, const Part& b,
     }
     return false;
   };
+  bool found = false;
   for (const auto& [e, box_e] : near_a) {
     for (const auto& [f, box_f] : near_b) {
       if (!box_e.overlaps(box_f)) continue;
+      if (std::binary_search(ignored.begin(), ignored.end(), std::make_pair(e, f))) continue;
       Eigen::Vector3d hit;
       const bool crossing = dimension == 2
                                 ? segments_intersect(point(a, e, 0), point(a, e, 1), point(b, f, 0),
                                                      point(b, f, 1), hit)
                                 : edges_against(a, e, b, f, hit) || edges_against(b, f, a, e, hit);
-      if (crossing) {
-        where = {hit.x(), hit.y(), hit.z()};
-        return true;
-      }
+      if (!crossing) continue;
+      if (!found) where = {hit.x(), hit.y(), hit.z()};
+      found = true;
+      if (all == nullptr) return true;
+      all->emplace_back(e, f);
     }
   }
-  return false;
+  return found;
 }
 
 void CrossingWatch::check(const mbd::State& state) const {
   if (watched_.empty()) return;
   std::vector<double> positions, velocities;
   boundary_state(scene_.boundary, scene_.model, state, positions, velocities);
-  for (const auto& [i, j] : watched_) {
+  for (const WatchedPair& pair : watched_) {
+    const std::size_t i = pair.a, j = pair.b;
     std::array<double, 3> where{};
-    if (!find_crossing(parts_[i], parts_[j], positions, where)) continue;
+    if (!find_crossing(parts_[i], parts_[j], positions, where, pair.ignored)) continue;
     char place[96];
     if (scene_.boundary.dimension == 2) {
       std::snprintf(place, sizeof place, "(%.6g, %.6g) m", where[0], where[1]);

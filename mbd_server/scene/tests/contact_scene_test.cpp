@@ -100,14 +100,32 @@ TEST_F(ContactScene, MeshesThatCrossWithoutContactStopTheRun) {
   std::printf("%s\n", message.c_str());
 }
 
-TEST_F(ContactScene, MeshesTouchingAtTheStartAreNotWatched) {
-  // Resting on the floor at t = 0 (a block held there, say): not watched, and named.
+TEST_F(ContactScene, MeshesTouchingAtTheStartAreWatchedWhereTheyDoNotTouch) {
+  // Resting on the floor at t = 0 (a block held there, say): the pair is named, and the elements
+  // that touch the floor then (the bottom and the sides' lower ends) are not watched against it.
   const Scene touching = build(block_scene(0.05, 0.0, ""));
   const CrossingWatch watch(touching, touching.model.initial_state());
   ASSERT_EQ(watch.excluded_pairs().size(), 1u);
   EXPECT_EQ(watch.excluded_pairs()[0], "'block' and the ground");
-  EXPECT_EQ(watch.watched_pair_count(), 0u);
-  // With contact between them there is nothing to watch either.
+  EXPECT_EQ(watch.watched_pair_count(), 1u);
+  // The rest of the pair is watched: a bar hinged to the floor at its foot (touching it there)
+  // falls over without contact, and its far end passing the floor stops the run. (Before
+  // 2026-12-06 a pair touching at the start was not watched at all: a plate clamped to a floor
+  // bent through it unseen.)
+  const Scene hinged = build(
+      "scene_language = 1\n"
+      "SolverOptions { end_time = 2; Timeint { step_size = 1e-3 } }\n"
+      "Gravity { acceleration = [0, -9.81] }\n"
+      "RigidBody2D { name = \"bar\"; mass = 1; inertia = 0.083; position = [0, 0.5]; velocity = "
+      "[-0.5, 0]; "
+      "angular_velocity = 1\n"
+      "  Mesh { points = [[-0.02, -0.5], [0.02, -0.5], [0.02, 0.5], [-0.02, 0.5]]; closed = 1 } }\n"
+      "RevoluteJoint { body_a = \"bar\"; point_a = [0, -0.5]; point_b = [0, 0] }\n"
+      "Ground { Mesh { points = [[-2, 0], [2, 0]] } }\n");
+  const std::string message = testing::message_thrown([&] { run(hinged, 2.0); });
+  EXPECT_NE(message.find("the meshes of 'bar' and the ground cross at ("), std::string::npos)
+      << message;
+  // With contact between them there is nothing to watch.
   const Scene with_contact = build(block_scene(0.1, 0.0, "Contact { body_a = \"*\" }\n"));
   const CrossingWatch none(with_contact, with_contact.model.initial_state());
   EXPECT_EQ(none.watched_pair_count(), 0u);
