@@ -83,9 +83,8 @@ StructureSide::StructureSide(scene::Scene& scene, scene::IntegrationMethod metho
       crossing_(scene, state_) {
   for (const std::string& pair : crossing_.excluded_pairs()) {
     spdlog::info(
-        "mesh crossing check: the meshes of {} touch or cross at t = 0; the elements that do "
-        "are not watched against each other, the rest are (a Contact block between them would "
-        "act)",
+        "mesh crossing check: the meshes of {} (they touch or cross at t = 0; a Contact block "
+        "between them would act)",
         pair);
   }
   const scene::SolverSettings& solver = scene.solver;

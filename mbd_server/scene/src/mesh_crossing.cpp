@@ -7,6 +7,7 @@
 #include <limits>
 #include <map>
 
+#include "distances.hpp"
 #include "fsi/common/error.hpp"
 
 namespace fsi::scene {
@@ -82,6 +83,66 @@ std::string pair_name(const CrossingWatch::Part& a, const CrossingWatch::Part& b
   return one(a) + " and " + one(b);
 }
 
+// Does element e of part a cross element f of part b (2D: the segments intersect; 3D: an edge of
+// one passes through the other triangle)?
+bool elements_cross(int dimension, const CrossingWatch::Part& a, std::size_t e,
+                    const CrossingWatch::Part& b, std::size_t f,
+                    const std::vector<double>& positions, Eigen::Vector3d& hit) {
+  const auto corners = static_cast<std::size_t>(dimension);
+  auto point = [&](const CrossingWatch::Part& part, std::size_t element, std::size_t k) {
+    return vertex_at(positions, dimension, part.elements[element * corners + k]);
+  };
+  if (dimension == 2)
+    return segments_intersect(point(a, e, 0), point(a, e, 1), point(b, f, 0), point(b, f, 1), hit);
+  auto edges_against = [&](const CrossingWatch::Part& edges, std::size_t g,
+                           const CrossingWatch::Part& faces, std::size_t h) {
+    for (std::size_t k = 0; k < 3; ++k) {
+      if (edge_crosses_triangle(point(edges, g, k), point(edges, g, (k + 1) % 3),
+                                point(faces, h, 0), point(faces, h, 1), point(faces, h, 2), hit))
+        return true;
+    }
+    return false;
+  };
+  return edges_against(a, e, b, f) || edges_against(b, f, a, e);
+}
+
+// Do elements e of a and f of b pass through each other by more than `tolerance` (2D: each
+// segment has its ends on both sides of the other's line, farther than the tolerance; 3D: an
+// edge of one has its ends on both sides of the other's plane so, and passes through it)? Not
+// a touch: a vertex on the other element, a collinear or coplanar overlap.
+bool elements_pass_through(int dimension, const CrossingWatch::Part& a, std::size_t e,
+                           const CrossingWatch::Part& b, std::size_t f,
+                           const std::vector<double>& positions, double tolerance) {
+  const auto corners = static_cast<std::size_t>(dimension);
+  auto point = [&](const CrossingWatch::Part& part, std::size_t element, std::size_t k) {
+    return vertex_at(positions, dimension, part.elements[element * corners + k]);
+  };
+  auto apart = [&](double side_p, double side_q, double scale) {
+    return side_p * side_q < 0.0 && std::abs(side_p) > tolerance * scale &&
+           std::abs(side_q) > tolerance * scale;
+  };
+  if (dimension == 2) {
+    const Eigen::Vector3d p1 = point(a, e, 0), p2 = point(a, e, 1);
+    const Eigen::Vector3d q1 = point(b, f, 0), q2 = point(b, f, 1);
+    return apart(orientation(q1, q2, p1), orientation(q1, q2, p2), (q2 - q1).norm()) &&
+           apart(orientation(p1, p2, q1), orientation(p1, p2, q2), (p2 - p1).norm());
+  }
+  auto edges_through = [&](const CrossingWatch::Part& edges, std::size_t g,
+                           const CrossingWatch::Part& faces, std::size_t h) {
+    const Eigen::Vector3d t0 = point(faces, h, 0), t1 = point(faces, h, 1), t2 = point(faces, h, 2);
+    const Eigen::Vector3d normal = (t1 - t0).cross(t2 - t0).normalized();
+    for (std::size_t k = 0; k < 3; ++k) {
+      const Eigen::Vector3d p = point(edges, g, k), q = point(edges, g, (k + 1) % 3);
+      Eigen::Vector3d hit;
+      if (apart(normal.dot(p - t0), normal.dot(q - t0), 1.0) &&
+          edge_crosses_triangle(p, q, t0, t1, t2, hit))
+        return true;
+    }
+    return false;
+  };
+  return edges_through(a, e, b, f) || edges_through(b, f, a, e);
+}
+
 }  // namespace
 
 CrossingWatch::CrossingWatch(const Scene& scene, const mbd::State& start) : scene_(scene) {
@@ -113,19 +174,123 @@ CrossingWatch::CrossingWatch(const Scene& scene, const mbd::State& start) : scen
           });
       if (has_contact) continue;
       std::array<double, 3> where{};
-      ElementPairs touching;
-      if (find_crossing(parts_[i], parts_[j], positions, where, {}, &touching))
-        excluded_.push_back(pair_name(parts_[i], parts_[j]));
-      std::sort(touching.begin(), touching.end());
-      watched_.push_back({i, j, std::move(touching)});
+      if (!find_crossing(parts_[i], parts_[j], positions, where)) {
+        watched_.push_back({i, j, {}, {}});
+        continue;
+      }
+      const std::string pair = pair_name(parts_[i], parts_[j]);
+      const double tolerance = 1e-9 * extent(parts_[i], parts_[j], positions);
+      const bool ground = a == mbd::kGround || b == mbd::kGround;
+      if (!ground || pass_through(parts_[i], parts_[j], positions, tolerance)) {
+        // Meshes that pass through each other by design (a hinge above a lid the paddle sticks
+        // out of), or two bodies: the pair is not watched.
+        excluded_.push_back(pair + ": not watched (" +
+                            (ground ? "they pass through each other at the start"
+                                    : "two bodies touching at the start") +
+                            ")");
+        continue;
+      }
+      // The body's elements that touch the ground now (to rounding: a tip drawn on the floor)
+      // are left out against it; the ground's are all tested.
+      const std::size_t body = a == mbd::kGround ? j : i;
+      const std::size_t other = body == i ? j : i;
+      Skipped skipped = touching(parts_[body], parts_[other], positions, tolerance);
+      const auto count = std::count(skipped.begin(), skipped.end(), true);
+      excluded_.push_back(pair + ": the " + std::to_string(count) + " of its " +
+                          std::to_string(skipped.size()) +
+                          " elements touching the ground at the start are not tested against it, "
+                          "the others are");
+      if (body == i) {
+        watched_.push_back({i, j, std::move(skipped), {}});
+      } else {
+        watched_.push_back({i, j, {}, std::move(skipped)});
+      }
     }
   }
 }
 
+double CrossingWatch::extent(const Part& a, const Part& b,
+                             const std::vector<double>& positions) const {
+  Box box;
+  for (const Part* part : {&a, &b}) {
+    for (std::uint32_t vertex : part->elements)
+      box.include(vertex_at(positions, scene_.boundary.dimension, vertex));
+  }
+  return (box.high - box.low).norm();
+}
+
+bool CrossingWatch::pass_through(const Part& a, const Part& b, const std::vector<double>& positions,
+                                 double tolerance) const {
+  const int dimension = scene_.boundary.dimension;
+  const std::size_t corners = static_cast<std::size_t>(dimension);
+  auto boxes = [&](const Part& part) {
+    std::vector<Box> found(part.elements.size() / corners);
+    for (std::size_t e = 0; e < found.size(); ++e) {
+      for (std::size_t k = 0; k < corners; ++k)
+        found[e].include(vertex_at(positions, dimension, part.elements[e * corners + k]));
+    }
+    return found;
+  };
+  const std::vector<Box> boxes_a = boxes(a), boxes_b = boxes(b);
+  for (std::size_t e = 0; e < boxes_a.size(); ++e) {
+    for (std::size_t f = 0; f < boxes_b.size(); ++f) {
+      if (boxes_a[e].overlaps(boxes_b[f]) &&
+          elements_pass_through(dimension, a, e, b, f, positions, tolerance))
+        return true;
+    }
+  }
+  return false;
+}
+
+CrossingWatch::Skipped CrossingWatch::touching(const Part& part, const Part& other,
+                                               const std::vector<double>& positions,
+                                               double tolerance) const {
+  const int dimension = scene_.boundary.dimension;
+  const auto corners = static_cast<std::size_t>(dimension);
+  const std::size_t count = part.elements.size() / corners;
+  const std::size_t others = other.elements.size() / corners;
+  auto point = [&](const Part& of, std::size_t e, std::size_t k) {
+    return vertex_at(positions, dimension, of.elements[e * corners + k]);
+  };
+  // Distance of a vertex of one element to another element (segment or triangle).
+  auto vertex_to = [&](const Eigen::Vector3d& p, const Part& of, std::size_t f) {
+    const Eigen::Vector3d a = point(of, f, 0), b = point(of, f, 1);
+    if (dimension == 2) return detail::distance_to_segment(p.data(), a.data(), b.data(), 3);
+    const Eigen::Vector3d c = point(of, f, 2);
+    return detail::distance_to_triangle(p.data(), a.data(), b.data(), c.data());
+  };
+  auto element_box = [&](const Part& of, std::size_t e) {
+    Box box;
+    for (std::size_t k = 0; k < corners; ++k)
+      box.include(point(of, e, k));
+    box.low.array() -= tolerance;
+    box.high.array() += tolerance;
+    return box;
+  };
+  std::vector<Box> other_boxes;
+  for (std::size_t f = 0; f < others; ++f)
+    other_boxes.push_back(element_box(other, f));
+  Skipped skipped(count, false);
+  for (std::size_t e = 0; e < count; ++e) {
+    const Box box = element_box(part, e);
+    for (std::size_t f = 0; f < others && !skipped[e]; ++f) {
+      if (!box.overlaps(other_boxes[f])) continue;
+      double gap = std::numeric_limits<double>::infinity();
+      for (std::size_t k = 0; k < corners; ++k) {
+        gap = std::min(gap, vertex_to(point(part, e, k), other, f));
+        gap = std::min(gap, vertex_to(point(other, f, k), part, e));
+      }
+      Eigen::Vector3d hit;
+      skipped[e] = gap <= tolerance || elements_cross(dimension, part, e, other, f, positions, hit);
+    }
+  }
+  return skipped;
+}
+
 bool CrossingWatch::find_crossing(const Part& a, const Part& b,
                                   const std::vector<double>& positions,
-                                  std::array<double, 3>& where, const ElementPairs& ignored,
-                                  ElementPairs* all) const {
+                                  std::array<double, 3>& where, const Skipped& skip_a,
+                                  const Skipped& skip_b) const {
   const int dimension = scene_.boundary.dimension;
   const auto corners = static_cast<std::size_t>(dimension);
   auto element_box = [&](const Part& part, std::size_t e) {
@@ -143,47 +308,27 @@ bool CrossingWatch::find_crossing(const Part& a, const Part& b,
   const Box box_a = part_box(a), box_b = part_box(b);
   if (!box_a.overlaps(box_b)) return false;
   // The elements of each part inside the other's box, with their own boxes.
-  auto candidates = [&](const Part& part, const Box& other) {
+  auto candidates = [&](const Part& part, const Box& other, const Skipped& skip) {
     std::vector<std::pair<std::size_t, Box>> found;
     for (std::size_t e = 0; e < part.elements.size() / corners; ++e) {
+      if (!skip.empty() && skip[e]) continue;
       const Box box = element_box(part, e);
       if (box.overlaps(other)) found.emplace_back(e, box);
     }
     return found;
   };
-  const auto near_a = candidates(a, box_b), near_b = candidates(b, box_a);
-  auto point = [&](const Part& part, std::size_t e, std::size_t k) {
-    return vertex_at(positions, dimension, part.elements[e * corners + k]);
-  };
-  // 3D: the edges of one part's triangles against the other's triangles.
-  auto edges_against = [&](const Part& edges_part, std::size_t e, const Part& faces_part,
-                           std::size_t f, Eigen::Vector3d& hit) {
-    for (std::size_t k = 0; k < 3; ++k) {
-      if (edge_crosses_triangle(point(edges_part, e, k), point(edges_part, e, (k + 1) % 3),
-                                point(faces_part, f, 0), point(faces_part, f, 1),
-                                point(faces_part, f, 2), hit))
-        return true;
-    }
-    return false;
-  };
-  bool found = false;
+  const auto near_a = candidates(a, box_b, skip_a), near_b = candidates(b, box_a, skip_b);
   for (const auto& [e, box_e] : near_a) {
     for (const auto& [f, box_f] : near_b) {
       if (!box_e.overlaps(box_f)) continue;
-      if (std::binary_search(ignored.begin(), ignored.end(), std::make_pair(e, f))) continue;
       Eigen::Vector3d hit;
-      const bool crossing = dimension == 2
-                                ? segments_intersect(point(a, e, 0), point(a, e, 1), point(b, f, 0),
-                                                     point(b, f, 1), hit)
-                                : edges_against(a, e, b, f, hit) || edges_against(b, f, a, e, hit);
-      if (!crossing) continue;
-      if (!found) where = {hit.x(), hit.y(), hit.z()};
-      found = true;
-      if (all == nullptr) return true;
-      all->emplace_back(e, f);
+      if (elements_cross(dimension, a, e, b, f, positions, hit)) {
+        where = {hit.x(), hit.y(), hit.z()};
+        return true;
+      }
     }
   }
-  return found;
+  return false;
 }
 
 void CrossingWatch::check(const mbd::State& state) const {
@@ -193,7 +338,7 @@ void CrossingWatch::check(const mbd::State& state) const {
   for (const WatchedPair& pair : watched_) {
     const std::size_t i = pair.a, j = pair.b;
     std::array<double, 3> where{};
-    if (!find_crossing(parts_[i], parts_[j], positions, where, pair.ignored)) continue;
+    if (!find_crossing(parts_[i], parts_[j], positions, where, pair.skip_a, pair.skip_b)) continue;
     char place[96];
     if (scene_.boundary.dimension == 2) {
       std::snprintf(place, sizeof place, "(%.6g, %.6g) m", where[0], where[1]);
