@@ -278,7 +278,9 @@ std::optional<HealthFinding> FluidHealthMonitor::density(std::uint64_t step,
     density_warned_ = true;
     warnings.push_back({kCheckDensityDeviation,
                         what + " exceeds FluidHealth.warn_density_deviation = " +
-                            number(limits_.warn_density_deviation) + " (warned once)",
+                            number(limits_.warn_density_deviation) +
+                            " (warned once; the figures are this first value's, the run's end "
+                            "restates them from the largest reached)",
                         fix});
   }
   return std::nullopt;
@@ -401,11 +403,21 @@ std::vector<std::string> FluidHealthMonitor::near_limits() const {
   constexpr double kNear = 0.8;  // of a stop limit (for the wall distance: 1 / 0.8 of it)
   std::vector<std::string> near;
   if (record_.steps_checked == 0) return near;
+  // Past the warning too: the warning's advice came from the first value past its level (a
+  // speed of sound barely above the run's), the end restates it from the largest reached.
   if (scales_.rest_density > 0.0 && limits_.max_density_deviation > 0.0 &&
-      record_.max_density_deviation >= kNear * limits_.max_density_deviation) {
-    near.push_back("max |rho/rho0 - 1| = " + number(record_.max_density_deviation) + " at step " +
-                   std::to_string(record_.max_density_deviation_step) + " (the stop: above " +
-                   number(limits_.max_density_deviation) + ")");
+      (record_.max_density_deviation >= kNear * limits_.max_density_deviation || density_warned_)) {
+    std::string figure = "max |rho/rho0 - 1| = " + number(record_.max_density_deviation) +
+                         " at step " + std::to_string(record_.max_density_deviation_step) +
+                         " (the stop: above " + number(limits_.max_density_deviation) + ")";
+    const double deviation = record_.max_density_deviation;
+    if (scales_.speed_of_sound && deviation > kDensityAim) {
+      figure += ": " + scales_.speed_of_sound_name + " = " +
+                number_up(std::sqrt(deviation / kDensityAim) * *scales_.speed_of_sound) +
+                " m/s (now " + number(*scales_.speed_of_sound) + ") would keep the largest at " +
+                number(kDensityAim);
+    }
+    near.push_back(figure);
   }
   if (scales_.speed_of_sound && *scales_.speed_of_sound > 0.0 && limits_.max_mach > 0.0) {
     const double mach = record_.max_particle_speed / *scales_.speed_of_sound;

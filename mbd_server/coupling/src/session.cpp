@@ -156,10 +156,10 @@ class Session {
         for (const std::string& figure : near)
           figures += (figures.empty() ? "" : "; ") + figure;
         spdlog::warn(
-            "the run came within 20 % of its health limits: {}. It completed, but a result this "
-            "close to a stop is at the edge of what the resolution and the speed of sound hold: "
-            "check it at a finer spacing or a larger c (docs/user-guide.md, \"When a run stops: "
-            "the health checks\")",
+            "the run came within 20 % of its health limits, or past a warning level: {}. It "
+            "completed, but a result this close to a stop is at the edge of what the resolution "
+            "and the speed of sound hold: check it at a finer spacing or a larger c "
+            "(docs/user-guide.md, \"When a run stops: the health checks\")",
             figures);
       }
     } else if (options_.resume && !resumed_state_) {
@@ -395,7 +395,7 @@ class Session {
     }
     coupled_begin_ = std::chrono::steady_clock::now();
     last_log_ = last_live_ = last_checkpoint_ = coupled_begin_;
-    first_step_ = steps_done_;
+    first_step_ = step_at_last_log_ = steps_done_;
     checkpoints_ =
         scene_.output.checkpoint_every_steps > 0 || scene_.output.checkpoint_every_seconds > 0.0;
     if (checkpoints_ && !fluid_.can_checkpoint()) {
@@ -569,9 +569,15 @@ class Session {
     sample.end_time = static_cast<double>(steps) * scene_.solver.step_size;
     sample.step = n;
     sample.steps = steps;
+    // The recent pace: since the previous log line when that is at least a second ago (a run
+    // that slows down, a machine that got busy, shows at once), else since the coupled phase
+    // began.
+    const double recent = std::chrono::duration<double>(now - last_log_).count();
     sample.steps_per_second =
-        static_cast<double>(n - first_step_) /
-        std::max(1e-9, std::chrono::duration<double>(now - coupled_begin_).count());
+        recent >= 1.0
+            ? static_cast<double>(n - step_at_last_log_) / recent
+            : static_cast<double>(n - first_step_) /
+                  std::max(1e-9, std::chrono::duration<double>(now - coupled_begin_).count());
     sample.closest_approach_over_r0 = watch_.closest_since_report;
     if (watch_.record.snapshots_checked > 0) {
       sample.snapshot_time = watch_.last_snapshot_time;
@@ -587,6 +593,7 @@ class Session {
     if (log_due) {
       progress_logger_->info("{}", line);
       last_log_ = now;
+      step_at_last_log_ = n;
       // run.json follows the run at the log's pace: steps, timings, health so far ("status"
       // stays "started" until the run ends).
       write_run_manifest(options_.output_dir, scene_, record());
@@ -1003,6 +1010,7 @@ class Session {
   std::shared_ptr<spdlog::logger> progress_logger_;
   std::chrono::steady_clock::time_point coupled_begin_, last_log_, last_live_, last_checkpoint_;
   std::uint64_t first_step_ = 0;  // the step the coupled phase began at (a resume's checkpoint)
+  std::uint64_t step_at_last_log_ = 0;  // the step of the last progress log line
   std::optional<output::CheckpointStore> store_;
   bool checkpoints_ = false;    // the scene asks for them and the fluid side can write them
   bool resumed_state_ = false;  // a resume has taken the checkpoint's state

@@ -245,6 +245,23 @@ TEST(FluidHealth, ARunThatPassedCloseToItsLimitsSaysWhichFigures) {
       << near[0];
   EXPECT_TRUE(contains(near[1], "closest particle-wall distance 0.12 r0 (the stop: below 0.1 r0)"))
       << near[1];
+  // The density warning's advice comes from the first value past its level: a run whose density
+  // went past the warning (far from the stop) gets the speed of sound for its largest value at
+  // the end (c = 20 m/s: 0.018 needs sqrt(1.8) x 20 = 26.8 m/s for 0.01).
+  FluidHealthMonitor warned = monitor();
+  forces = healthy();
+  forces.health->max_density = 1011.0;  // past the 0.01 warning: advice from 0.011
+  const HealthVerdict first = warned.judge(3, forces);
+  ASSERT_EQ(first.warnings.size(), 1u);
+  EXPECT_TRUE(contains(first.warnings[0].message, "the run's end restates them from the largest"))
+      << first.warnings[0].message;
+  forces.health->max_density = 1018.0;
+  ASSERT_FALSE(warned.judge(4, forces).stop);
+  const std::vector<std::string> restated = warned.near_limits();
+  ASSERT_EQ(restated.size(), 1u);
+  EXPECT_TRUE(contains(restated[0], "max |rho/rho0 - 1| = 0.018 at step 4"));
+  EXPECT_TRUE(contains(restated[0], "= 26.9 m/s (now 20) would keep the largest at 0.01"))
+      << restated[0];
 }
 
 TEST(FluidHealth, ADensityDeviationWithATooLargeStepNamesTheStep) {

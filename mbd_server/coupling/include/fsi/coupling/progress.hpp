@@ -15,8 +15,8 @@ struct ProgressSample {
   double time = 0.0;      // simulated time now [s]
   double end_time = 0.0;  // [s]
   std::uint64_t step = 0;
-  std::uint64_t steps = 0;                         // of the coupled phase
-  double steps_per_second = 0.0;                   // since the coupled phase began
+  std::uint64_t steps = 0;        // of the coupled phase
+  double steps_per_second = 0.0;  // since the last log line (>= 1 s ago), else the phase's start
   std::optional<double> snapshot_time;             // of the latest particle snapshot [s]
   std::optional<double> density_deviation;         // max |rho/rho0 - 1| in that snapshot
   std::optional<double> max_speed;                 // max |v| in that snapshot [m/s]
