@@ -141,10 +141,12 @@ void print_summary(const fsi::scene::Scene& scene, bool mbd_only) {
                 scene.fluid.density);
     const std::string fill = fsi::scene::fluid_box_fill(scene);
     if (!fill.empty()) std::printf("    %s\n", fill.c_str());
-    std::printf("  time: %g s in steps of %g s (%s); %llu equilibration steps\n",
+    // The settling is counted in steps: a smaller step (a larger c) settles for less time.
+    std::printf("  time: %g s in steps of %g s (%s); %llu equilibration steps = %g s of settling\n",
                 scene.solver.end_time, scene.solver.step_size,
                 scene.solver.integrator_description().c_str(),
-                static_cast<unsigned long long>(scene.liggghts.equilibration_steps));
+                static_cast<unsigned long long>(scene.liggghts.equilibration_steps),
+                static_cast<double>(scene.liggghts.equilibration_steps) * scene.solver.step_size);
   }
   if (scene.assembly) {
     for (const std::string& line : scene.assembly->lines())
