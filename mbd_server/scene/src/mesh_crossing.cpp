@@ -83,14 +83,31 @@ std::string pair_name(const CrossingWatch::Part& a, const CrossingWatch::Part& b
   return one(a) + " and " + one(b);
 }
 
+// Vertex k of element e of a part at `positions`.
+Eigen::Vector3d corner(const std::vector<double>& positions, int dimension,
+                       const CrossingWatch::Part& part, std::size_t e, std::size_t k) {
+  return vertex_at(positions, dimension,
+                   part.elements[e * static_cast<std::size_t>(dimension) + k]);
+}
+
+// The box of element e, grown by `margin` on every side.
+Box element_box(const std::vector<double>& positions, int dimension,
+                const CrossingWatch::Part& part, std::size_t e, double margin = 0.0) {
+  Box box;
+  for (std::size_t k = 0; k < static_cast<std::size_t>(dimension); ++k)
+    box.include(corner(positions, dimension, part, e, k));
+  box.low.array() -= margin;
+  box.high.array() += margin;
+  return box;
+}
+
 // Does element e of part a cross element f of part b (2D: the segments intersect; 3D: an edge of
 // one passes through the other triangle)?
 bool elements_cross(int dimension, const CrossingWatch::Part& a, std::size_t e,
                     const CrossingWatch::Part& b, std::size_t f,
                     const std::vector<double>& positions, Eigen::Vector3d& hit) {
-  const auto corners = static_cast<std::size_t>(dimension);
   auto point = [&](const CrossingWatch::Part& part, std::size_t element, std::size_t k) {
-    return vertex_at(positions, dimension, part.elements[element * corners + k]);
+    return corner(positions, dimension, part, element, k);
   };
   if (dimension == 2)
     return segments_intersect(point(a, e, 0), point(a, e, 1), point(b, f, 0), point(b, f, 1), hit);
@@ -113,9 +130,8 @@ bool elements_cross(int dimension, const CrossingWatch::Part& a, std::size_t e,
 bool elements_pass_through(int dimension, const CrossingWatch::Part& a, std::size_t e,
                            const CrossingWatch::Part& b, std::size_t f,
                            const std::vector<double>& positions, double tolerance) {
-  const auto corners = static_cast<std::size_t>(dimension);
   auto point = [&](const CrossingWatch::Part& part, std::size_t element, std::size_t k) {
-    return vertex_at(positions, dimension, part.elements[element * corners + k]);
+    return corner(positions, dimension, part, element, k);
   };
   auto apart = [&](double side_p, double side_q, double scale) {
     return side_p * side_q < 0.0 && std::abs(side_p) > tolerance * scale &&
@@ -225,10 +241,8 @@ bool CrossingWatch::pass_through(const Part& a, const Part& b, const std::vector
   const std::size_t corners = static_cast<std::size_t>(dimension);
   auto boxes = [&](const Part& part) {
     std::vector<Box> found(part.elements.size() / corners);
-    for (std::size_t e = 0; e < found.size(); ++e) {
-      for (std::size_t k = 0; k < corners; ++k)
-        found[e].include(vertex_at(positions, dimension, part.elements[e * corners + k]));
-    }
+    for (std::size_t e = 0; e < found.size(); ++e)
+      found[e] = element_box(positions, dimension, part, e);
     return found;
   };
   const std::vector<Box> boxes_a = boxes(a), boxes_b = boxes(b);
@@ -250,7 +264,7 @@ CrossingWatch::Skipped CrossingWatch::touching(const Part& part, const Part& oth
   const std::size_t count = part.elements.size() / corners;
   const std::size_t others = other.elements.size() / corners;
   auto point = [&](const Part& of, std::size_t e, std::size_t k) {
-    return vertex_at(positions, dimension, of.elements[e * corners + k]);
+    return corner(positions, dimension, of, e, k);
   };
   // Distance of a vertex of one element to another element (segment or triangle).
   auto vertex_to = [&](const Eigen::Vector3d& p, const Part& of, std::size_t f) {
@@ -259,20 +273,12 @@ CrossingWatch::Skipped CrossingWatch::touching(const Part& part, const Part& oth
     const Eigen::Vector3d c = point(of, f, 2);
     return detail::distance_to_triangle(p.data(), a.data(), b.data(), c.data());
   };
-  auto element_box = [&](const Part& of, std::size_t e) {
-    Box box;
-    for (std::size_t k = 0; k < corners; ++k)
-      box.include(point(of, e, k));
-    box.low.array() -= tolerance;
-    box.high.array() += tolerance;
-    return box;
-  };
   std::vector<Box> other_boxes;
   for (std::size_t f = 0; f < others; ++f)
-    other_boxes.push_back(element_box(other, f));
+    other_boxes.push_back(element_box(positions, dimension, other, f, tolerance));
   Skipped skipped(count, false);
   for (std::size_t e = 0; e < count; ++e) {
-    const Box box = element_box(part, e);
+    const Box box = element_box(positions, dimension, part, e, tolerance);
     for (std::size_t f = 0; f < others && !skipped[e]; ++f) {
       if (!box.overlaps(other_boxes[f])) continue;
       double gap = std::numeric_limits<double>::infinity();
@@ -293,12 +299,6 @@ bool CrossingWatch::find_crossing(const Part& a, const Part& b,
                                   const Skipped& skip_b) const {
   const int dimension = scene_.boundary.dimension;
   const auto corners = static_cast<std::size_t>(dimension);
-  auto element_box = [&](const Part& part, std::size_t e) {
-    Box box;
-    for (std::size_t k = 0; k < corners; ++k)
-      box.include(vertex_at(positions, dimension, part.elements[e * corners + k]));
-    return box;
-  };
   auto part_box = [&](const Part& part) {
     Box box;
     for (std::uint32_t vertex : part.elements)
@@ -312,7 +312,7 @@ bool CrossingWatch::find_crossing(const Part& a, const Part& b,
     std::vector<std::pair<std::size_t, Box>> found;
     for (std::size_t e = 0; e < part.elements.size() / corners; ++e) {
       if (!skip.empty() && skip[e]) continue;
-      const Box box = element_box(part, e);
+      const Box box = element_box(positions, dimension, part, e);
       if (box.overlaps(other)) found.emplace_back(e, box);
     }
     return found;
