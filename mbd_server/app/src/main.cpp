@@ -131,6 +131,11 @@ void print_summary(const fsi::scene::Scene& scene, bool mbd_only) {
                 spatial ? "triangles" : "segments");
     std::printf("  time: %g s in steps of %g s (%s)\n", scene.solver.end_time,
                 scene.solver.step_size, scene.solver.integrator_description().c_str());
+    if (scene.solver.step_size_derived)
+      std::printf(
+          "  the step is the coupled run's: SolverOptions.Timeint.step_size is left out "
+          "and the Fluid block's rule derives it (docs/user-guide.md, \"The Fluid "
+          "block\"); write step_size to choose another\n");
   } else {
     std::printf("  boundary mesh: %zu vertices (%zu dynamic), %zu %s, refinement resolution %g m\n",
                 scene.boundary.vertex_count, scene.boundary.dynamic_vertex_count,

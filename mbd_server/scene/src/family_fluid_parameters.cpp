@@ -3,6 +3,7 @@
 // examples' hand-written LIGGGHTS_SPH_parameters used, so their scripts read it unchanged.
 
 #include <cmath>
+#include <optional>
 
 #include "fsi/common/error.hpp"
 #include "scene_builder.hpp"
@@ -77,27 +78,37 @@ void refuse_duplicates(SceneBuilder& builder, const View& fluid) {
   }
 }
 
+bool has_every_input(const View& fluid) {
+  for (const FluidQuantity& q : fluid_quantities()) {
+    if (q.is_input() && !q.key.empty() && !q.input_default && !fluid.has(q.key)) return false;
+  }
+  return true;
+}
+
+// The block's values by its rules (throws the rules' errors).
+FluidDerivation derive_block(const SceneBuilder& builder, const View& fluid) {
+  FluidValues given;
+  FluidRuleChoices choices;
+  for (const FluidQuantity& q : fluid_quantities()) {
+    if (!q.key.empty() && fluid.has(q.key)) given[std::string(q.key)] = fluid.number(q.key);
+    if (q.has_choice() && fluid.has(q.rule_key()))
+      choices[std::string(q.key)] = fluid.string(q.rule_key());
+  }
+  const auto& g = builder.scene.gravity;
+  given["g"] = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+  return derive_fluid(given, builder.dimension, choices);
+}
+
 void derive_from_fluid_block(SceneBuilder& builder) {
   if (builder.mode != SceneMode::Coupled || !builder.root.has_block("Fluid")) return;
   const View fluid = builder.root.block("Fluid");
   refuse_duplicates(builder, fluid);
-  for (const FluidQuantity& q : fluid_quantities()) {
-    // A missing input is the schema's problem, reported already.
-    if (q.is_input() && !q.key.empty() && !q.input_default && !fluid.has(q.key)) return;
-  }
+  // A missing input is the schema's problem, reported already.
+  if (!has_every_input(fluid)) return;
   builder.guard(fluid.location(), [&] {
-    FluidValues given;
-    FluidRuleChoices choices;
-    for (const FluidQuantity& q : fluid_quantities()) {
-      if (!q.key.empty() && fluid.has(q.key)) given[std::string(q.key)] = fluid.number(q.key);
-      if (q.has_choice() && fluid.has(q.rule_key()))
-        choices[std::string(q.key)] = fluid.string(q.rule_key());
-    }
-    const auto& g = builder.scene.gravity;
-    given["g"] = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
     FluidDerivation derivation;
     try {
-      derivation = derive_fluid(given, builder.dimension, choices);
+      derivation = derive_block(builder, fluid);
     } catch (const AlreadyReported&) {
       throw;
     } catch (const Error& error) {
@@ -122,9 +133,22 @@ void derive_from_fluid_block(SceneBuilder& builder) {
   });
 }
 
-// SolverOptions.Timeint.step_size left out: a coupled scene with a Fluid block steps at the
-// largest step its rule allows that divides end_time into whole structure steps; anything else
-// needs the step written.
+// An --mbd-only run of a coupled scene (the structure dry): the coupled run's step, from the
+// Fluid block's rules, so that both runs step and write their rows alike. None when the block
+// lacks an input or its rules fail (the coupled run reports those).
+std::optional<FluidDerivation> dry_run_derivation(const SceneBuilder& builder) {
+  const View fluid = builder.root.block("Fluid");
+  if (!has_every_input(fluid)) return std::nullopt;
+  try {
+    return derive_block(builder, fluid);
+  } catch (const Error&) {
+    return std::nullopt;
+  }
+}
+
+// SolverOptions.Timeint.step_size left out: a scene with a Fluid block steps at the largest step
+// its rule allows that divides end_time into whole structure steps (a coupled run, and its
+// structure alone with --mbd-only); anything else needs the step written.
 void settle_step_size(SceneBuilder& builder) {
   SolverSettings& solver = builder.scene.solver;
   const View timeint = builder.root.block("SolverOptions").block("Timeint");
@@ -133,19 +157,22 @@ void settle_step_size(SceneBuilder& builder) {
   const bool has_fluid = builder.root.has_block("Fluid");
   if (coupled && has_fluid && !builder.scene.fluid_parameters) return;  // its problem is reported
   if (!(solver.end_time > 0.0)) return;                                 // so is end_time's
-  if (!coupled || !has_fluid) {
+  std::optional<FluidDerivation> fluid = builder.scene.fluid_parameters;
+  if (!coupled && has_fluid) fluid = dry_run_derivation(builder);
+  if (!fluid) {
     builder.problem(
         timeint.location(),
         std::string("SolverOptions.Timeint.step_size is missing") +
-            (coupled ? ", and there is no Fluid block to derive it from"
-                     : ": --mbd-only needs it (a Fluid block derives it for coupled runs only)"),
-        coupled ? "write step_size = ... in SolverOptions.Timeint, or give the fluid's "
-                  "physical inputs in a Fluid block (docs/user-guide.md, \"The Fluid block\")"
-                : "write step_size = ... in SolverOptions.Timeint");
+            (!has_fluid ? ", and there is no Fluid block to derive it from"
+                        : ", and the Fluid block cannot derive it (check the scene without "
+                          "--mbd-only for its problems)"),
+        "write step_size = ... in SolverOptions.Timeint" +
+            std::string(!has_fluid ? ", or give the fluid's physical inputs in a Fluid block "
+                                     "(docs/user-guide.md, \"The Fluid block\")"
+                                   : ""));
     return;
   }
-  solver.step_size =
-      derived_time_step(*builder.scene.fluid_parameters, solver.end_time, solver.substeps);
+  solver.step_size = derived_time_step(*fluid, solver.end_time, solver.substeps);
   solver.step_size_derived = true;
   solver.step_size_location = builder.root.block("Fluid").location();
 }

@@ -196,8 +196,11 @@ std::string blocks_needed(const Scene& scene, SceneMode mode) {
   std::vector<std::string> unread;
   for (const BlockSpec& block : schema_for(mode).blocks) {
     if (block.required) needed.push_back(block.name);
-    if (!coupled && block.coupled_only && scene.parameters.child(block.name) != nullptr)
-      unread.push_back(block.name);
+    if (!coupled && block.coupled_only && scene.parameters.child(block.name) != nullptr) {
+      // The Fluid block gives a dry run its step when the scene leaves it out.
+      const bool gives_step = block.name == "Fluid" && scene.solver.step_size_derived;
+      unread.push_back(block.name + (gives_step ? " (but for the step it derives)" : ""));
+    }
   }
   std::string text =
       std::string(coupled ? "a coupled run" : "an --mbd-only run") + " needs: " + joined(needed) +

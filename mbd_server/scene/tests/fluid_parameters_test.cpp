@@ -352,7 +352,36 @@ TEST_F(FluidBlock, ASceneWithoutAStepTakesTheLargestItsRulesAllow) {
   EXPECT_EQ(given.solver.step_size, 2e-5);
 }
 
-TEST_F(FluidBlock, WithoutAFluidBlockOrInMbdOnlyALeftOutStepIsAProblem) {
+// The structure dry (--mbd-only) of a coupled scene that leaves its step out: the coupled run's
+// step, so both write their rows at the same times (a Liao trial user had to copy it by hand).
+TEST_F(FluidBlock, ADryRunOfASceneWithoutAStepTakesTheCoupledRunsStep) {
+  const std::string region = "spacing = Fluid.spacing; density = Fluid.density";
+  const std::string solver =
+      "SolverOptions { end_time = 0.01; Timeint { substeps = 4 } }\nOutput { sensor_every_steps "
+      "= 4 }\nRigidBody2D { name = \"p\"; mass = 1; inertia = 1; position = [0.02, 0.15] }";
+  const auto path = scene(inputs(), "", region, solver);
+  const Scene coupled = build_scene(path.string());
+  const Scene dry = build_scene(path.string(), {}, SceneMode::MbdOnly);
+  ASSERT_TRUE(coupled.solver.step_size_derived);
+  EXPECT_TRUE(dry.solver.step_size_derived);
+  EXPECT_DOUBLE_EQ(dry.solver.step_size, coupled.solver.step_size);
+  EXPECT_DOUBLE_EQ(dry.solver.step_size, 0.01 / 412.0);
+  EXPECT_FALSE(dry.fluid_parameters.has_value());  // the dry run has no fluid
+  EXPECT_CONTAINS(blocks_needed(dry, SceneMode::MbdOnly),
+                  "given but not read by an --mbd-only run: Fluid (but for the step it derives)");
+  // A Fluid block whose rules fail (here: no gravity and no velocity scale for c) gives no
+  // step: the problem says to write one, and where to find the block's own problem.
+  const std::string no_rule = mbd_only_outcome(
+      "g.scene",
+      "scene_language = 1\nSolverOptions { end_time = 0.01 }\n"
+      "RigidBody2D { name = \"p\"; mass = 1; inertia = 1; position = [0, 0] }\n"
+      "Fluid { density = 1000; spacing = 0.002; viscosity = 1e-6; height = 0.1 }\n");
+  EXPECT_CONTAINS(no_rule,
+                  "SolverOptions.Timeint.step_size is missing, and the Fluid block "
+                  "cannot derive it (check the scene without --mbd-only");
+}
+
+TEST_F(FluidBlock, WithoutAFluidBlockALeftOutStepIsAProblem) {
   write("s.in", "# script\n");
   const std::string no_fluid = testing::build_error(
       write("n.scene",
@@ -369,7 +398,9 @@ TEST_F(FluidBlock, WithoutAFluidBlockOrInMbdOnlyALeftOutStepIsAProblem) {
       "m.scene",
       "scene_language = 1\nSolverOptions { end_time = 0.01; Timeint { stages = 3 } }\n"
       "RigidBody2D { name = \"p\"; mass = 1; inertia = 1; position = [0, 0] }\n");
-  EXPECT_CONTAINS(mbd_only, "SolverOptions.Timeint.step_size is missing: --mbd-only needs it");
+  EXPECT_CONTAINS(mbd_only,
+                  "SolverOptions.Timeint.step_size is missing, and there is no Fluid block to "
+                  "derive it from");
 }
 
 // examples/hydrostatic_pressure uses the Fluid block: its variables are those of its former
