@@ -704,33 +704,40 @@ void check_wall_viscosity(const Scene& scene, Report& report) {
 
 // --- 7. fluid regions overlapping a mesh ------------------------------------------------------
 
+// The surface the fluid sees at the start, one part per body (the ground's meshes together), as
+// the run builds it: rigid meshes and the beams' outlines alike (a user's water drawn through an
+// elastic baffle went unseen while this read the RigidBody2D and Ground blocks only).
 struct WorldMesh {
-  std::string owner;  // "body 'piston'", "Ground[1]"
-  std::vector<Point> points;
-  bool closed = false;
+  std::string owner;  // "body 'piston'", "the ground"
+  std::vector<std::pair<Point, Point>> segments;
 };
 
 std::vector<WorldMesh> world_meshes(const Scene& scene) {
-  const View root(scene.parameters, scene_schema());
+  const BoundaryMesh& boundary = scene.boundary;
   std::vector<WorldMesh> meshes;
-  auto add = [&](const View& mesh, const std::string& owner, const Point& origin, double angle) {
-    const Eigen::Rotation2Dd rotation(angle);
-    WorldMesh world{owner, {}, mesh.integer("closed") == 1};
-    for (const auto& point : mesh.matrix("points"))
-      world.points.push_back(origin + rotation * Point(point.at(0), point.at(1)));
-    meshes.push_back(std::move(world));
-  };
-  for (const View& body : root.blocks("RigidBody2D")) {
-    const auto position = body.vector("position");
-    for (const View& mesh : body.blocks("Mesh"))
-      add(mesh, "body '" + body.string("name") + "'", Point(position.at(0), position.at(1)),
-          body.number("angle"));
+  if (boundary.dimension != 2 || boundary.segments.empty()) return meshes;
+  std::vector<double> positions, velocities;
+  mbd::State start;
+  try {
+    start = scene.model.initial_configuration();
+    boundary_state(boundary, scene.model, start, positions, velocities);
+  } catch (const std::exception&) {
+    return meshes;  // a model that cannot start is reported by the scene itself
   }
-  int ground_index = 0;
-  for (const View& ground : root.blocks("Ground")) {
-    for (const View& mesh : ground.blocks("Mesh"))
-      add(mesh, "Ground[" + std::to_string(ground_index) + "]", Point::Zero(), 0.0);
-    ++ground_index;
+  std::map<mbd::BodyId, std::size_t> part_of_body;
+  auto vertex = [&](std::uint32_t k) { return Point(positions[2 * k], positions[2 * k + 1]); };
+  for (std::size_t e = 0; e + 1 < boundary.segments.size(); e += 2) {
+    const std::uint32_t first = boundary.segments[e];
+    const mbd::BodyId body = first < boundary.dynamic_vertex_count
+                                 ? scene.model.marker_body(static_cast<int>(first))
+                                 : mbd::kGround;
+    auto [found, added] = part_of_body.emplace(body, meshes.size());
+    if (added) {
+      meshes.push_back({body == mbd::kGround ? std::string("the ground")
+                                             : "body '" + scene.model.body_name(body) + "'",
+                        {}});
+    }
+    meshes[found->second].segments.emplace_back(vertex(first), vertex(boundary.segments[e + 1]));
   }
   return meshes;
 }
@@ -786,16 +793,11 @@ void check_true_shape_start(const Scene& scene, const Inputs& in, Report& report
   const double d = scene.fluid.spacing;
   const auto& xy = scene.fluid.positions;
   for (const WorldMesh& mesh : world_meshes(scene)) {
-    const std::size_t count = mesh.points.size();
-    if (count < 2) continue;
-    const std::size_t segments = mesh.closed && count > 2 ? count : count - 1;
     double closest = std::numeric_limits<double>::infinity();
     Point closest_particle = Point::Zero();
     for (std::size_t p = 0; p + 1 < xy.size(); p += 2) {
       const Point particle(xy[p], xy[p + 1]);
-      for (std::size_t i = 0; i < segments; ++i) {
-        const Point a = mesh.points[i];
-        const Point b = mesh.points[(i + 1) % count];
+      for (const auto& [a, b] : mesh.segments) {
         const Point ab = b - a;
         const double along = ab.squaredNorm() > 0.0
                                  ? std::clamp((particle - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0)
@@ -838,21 +840,19 @@ void check_fluid_overlap(const Scene& scene, Report& report) {
   if (!r0) report.skip(kCheck, "fluid-to-mesh distance", in.missing());
   auto as_point2 = [](const Point& point) { return Point2{point.x(), point.y()}; };
   for (const WorldMesh& mesh : world_meshes(scene)) {
-    const std::size_t count = mesh.points.size();
-    if (count < 2) continue;
-    const std::size_t segments = mesh.closed && count > 2 ? count : count - 1;
     double closest = std::numeric_limits<double>::infinity();
     std::size_t closest_segment = 0;
-    for (std::size_t i = 0; i < segments; ++i) {
-      const double distance = distance_to_region(fluid->region, as_point2(mesh.points[i]),
-                                                 as_point2(mesh.points[(i + 1) % count]));
+    for (std::size_t i = 0; i < mesh.segments.size(); ++i) {
+      const auto& [a, b] = mesh.segments[i];
+      const double distance = distance_to_region(fluid->region, as_point2(a), as_point2(b));
       if (distance < closest) {
         closest = distance;
         closest_segment = i;
       }
     }
-    const std::string segment = point_text(mesh.points[closest_segment]) + "-" +
-                                point_text(mesh.points[(closest_segment + 1) % count]);
+    if (mesh.segments.empty()) continue;
+    const std::string segment = point_text(mesh.segments[closest_segment].first) + "-" +
+                                point_text(mesh.segments[closest_segment].second);
     const std::string name = "the " + fluid->kind + fluid->extent;
     if (closest == 0.0) {
       report.warn(kCheck, fluid->where,

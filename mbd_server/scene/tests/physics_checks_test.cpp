@@ -326,7 +326,7 @@ TEST(PhysicsChecks, WallViscosityMoreThanAFactorThreeOff) {
 TEST(PhysicsChecks, FluidBoxTooCloseToAWall) {
   const Diagnostic warning =
       coarse_warning("fluid_overlap", {{"FluidRegion.lower", "[0.0005, 0.0041]"}});
-  EXPECT_CONTAINS(warning.message, "comes within 0.0005 m of the mesh of Ground[0]");
+  EXPECT_CONTAINS(warning.message, "comes within 0.0005 m of the mesh of the ground");
   EXPECT_CONTAINS(warning.message, "closer than r0/2 = 0.0016 m");
   EXPECT_EQ(warning.fix, "leave at least 0.0016 m between the fluid box and the mesh");
 }
@@ -360,6 +360,27 @@ TEST_F(SmallScene, FluidBoxNearARotatedBody) {
       of(physics_checks(build(kGoodSph, fluid + with_angle("pi/4"))), "fluid_overlap");
   ASSERT_EQ(warnings.size(), 1u);
   EXPECT_CONTAINS(warnings[0].message, "comes within 0.000858 m of the mesh of body 'block'");
+}
+
+// An elastic baffle drawn through the water (a user's trial, 2026-12-06: the check read the
+// RigidBody2D and Ground blocks only and said nothing): a beam's outline is checked like any mesh.
+TEST_F(SmallScene, FluidBoxThroughABeam) {
+  const std::string fluid =
+      "FluidRegion { shape = \"box\"; lower = [0.01, 0.001]; upper = [0.035, 0.02]; "
+      "spacing = 0.001/1.9; density = 1000 }\n";
+  auto baffle = [](const std::string& x) {
+    return "AncfBeam2D { name = \"baffle\"; start = [" + x + ", 0]; end = [" + x +
+           ", 0.03]; elements = 3; thickness = 0.002; axial_stiffness = 1e6; "
+           "bending_stiffness = 0.1; mass_per_length = 2 }\n"
+           "BeamClamp { beam = \"baffle\"; node = 0 }\n";
+  };
+  const auto through = of(physics_checks(build(kGoodSph, fluid + baffle("0.02"))), "fluid_overlap");
+  ASSERT_EQ(through.size(), 1u);
+  EXPECT_CONTAINS(through[0].message,
+                  "the fluid box (0.01, 0.001)-(0.035, 0.02) overlaps the "
+                  "mesh of body 'baffle'");
+  const auto clear = physics_checks(build(kGoodSph, fluid + baffle("0.05")));
+  EXPECT_TRUE(of(clear, "fluid_overlap").empty()) << listing(clear);
 }
 
 TEST_F(SmallScene, FluidPolygonAroundABodyInItsHole) {
