@@ -20,6 +20,11 @@ namespace fsi::coupling {
 inline constexpr double kRestWeightFractionLow = 0.99;
 inline constexpr double kRestWeightFractionHigh = 1.01;
 inline constexpr double kRestKineticOverPotential = 1e-3;
+// A fluid this still (kinetic over potential energy) with its weight within kNearMissWeightFraction
+// of the structure's load has settled as far as it will: the warning then says that more time
+// does not help, and what carries the rest.
+inline constexpr double kStillKineticOverPotential = 1e-4;
+inline constexpr double kNearMissWeightFraction = 0.05;
 // Below this fraction of the weight the structure may not hold the fluid where it is at all (a
 // dam break's column with nothing at its open side collapsed to 59 % in 0.28 s of settling):
 // the warning adds how to hold such water.
