@@ -36,6 +36,30 @@ void on_signal(int) {
   g_interrupted = 1;
 }
 
+// The machine's 1-minute load average (/proc/loadavg), or none where it cannot be read.
+std::optional<double> load_average() {
+  std::ifstream in("/proc/loadavg");
+  double load = 0.0;
+  if (in >> load) return load;
+  return std::nullopt;
+}
+
+// MPI ranks poll while they wait for each other: on a machine whose cores other processes keep
+// busy, N > 1 ranks lose most of their time (a user's 2-rank run took 20 times as long as 1 rank
+// on a 2-core machine at load 1.5-7; docs/user-guide.md, "Ranks and balance"). Empty when the
+// ranks fit beside the load.
+std::string busy_machine_warning(double load, unsigned cores, int ranks) {
+  if (ranks < 2 || cores == 0 || load + ranks <= cores + 0.5) return {};
+  char text[512];
+  std::snprintf(text, sizeof text,
+                "fsi-run: warning: this machine is busy (load average %.1f on %u cores): %d MPI "
+                "ranks that poll while they wait for each other lose most of their time to the "
+                "other busy processes, and --np 1 may well be faster here (docs/user-guide.md, "
+                "\"Ranks and balance\")\n",
+                load, cores, ranks);
+  return text;
+}
+
 pid_t spawn(const std::vector<std::string>& command) {
   std::vector<char*> argv;
   for (const std::string& word : command)
@@ -266,6 +290,12 @@ int main(int argc, char** argv) {
     // The server writes the file atomically (rename), so any content is complete.
     if (in >> text && !text.empty()) port = text;
     if (port.empty()) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+
+  if (const std::optional<double> load = load_average()) {
+    const std::string busy =
+        busy_machine_warning(*load, std::thread::hardware_concurrency(), ranks);
+    if (!busy.empty()) std::fputs(busy.c_str(), stderr);
   }
 
   std::vector<std::string> client_command{mpirun};
