@@ -81,6 +81,12 @@ std::vector<BlockSpec> sensor_blocks() {
                                 "component angle reads the cross-section's angle, the centre "
                                 "line's tangent at s; 3D: [x, y, z], [s, 0, 0] on a cable)"))
                .optional(),
+           text("frame",
+                "position, velocity (2D): the name of a RigidBody2D whose axes the components "
+                "are read in, from its centre of mass (angle: relative to its angle; velocity: "
+                "as seen turning with it); absent: the world's. A tip's displacement in a "
+                "moving tank, say")
+               .optional(),
            text("joint", "joint_force: the name of a joint block").optional(),
            text("element", "spring_force: the name of a spring block").optional(),
            text("component",
@@ -108,6 +114,7 @@ class SensorBuilder {
   bool body_fits();
   bool joint_fits();
   bool spring_fits();
+  bool frame_fits();
   std::string unit() const;
   void problem(const SourceLocation& where, const std::string& message, const std::string& fix) {
     builder.problem(where, message, fix);
@@ -145,8 +152,35 @@ void SensorBuilder::build() {
   if (!keys && builder.spatial()) return;
   if (!component_fits() || !keys) return;
   sensor.unit = unit();
-  if (!body_fits() || !joint_fits() || !spring_fits() || !complete) return;
+  if (!body_fits() || !joint_fits() || !spring_fits() || !frame_fits() || !complete) return;
   builder.scene.sensors.push_back(sensor);
+}
+
+// The rigid body a planar position or velocity is read in the axes of.
+bool SensorBuilder::frame_fits() {
+  if (!s.has("frame")) return true;
+  const std::string type(variant.type);
+  if (!variant.kinematic() || builder.spatial()) {
+    problem(s.location("frame"),
+            "frame is for position and velocity sensors of 2D scenes, not a " +
+                std::string(builder.spatial() ? "3D " : "") + type + " sensor",
+            "remove frame");
+    return false;
+  }
+  const mbd::BodyId frame = builder.find_body(s, "frame");
+  if (builder.model.is_beam(frame)) {
+    problem(s.location("frame"),
+            "frame '" + s.string("frame") + "' is an AncfBeam2D; a frame is a RigidBody2D",
+            "name a RigidBody2D (a beam's own bending: type = \"chord_deflection\")");
+    return false;
+  }
+  if (frame == sensor.body && !sensor.point) {
+    problem(s.location("frame"), "a body's centre of mass in its own frame does not move",
+            "name another body, or give a point");
+    return false;
+  }
+  sensor.frame = frame;
+  return true;
 }
 
 // Every key the variant forbids is absent, every key it requires present.

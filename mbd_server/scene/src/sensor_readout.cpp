@@ -1,11 +1,53 @@
 // The sensors a coupled run and an --mbd-only run share: everything the multibody state
 // determines.
 
+#include <Eigen/Geometry>
+
 #include "fsi/common/error.hpp"
 #include "fsi/mbd/readouts.hpp"
 #include "fsi/scene/scene.hpp"
 
 namespace fsi::scene {
+
+namespace {
+
+// A planar position or velocity sensor read in the axes of its frame body f: the point's
+// d = p - r_f turned back, R(phi_f)^T d, its rate R^T (v - v_f - omega_f x d); an angle less the
+// frame's, a rate less its rate.
+double in_frame(const mbd::Model& model, const SensorSpec& sensor, const mbd::State& state) {
+  const bool position = sensor.type == SensorType::Position;
+  const mbd::BodyId f = *sensor.frame;
+  using C = mbd::Coordinate;
+  if (sensor.component == C::Angle) {
+    const double own =
+        sensor.point ? (position ? beam_tangent_angle(model, state, sensor.body, (*sensor.point)[0])
+                                 : beam_tangent_rate(model, state, sensor.body, (*sensor.point)[0]))
+                     : (position ? model.coordinate(state, sensor.body, C::Angle)
+                                 : model.velocity(state, sensor.body, C::Angle));
+    return own -
+           (position ? model.coordinate(state, f, C::Angle) : model.velocity(state, f, C::Angle));
+  }
+  Eigen::Vector2d p, v;
+  if (sensor.point) {
+    const mbd::BodyPointSpec point{sensor.body, {(*sensor.point)[0], (*sensor.point)[1]}};
+    p = point_position(model, state, point).head<2>();
+    v = point_velocity(model, state, point).head<2>();
+  } else {
+    p = {model.coordinate(state, sensor.body, C::X), model.coordinate(state, sensor.body, C::Y)};
+    v = {model.velocity(state, sensor.body, C::X), model.velocity(state, sensor.body, C::Y)};
+  }
+  const Eigen::Vector2d r_f(model.coordinate(state, f, C::X), model.coordinate(state, f, C::Y));
+  const Eigen::Vector2d v_f(model.velocity(state, f, C::X), model.velocity(state, f, C::Y));
+  const double omega = model.velocity(state, f, C::Angle);
+  const Eigen::Rotation2Dd back(-model.coordinate(state, f, C::Angle));
+  const Eigen::Vector2d d = p - r_f;
+  const Eigen::Vector2d value =
+      position ? Eigen::Vector2d(back * d)
+               : Eigen::Vector2d(back * (v - v_f - omega * Eigen::Vector2d(-d.y(), d.x())));
+  return value(sensor.component == C::X ? 0 : 1);
+}
+
+}  // namespace
 
 double structure_sensor_value(const mbd::Model& model, const SensorSpec& sensor,
                               const mbd::State& state) {
@@ -31,6 +73,10 @@ double structure_sensor_value(const mbd::Model& model, const SensorSpec& sensor,
       default:
         break;  // energies below; the builder refuses the rest in 3D
     }
+  }
+  if (sensor.frame &&
+      (sensor.type == SensorType::Position || sensor.type == SensorType::Velocity)) {
+    return in_frame(model, sensor, state);
   }
   if (sensor.point && sensor.component == mbd::Coordinate::Angle &&
       (sensor.type == SensorType::Position || sensor.type == SensorType::Velocity)) {

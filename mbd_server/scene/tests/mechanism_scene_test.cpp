@@ -342,6 +342,84 @@ TEST_F(MechanismScene, ChordDeflectionIgnoresTheBeamsRigidMotion) {
       std::string::npos);
 }
 
+// frame: a position or velocity read in the axes of a moving rigid body (a baffle's tip in a
+// rolling tank, a beam's tip in a spinning hub: two users had to rotate the world's values by
+// hand). Checked against the definitions at an arbitrary state: d = p - r_f, R(phi_f)^T d,
+// R^T (v - v_f - omega_f x d), angles less the frame's.
+TEST_F(MechanismScene, ASensorReadsAPointInTheAxesOfAMovingBody) {
+  const std::string scene = R"scene(
+RigidBody2D { name = "tank"; mass = 2; inertia = 0.1; position = [1, 2] }
+RigidBody2D { name = "bob"; mass = 1; inertia = 0.05; position = [1.5, 2.5] }
+AncfBeam2D { name = "rod"; start = [1, 2]; end = [2, 2]; elements = 2; thickness = 0.01
+             axial_stiffness = 1e7; bending_stiffness = 1e3; mass_per_length = 0.5 }
+Sensor { name = "px"; type = "position"; body = "bob"; point = [0.1, 0.2]; component = "x"; frame = "tank" }
+Sensor { name = "py"; type = "position"; body = "bob"; point = [0.1, 0.2]; component = "y"; frame = "tank" }
+Sensor { name = "vx"; type = "velocity"; body = "bob"; point = [0.1, 0.2]; component = "x"; frame = "tank" }
+Sensor { name = "vy"; type = "velocity"; body = "bob"; point = [0.1, 0.2]; component = "y"; frame = "tank" }
+Sensor { name = "turn"; type = "position"; body = "bob"; component = "angle"; frame = "tank" }
+Sensor { name = "spin"; type = "velocity"; body = "bob"; component = "angle"; frame = "tank" }
+Sensor { name = "tip"; type = "position"; body = "rod"; point = [1, 0]; component = "y"; frame = "tank" }
+)scene";
+  const Scene built = build_scene(write(scene), {}, SceneMode::MbdOnly);
+  const mbd::Model& model = built.model;
+  ASSERT_EQ(built.sensors.size(), 7u);
+  mbd::State state = model.initial_state();
+  const mbd::BodyId tank = model.find_body("tank"), bob = model.find_body("bob");
+  using C = mbd::Coordinate;
+  auto set = [&](mbd::BodyId b, C c, double q, double v) {
+    state.q(model.coordinate_index(b, c)) = q;
+    state.v(model.coordinate_index(b, c)) = v;
+  };
+  set(tank, C::X, 0.3, 0.7);
+  set(tank, C::Y, -0.4, -0.2);
+  set(tank, C::Angle, 0.9, 1.3);
+  set(bob, C::X, 1.1, -0.5);
+  set(bob, C::Y, 0.6, 0.4);
+  set(bob, C::Angle, -0.35, 2.1);
+  const Eigen::Vector2d local(0.1, 0.2);
+  const Eigen::Vector2d p = Eigen::Vector2d(1.1, 0.6) + Eigen::Rotation2Dd(-0.35) * local;
+  const Eigen::Vector2d arm = Eigen::Rotation2Dd(-0.35) * local;
+  const Eigen::Vector2d v = Eigen::Vector2d(-0.5, 0.4) + 2.1 * Eigen::Vector2d(-arm.y(), arm.x());
+  const Eigen::Vector2d d = p - Eigen::Vector2d(0.3, -0.4);
+  const Eigen::Vector2d in_tank = Eigen::Rotation2Dd(-0.9) * d;
+  const Eigen::Vector2d rate = Eigen::Rotation2Dd(-0.9) * (v - Eigen::Vector2d(0.7, -0.2) -
+                                                           1.3 * Eigen::Vector2d(-d.y(), d.x()));
+  auto value = [&](int k) { return structure_sensor_value(model, built.sensors[k], state); };
+  EXPECT_NEAR(value(0), in_tank.x(), 1e-14);
+  EXPECT_NEAR(value(1), in_tank.y(), 1e-14);
+  EXPECT_NEAR(value(2), rate.x(), 1e-14);
+  EXPECT_NEAR(value(3), rate.y(), 1e-14);
+  EXPECT_NEAR(value(4), -0.35 - 0.9, 1e-15);
+  EXPECT_NEAR(value(5), 2.1 - 1.3, 1e-15);
+  // The rate is the derivative of the position: a step of 1e-6 s along v.
+  mbd::State later = state;
+  later.q += 1e-6 * state.v;
+  const double moved = structure_sensor_value(model, built.sensors[0], later) - value(0);
+  EXPECT_NEAR(moved / 1e-6, value(2), 1e-5);
+  // A beam's tip (undeformed: on the tank's x axis at the start) in the tank's axes.
+  EXPECT_NEAR(structure_sensor_value(model, built.sensors[6], model.initial_state()), 0.0, 1e-14);
+  // Refused: a beam as frame, a frame on a force sensor, a body's own centre.
+  const std::string wrong = problems(
+      "RigidBody2D { name = \"tank\"; mass = 2; inertia = 0.1; Mesh { points = [[0, 0], [1, 0]] } "
+      "}\n"
+      "AncfBeam2D { name = \"rod\"; start = [0, 0]; end = [1, 0]; elements = 2; thickness = 0.01\n"
+      "  axial_stiffness = 1e7; bending_stiffness = 1e3; mass_per_length = 0.5 }\n"
+      "Sensor { name = \"a\"; type = \"position\"; body = \"tank\"; component = \"x\"; frame = "
+      "\"rod\" }\n"
+      "Sensor { name = \"b\"; type = \"fluid_force\"; body = \"tank\"; component = \"x\"; frame = "
+      "\"tank\" }\n"
+      "Sensor { name = \"c\"; type = \"position\"; body = \"tank\"; component = \"x\"; frame = "
+      "\"tank\" }\n");
+  EXPECT_NE(wrong.find("frame 'rod' is an AncfBeam2D; a frame is a RigidBody2D"), std::string::npos)
+      << wrong;
+  EXPECT_NE(wrong.find("frame is for position and velocity sensors of 2D scenes, not a "
+                       "fluid_force sensor"),
+            std::string::npos)
+      << wrong;
+  EXPECT_NE(wrong.find("a body's centre of mass in its own frame does not move"), std::string::npos)
+      << wrong;
+}
+
 TEST_F(MechanismScene, ABeamClampedToABodyTurnsWithIt) {
   const char* const blade = R"scene(
 AncfBeam2D { name = "blade"; start = [0, 0]; end = [1, 0]; elements = 4; thickness = 0.01

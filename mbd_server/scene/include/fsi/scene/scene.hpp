@@ -198,6 +198,9 @@ struct SensorSpec {
   // BeamClamp's node, a pin's point_a); the torque is about that point.
   std::optional<std::array<double, 2>> beam_point;
   int force_element = -1;  // SpringForce: index among the model's force elements
+  // Planar position, velocity: the components in the axes of this rigid body, from its centre of
+  // mass (an angle relative to its angle) instead of the world's.
+  std::optional<mbd::BodyId> frame;
 };
 
 // The value of a sensor that the multibody state alone determines (every type but
