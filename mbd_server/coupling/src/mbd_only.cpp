@@ -101,10 +101,15 @@ int run_mbd_only(scene::Scene& scene, const MbdOnlyOptions& options) {
   if (exit_status == 0) {
     // The output steps, and what the integrator took to land on them (an error-controlled
     // method's own steps can be many more: a user compares the methods by these).
+    const std::uint64_t split = run.newton.substepped_steps;
     spdlog::info(
         "multibody run completed: {} steps of {:g} s in {:.2f} s ({} integrator steps, {} "
-        "factorisations); results in {}",
+        "factorisations{}); results in {}",
         run.steps, dt, total.seconds(), run.newton.steps, run.newton.factorisations,
+        split == 0 ? std::string()
+                   : fmt::format("; {} of the steps in substeps, their Newton iteration having "
+                                 "failed on the whole step: a smaller step_size may cost no more",
+                                 split),
         options.output_dir);
   }
   return exit_status;

@@ -54,9 +54,10 @@ bool finite(const mbd::State& state) {
 
 int advance_in_substeps(const std::function<void(mbd::State&, double)>& take_step,
                         mbd::State& state, double step_size, int max_substeps,
-                        const std::string& held) {
+                        const std::string& held, std::string* whole_step_failure) {
   const mbd::State start = state;
   std::string tried;
+  if (whole_step_failure) whole_step_failure->clear();
   for (int substeps = 1;; substeps *= 2) {
     try {
       for (int k = 0; k < substeps; ++k)
@@ -64,6 +65,7 @@ int advance_in_substeps(const std::function<void(mbd::State&, double)>& take_ste
       return substeps;
     } catch (const Error& failure) {
       state = start;
+      if (substeps == 1 && whole_step_failure) *whole_step_failure = failure.fault();
       tried += (tried.empty() ? std::string() : std::string(", ")) + std::to_string(substeps);
       if (2 * substeps > max_substeps) {
         throw Error(std::string(failure.fault()) + " (the step failed as " + tried + " substeps" +
@@ -106,16 +108,18 @@ StructureSide::StructureSide(scene::Scene& scene, scene::IntegrationMethod metho
 void StructureSide::integrate_to(double end_time, double step_size) {
   switch (method_) {
     case scene::IntegrationMethod::FixedStep: {
+      std::string why;
+      const double start = state_.time;
       const int substeps = advance_in_substeps(
           [this](mbd::State& state, double h) { integrator_.step(scene_.model, state, h); }, state_,
-          step_size, kMaxStructureSubsteps, held_);
+          step_size, kMaxStructureSubsteps, held_, &why);
       if (substeps > 1) {
         if (substepped_steps_ == 0) {
           spdlog::warn(
               "t = {:.9g} s: the multibody Newton iteration failed on the whole step of {:g} s "
               "and converged in {} substeps of {:g} s{} (later such steps are counted in "
-              "run.json, newton.substepped_steps)",
-              state_.time, step_size, substeps, step_size / substeps, held_);
+              "run.json, newton.substepped_steps); the whole step's failure: {}",
+              start, step_size, substeps, step_size / substeps, held_, why);
         }
         ++substepped_steps_;
       }

@@ -35,11 +35,13 @@ inline constexpr int kMaxStructureSubsteps = 16;
 // `max_substeps`; returns the number of substeps used (1: the step as given). When
 // `max_substeps` substeps fail too, throws the last failure with the substep counts tried
 // (and `held`, what the substeps keep constant: " with the fluid forces held") added, and
-// `state` is the start again.
+// `state` is the start again. `whole_step_failure`, if given, receives why the whole step failed
+// (the fault of its Newton iteration; empty when it did not).
 int advance_in_substeps(const std::function<void(mbd::State&, double)>& take_step,
                         mbd::State& state, double step_size,
                         int max_substeps = kMaxStructureSubsteps,
-                        const std::string& held = " with the fluid forces held");
+                        const std::string& held = " with the fluid forces held",
+                        std::string* whole_step_failure = nullptr);
 
 class StructureSide {
  public:
