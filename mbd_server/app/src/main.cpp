@@ -168,30 +168,34 @@ std::size_t count(const std::vector<fsi::scene::Diagnostic>& diagnostics,
       [&](const fsi::scene::Diagnostic& diagnostic) { return diagnostic.severity == severity; }));
 }
 
+// `above`: the run's own warnings (its step and integrator), printed before the headline; they
+// count among its warnings (a user read "0 warning(s)" under an integrator_damping warning).
 std::string diagnostics_headline(const fsi::scene::Scene& scene,
-                                 const std::vector<fsi::scene::Diagnostic>& diagnostics) {
+                                 const std::vector<fsi::scene::Diagnostic>& diagnostics,
+                                 std::size_t above) {
   return "physics checks of " + scene.file +
          " (thesis §6.2 rules of thumb; docs/user-guide.md, \"Physics checks\"): " +
-         std::to_string(count(diagnostics, fsi::scene::Severity::Warning)) + " warning(s), " +
+         std::to_string(count(diagnostics, fsi::scene::Severity::Warning) + above) + " warning(s)" +
+         (above > 0 ? " (" + std::to_string(above) + " above)" : std::string()) + ", " +
          std::to_string(count(diagnostics, fsi::scene::Severity::Info)) +
          " note(s) (a check skipped, or what a check found worth knowing; each on a line below)";
 }
 
 // --check: every warning and skipped check, on stdout after the summary.
 void print_diagnostics(const fsi::scene::Scene& scene,
-                       const std::vector<fsi::scene::Diagnostic>& diagnostics) {
-  std::printf("%s\n", diagnostics_headline(scene, diagnostics).c_str());
+                       const std::vector<fsi::scene::Diagnostic>& diagnostics, std::size_t above) {
+  std::printf("%s\n", diagnostics_headline(scene, diagnostics, above).c_str());
   for (const fsi::scene::Diagnostic& diagnostic : diagnostics)
     std::printf("  %s\n", diagnostic.text().c_str());
 }
 
 // A run: the same at start-up in the log; warnings at warning level.
 void log_diagnostics(const fsi::scene::Scene& scene,
-                     const std::vector<fsi::scene::Diagnostic>& diagnostics) {
-  if (count(diagnostics, fsi::scene::Severity::Warning) > 0) {
-    spdlog::warn("{}", diagnostics_headline(scene, diagnostics));
+                     const std::vector<fsi::scene::Diagnostic>& diagnostics, std::size_t above) {
+  if (count(diagnostics, fsi::scene::Severity::Warning) + above > 0) {
+    spdlog::warn("{}", diagnostics_headline(scene, diagnostics, above));
   } else {
-    spdlog::info("{}", diagnostics_headline(scene, diagnostics));
+    spdlog::info("{}", diagnostics_headline(scene, diagnostics, above));
   }
   for (const fsi::scene::Diagnostic& diagnostic : diagnostics) {
     if (diagnostic.severity == fsi::scene::Severity::Warning) {
@@ -380,7 +384,7 @@ int print_check(const fsi::scene::Scene& scene, const SceneNotes& notes, const C
   std::printf("%s", fsi::scene::blocks_needed(scene, line.mode()).c_str());
   for (const fsi::scene::Diagnostic& warning : notes.run_warnings)
     std::printf("  %s\n", warning.text().c_str());
-  print_diagnostics(scene, notes.diagnostics);
+  print_diagnostics(scene, notes.diagnostics, notes.run_warnings.size());
   return 0;
 }
 
@@ -501,7 +505,7 @@ int run(fsi::scene::Scene& scene, const CommandLine& line, const SceneNotes& not
     spdlog::info("{}", fluid_line);
   if (const std::string fill = fsi::scene::fluid_box_fill(scene); !fill.empty() && !line.mbd_only)
     spdlog::info("{}", fill);
-  log_diagnostics(scene, notes.diagnostics);
+  log_diagnostics(scene, notes.diagnostics, notes.run_warnings.size());
   if (scene.assembly) {
     for (const std::string& text : scene.assembly->lines())
       spdlog::info("{}", text);
