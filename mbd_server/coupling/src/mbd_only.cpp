@@ -92,6 +92,9 @@ int run_mbd_only(scene::Scene& scene, const MbdOnlyOptions& options) {
       run.newton = structure->statistics();
       run.position_constraint_drift = structure->position_constraint_drift();
       run.velocity_constraint_drift = structure->velocity_constraint_drift();
+      const std::string drift =
+          constraint_drift_warning(run.position_constraint_drift, scene.solver.constraint_form);
+      if (!drift.empty()) spdlog::warn("{}", drift);
     }
     write_run_manifest(options.output_dir, scene, run);
   } catch (const std::exception& failure) {

@@ -138,6 +138,11 @@ class Session {
       fluid_.report_fault(failure, coupling_);
     }
     timings_.total.stop();
+    if (structure_) {
+      const std::string drift = constraint_drift_warning(structure_->position_constraint_drift(),
+                                                         scene_.solver.constraint_form);
+      if (!drift.empty()) spdlog::warn("{}", drift);
+    }
     try {
       if (sensors_) sensors_->flush();
       // A resume that failed before it took the checkpoint's state leaves the earlier run's

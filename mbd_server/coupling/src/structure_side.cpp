@@ -76,6 +76,23 @@ int advance_in_substeps(const std::function<void(mbd::State&, double)>& take_ste
   }
 }
 
+std::string constraint_drift_warning(std::optional<double> drift, mbd::ConstraintForm form) {
+  if (!drift || !(*drift > kConstraintDriftWarning)) return {};
+  char text[160];
+  std::snprintf(text, sizeof text,
+                "the position constraints ended %.3g off (m or rad; more than %g): the joints "
+                "and drives did not hold",
+                *drift, kConstraintDriftWarning);
+  return std::string(text) +
+         (form == mbd::ConstraintForm::Index2
+              ? "; with constraint_form = \"index2\" the positions follow the rates, so a "
+                "drive whose rate is not the derivative of its position, or a long run, carries "
+                "them off: check the rates, or use constraint_form = \"index3\" "
+                "(docs/theory.md, \"Index-2 form of the constraints\")"
+              : "; check the Newton tolerance (SolverOptions.Newton.relative_tolerance) and "
+                "the step size");
+}
+
 StructureSide::StructureSide(scene::Scene& scene, scene::IntegrationMethod method, bool coupled)
     : scene_(scene),
       method_(method),

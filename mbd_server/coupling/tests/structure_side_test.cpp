@@ -91,6 +91,37 @@ TEST(StructureSubsteps, AStepThatFailsWholeIsTakenAgainInHalvedSubstepsFromTheSa
   EXPECT_NEAR(state.q(0), 2.0 + 3.0 * 1e-5, 1e-15);
 }
 
+TEST(StructureSubsteps, TheWholeStepsFailureIsHandedBack) {
+  FakeStep fake{.longest = 0.6e-5, .asked = {}};
+  mbd::State state = moving_start();
+  std::string why = "stale";
+  EXPECT_EQ(advance_in_substeps([&](mbd::State& s, double h) { fake(s, h); }, state, 1e-5,
+                                kMaxStructureSubsteps, "", &why),
+            2);
+  EXPECT_EQ(why, "Newton iterations of Radau IIA (3 stages) failed");
+  FakeStep whole{.longest = 1.0, .asked = {}};
+  EXPECT_EQ(advance_in_substeps([&](mbd::State& s, double h) { whole(s, h); }, state, 1e-5,
+                                kMaxStructureSubsteps, "", &why),
+            1);
+  EXPECT_EQ(why, "");
+}
+
+// A run whose joints and drives ended off is told so (a user's index-2 spin-up ended 0.11 rad
+// off its prescribed angle in silence); round-off and index 2's small drift are not.
+TEST(ConstraintDrift, ARunWhoseConstraintsEndedOffIsWarned) {
+  EXPECT_EQ(constraint_drift_warning(std::nullopt, mbd::ConstraintForm::Index3), "");
+  EXPECT_EQ(constraint_drift_warning(5.1e-10, mbd::ConstraintForm::Index2), "");
+  const std::string index2 = constraint_drift_warning(0.1099, mbd::ConstraintForm::Index2);
+  EXPECT_NE(index2.find("the position constraints ended 0.11 off (m or rad; more than 1e-06)"),
+            std::string::npos)
+      << index2;
+  EXPECT_NE(index2.find("a drive whose rate is not the derivative of its position"),
+            std::string::npos)
+      << index2;
+  const std::string index3 = constraint_drift_warning(2e-5, mbd::ConstraintForm::Index3);
+  EXPECT_NE(index3.find("check the Newton tolerance"), std::string::npos) << index3;
+}
+
 TEST(StructureSubsteps, AWholeStepThatConvergesIsTakenAsItIs) {
   FakeStep fake{.longest = 1.0, .asked = {}};
   mbd::State state = moving_start();
