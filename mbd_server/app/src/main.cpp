@@ -342,7 +342,12 @@ int write_parameter_doc(const std::string& path) {
          "A scene states the language version it is written for as its first entry (comments may "
          "stand above it): `scene_language = 1`. A file for a newer version is refused before "
          "the rest is read; a scene without the line is an error that names the line to add "
-         "(docs/user-guide.md, \"Scene language versions\").\n"
+         "(docs/user-guide.md, \"Scene language versions\").\n\n"
+         "Units of 2D scenes are per metre of depth (kg/m, N/m, J/m; a beam's mass per length "
+         "kg/m^2, its bending stiffness N m): a 2D scene is a slice 1 m deep, because the "
+         "fluid's forces are. A mechanism without fluid (--mbd-only) is the same slice: give its "
+         "real values as they are (a rod's rho A in kg/m, EI in N m^2, EA in N) and read the "
+         "outputs as real N and J (docs/user-guide.md, \"Units of a 2D scene\").\n"
       << fsi::scene::render_markdown(fsi::scene::scene_schema());
   return out ? 0 : 1;
 }

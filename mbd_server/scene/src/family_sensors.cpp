@@ -79,7 +79,9 @@ std::vector<BlockSpec> sensor_blocks() {
                                 "position, velocity: a point of the body instead of its centre of "
                                 "mass (body coordinates; [s, eta] on an AncfBeam2D, where "
                                 "component angle reads the cross-section's angle, the centre "
-                                "line's tangent at s; 3D: [x, y, z], [s, 0, 0] on a cable)"))
+                                "line's tangent at s, in (-pi, pi] (a rigid body's angle runs "
+                                "on: unwrap a spinning beam's column, numpy.unwrap); 3D: "
+                                "[x, y, z], [s, 0, 0] on a cable)"))
                .optional(),
            text("frame",
                 "position, velocity (2D): the name of a RigidBody2D whose axes the components "
