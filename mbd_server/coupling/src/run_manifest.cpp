@@ -186,6 +186,18 @@ json health_entry(const RunRecord& record) {
 json energy_audit_entry(const std::optional<EnergyAuditSummary>& audit) {
   if (!audit) return nullptr;
   const EnergyTotals& totals = audit->totals;
+  json bodies = json::array();
+  for (const EnergyAudit::Part& part : audit->bodies) {
+    bodies.push_back(
+        {{"name", part.name},
+         {"work_fluid_on_structure", part.totals.work_fluid_on_structure},
+         {"work_structure_on_fluid", part.totals.work_structure_on_fluid},
+         {"coupling_energy", part.totals.coupling_energy},
+         {"max_coupling_energy", part.totals.max_coupling_energy},
+         {"traffic", part.totals.traffic},
+         {"max_coupling_fraction", part.totals.max_coupling_fraction},
+         {"injection_warning_step", part.warned_at ? json(*part.warned_at) : json(nullptr)}});
+  }
   return {{"work_fluid_on_structure", totals.work_fluid_on_structure},
           {"work_structure_on_fluid", totals.work_structure_on_fluid},
           {"coupling_energy", totals.coupling_energy},
@@ -194,7 +206,8 @@ json energy_audit_entry(const std::optional<EnergyAuditSummary>& audit) {
           {"exchanges", totals.exchanges},
           {"max_coupling_fraction", totals.max_coupling_fraction},
           {"injection_warning_step", audit->warned_at ? json(*audit->warned_at) : json(nullptr)},
-          {"stop_step", audit->stopped_at ? json(*audit->stopped_at) : json(nullptr)}};
+          {"stop_step", audit->stopped_at ? json(*audit->stopped_at) : json(nullptr)},
+          {"bodies", bodies}};
 }
 
 json release_entry(const std::optional<ReleaseCheck>& release) {

@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <limits>
+#include <map>
 #include <optional>
 #include <thread>
 
@@ -110,6 +111,7 @@ class Session {
         progress_logger_(spdlog::get("progress") ? spdlog::get("progress")
                                                  : spdlog::default_logger()) {
     watch_.record.speed_of_sound = scene::speed_of_sound(scene);
+    audit_by_body();
   }
 
   int run() {
@@ -514,6 +516,25 @@ class Session {
     audit(motion, forces, n, dt,
           n % static_cast<std::uint64_t>(scene_.output.sensor_every_steps) == 0);
     steps_done_ = n;
+  }
+
+  // Each body's books of the energy audit (EnergyAudit::set_parts): the body of every dynamic
+  // vertex's values.
+  void audit_by_body() {
+    const scene::BoundaryMesh& boundary = scene_.boundary;
+    const auto dimension = static_cast<std::size_t>(scene_.dimension);
+    std::map<mbd::BodyId, std::uint32_t> part_of_body;
+    std::vector<std::string> names;
+    std::vector<std::uint32_t> part_of_value;
+    part_of_value.reserve(dimension * boundary.dynamic_vertex_count);
+    for (std::size_t v = 0; v < boundary.dynamic_vertex_count; ++v) {
+      const mbd::BodyId body = scene_.model.marker_body(static_cast<int>(v));
+      auto [found, added] =
+          part_of_body.emplace(body, static_cast<std::uint32_t>(part_of_body.size()));
+      if (added) names.push_back("body '" + scene_.model.body_name(body) + "'");
+      part_of_value.insert(part_of_value.end(), dimension, found->second);
+    }
+    audit_.set_parts(std::move(part_of_value), std::move(names));
   }
 
   // The energy audit of this exchange (energy_audit.hpp); its totals go to energy.csv at the
@@ -969,8 +990,8 @@ class Session {
     run.health =
         HealthSummary{health_.record(), health_.limits(), health_.allowed_lost_particles()};
     if (coupling_) {
-      run.energy_audit =
-          EnergyAuditSummary{audit_.totals(), audit_.warned_at(), audit_.stopped_at()};
+      run.energy_audit = EnergyAuditSummary{audit_.totals(), audit_.warned_at(),
+                                            audit_.stopped_at(), audit_.parts()};
     }
     run.fluid->peer = fluid_.peer();
     run.checkpoints = CheckpointRecord{scene_.output.checkpoint_every_steps,

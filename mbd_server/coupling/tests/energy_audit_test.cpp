@@ -239,6 +239,55 @@ TEST(EnergyAudit, APredictedForceIsTheStructuresWorkAndTheDifferenceIsCreated) {
                Error);
 }
 
+// A driven wall moving much water (large traffic, its own books balanced) and a light flap
+// beside it whose coupling energy grows geometrically: on the whole's books the flap's energy is
+// a few per cent of the traffic (a user's baffle in a rolling tank ran to its end unwarned); on
+// its own books it is all of its traffic, warned and stopped, by name.
+TEST(EnergyAudit, EachBodyIsJudgedOnItsOwnBooks) {
+  const double dt = 1e-3, omega = 5.0, wall_force = 1e3;
+  auto run = [&](bool by_body) {
+    EnergyAudit audit(3.0);
+    if (by_body) audit.set_parts({0, 1}, {"body 'tank'", "body 'flap'"});
+    double flap = 0.0, flap_force = 0.0;
+    audit.start(std::vector<double>{0.0, 0.0}, std::vector<double>{omega * 0.1, 0.0},
+                std::vector<double>{wall_force, 0.0});
+    std::uint64_t n = 1;
+    for (; n <= 3000; ++n) {
+      const double t = dt * static_cast<double>(n);
+      // The flap creates energy: it moves by a growing step under a force that follows it,
+      // while it tells the fluid it stands still.
+      const double step = 1e-7 * std::exp(2.5 * t);
+      flap += step;
+      flap_force = step * 1e3;
+      audit.exchange(std::vector<double>{0.1 * std::sin(omega * t), flap},
+                     std::vector<double>{0.1 * omega * std::cos(omega * t), 0.0}, dt,
+                     std::vector<double>{wall_force, flap_force}, n);
+      if (!audit.stop().empty()) break;
+    }
+    return std::make_pair(std::move(audit), n);
+  };
+  const auto [whole, whole_steps] = run(false);
+  EXPECT_TRUE(whole.stop().empty()) << whole.stop();
+  EXPECT_FALSE(whole.warned_at().has_value());
+  EXPECT_LT(whole.totals().max_coupling_fraction, 0.1);
+  auto [bodies, stopped_step] = run(true);
+  ASSERT_FALSE(bodies.stop().empty());
+  EXPECT_NE(bodies.stop().find("the coupling keeps creating energy at body 'flap'"),
+            std::string::npos)
+      << bodies.stop();
+  EXPECT_LT(stopped_step, 3000u);
+  EXPECT_NE(bodies.take_warning().find("the coupling has created energy at body 'flap'"),
+            std::string::npos);
+  ASSERT_EQ(bodies.parts().size(), 2u);
+  EXPECT_EQ(bodies.parts()[1].name, "body 'flap'");
+  EXPECT_GT(bodies.parts()[1].totals.max_coupling_fraction, 0.1);
+  EXPECT_LT(bodies.parts()[0].totals.max_coupling_fraction, 0.1);
+  EXPECT_FALSE(bodies.parts()[0].warned_at.has_value());
+  // The books add up to the whole's.
+  EXPECT_NEAR(bodies.parts()[0].totals.coupling_energy + bodies.parts()[1].totals.coupling_energy,
+              bodies.totals().coupling_energy, 1e-12 * bodies.totals().traffic);
+}
+
 TEST(EnergyAudit, MismatchedSizesAreABug) {
   EnergyAudit audit;
   const std::vector<double> two(2, 0.0);

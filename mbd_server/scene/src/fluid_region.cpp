@@ -230,12 +230,16 @@ PolygonFault ring_fault(const std::vector<Point2>& ring, const std::string& name
       return {name + " has a non-finite vertex", "check the expressions of the vertices"};
   }
   if (signed_area(ring) == 0.0) return {name + " encloses no area", kInOrder};
+  // Edges may touch (a vertex on another edge) and overlap along a line, never cross: water on
+  // both sides of a baffle that reaches the surface is one polygon notched up to the surface,
+  // its notch's top lying on the surface's edge (a user's rolling tank, 2026-12-06, was refused
+  // as crossing). The even-odd fill leaves the notch empty.
   const std::size_t n = ring.size();
   for (std::size_t i = 0; i < n; ++i) {
     for (std::size_t j = i + 1; j < n; ++j) {
       const bool neighbours = j == i + 1 || (i == 0 && j == n - 1);
       if (neighbours) continue;
-      if (segments_meet(ring[i], ring[(i + 1) % n], ring[j], ring[(j + 1) % n])) {
+      if (segments_cross(ring[i], ring[(i + 1) % n], ring[j], ring[(j + 1) % n])) {
         return {name + ": edges " + edge_name(i, n) + " and " + edge_name(j, n) +
                     " cross (the polygon must not intersect itself)",
                 kInOrder};

@@ -181,6 +181,28 @@ TEST(FluidRegion, BadPolygonsAreExplained) {
             std::string::npos);
 }
 
+// Water on both sides of a baffle reaching the surface: one polygon notched up to the surface,
+// the notch's top on the surface's edge (touching, not crossing; a user's rolling tank was
+// refused as "edges 1-2 and 6-7 cross"). Both sides fill, the notch stays empty.
+TEST(FluidRegion, APolygonMayTouchItselfAndFillsBothSides) {
+  const Polygon notched{
+      {{-1, 0}, {-0.1, 0}, {-0.1, 1}, {0.1, 1}, {0.1, 0}, {1, 0}, {1, 1}, {-1, 1}}, {}};
+  EXPECT_EQ(polygon_problem(notched), "");
+  const std::vector<double> points = fill_polygon(notched, lattice(0.05));
+  std::size_t left = 0, right = 0, notch = 0;
+  for (std::size_t k = 0; k + 1 < points.size(); k += 2) {
+    const double x = points[k];
+    if (x < -0.1) ++left;
+    if (x > 0.1) ++right;
+    if (std::abs(x) < 0.1) ++notch;
+  }
+  EXPECT_EQ(left, 18u * 20u);
+  EXPECT_EQ(right, 18u * 20u);
+  EXPECT_EQ(notch, 0u);
+  // A vertex on another edge (a pinch) is a touch as well.
+  EXPECT_EQ(polygon_problem({{{0, 0}, {2, 0}, {1, 1}, {2, 2}, {0, 2}, {1, 1}}, {}}), "");
+}
+
 TEST(FluidRegion, AHoleCrossingTheOutlineIsNamedAsSuch) {
   // A hole poking out of the unit square through its right edge (vertex 1 outside).
   const Polygon poking{{{0, 0}, {1, 0}, {1, 1}, {0, 1}}, {{{0.5, 0.5}, {1.5, 0.5}, {0.5, 0.7}}}};

@@ -13,8 +13,8 @@ namespace fsi::coupling {
 
 struct MbdOnlyOptions {
   std::string output_dir;
-  std::string command_line;           // recorded in run.json
-  std::vector<std::string> warnings;  // recorded in run.json
+  std::string command_line;            // recorded in run.json
+  std::vector<std::string> warnings;   // recorded in run.json
   std::vector<std::string> overrides;  // --set KEY=EXPR, recorded in run.json (scene.overrides)
 };
 

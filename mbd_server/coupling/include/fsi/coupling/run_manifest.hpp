@@ -69,6 +69,7 @@ struct EnergyAuditSummary {
   EnergyTotals totals;
   std::optional<std::uint64_t> warned_at;   // the step of the injection warning, if any
   std::optional<std::uint64_t> stopped_at;  // the step whose coupling energy stopped the run
+  std::vector<EnergyAudit::Part> bodies;    // each body's books (two bodies or more)
 };
 
 // A resume of the run (fsi-server --resume): when, and from which checkpoint.
