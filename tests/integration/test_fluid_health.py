@@ -80,11 +80,19 @@ check(health["steps_checked"] == run_json["steps"] + 1,
 # stops at 3 % long before the fluid produces NaN (without the check it loses 1 156 of 1 159
 # particles at speeds of 1e5 c and says completed).
 run_json = stopped("large_step", ["SolverOptions.Timeint.step_size=1e-4", "LIGGGHTS.equilibration_steps=0",
-                                  "SolverOptions.end_time=0.05"], "density_deviation",
+                                  "SolverOptions.end_time=0.05", "Output.snapshot_every_steps=1000"],
+                   "density_deviation",
                    ["exceeds FluidHealth.max_density_deviation = 0.03",
                     "dt c / h = 0.5 exceeds the 0.125 measured stable: reduce SolverOptions.Timeint.step_size "
                     "from 0.0001 s to at most 2.5e-05 s"])
 check(0 < run_json["steps"] < 500, f"large_step: stopped at step {run_json['steps'] + 1} of 500")
+# The stopping step's fluid is kept and its extreme particle named (a user reran with snapshots
+# every 100 steps to find it).
+stop_step = run_json["steps"] + 1
+stop_snapshot = os.path.join(output, "large_step", "snapshots", f"particles_{stop_step:09d}.csv")
+check("the particle of the extreme density at this step: id " in (run_json["reason"] or "")
+      and os.path.exists(stop_snapshot),
+      f"large_step: the reason names the extreme particle and snapshots/particles_{stop_step:09d}.csv holds the fluid")
 
 # k = 50 instead of 10 rho0 g H = 12 753: the column sinks through the floor in the equilibration.
 stopped("soft_wall", ["LIGGGHTS_SPH_parameters.SPH_wall_rep=50"],

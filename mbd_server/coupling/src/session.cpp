@@ -377,10 +377,55 @@ class Session {
     for (const HealthFinding& warning : verdict.warnings)
       spdlog::warn("fluid health ({}): {}; {}", warning.check, warning.message, warning.fix);
     if (verdict.stop) {
-      throw Error(
-          "fluid health check '" + verdict.stop->check + "' failed: " + verdict.stop->message,
-          "step " + std::to_string(step), verdict.stop->fix);
+      throw Error("fluid health check '" + verdict.stop->check +
+                      "' failed: " + verdict.stop->message + snapshot_at_stop(step),
+                  "step " + std::to_string(step), verdict.stop->fix);
     }
+  }
+
+  // A run stopped by a health check keeps the fluid of its stopping step (when the scene writes
+  // snapshots at all) and names the particle of the extreme density in it: a user had to rerun
+  // with snapshots every 100 steps to find it, and still saw it 98 steps early. The fluid has
+  // answered this step's exchange, so it can still be asked.
+  std::string snapshot_at_stop(std::uint64_t step) {
+    if (scene_.output.snapshot_every_steps == 0 || !vtk_) return {};
+    ParticleSnapshot snapshot;
+    try {
+      snapshot = fluid_.snapshot(step);
+      char name[64];
+      std::snprintf(name, sizeof name, "particles_%09llu.csv",
+                    static_cast<unsigned long long>(step));
+      write_snapshot_csv((fs::path(options_.output_dir) / "snapshots" / name).string(), snapshot);
+      vtk_->write(snapshot, scene_.model, structure_->state(), scene_.boundary,
+                  structure_->vertex_loads());
+      ++snapshots_;
+    } catch (const std::exception& failure) {
+      spdlog::warn("no snapshot of the stopping step: {}", failure.what());
+      return {};
+    }
+    const double rho0 = scene_.fluid.density;
+    const auto dimension = static_cast<std::size_t>(snapshot.dimension);
+    std::size_t worst = snapshot.density.size();
+    double deviation = -1.0;
+    for (std::size_t i = 0; i < snapshot.density.size(); ++i) {
+      const double d = std::abs(snapshot.density[i] / rho0 - 1.0);
+      if (!std::isfinite(d) || d > deviation) {
+        worst = i;
+        deviation = std::isfinite(d) ? d : std::numeric_limits<double>::infinity();
+      }
+      if (!std::isfinite(d)) break;
+    }
+    if (worst >= snapshot.density.size() || dimension * (worst + 1) > snapshot.positions.size())
+      return {};
+    std::string where = "(";
+    for (std::size_t k = 0; k < dimension; ++k)
+      where += (k ? ", " : "") + fmt::format("{:.6g}", snapshot.positions[dimension * worst + k]);
+    where += ")";
+    return fmt::format(
+        "; the particle of the extreme density at this step: id {} at {} m, rho = {:.6g} kg/m^3 "
+        "(snapshots/particles_{:09d}.csv holds the fluid of this step)",
+        worst < snapshot.ids.size() ? snapshot.ids[worst] : 0, where, snapshot.density[worst],
+        step);
   }
 
   void couple() {
