@@ -139,7 +139,6 @@ void EnergyAudit::judge(EnergyTotals& books, std::optional<std::uint64_t>& warne
   if (!warned_at && fraction > kInjectionWarningFraction) {
     warned_at = step;
     energy_at_warning = books.coupling_energy;
-    if (!warned_at_) warned_at_ = step;  // the run's first warning
     if (pending_.empty()) {
       pending_ = "the coupling has created energy" + at + ": " + text() + " (more than " +
                  number(100.0 * kInjectionWarningFraction) +

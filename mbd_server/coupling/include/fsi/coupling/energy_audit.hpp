@@ -117,8 +117,14 @@ class EnergyAudit {
   // the largest exchanged work (and more than round-off): what it means and what to change.
   // Empty otherwise, and after it was returned once.
   std::string take_warning();
-  // The step at which the warning fired, if it did.
-  std::optional<std::uint64_t> warned_at() const { return warned_at_; }
+  // The step at which the first warning fired (the whole's or a body's), if one did.
+  std::optional<std::uint64_t> warned_at() const {
+    std::optional<std::uint64_t> first = warned_at_;
+    for (const Part& part : parts_) {
+      if (part.warned_at && (!first || *part.warned_at < *first)) first = part.warned_at;
+    }
+    return first;
+  }
   // The diagnosis that ends the run, once the coupling energy has outgrown the stop growth
   // (what happened and what it means; remedy() says what to change); empty while it has not.
   const std::string& stop() const { return stop_; }
