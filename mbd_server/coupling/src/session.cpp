@@ -573,7 +573,8 @@ class Session {
     std::vector<std::uint32_t> part_of_value;
     part_of_value.reserve(dimension * boundary.dynamic_vertex_count);
     for (std::size_t v = 0; v < boundary.dynamic_vertex_count; ++v) {
-      const mbd::BodyId body = scene_.model.marker_body(static_cast<int>(v));
+      const mbd::BodyId body =
+          scene::vertex_body(boundary, scene_.model, static_cast<std::uint32_t>(v));
       auto [found, added] =
           part_of_body.emplace(body, static_cast<std::uint32_t>(part_of_body.size()));
       if (added) names.push_back("body '" + scene_.model.body_name(body) + "'");

@@ -1,6 +1,8 @@
-// Where the boundary vertices are: the model's markers, then the static 3D ground.
+// Where the boundary vertices are (the model's markers, then the static 3D ground) and which
+// body carries each.
 
 #include <algorithm>
+#include <map>
 
 #include "fsi/common/error.hpp"
 #include "fsi/mbd/readouts.hpp"
@@ -30,6 +32,26 @@ void boundary_state(const BoundaryMesh& boundary, const mbd::Model& model, const
              "3D boundary vertices do not add up");
   std::copy(boundary.static_positions.begin(), boundary.static_positions.end(),
             positions.begin() + static_cast<std::ptrdiff_t>(dynamic));
+}
+
+mbd::BodyId vertex_body(const BoundaryMesh& boundary, const mbd::Model& model, std::uint32_t v) {
+  return v < boundary.dynamic_vertex_count ? model.marker_body(static_cast<int>(v)) : mbd::kGround;
+}
+
+std::vector<BodyElements> elements_by_body(const BoundaryMesh& boundary, const mbd::Model& model) {
+  const auto corners = static_cast<std::size_t>(boundary.dimension);
+  const std::vector<std::uint32_t>& elements = boundary.elements();
+  std::vector<BodyElements> parts;
+  std::map<mbd::BodyId, std::size_t> part_of_body;
+  for (std::size_t e = 0; e + corners <= elements.size(); e += corners) {
+    const mbd::BodyId body = vertex_body(boundary, model, elements[e]);
+    auto [found, added] = part_of_body.emplace(body, parts.size());
+    if (added) parts.push_back({body, {}});
+    auto& part = parts[found->second].elements;
+    part.insert(part.end(), elements.begin() + static_cast<std::ptrdiff_t>(e),
+                elements.begin() + static_cast<std::ptrdiff_t>(e + corners));
+  }
+  return parts;
 }
 
 }  // namespace fsi::scene

@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cstdio>
 #include <limits>
-#include <map>
 
 #include "distances.hpp"
 #include "fsi/common/error.hpp"
@@ -163,21 +162,10 @@ bool elements_pass_through(int dimension, const CrossingWatch::Part& a, std::siz
 
 CrossingWatch::CrossingWatch(const Scene& scene, const mbd::State& start) : scene_(scene) {
   const BoundaryMesh& boundary = scene.boundary;
-  const int corners = boundary.dimension;
-  std::map<mbd::BodyId, std::size_t> part_of_body;
-  const auto& elements = boundary.elements();
-  for (std::size_t e = 0; e + corners <= elements.size(); e += corners) {
-    const std::uint32_t first = elements[e];
-    const mbd::BodyId body = first < boundary.dynamic_vertex_count
-                                 ? scene.model.marker_body(static_cast<int>(first))
-                                 : mbd::kGround;
-    auto [found, added] = part_of_body.emplace(body, parts_.size());
-    if (added) {
-      parts_.push_back({body, body == mbd::kGround ? "ground" : scene.model.body_name(body), {}});
-    }
-    auto& part = parts_[found->second].elements;
-    part.insert(part.end(), elements.begin() + static_cast<std::ptrdiff_t>(e),
-                elements.begin() + static_cast<std::ptrdiff_t>(e + corners));
+  for (BodyElements& part : elements_by_body(boundary, scene.model)) {
+    parts_.push_back({part.body,
+                      part.body == mbd::kGround ? "ground" : scene.model.body_name(part.body),
+                      std::move(part.elements)});
   }
   std::vector<double> positions, velocities;
   boundary_state(boundary, scene.model, start, positions, velocities);

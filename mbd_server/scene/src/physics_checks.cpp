@@ -758,20 +758,13 @@ std::vector<WorldMesh> world_meshes(const Scene& scene) {
   } catch (const std::exception&) {
     return meshes;  // a model that cannot start is reported by the scene itself
   }
-  std::map<mbd::BodyId, std::size_t> part_of_body;
   auto vertex = [&](std::uint32_t k) { return Point(positions[2 * k], positions[2 * k + 1]); };
-  for (std::size_t e = 0; e + 1 < boundary.segments.size(); e += 2) {
-    const std::uint32_t first = boundary.segments[e];
-    const mbd::BodyId body = first < boundary.dynamic_vertex_count
-                                 ? scene.model.marker_body(static_cast<int>(first))
-                                 : mbd::kGround;
-    auto [found, added] = part_of_body.emplace(body, meshes.size());
-    if (added) {
-      meshes.push_back({body == mbd::kGround ? std::string("the ground")
-                                             : "body '" + scene.model.body_name(body) + "'",
-                        {}});
-    }
-    meshes[found->second].segments.emplace_back(vertex(first), vertex(boundary.segments[e + 1]));
+  for (const BodyElements& part : elements_by_body(boundary, scene.model)) {
+    WorldMesh& mesh = meshes.emplace_back();
+    mesh.owner = part.body == mbd::kGround ? std::string("the ground")
+                                           : "body '" + scene.model.body_name(part.body) + "'";
+    for (std::size_t e = 0; e + 1 < part.elements.size(); e += 2)
+      mesh.segments.emplace_back(vertex(part.elements[e]), vertex(part.elements[e + 1]));
   }
   return meshes;
 }

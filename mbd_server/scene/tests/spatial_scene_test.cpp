@@ -90,6 +90,20 @@ TEST_F(SpatialScene, EveryBlockBuildsTheModelMeshesAndSensors) {
   EXPECT_NEAR(std::hypot(dx, dy), 0.01, 1e-12);
   EXPECT_NEAR(positions[3 * (8 + tube + 7) + 2], -2.0, 1e-12);
 
+  // Each element belongs to the body of its vertices: the lid's 12 triangles, the rope's tube,
+  // the ground's box, in the order they come.
+  const std::vector<BodyElements> parts = elements_by_body(scene.boundary, model);
+  ASSERT_EQ(parts.size(), 3u);
+  EXPECT_EQ(model.body_name(parts[0].body), "lid");
+  EXPECT_EQ(parts[0].elements.size(), 3u * 12);
+  EXPECT_EQ(model.body_name(parts[1].body), "rope");
+  EXPECT_EQ(parts[1].elements.size(), 3u * (2 * 4 * 6 + 2 * 6));
+  EXPECT_EQ(parts[2].body, mbd::kGround);
+  EXPECT_EQ(parts[2].elements.size(), 3u * 12);
+  for (std::size_t k = 0; k < parts[1].elements.size(); ++k)
+    EXPECT_EQ(vertex_body(scene.boundary, model, parts[1].elements[k]), parts[1].body);
+  EXPECT_EQ(vertex_body(scene.boundary, model, static_cast<std::uint32_t>(8 + tube)), mbd::kGround);
+
   ASSERT_EQ(scene.sensors.size(), 5u);
   EXPECT_EQ(scene.sensors[0].unit, "m");
   EXPECT_NEAR(structure_sensor_value(model, scene.sensors[0], state), 0.0, 1e-15);

@@ -104,6 +104,20 @@ struct BoundaryMesh {
 void boundary_state(const BoundaryMesh& boundary, const mbd::Model& model, const mbd::State& state,
                     std::vector<double>& positions, std::vector<double>& velocities);
 
+// The body carrying boundary vertex `v`: its marker's body for a dynamic vertex, the ground for
+// a static one.
+mbd::BodyId vertex_body(const BoundaryMesh& boundary, const mbd::Model& model, std::uint32_t v);
+
+// The boundary's elements (segments in 2D, triangles in 3D) grouped by the body carrying each
+// (its first vertex's), the bodies in the order their first element comes: the one place that
+// says which body an element belongs to (the crossing watch, the fluid-overlap check and the
+// energy audit's books all ask it).
+struct BodyElements {
+  mbd::BodyId body = mbd::kGround;
+  std::vector<std::uint32_t> elements;  // dimension vertex indices each, as in BoundaryMesh
+};
+std::vector<BodyElements> elements_by_body(const BoundaryMesh& boundary, const mbd::Model& model);
+
 // A probe that moves with a rigid body: its index in Scene::probes and its body.
 struct AttachedProbe {
   std::size_t probe = 0;
