@@ -274,7 +274,8 @@ class Inputs {
     }
     const auto dimension = static_cast<std::size_t>(scene_.fluid.dimension);
     Eigen::Vector3d extent = Eigen::Vector3d::Zero();
-    if (const Parameter* lower = root_.lookup("FluidRegion.lower")) {
+    const Parameter* lower = root_.lookup("FluidRegion.lower");
+    if (lower && root_.children("FluidRegion").size() == 1) {
       const auto& upper = root_.lookup("FluidRegion.upper")->value.vector;
       for (std::size_t k = 0; k < dimension; ++k)
         extent[static_cast<Eigen::Index>(k)] = upper.at(k) - lower->value.vector.at(k);
@@ -557,9 +558,10 @@ FlowSpeed prescribed_speed(const Scene& scene) {
       fastest = {speed, "VelocityConstraint on " + body_name + "." + coordinate};
     }
   }
-  if (root.has_block("FluidRegion")) {
-    const auto velocity = root.block("FluidRegion").vector("velocity");
-    const double speed = std::hypot(velocity.at(0), velocity.at(1));
+  for (const View& region : root.blocks("FluidRegion")) {
+    double speed = 0.0;
+    for (double component : region.vector("velocity"))
+      speed = std::hypot(speed, component);
     if (speed > fastest.value) fastest = {speed, "initial velocity of the FluidRegion"};
   }
   return fastest;
@@ -779,37 +781,45 @@ struct FluidOutline {
   SourceLocation where;
 };
 
-std::optional<FluidOutline> fluid_outline(const Scene& scene, const Inputs& in) {
-  const View region = View(scene.parameters, scene_schema()).block("FluidRegion");
-  const std::string shape = region.string("shape");
-  if (shape == "box") {
-    const auto lower = region.vector("lower");
-    const auto upper = region.vector("upper");
-    return FluidOutline{{{{lower.at(0), lower.at(1)},
-                          {upper.at(0), lower.at(1)},
-                          {upper.at(0), upper.at(1)},
-                          {lower.at(0), upper.at(1)}},
-                         {}},
-                        "fluid box",
-                        " " + point_text(Point(lower.at(0), lower.at(1))) + "-" +
-                            point_text(Point(upper.at(0), upper.at(1))),
-                        "FluidRegion.lower/upper",
-                        in.where("FluidRegion.lower")};
+// Every box or polygon FluidRegion's outline (an STL region has none here).
+std::vector<FluidOutline> fluid_outlines(const Scene& scene) {
+  const std::vector<View> regions = View(scene.parameters, scene_schema()).blocks("FluidRegion");
+  std::vector<FluidOutline> outlines;
+  for (std::size_t n = 0; n < regions.size(); ++n) {
+    const View& region = regions[n];
+    const std::string which = regions.size() > 1 ? "[" + std::to_string(n) + "]" : "";
+    const std::string shape = region.string("shape");
+    if (shape == "box") {
+      const auto lower = region.vector("lower");
+      const auto upper = region.vector("upper");
+      outlines.push_back({{{{lower.at(0), lower.at(1)},
+                            {upper.at(0), lower.at(1)},
+                            {upper.at(0), upper.at(1)},
+                            {lower.at(0), upper.at(1)}},
+                           {}},
+                          "fluid box",
+                          " " + point_text(Point(lower.at(0), lower.at(1))) + "-" +
+                              point_text(Point(upper.at(0), upper.at(1))),
+                          "FluidRegion" + which + ".lower/upper",
+                          region.location("lower")});
+      continue;
+    }
+    if (shape != "polygon") continue;
+    FluidOutline outline{{},
+                         "fluid polygon",
+                         which.empty() ? "" : " FluidRegion" + which,
+                         "FluidRegion" + which + ".points (or a Hole's points)",
+                         region.location("points")};
+    for (const auto& row : region.matrix("points"))
+      outline.region.outer.push_back({row.at(0), row.at(1)});
+    for (const View& hole : region.blocks("Hole")) {
+      outline.region.holes.emplace_back();
+      for (const auto& row : hole.matrix("points"))
+        outline.region.holes.back().push_back({row.at(0), row.at(1)});
+    }
+    outlines.push_back(std::move(outline));
   }
-  if (shape != "polygon") return std::nullopt;
-  FluidOutline outline{{},
-                       "fluid polygon",
-                       "",
-                       "FluidRegion.points (or a Hole's points)",
-                       in.where("FluidRegion.points")};
-  for (const auto& row : region.matrix("points"))
-    outline.region.outer.push_back({row.at(0), row.at(1)});
-  for (const View& hole : region.blocks("Hole")) {
-    outline.region.holes.emplace_back();
-    for (const auto& row : hole.matrix("points"))
-      outline.region.holes.back().push_back({row.at(0), row.at(1)});
-  }
-  return outline;
+  return outlines;
 }
 
 // With the true-shape wall the region is the water itself and may touch the meshes; its lattice
@@ -847,6 +857,44 @@ void check_true_shape_start(const Scene& scene, const Inputs& in, Report& report
   }
 }
 
+void check_outline_against_meshes(const FluidOutline& outline, const std::vector<WorldMesh>& meshes,
+                                  const std::optional<Quantity>& r0, Report& report) {
+  constexpr std::string_view kCheck = "fluid_overlap";
+  auto as_point2 = [](const Point& point) { return Point2{point.x(), point.y()}; };
+  for (const WorldMesh& mesh : meshes) {
+    double closest = std::numeric_limits<double>::infinity();
+    std::size_t closest_segment = 0;
+    for (std::size_t i = 0; i < mesh.segments.size(); ++i) {
+      const auto& [a, b] = mesh.segments[i];
+      const double distance = distance_to_region(outline.region, as_point2(a), as_point2(b));
+      if (distance < closest) {
+        closest = distance;
+        closest_segment = i;
+      }
+    }
+    if (mesh.segments.empty()) continue;
+    const std::string segment = point_text(mesh.segments[closest_segment].first) + "-" +
+                                point_text(mesh.segments[closest_segment].second);
+    const std::string name = "the " + outline.kind + outline.extent;
+    if (closest == 0.0) {
+      report.warn(kCheck, outline.where,
+                  name + " overlaps the mesh of " + mesh.owner + " (segment " + segment +
+                      "): particles start on or inside the structure",
+                  "move " + outline.keys + " clear of the mesh" +
+                      (r0 ? ", by at least r0/2 = " + number(0.5 * r0->value) + " m" : ""));
+    } else if (r0 && below(closest, 0.5 * r0->value)) {
+      report.warn(kCheck, outline.where,
+                  name + " comes within " + number(closest) + " m of the mesh of " + mesh.owner +
+                      " (segment " + segment + "), closer than r0/2 = " + number(0.5 * r0->value) +
+                      " m (r0 = SPH_wall_equilibriumdist): its outer "
+                      "particles start deep in the wall repulsion (a wall keeps the fluid about h "
+                      "= r0/2 away, thesis eq. 6.6 with r0 = r_c = 2h)",
+                  "leave at least " + number(0.5 * r0->value) + " m between the " + outline.kind +
+                      " and the mesh");
+    }
+  }
+}
+
 void check_fluid_overlap(const Scene& scene, Report& report) {
   constexpr std::string_view kCheck = "fluid_overlap";
   Inputs in(scene);
@@ -861,42 +909,13 @@ void check_fluid_overlap(const Scene& scene, Report& report) {
   if (in.fix_line() && in.fix_line()->arguments && in.fix_line()->arguments->uses_true_shape) {
     return check_true_shape_start(scene, in, report);
   }
-  const std::optional<FluidOutline> fluid = fluid_outline(scene, in);
-  if (!fluid) return;
+  const std::vector<FluidOutline> outlines = fluid_outlines(scene);
+  if (outlines.empty()) return;
   const auto r0 = in.wall("r0", "SPH_wall_equilibriumdist");
   if (!r0) report.skip(kCheck, "fluid-to-mesh distance", in.missing());
-  auto as_point2 = [](const Point& point) { return Point2{point.x(), point.y()}; };
-  for (const WorldMesh& mesh : world_meshes(scene)) {
-    double closest = std::numeric_limits<double>::infinity();
-    std::size_t closest_segment = 0;
-    for (std::size_t i = 0; i < mesh.segments.size(); ++i) {
-      const auto& [a, b] = mesh.segments[i];
-      const double distance = distance_to_region(fluid->region, as_point2(a), as_point2(b));
-      if (distance < closest) {
-        closest = distance;
-        closest_segment = i;
-      }
-    }
-    if (mesh.segments.empty()) continue;
-    const std::string segment = point_text(mesh.segments[closest_segment].first) + "-" +
-                                point_text(mesh.segments[closest_segment].second);
-    const std::string name = "the " + fluid->kind + fluid->extent;
-    if (closest == 0.0) {
-      report.warn(kCheck, fluid->where,
-                  name + " overlaps the mesh of " + mesh.owner + " (segment " + segment +
-                      "): particles start on or inside the structure",
-                  "move " + fluid->keys + " clear of the mesh" +
-                      (r0 ? ", by at least r0/2 = " + number(0.5 * r0->value) + " m" : ""));
-    } else if (r0 && below(closest, 0.5 * r0->value)) {
-      report.warn(kCheck, fluid->where,
-                  name + " comes within " + number(closest) + " m of the mesh of " + mesh.owner +
-                      " (segment " + segment + "), closer than r0/2 = " + number(0.5 * r0->value) +
-                      " m (r0 = SPH_wall_equilibriumdist): its outer "
-                      "particles start deep in the wall repulsion (a wall keeps the fluid about h "
-                      "= r0/2 away, thesis eq. 6.6 with r0 = r_c = 2h)",
-                  "leave at least " + number(0.5 * r0->value) + " m between the " + fluid->kind +
-                      " and the mesh");
-    }
+  const std::vector<WorldMesh> meshes = world_meshes(scene);
+  for (const FluidOutline& outline : outlines) {
+    check_outline_against_meshes(outline, meshes, r0, report);
   }
 }
 

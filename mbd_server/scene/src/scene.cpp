@@ -158,36 +158,44 @@ std::string fluid_box_fill(const Scene& scene) {
   constexpr double kMissingFraction = 0.25;  // of d: 2 % of the depth at 12 rows
   const double d = scene.fluid.spacing;
   if (scene.parameters.child("FluidRegion") == nullptr || !(d > 0.0)) return "";
-  const View region = View(scene.parameters, scene_schema()).block("FluidRegion");
-  if (region.string("shape") != "box") return "";
-  const auto lower = region.vector("lower");
-  const auto upper = region.vector("upper");
+  const std::vector<View> regions = View(scene.parameters, scene_schema()).blocks("FluidRegion");
   const auto text = [](double value) {
     char buffer[32];
     std::snprintf(buffer, sizeof buffer, "%.4g", value);
     return std::string(buffer);
   };
-  constexpr std::array<const char*, 3> kAxes{"x", "y", "z"};
-  std::string axes, drawn, cells, filled, short_by;
-  for (std::size_t k = 0; k < std::min(lower.size(), upper.size()); ++k) {
-    const double extent = upper[k] - lower[k];
-    const double count = std::floor(extent / d + 1e-9);
-    const double missing = extent - count * d;
-    const std::string by = k == 0 ? "" : " x ";
-    axes += std::string(k == 0 ? "" : ", ") + kAxes.at(k);
-    drawn += by + text(extent);
-    cells += by + text(count);
-    filled += by + text(count * d);
-    if (count >= 1.0 && missing > kMissingFraction * d * (1.0 + 1e-9)) {
-      short_by += std::string(short_by.empty() ? "" : ", ") + kAxes.at(k) + " " +
-                  text(100.0 * missing / extent) + " %";
+  std::string found;
+  for (std::size_t n = 0; n < regions.size(); ++n) {
+    const View& region = regions[n];
+    if (region.string("shape") != "box") continue;
+    const auto lower = region.vector("lower");
+    const auto upper = region.vector("upper");
+    constexpr std::array<const char*, 3> kAxes{"x", "y", "z"};
+    std::string axes, drawn, cells, filled, short_by;
+    for (std::size_t k = 0; k < std::min(lower.size(), upper.size()); ++k) {
+      const double extent = upper[k] - lower[k];
+      const double count = std::floor(extent / d + 1e-9);
+      const double missing = extent - count * d;
+      const std::string by = k == 0 ? "" : " x ";
+      axes += std::string(k == 0 ? "" : ", ") + kAxes.at(k);
+      drawn += by + text(extent);
+      cells += by + text(count);
+      filled += by + text(count * d);
+      if (count >= 1.0 && missing > kMissingFraction * d * (1.0 + 1e-9)) {
+        short_by += std::string(short_by.empty() ? "" : ", ") + kAxes.at(k) + " " +
+                    text(100.0 * missing / extent) + " %";
+      }
     }
+    if (short_by.empty()) continue;
+    const std::string which =
+        regions.size() > 1 ? " of FluidRegion[" + std::to_string(n) + "]" : "";
+    found += std::string(found.empty() ? "" : "; ") + "the fluid box" + which + " (" + axes + ") " +
+             drawn + " m holds " + cells + " cells of " + text(d) + " m: the water fills " +
+             filled + " m, " + short_by +
+             " short at the upper side (whole cells from the lower corner; make each extent a "
+             "whole number of spacings to fill the box)";
   }
-  if (short_by.empty()) return "";
-  return "the fluid box (" + axes + ") " + drawn + " m holds " + cells + " cells of " + text(d) +
-         " m: the water fills " + filled + " m, " + short_by +
-         " short at the upper side (whole cells from the lower corner; make each extent a whole "
-         "number of spacings to fill the box)";
+  return found;
 }
 
 std::string blocks_needed(const Scene& scene, SceneMode mode) {

@@ -383,6 +383,30 @@ TEST_F(SmallScene, FluidBoxThroughABeam) {
   EXPECT_TRUE(of(clear, "fluid_overlap").empty()) << listing(clear);
 }
 
+// Water on both sides of a gate: each FluidRegion is checked against the meshes, and the one
+// that reaches into the gate is named.
+TEST_F(SmallScene, EachOfSeveralFluidRegionsAgainstTheMeshes) {
+  const std::string gate =
+      "AncfBeam2D { name = \"gate\"; start = [0.04, 0]; end = [0.04, 0.03]; elements = 3; "
+      "thickness = 0.002; axial_stiffness = 1e6; bending_stiffness = 0.1; mass_per_length = 2 }\n"
+      "BeamClamp { beam = \"gate\"; node = 0 }\n";
+  auto regions = [](const std::string& downstream_lower) {
+    return "FluidRegion { shape = \"box\"; lower = [0.01, 0.001]; upper = [0.035, 0.02]; "
+           "spacing = 0.001/1.9; density = 1000 }\n"
+           "FluidRegion { shape = \"box\"; lower = [" +
+           downstream_lower +
+           ", 0.001]; upper = [0.07, 0.01]; spacing = 0.001/1.9; density = 1000 }\n";
+  };
+  const auto clear = physics_checks(build(kGoodSph, regions("0.045") + gate));
+  EXPECT_TRUE(of(clear, "fluid_overlap").empty()) << listing(clear);
+  const auto through =
+      of(physics_checks(build(kGoodSph, regions("0.039") + gate)), "fluid_overlap");
+  ASSERT_EQ(through.size(), 1u);
+  EXPECT_CONTAINS(through[0].message,
+                  "the fluid box (0.039, 0.001)-(0.07, 0.01) overlaps the mesh of body 'gate'");
+  EXPECT_CONTAINS(through[0].fix, "FluidRegion[1].lower/upper");
+}
+
 TEST_F(SmallScene, FluidPolygonAroundABodyInItsHole) {
   // The square of half-width 0.01 m at (0.05, 0.05) sits in a square hole of the fluid polygon:
   // a hole of half-width 0.015 m leaves 0.005 m, one of 0.0105 m only 0.0005 m (r0/2 = 0.001 m),

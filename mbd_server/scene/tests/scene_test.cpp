@@ -7,6 +7,7 @@
 
 #include "fsi/common/error.hpp"
 #include "fsi/mbd/readouts.hpp"
+#include "fsi/scene/fluid_region.hpp"
 #include "fsi/scene/scene.hpp"
 #include "test_files.hpp"
 
@@ -354,6 +355,81 @@ Coupling { refinement_resolution = 0.002 }
   }
   EXPECT_NE(message.find("p.scene:7:3: the polygon: edges 0-1 and 2-3 cross"), std::string::npos)
       << message;
+  fs::remove_all(folder);
+}
+
+TEST(Scene, SeveralFluidRegionsEachWithItsOwnFreeSurface) {
+  const fs::path folder = fs::temp_directory_path() / "fsi_scene_two_regions_test";
+  fs::create_directories(folder);
+  std::ofstream(folder / "s.in") << "# script\n";
+  const std::string head = R"(scene_language = 1
+SolverOptions { end_time = 1; Timeint { step_size = 1e-5 } }
+Gravity { acceleration = [0, -10] }
+Ground { Mesh { points = [[0, 0], [2, 0]] } }
+LIGGGHTS { script1 = "s.in"; script2 = "s.in" }
+Coupling { refinement_resolution = 0.002 }
+)";
+  auto build = [&](const std::string& regions) {
+    std::ofstream(folder / "p.scene") << head << regions;
+    return build_scene((folder / "p.scene").string());
+  };
+  auto error_of = [&](const std::string& regions) {
+    try {
+      build(regions);
+    } catch (const fsi::Error& error) {
+      return std::string(error.what());
+    }
+    return std::string("(accepted)");
+  };
+  // Upstream of a gate 1 m of water, downstream 0.3 m; they touch at x = 1 (no overlap).
+  const std::string upstream =
+      "FluidRegion { shape = \"box\"; lower = [0, 0]; upper = [1, 1]; spacing = 0.1\n"
+      "  density = 1000; hydrostatic = 1; speed_of_sound = 20 }\n";
+  const std::string downstream =
+      "FluidRegion { shape = \"polygon\"; points = [[1, 0], [2, 0], [2, 0.3], [1, 0.3]]\n"
+      "  spacing = 0.1; density = 1000; hydrostatic = 1; speed_of_sound = 20\n"
+      "  velocity = [0.5, 0] }\n";
+  const Scene scene = build(upstream + downstream);
+  ASSERT_EQ(scene.fluid.count(), 100u + 30u);
+  ASSERT_EQ(scene.fluid.densities.size(), scene.fluid.count());
+  // The tallest column's height; each region's top row at its own surface (p = rho0 g d/2).
+  EXPECT_NEAR(scene.fluid.column_height, 1.0, 1e-12);
+  const TaitEquation tait{1000.0, 20.0, 7.0};
+  for (std::size_t i = 0; i < scene.fluid.count(); ++i) {
+    const double x = scene.fluid.positions[2 * i], y = scene.fluid.positions[2 * i + 1];
+    const double top = x < 1.0 ? 1.0 : 0.3;
+    EXPECT_NEAR(scene.fluid.densities[i], tait.density_at(1000.0 * 10.0 * (top - y)), 1e-9)
+        << x << ", " << y;
+    EXPECT_EQ(scene.fluid.velocities[2 * i], x < 1.0 ? 0.0 : 0.5);
+  }
+  // A region without hydrostatic beside one with: its particles at the density.
+  const Scene mixed = build(upstream +
+                            "FluidRegion { shape = \"box\"; lower = [1, 0]\n"
+                            "  upper = [2, 0.3]; spacing = 0.1; density = 1000 }\n");
+  ASSERT_EQ(mixed.fluid.densities.size(), 130u);
+  EXPECT_EQ(mixed.fluid.densities.back(), 1000.0);
+  EXPECT_GT(mixed.fluid.densities.front(), 1000.0);
+
+  // One particle mass: another spacing is refused at its key.
+  const std::string spacing =
+      error_of(upstream +
+               "FluidRegion { shape = \"box\"; lower = [1, 0]; upper = [2, 0.3]\n"
+               "  spacing = 0.05; density = 1000 }\n");
+  EXPECT_NE(spacing.find("p.scene:10:3: FluidRegion[1].spacing = 0.05 differs from 0.1 of the "
+                         "first FluidRegion ("),
+            std::string::npos)
+      << spacing;
+  EXPECT_NE(spacing.find("p.scene:7:1): the fluid has one particle mass"), std::string::npos)
+      << spacing;
+  // Overlapping regions would put two particles in one place.
+  const std::string overlap =
+      error_of(upstream +
+               "FluidRegion { shape = \"box\"; lower = [0.5, 0]; upper = [2, 0.3]\n"
+               "  spacing = 0.1; density = 1000 }\n");
+  EXPECT_NE(overlap.find("p.scene:9:1: FluidRegion[1] overlaps an earlier FluidRegion: 15 of its "
+                         "lattice points lie within d/2 of theirs, the first at (0.55, 0.05)"),
+            std::string::npos)
+      << overlap;
   fs::remove_all(folder);
 }
 
