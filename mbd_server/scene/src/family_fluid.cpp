@@ -149,8 +149,8 @@ std::string format_exact(double value);
 
 // Writes one fluid region's lattice into `fluid` (and its points before the random displacement
 // into `undisplaced`); false, with a problem at the key, on a mistake.
-bool build_fluid_region(SceneBuilder& builder, const View& region, FluidParticles& fluid,
-                        std::vector<double>& undisplaced) {
+bool build_fluid_region(SceneBuilder& builder, const View& region, const std::string& name,
+                        FluidParticles& fluid, std::vector<double>& undisplaced) {
   const int dimension = builder.dimension;
   LatticeOptions options;
   options.spacing = region.number("spacing");
@@ -167,7 +167,7 @@ bool build_fluid_region(SceneBuilder& builder, const View& region, FluidParticle
       const double own = region.number(key), fluid_value = derived->value(symbol);
       if (std::abs(own - fluid_value) > 1e-12 * std::abs(fluid_value)) {
         builder.problem(region.location(key),
-                        std::string("FluidRegion.") + key + " = " + format_exact(own) +
+                        name + "." + key + " = " + format_exact(own) +
                             " differs from the Fluid block's " + key + " = " +
                             format_exact(fluid_value),
                         std::string("write ") + key + " = Fluid." + key + " here");
@@ -357,7 +357,7 @@ void build_fluid_regions(SceneBuilder& builder, const std::vector<View>& regions
     builder.guard(region.location(), [&] {
       FluidParticles part;
       std::vector<double> undisplaced;
-      if (!build_fluid_region(builder, region, part, undisplaced)) return;
+      if (!build_fluid_region(builder, region, name, part, undisplaced)) return;
       if (placed.empty()) {
         fluid = std::move(part);
         undisplaced_so_far = std::move(undisplaced);
