@@ -212,7 +212,8 @@ std::string FluidHealthMonitor::settle_first(const std::string& fix, std::uint64
     return fix;
   return "the water was not at rest when the bodies were released (" + unsettled_release_ +
          "; the release warning says how to let it settle): settle it first, with "
-         "LIGGGHTS.equilibration_steps; if the finding persists from a settled start: " +
+         "LIGGGHTS.equilibration_steps (or equilibration_time); if the finding persists from a "
+         "settled start: " +
          fix;
 }
 

@@ -72,8 +72,9 @@ ReleaseCheck check_release(const protocol::ReleaseState& release,
            " } may be far from critical: remove it to get the automatic one";
   }
   check.warning = "the fluid is not at rest when the bodies are released: " + problems +
-                  ". Give it more time (LIGGGHTS { equilibration_steps }, now " + steps + "); " +
-                  drag + " (docs/user-guide.md, \"Equilibration\")";
+                  ". Give it more time (LIGGGHTS { equilibration_steps }, now " + steps +
+                  ", or equilibration_time in seconds); " + drag +
+                  " (docs/user-guide.md, \"Equilibration\")";
   if (check.weight_fraction && *check.weight_fraction < kUnheldWeightFraction) {
     check.warning +=
         "; if no structure holds this fluid where it starts (a dam break's column), more time "

@@ -184,9 +184,10 @@ TEST(FluidHealth, AfterAnUnsettledReleaseTheFixSaysToSettleFirst) {
                                       0),
               0u)
         << verdict.stop->fix;
-    EXPECT_TRUE(contains(verdict.stop->fix,
-                         "settle it first, with LIGGGHTS.equilibration_steps; "
-                         "if the finding persists from a settled start: "))
+    EXPECT_TRUE(
+        contains(verdict.stop->fix,
+                 "settle it first, with LIGGGHTS.equilibration_steps (or equilibration_time); "
+                 "if the finding persists from a settled start: "))
         << verdict.stop->fix;
     EXPECT_TRUE(contains(verdict.stop->fix, "raise cAB from 20 to at least")) << verdict.stop->fix;
   }

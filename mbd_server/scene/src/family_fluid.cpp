@@ -113,6 +113,13 @@ std::vector<BlockSpec> fluid_blocks() {
                   integer("equilibration_steps", "LIGGGHTS-only steps with the structure at rest")
                       .at_least(0)
                       .with_default(0),
+                  number("equilibration_time", "s",
+                         "instead of equilibration_steps: the settling's length in seconds, run "
+                         "as ceil(time / step) steps of the coupled step (SolverOptions.Timeint."
+                         "step_size or the Fluid block's), so it stays the same time when the "
+                         "spacing and the step change")
+                      .at_least(0.0)
+                      .optional(),
                   number("settling_drag", "1/s",
                          "velocity drag on the fluid during the equilibration, removed before "
                          "script 2; 0 = none; absent: 2 pi sqrt(g/H), at most 0.1/dt "
@@ -446,6 +453,19 @@ void build_liggghts(SceneBuilder& builder) {
   });
   builder.guard(liggghts.location(), [&] {
     setup.equilibration_steps = static_cast<std::uint64_t>(liggghts.integer("equilibration_steps"));
+    if (!liggghts.has("equilibration_time")) return;
+    if (liggghts.has("equilibration_steps")) {
+      builder.problem(liggghts.location("equilibration_time"),
+                      "LIGGGHTS gives both equilibration_time and equilibration_steps (" +
+                          liggghts.location("equilibration_steps").text() + ")",
+                      "keep one of them: equilibration_time (s) stays the same time when the "
+                      "step changes");
+      return;
+    }
+    const double time = liggghts.number("equilibration_time");
+    const double step = builder.scene.solver.step_size;
+    if (!(step > 0.0)) return;  // the step's own problem is reported
+    setup.equilibration_steps = static_cast<std::uint64_t>(std::ceil(time / step - 1e-9));
   });
   builder.guard(liggghts.location(), [&] {
     if (liggghts.has("settling_drag")) setup.settling_drag = liggghts.number("settling_drag");

@@ -97,6 +97,35 @@ TEST(Scene, TheWaterColumnKnowsItsHeightAndTheSettlingDragIsTheScenes) {
   }
 }
 
+// The settling's length in seconds: the same time at another step.
+TEST(Scene, TheEquilibrationInSecondsBecomesWholeSteps) {
+  const fs::path folder = fs::temp_directory_path() / "fsi_scene_equilibration_time_test";
+  fs::create_directories(folder);
+  std::ofstream(folder / "s.in") << "# script\n";
+  std::ofstream(folder / "e.scene") << R"(scene_language = 1
+SolverOptions { end_time = 1; Timeint { step_size = 1e-5 } }
+Ground { Mesh { points = [[0, 0], [1, 0]] } }
+LIGGGHTS { script1 = "s.in"; script2 = "s.in"; equilibration_time = 0.25 }
+Coupling { refinement_resolution = 0.002 }
+)";
+  const std::string path = (folder / "e.scene").string();
+  EXPECT_EQ(build_scene(path).liggghts.equilibration_steps, 25000u);
+  // 0.25 s / 3e-5 s = 8333.3: the next whole step, so the settling lasts at least the time.
+  EXPECT_EQ(
+      build_scene(path, {{"SolverOptions.Timeint.step_size", "3e-5"}}).liggghts.equilibration_steps,
+      8334u);
+  try {
+    build_scene(path, {{"LIGGGHTS.equilibration_steps", "100"}});
+    FAIL() << "both equilibration_time and equilibration_steps accepted";
+  } catch (const fsi::Error& error) {
+    EXPECT_NE(std::string(error.what())
+                  .find("LIGGGHTS gives both equilibration_time and equilibration_steps"),
+              std::string::npos)
+        << error.what();
+  }
+  fs::remove_all(folder);
+}
+
 TEST(Scene, AHydrostaticRegionGivesEveryParticleItsDensity) {
   const Scene plain = build_scene(FSI_EXAMPLES_DIR "/water_column/water_column.scene");
   EXPECT_TRUE(plain.fluid.densities.empty());
