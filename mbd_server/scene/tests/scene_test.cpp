@@ -98,32 +98,27 @@ TEST(Scene, TheWaterColumnKnowsItsHeightAndTheSettlingDragIsTheScenes) {
 }
 
 // The settling's length in seconds: the same time at another step.
-TEST(Scene, TheEquilibrationInSecondsBecomesWholeSteps) {
-  const fs::path folder = fs::temp_directory_path() / "fsi_scene_equilibration_time_test";
-  fs::create_directories(folder);
-  std::ofstream(folder / "s.in") << "# script\n";
-  std::ofstream(folder / "e.scene") << R"(scene_language = 1
-SolverOptions { end_time = 1; Timeint { step_size = 1e-5 } }
-Ground { Mesh { points = [[0, 0], [1, 0]] } }
-LIGGGHTS { script1 = "s.in"; script2 = "s.in"; equilibration_time = 0.25 }
-Coupling { refinement_resolution = 0.002 }
-)";
-  const std::string path = (folder / "e.scene").string();
-  EXPECT_EQ(build_scene(path).liggghts.equilibration_steps, 25000u);
+class SceneFiles : public testing::FolderPerTest {};
+
+TEST_F(SceneFiles, TheEquilibrationInSecondsBecomesWholeSteps) {
+  const std::string path =
+      write_coupled_scene("e.scene",
+                          "SolverOptions { end_time = 1; Timeint { step_size = 1e-5 } }\n"
+                          "Ground { Mesh { points = [[0, 0], [1, 0]] } }\n")
+          .string();
+  const auto steps = [&](std::vector<Override> overrides) {
+    overrides.push_back({"LIGGGHTS.equilibration_time", "0.25"});
+    return build_scene(path, overrides).liggghts.equilibration_steps;
+  };
+  EXPECT_EQ(steps({}), 25000u);
   // 0.25 s / 3e-5 s = 8333.3: the next whole step, so the settling lasts at least the time.
-  EXPECT_EQ(
-      build_scene(path, {{"SolverOptions.Timeint.step_size", "3e-5"}}).liggghts.equilibration_steps,
-      8334u);
-  try {
-    build_scene(path, {{"LIGGGHTS.equilibration_steps", "100"}});
-    FAIL() << "both equilibration_time and equilibration_steps accepted";
-  } catch (const fsi::Error& error) {
-    EXPECT_NE(std::string(error.what())
-                  .find("LIGGGHTS gives both equilibration_time and equilibration_steps"),
-              std::string::npos)
-        << error.what();
-  }
-  fs::remove_all(folder);
+  EXPECT_EQ(steps({{"SolverOptions.Timeint.step_size", "3e-5"}}), 8334u);
+  const std::string both = testing::message_thrown([&] {
+    steps({{"LIGGGHTS.equilibration_steps", "100"}});
+  });
+  EXPECT_NE(both.find("LIGGGHTS gives both equilibration_time and equilibration_steps"),
+            std::string::npos)
+      << both;
 }
 
 TEST(Scene, AHydrostaticRegionGivesEveryParticleItsDensity) {
@@ -387,28 +382,16 @@ Coupling { refinement_resolution = 0.002 }
   fs::remove_all(folder);
 }
 
-TEST(Scene, SeveralFluidRegionsEachWithItsOwnFreeSurface) {
-  const fs::path folder = fs::temp_directory_path() / "fsi_scene_two_regions_test";
-  fs::create_directories(folder);
-  std::ofstream(folder / "s.in") << "# script\n";
-  const std::string head = R"(scene_language = 1
-SolverOptions { end_time = 1; Timeint { step_size = 1e-5 } }
-Gravity { acceleration = [0, -10] }
-Ground { Mesh { points = [[0, 0], [2, 0]] } }
-LIGGGHTS { script1 = "s.in"; script2 = "s.in" }
-Coupling { refinement_resolution = 0.002 }
-)";
+TEST_F(SceneFiles, SeveralFluidRegionsEachWithItsOwnFreeSurface) {
+  const std::string head =
+      "SolverOptions { end_time = 1; Timeint { step_size = 1e-5 } }\n"
+      "Gravity { acceleration = [0, -10] }\n"
+      "Ground { Mesh { points = [[0, 0], [2, 0]] } }\n";
   auto build = [&](const std::string& regions) {
-    std::ofstream(folder / "p.scene") << head << regions;
-    return build_scene((folder / "p.scene").string());
+    return build_scene(write_coupled_scene("p.scene", head + regions).string());
   };
   auto error_of = [&](const std::string& regions) {
-    try {
-      build(regions);
-    } catch (const fsi::Error& error) {
-      return std::string(error.what());
-    }
-    return std::string("(accepted)");
+    return testing::message_thrown([&] { build(regions); }, "(accepted)");
   };
   // Upstream of a gate 1 m of water, downstream 0.3 m; they touch at x = 1 (no overlap).
   const std::string upstream =
@@ -444,22 +427,21 @@ Coupling { refinement_resolution = 0.002 }
       error_of(upstream +
                "FluidRegion { shape = \"box\"; lower = [1, 0]; upper = [2, 0.3]\n"
                "  spacing = 0.05; density = 1000 }\n");
-  EXPECT_NE(spacing.find("p.scene:10:3: FluidRegion[1].spacing = 0.05 differs from 0.1 of the "
+  EXPECT_NE(spacing.find("p.scene:8:3: FluidRegion[1].spacing = 0.05 differs from 0.1 of the "
                          "first FluidRegion ("),
             std::string::npos)
       << spacing;
-  EXPECT_NE(spacing.find("p.scene:7:1): the fluid has one particle mass"), std::string::npos)
+  EXPECT_NE(spacing.find("p.scene:5:1): the fluid has one particle mass"), std::string::npos)
       << spacing;
   // Overlapping regions would put two particles in one place.
   const std::string overlap =
       error_of(upstream +
                "FluidRegion { shape = \"box\"; lower = [0.5, 0]; upper = [2, 0.3]\n"
                "  spacing = 0.1; density = 1000 }\n");
-  EXPECT_NE(overlap.find("p.scene:9:1: FluidRegion[1] overlaps an earlier FluidRegion: 15 of its "
+  EXPECT_NE(overlap.find("p.scene:7:1: FluidRegion[1] overlaps an earlier FluidRegion: 15 of its "
                          "lattice points lie within d/2 of theirs, the first at (0.55, 0.05)"),
             std::string::npos)
       << overlap;
-  fs::remove_all(folder);
 }
 
 TEST(Scene, JointsSpringsAndTheLobattoTableau) {
