@@ -408,9 +408,15 @@ std::vector<std::string> FluidHealthMonitor::near_limits() const {
   // speed of sound barely above the run's), the end restates it from the largest reached.
   if (scales_.rest_density > 0.0 && limits_.max_density_deviation > 0.0 &&
       (record_.max_density_deviation >= kNear * limits_.max_density_deviation || density_warned_)) {
-    std::string figure = "max |rho/rho0 - 1| = " + number(record_.max_density_deviation) +
-                         " at step " + std::to_string(record_.max_density_deviation_step) +
-                         " (the stop: above " + number(limits_.max_density_deviation) + ")";
+    const bool close_to_stop =
+        record_.max_density_deviation >= kNear * limits_.max_density_deviation;
+    std::string figure =
+        "max |rho/rho0 - 1| = " + number(record_.max_density_deviation) + " at step " +
+        std::to_string(record_.max_density_deviation_step) +
+        (close_to_stop ? " (within 20 % of the stop: above " + number(limits_.max_density_deviation)
+                       : " (past the warning level " + number(limits_.warn_density_deviation) +
+                             "; the stop: above " + number(limits_.max_density_deviation)) +
+        ")";
     const double deviation = record_.max_density_deviation;
     if (scales_.speed_of_sound && deviation > kDensityAim) {
       figure += ": " + scales_.speed_of_sound_name + " = " +

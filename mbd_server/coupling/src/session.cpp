@@ -163,7 +163,7 @@ class Session {
         for (const std::string& figure : near)
           figures += (figures.empty() ? "" : "; ") + figure;
         spdlog::warn(
-            "the run came within 20 % of its health limits, or past a warning level: {}. It "
+            "the run came within 20 % of a health limit's stop, or past its warning level: {}. It "
             "completed, but a result this close to a stop is at the edge of what the resolution "
             "and the speed of sound hold: check it at a finer spacing or a larger c "
             "(docs/user-guide.md, \"When a run stops: the health checks\")",
