@@ -171,13 +171,25 @@ class FixFsiSph : public LAMMPS_NS::Fix {
     const char* stiffer = true_shape_ ? "raise the wall's reference pressure (the fix's "
                                         "`pressure`, Fluid.wall_pressure)"
                                       : "raise k";
-    char text[480];
+    // At step 0 nothing has moved yet: the particles start there, a set-up matter (a lattice
+    // against a wall off its cell edges, e.g. a slope), not a wall losing to the flow.
+    char advice[240];
+    if (update->ntimestep == 0) {
+      std::snprintf(advice, sizeof advice,
+                    "the particles start there (a lattice point close to a wall off its cell "
+                    "edges, e.g. a slope; `fsi-server SCENE --check`, fluid_overlap, names it): "
+                    "draw the water's region clear of that wall, or let the equilibration push "
+                    "them off");
+    } else {
+      std::snprintf(advice, sizeof advice, "%s or reduce the time step", stiffer);
+    }
+    char text[560];
     std::snprintf(text, sizeof text,
                   "fix fsi/sph: a particle is %.3g r0 from a wall at LIGGGHTS step " BIGINT_FORMAT
-                  " (counted with the equilibration's; warn below %.3g r0): %s or reduce the "
-                  "time step; repeats at most every %d steps",
+                  " (counted with the equilibration's; warn below %.3g r0): %s; repeats at most "
+                  "every %d steps",
                   closest / contact_.settings().law.equilibrium_distance, update->ntimestep,
-                  warn_distance_ / contact_.settings().law.equilibrium_distance, stiffer,
+                  warn_distance_ / contact_.settings().law.equilibrium_distance, advice,
                   static_cast<int>(kWarnEvery));
     error->warning(FLERR, text);
   }
