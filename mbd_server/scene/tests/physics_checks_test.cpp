@@ -700,6 +700,26 @@ TEST(PhysicsChecks, TrueShapeExamplesPassEveryCheck) {
   }
 }
 
+// A wall off the lattice's cell edges leaves a gap the water falls into during the settling (a
+// user's flap 0.9 d off its first columns: troughs either side, 2026-12-06, said nowhere): a
+// note names it. The block's bottom at y = 0.025 m lies half a spacing (d = 2 mm) off the cell
+// edges, so the row below stands 1 d off; at 0.024 m it is on one.
+TEST(PhysicsChecks, ATrueShapeWallOffTheLatticeIsNoted) {
+  const auto notes = [](const std::vector<Override>& overrides) {
+    return of(physics_checks(build_scene(kTrueShapeBlock, overrides)), "fluid_overlap",
+              Severity::Info);
+  };
+  const std::vector<Diagnostic> off = notes({});
+  ASSERT_EQ(off.size(), 1u) << listing(off);
+  EXPECT_CONTAINS(off[0].message, "the water starts 1 d from the mesh of body 'block' at");
+  EXPECT_CONTAINS(off[0].message, "the gap of 0.001 m fills during the settling");
+  EXPECT_TRUE(notes({{"Geometry.centre_depth", "0.036"}}).empty())
+      << listing(notes({{"Geometry.centre_depth", "0.036"}}));
+  // The block turned by 45 degrees meets the lattice at every distance: not noted.
+  EXPECT_TRUE(notes({{"RigidBody2D.angle", "pi/4"}}).empty())
+      << listing(notes({{"RigidBody2D.angle", "pi/4"}}));
+}
+
 TEST(PhysicsChecks, TheTrueShapeReferencePressureIsReadForTheHealthAdvice) {
   // The fix's `pressure ${SPH_wall_pressure}`, expanded; the thesis' law has none.
   const std::optional<double> pressure = true_shape_pressure(
