@@ -83,6 +83,13 @@ std::vector<BlockSpec> sensor_blocks() {
                                 "on: unwrap a spinning beam's column, numpy.unwrap); 3D: "
                                 "[x, y, z], [s, 0, 0] on a cable)"))
                .optional(),
+           per_dimension(vector("about", 2, "m",
+                                "fluid_force, joint_force, constraint_force of a rigid body: "
+                                "the torque about this point of the body (body coordinates; 3D: "
+                                "[x, y, z]) instead of about its centre of mass, tau_P = tau_G + "
+                                "(r_G - r_P) x F: a gate's or a flap's moment about its hinge; "
+                                "the force components are unchanged"))
+               .optional(),
            text("frame",
                 "position, velocity (2D): the name of a RigidBody2D whose axes the components "
                 "are read in, from its centre of mass (angle: relative to its angle; velocity: "
@@ -117,6 +124,7 @@ class SensorBuilder {
   bool joint_fits();
   bool spring_fits();
   bool frame_fits();
+  bool about_fits();
   std::string unit() const;
   void problem(const SourceLocation& where, const std::string& message, const std::string& fix) {
     builder.problem(where, message, fix);
@@ -154,8 +162,66 @@ void SensorBuilder::build() {
   if (!keys && builder.spatial()) return;
   if (!component_fits() || !keys) return;
   sensor.unit = unit();
-  if (!body_fits() || !joint_fits() || !spring_fits() || !frame_fits() || !complete) return;
+  if (!body_fits() || !joint_fits() || !spring_fits() || !frame_fits() || !about_fits() ||
+      !complete)
+    return;
   builder.scene.sensors.push_back(sensor);
+}
+
+// The body point a force sensor's torque is taken about.
+bool SensorBuilder::about_fits() {
+  if (!s.has("about")) return true;
+  const std::string type(variant.type);
+  const bool force = variant.kind == SensorType::FluidForce ||
+                     variant.kind == SensorType::JointForce ||
+                     variant.kind == SensorType::ConstraintForce;
+  if (!force) {
+    problem(s.location("about"),
+            "about is for the torque of fluid_force, joint_force and constraint_force sensors, "
+            "not a " +
+                type + " sensor",
+            variant.kinematic() ? "remove about (a body point of a position or velocity: point)"
+                                : "remove about");
+    return false;
+  }
+  const mbd::Model& model = builder.model;
+  const bool rigid = sensor.body != mbd::kGround && !model.is_beam(sensor.body) &&
+                     !(builder.spatial() && model.is_cable(sensor.body));
+  if (!rigid) {
+    problem(s.location("about"),
+            "about needs a rigid body; sensor '" + sensor.name + "' reads " +
+                (sensor.body == mbd::kGround ? std::string("the ground")
+                                             : "the " + model.body_kind(sensor.body) + " '" +
+                                                   model.body_name(sensor.body) + "'"),
+            "remove about (a joint on a beam is read about the joint's point already)");
+    return false;
+  }
+  const bool torque = builder.spatial() ? (sensor.axis >= 3 && sensor.axis <= 5)
+                                        : sensor.component == mbd::Coordinate::Angle;
+  if (!torque) {
+    problem(s.location("about"),
+            "about changes only the torque, and sensor '" + sensor.name + "' reads component " +
+                component,
+            builder.spatial() ? "write component = \"torque_x\" (or _y, _z), or remove about"
+                              : "write component = \"torque\", or remove about");
+    return false;
+  }
+  const auto point = builder.dimension_vector(s, "about", builder.dimension);
+  if (!point) return false;
+  try {
+    const std::string user = "sensor '" + sensor.name + "'";
+    if (builder.spatial()) {
+      model.check_spatial_point({sensor.body, {(*point)[0], (*point)[1], (*point)[2]}}, user);
+    } else {
+      model.check_point({sensor.body, {(*point)[0], (*point)[1]}}, user);
+    }
+  } catch (const Error& error) {
+    problem(s.location("about"), error.fault(), error.remedy());
+    return false;
+  }
+  sensor.about =
+      std::array<double, 3>{(*point)[0], (*point)[1], builder.spatial() ? (*point)[2] : 0.0};
+  return true;
 }
 
 // The rigid body a planar position or velocity is read in the axes of.

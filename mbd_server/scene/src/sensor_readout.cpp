@@ -47,6 +47,36 @@ double in_frame(const mbd::Model& model, const SensorSpec& sensor, const mbd::St
   return value(sensor.component == C::X ? 0 : 1);
 }
 
+// A force sensor's torque about the body point `about` instead of the centre of mass G:
+// tau_P = tau_G + (r_G - r_P) x F (planar: the z component).
+mbd::Wrench about_point(const mbd::Model& model, const mbd::State& state, const SensorSpec& sensor,
+                        mbd::Wrench wrench) {
+  if (!sensor.about) return wrench;
+  const auto& about = *sensor.about;
+  Eigen::Vector3d centre, point;
+  if (model.dimension() == 3) {
+    centre =
+        point_position(model, state, mbd::SpatialPointSpec{sensor.body, Eigen::Vector3d::Zero()});
+    point = point_position(model, state,
+                           mbd::SpatialPointSpec{sensor.body, {about[0], about[1], about[2]}});
+  } else {
+    centre = point_position(model, state, mbd::BodyPointSpec{sensor.body, {0.0, 0.0}});
+    point = point_position(model, state, mbd::BodyPointSpec{sensor.body, {about[0], about[1]}});
+  }
+  wrench.torque += (centre - point).cross(wrench.force);
+  return wrench;
+}
+
+// The planar constraint force on a rigid body as a wrench (x, y and the torque about G).
+mbd::Wrench constraint_wrench(const mbd::Model& model, const mbd::State& state, mbd::BodyId body) {
+  using C = mbd::Coordinate;
+  mbd::Wrench wrench;
+  wrench.force = {constraint_force(model, state, body, C::X),
+                  constraint_force(model, state, body, C::Y), 0.0};
+  wrench.torque.z() = constraint_force(model, state, body, C::Angle);
+  return wrench;
+}
+
 }  // namespace
 
 double structure_sensor_value(const mbd::Model& model, const SensorSpec& sensor,
@@ -63,12 +93,14 @@ double structure_sensor_value(const mbd::Model& model, const SensorSpec& sensor,
       case SensorType::Velocity:
         return point_velocity(model, state, centre)(sensor.axis);
       case SensorType::FluidForce:
-        return point_load_resultant(model, state, sensor.body).stacked()(sensor.axis);
+        return about_point(model, state, sensor, point_load_resultant(model, state, sensor.body))
+            .stacked()(sensor.axis);
       case SensorType::JointForce:
         // The drive row's multiplier is its torque on body_a about the axis (RevoluteJoint3DSpec).
         if (sensor.axis == kDriveTorqueAxis)
           return state.lambda(sensor.first_row + sensor.rows - 1);
-        return joint_reaction(model, state, sensor.first_row, sensor.rows, sensor.body)
+        return about_point(model, state, sensor,
+                           joint_reaction(model, state, sensor.first_row, sensor.rows, sensor.body))
             .stacked()(sensor.axis);
       default:
         break;  // energies below; the builder refuses the rest in 3D
@@ -97,8 +129,13 @@ double structure_sensor_value(const mbd::Model& model, const SensorSpec& sensor,
     case SensorType::Velocity:
       return model.velocity(state, sensor.body, sensor.component);
     case SensorType::FluidForce:
-      return point_load_resultant(model, state, sensor.body).planar()(component);
+      return about_point(model, state, sensor, point_load_resultant(model, state, sensor.body))
+          .planar()(component);
     case SensorType::ConstraintForce:
+      if (sensor.about) {
+        return about_point(model, state, sensor, constraint_wrench(model, state, sensor.body))
+            .planar()(component);
+      }
       return constraint_force(model, state, sensor.body, sensor.component);
     case SensorType::JointForce:
       if (sensor.beam_point) {
@@ -106,7 +143,8 @@ double structure_sensor_value(const mbd::Model& model, const SensorSpec& sensor,
                                    {(*sensor.beam_point)[0], (*sensor.beam_point)[1]})
             .planar()(component);
       }
-      return joint_reaction(model, state, sensor.first_row, sensor.rows, sensor.body)
+      return about_point(model, state, sensor,
+                         joint_reaction(model, state, sensor.first_row, sensor.rows, sensor.body))
           .planar()(component);
     case SensorType::SpringForce:
       return force_element_force(model, state, sensor.force_element);

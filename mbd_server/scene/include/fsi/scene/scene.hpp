@@ -215,6 +215,10 @@ struct SensorSpec {
   // Planar position, velocity: the components in the axes of this rigid body, from its centre of
   // mass (an angle relative to its angle) instead of the world's.
   std::optional<mbd::BodyId> frame;
+  // FluidForce, JointForce, ConstraintForce of a rigid body: its torque about this body point
+  // (body coordinates; 2D: z = 0), tau_P = tau_G + (r_G - r_P) x F, instead of about the centre
+  // of mass G (a gate's moment about its hinge).
+  std::optional<std::array<double, 3>> about;
 };
 
 // The value of a sensor that the multibody state alone determines (every type but
