@@ -100,7 +100,10 @@ void SceneBuilder::each(std::string_view name, const std::function<void(const Vi
     const bool built = guard(element.location(), [&] {
       const int first_row = model.constraint_count();
       build(element);
-      if (!element.has("release_time")) return;
+      // Only constraint blocks declare it (releasable); in another block the schema has
+      // reported it as unknown already.
+      if (element.spec().parameter("release_time") == nullptr || !element.has("release_time"))
+        return;
       const double release = element.number("release_time");
       placed(element, [&] {
         for (int row = first_row; row < model.constraint_count(); ++row)

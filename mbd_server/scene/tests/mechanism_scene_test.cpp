@@ -101,6 +101,21 @@ TEST_F(MechanismScene, EveryBlockBuildsAndItsSensorsReadTheModel) {
               0.2, 1e-12);
 }
 
+// release_time belongs to constraint blocks; in a spring or a load it is an unknown key like any
+// other (a user's fsi-server --check aborted on an assertion instead, 2026-12-06).
+TEST_F(MechanismScene, AReleaseTimeOutsideAConstraintIsAnUnknownKey) {
+  for (const std::string block :
+       {"RotationalSpringDamper", "NonlinearSpringDamper", "SpringActor", "PointForce", "Torque"}) {
+    std::string text = kMechanism;
+    const std::size_t at = text.find(block + " { ");
+    ASSERT_NE(at, std::string::npos) << block;
+    text.insert(at + block.size() + 3, "release_time = 0.1; ");
+    const std::string found = problems(text);
+    EXPECT_NE(found.find("unknown parameter '" + block + ".release_time'"), std::string::npos)
+        << block << ": " << found;
+  }
+}
+
 TEST_F(MechanismScene, BadNamesAndExpressionsAreProblemsAtTheirLines) {
   const std::string text = problems(
       R"scene(RigidBody2D { name = "arm"; mass = 1; inertia = 1; Mesh { points = [[0, 0], [1, 0]] } }
