@@ -25,15 +25,16 @@ std::vector<BlockSpec> planar_joint_blocks() {
   return releasable({
       block_spec(
           "CoordinateConstraint",
-          "Holds a body coordinate at a value (position level; force from a Lagrange multiplier).",
-          {body_name, coordinate,
+          "Holds a body coordinate at a value (position level; force from a Lagrange multiplier; "
+          "a joint_force sensor on its name reads the holding force or torque).",
+          {element_name_spec(), body_name, coordinate,
            number("value", "m or rad", "held value (default: the initial coordinate)").optional()})
           .as_list()
           .planar(),
       block_spec("VelocityConstraint",
                  "Prescribes the velocity of a body coordinate (velocity level, thesis §6.3 "
-                 "piston).",
-                 {body_name, coordinate,
+                 "piston; a joint_force sensor on its name reads the driving force or torque).",
+                 {element_name_spec(), body_name, coordinate,
                   number("velocity", "m/s or rad/s", "prescribed constant velocity")})
           .as_list()
           .planar(),
@@ -114,13 +115,22 @@ std::vector<BlockSpec> planar_joint_blocks() {
 void build_coordinate_constraints(SceneBuilder& builder) {
   builder.each("CoordinateConstraint", [&](const View& c) {
     const mbd::BodyId body = builder.find_body(c, "body");
-    builder.model.add_coordinate_constraint(body, coordinate_of(c.string("coordinate")),
-                                            optional_number(c, "value"));
+    builder.add_joint(c,
+                      [&] {
+                        return builder.model.add_coordinate_constraint(
+                            body, coordinate_of(c.string("coordinate")),
+                            optional_number(c, "value"));
+                      },
+                      {.rows = 1, .body = body, .kind = "coordinate constraint"});
   });
   builder.each("VelocityConstraint", [&](const View& c) {
     const mbd::BodyId body = builder.find_body(c, "body");
-    builder.model.add_velocity_constraint(body, coordinate_of(c.string("coordinate")),
-                                          c.number("velocity"));
+    builder.add_joint(c,
+                      [&] {
+                        return builder.model.add_velocity_constraint(
+                            body, coordinate_of(c.string("coordinate")), c.number("velocity"));
+                      },
+                      {.rows = 1, .body = body, .kind = "velocity constraint"});
   });
 }
 

@@ -101,6 +101,29 @@ TEST_F(MechanismScene, EveryBlockBuildsAndItsSensorsReadTheModel) {
               0.2, 1e-12);
 }
 
+// A bar hinged at its left end and held level by a named CoordinateConstraint (a user's held gate,
+// 2026-12-06: the constraint took no name, so its torque had no sensor): the hold carries the
+// weight's moment m g L/2 about the hinge; the hinge none about its own point.
+TEST_F(MechanismScene, AHeldBarsTorquesAboutItsHinge) {
+  Scene scene = build_scene(write(R"scene(Gravity { acceleration = [0, -9.81] }
+RigidBody2D { name = "bar"; mass = 2; inertia = 0.2; position = [0.5, 0]; Mesh { points = [[-0.5, 0], [0.5, 0]] } }
+RevoluteJoint { name = "hinge"; body_a = "bar"; point_a = [-0.5, 0]; point_b = [0, 0] }
+CoordinateConstraint { name = "hold"; body = "bar"; coordinate = "angle" }
+Sensor { name = "hold_torque"; type = "joint_force"; joint = "hold"; component = "torque" }
+Sensor { name = "hinge_torque"; type = "joint_force"; joint = "hinge"; component = "torque" }
+Sensor { name = "hinge_own"; type = "joint_force"; joint = "hinge"; component = "torque"; about = [-0.5, 0] }
+Sensor { name = "held_about_hinge"; type = "constraint_force"; body = "bar"; component = "torque"; about = [-0.5, 0] }
+)scene"));
+  const mbd::State state = scene.model.initial_state();
+  const auto value = [&](std::size_t k) {
+    return structure_sensor_value(scene.model, scene.sensors[k], state);
+  };
+  EXPECT_NEAR(value(0), 2 * 9.81 * 0.5, 1e-9);
+  EXPECT_NEAR(value(1), -2 * 9.81 * 0.5, 1e-9);  // about the centre of mass
+  EXPECT_NEAR(value(2), 0.0, 1e-9);
+  EXPECT_NEAR(value(3), 2 * 9.81 * 0.5, 1e-9);
+}
+
 // release_time belongs to constraint blocks; in a spring or a load it is an unknown key like any
 // other (a user's fsi-server --check aborted on an assertion instead, 2026-12-06).
 TEST_F(MechanismScene, AReleaseTimeOutsideAConstraintIsAnUnknownKey) {
