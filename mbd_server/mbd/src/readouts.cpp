@@ -257,6 +257,12 @@ double force_element_force(const Model& model, const State& state, int element) 
   return measured->measured_force(state.time, state.q, state.v);
 }
 
+double force_element_power(const Model& model, const State& state, int element) {
+  Eigen::VectorXd force = Eigen::VectorXd::Zero(state.v.size());
+  model.force_element(element).add_force(state.time, state.q, state.v, force);
+  return force.dot(state.v);
+}
+
 Eigen::Vector3d marker_position(const Model& model, const State& state, int marker) {
   const Data& data = data_of(model);
   data.check_marker(marker);

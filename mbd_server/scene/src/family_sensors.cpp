@@ -34,6 +34,7 @@ constexpr SensorVariant kSensorVariants[] = {
     {"total_fluid_force", SensorType::TotalFluidForce, F, F, F, R, F, true, "N/m", "", "N", ""},
     {"joint_force", SensorType::JointForce, F, R, F, R, F, true, "N/m", "N m/m", "N", "N m"},
     {"spring_force", SensorType::SpringForce, F, F, R, F, F, true, "N/m", "N m/m", "N", ""},
+    {"power", SensorType::Power, F, F, R, F, F, true, "W/m", "", "W", ""},
     {"kinetic_energy", SensorType::KineticEnergy, F, F, F, F, F, true, "J/m", "", "J", ""},
     {"potential_energy", SensorType::PotentialEnergy, F, F, F, F, F, true, "J/m", "", "J", ""},
     {"strain_energy", SensorType::StrainEnergy, F, F, F, F, F, true, "J/m", "", "J", ""},
@@ -65,7 +66,10 @@ std::vector<BlockSpec> sensor_blocks() {
                 "joint_force: what the joint exerts on its body_a (Clamp: body; the torque about "
                 "its centre of mass, on an AncfBeam2D about the joint's point on it, a "
                 "BeamClamp's node); spring_force: "
-                "tension, or torque of a RotationalSpringDamper; energies of the whole system, "
+                "tension, or torque of a RotationalSpringDamper; power: the rate of work a "
+                "named spring or damper does on the bodies, Q . v (a damper's is minus what it "
+                "dissipates, -c omega^2: a power take-off absorbs minus its mean); "
+                "energies of the whole system, "
                 "potential = gravity + springs, strain = the beams' and cables' elastic "
                 "deformation; chord_deflection: the distance of an AncfBeam2D's point from the "
                 "chord through its end nodes, positive to the left of start -> end, the "
@@ -97,7 +101,9 @@ std::vector<BlockSpec> sensor_blocks() {
                 "moving tank, say")
                .optional(),
            text("joint", "joint_force: the name of a joint block").optional(),
-           text("element", "spring_force: the name of a spring block").optional(),
+           text("element",
+                "spring_force, power: the name of a spring or damper block")
+               .optional(),
            text("component",
                 "x, y, angle (torque for forces); 3D: x, y, z, and torque_x, torque_y, torque_z "
                 "(about the centre of mass) for fluid_force and joint_force, and torque for the "
@@ -467,7 +473,8 @@ bool SensorBuilder::spring_fits() {
     return false;
   }
   sensor.force_element = found->second;
-  if (builder.names.rotational[name]) sensor.unit = std::string(variant.planar_rotational_unit);
+  if (variant.kind == SensorType::SpringForce && builder.names.rotational[name])
+    sensor.unit = std::string(variant.planar_rotational_unit);
   return true;
 }
 

@@ -102,6 +102,8 @@ double structure_sensor_value(const mbd::Model& model, const SensorSpec& sensor,
         return about_point(model, state, sensor,
                            joint_reaction(model, state, sensor.first_row, sensor.rows, sensor.body))
             .stacked()(sensor.axis);
+      case SensorType::Power:
+        return force_element_power(model, state, sensor.force_element);
       default:
         break;  // energies below; the builder refuses the rest in 3D
     }
@@ -148,6 +150,8 @@ double structure_sensor_value(const mbd::Model& model, const SensorSpec& sensor,
           .planar()(component);
     case SensorType::SpringForce:
       return force_element_force(model, state, sensor.force_element);
+    case SensorType::Power:
+      return force_element_power(model, state, sensor.force_element);
     case SensorType::KineticEnergy:
       return kinetic_energy(model, state);
     case SensorType::PotentialEnergy:

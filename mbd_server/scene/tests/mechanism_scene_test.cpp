@@ -124,6 +124,37 @@ Sensor { name = "held_about_hinge"; type = "constraint_force"; body = "bar"; com
   EXPECT_NEAR(value(3), 2 * 9.81 * 0.5, 1e-9);
 }
 
+// A power take-off's absorbed power (a user's wave energy flap, 2026-12-06, integrated c omega^2
+// by hand): the power sensor reads the rate of work of a named element on the bodies, Q . v.
+TEST_F(MechanismScene, ADampersPowerIsMinusWhatItDissipates) {
+  Scene scene = build_scene(write(R"scene(
+RigidBody2D { name = "flap"; mass = 1; inertia = 0.5; angular_velocity = 2
+              Mesh { points = [[0, 0], [0, 1]] } }
+RigidBody2D { name = "slider"; mass = 1; inertia = 0.5; position = [2, 0]; velocity = [0.3, 0] }
+RotationalSpringDamper { name = "pto"; body_a = "flap"; stiffness = 0; damping = 0.5 }
+SpringDamper { name = "coil"; body_a = "slider"; point_b = [1, 0]; stiffness = 100; damping = 0 }
+Sensor { name = "pto_torque"; type = "spring_force"; element = "pto" }
+Sensor { name = "pto_power"; type = "power"; element = "pto" }
+Sensor { name = "coil_power"; type = "power"; element = "coil" }
+)scene"));
+  const mbd::State state = scene.model.initial_state();
+  const auto value = [&](std::size_t k) {
+    return structure_sensor_value(scene.model, scene.sensors[k], state);
+  };
+  EXPECT_EQ(scene.sensors[0].unit, "N m/m");
+  EXPECT_EQ(scene.sensors[1].unit, "W/m");
+  EXPECT_NEAR(value(0), -0.5 * 2.0, 1e-12);
+  EXPECT_NEAR(value(1), -0.5 * 2.0 * 2.0, 1e-12);
+  // The spring at its rest length (the initial distance) does no work at this instant; stretched
+  // by 0.1 m it pulls the slider back: -k e v = -100 * 0.1 * 0.3.
+  EXPECT_NEAR(value(2), 0.0, 1e-12);
+  mbd::State stretched = state;
+  const mbd::BodyId slider = scene.model.find_body("slider");
+  stretched.q(scene.model.coordinate_index(slider, mbd::Coordinate::X)) += 0.1;
+  EXPECT_NEAR(structure_sensor_value(scene.model, scene.sensors[2], stretched),
+              -100.0 * 0.1 * 0.3, 1e-9);
+}
+
 // release_time belongs to constraint blocks; in a spring or a load it is an unknown key like any
 // other (a user's fsi-server --check aborted on an assertion instead, 2026-12-06).
 TEST_F(MechanismScene, AReleaseTimeOutsideAConstraintIsAnUnknownKey) {

@@ -72,6 +72,10 @@ Wrench point_load_resultant(const Model& model, const State& state, BodyId body)
 // nonlinear, spring actor), the torque on body a of a rotational spring-damper [N m]; throws
 // fsi::Error for elements that measure nothing (loads).
 double force_element_force(const Model& model, const State& state, int element);
+// The rate of work a force element does on the bodies, Q(t, q, v) . v [W; 2D W/m]: a damper's is
+// minus what it dissipates (-c omega^2), a spring's minus the rate of its stored energy, a load's
+// what it puts in.
+double force_element_power(const Model& model, const State& state, int element);
 
 // --- positions and velocities (world frame) ---
 Eigen::Vector3d marker_position(const Model& model, const State& state, int marker);

@@ -188,7 +188,8 @@ enum class SensorType {
   KineticEnergy,
   PotentialEnergy,
   StrainEnergy,
-  ChordDeflection  // a beam point's distance from the chord through the beam's ends
+  ChordDeflection,  // a beam point's distance from the chord through the beam's ends
+  Power             // the rate of work a named spring or damper does on the bodies
 };
 
 // SensorSpec::axis of a driven RevoluteJoint3D's drive torque.
@@ -211,7 +212,7 @@ struct SensorSpec {
   // JointForce of a joint on an AncfBeam2D `body`: the beam point [s, eta] it acts at (a
   // BeamClamp's node, a pin's point_a); the torque is about that point.
   std::optional<std::array<double, 2>> beam_point;
-  int force_element = -1;  // SpringForce: index among the model's force elements
+  int force_element = -1;  // SpringForce, Power: index among the model's force elements
   // Planar position, velocity: the components in the axes of this rigid body, from its centre of
   // mass (an angle relative to its angle) instead of the world's.
   std::optional<mbd::BodyId> frame;
