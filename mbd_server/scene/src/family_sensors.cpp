@@ -101,9 +101,7 @@ std::vector<BlockSpec> sensor_blocks() {
                 "moving tank, say")
                .optional(),
            text("joint", "joint_force: the name of a joint block").optional(),
-           text("element",
-                "spring_force, power: the name of a spring or damper block")
-               .optional(),
+           text("element", "spring_force, power: the name of a spring or damper block").optional(),
            text("component",
                 "x, y, angle (torque for forces); 3D: x, y, z, and torque_x, torque_y, torque_z "
                 "(about the centre of mass) for fluid_force and joint_force, and torque for the "

@@ -151,8 +151,8 @@ Sensor { name = "coil_power"; type = "power"; element = "coil" }
   mbd::State stretched = state;
   const mbd::BodyId slider = scene.model.find_body("slider");
   stretched.q(scene.model.coordinate_index(slider, mbd::Coordinate::X)) += 0.1;
-  EXPECT_NEAR(structure_sensor_value(scene.model, scene.sensors[2], stretched),
-              -100.0 * 0.1 * 0.3, 1e-9);
+  EXPECT_NEAR(structure_sensor_value(scene.model, scene.sensors[2], stretched), -100.0 * 0.1 * 0.3,
+              1e-9);
 }
 
 // release_time belongs to constraint blocks; in a spring or a load it is an unknown key like any
