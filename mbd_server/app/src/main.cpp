@@ -152,6 +152,17 @@ void print_summary(const fsi::scene::Scene& scene, bool mbd_only) {
                 scene.solver.integrator_description().c_str(),
                 static_cast<unsigned long long>(scene.liggghts.equilibration_steps),
                 static_cast<double>(scene.liggghts.equilibration_steps) * scene.solver.step_size);
+    for (const fsi::scene::DampingZone& zone : scene.damping_zones) {
+      static constexpr const char* kSides[] = {"x", "y", "z"};
+      const std::string grows = zone.axis < 0 ? std::string("uniform")
+                                              : std::string("growing toward ") +
+                                                    (zone.toward_upper ? "upper " : "lower ") +
+                                                    kSides[zone.axis];
+      std::printf(
+          "  damping zone (%s): drag rate up to %g 1/s, %s, from the coupled run's "
+          "first step\n",
+          zone.location.text().c_str(), zone.rate, grows.c_str());
+    }
   }
   if (scene.assembly) {
     for (const std::string& line : scene.assembly->lines())

@@ -177,7 +177,13 @@ void TcpFluidSide::send_setup_and_mesh(const scene::Scene& scene,
   setup.script1_name = scene.liggghts.script1_name;
   setup.script1_text = scene.liggghts.script1_text;
   setup.script2_name = scene.liggghts.script2_name;
-  setup.script2_text = scene.liggghts.script2_text;
+  setup.script2_text = scene::script2_sent(scene);
+  for (const scene::DampingZone& zone : scene.damping_zones) {
+    spdlog::info(
+        "damping zone {}: a drag of up to {:g} 1/s from the coupled run's first step "
+        "(appended to script 2, fix fsi_damping_*)",
+        zone.location.text(), zone.rate);
+  }
   channel_->send(setup);
 
   const auto& boundary = scene.boundary;

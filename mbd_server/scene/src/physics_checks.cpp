@@ -1179,6 +1179,63 @@ std::string_view name(Severity severity) {
   return severity == Severity::Warning ? "warning" : "info";
 }
 
+// --- 10. damping zones ----------------------------------------------------------------------
+
+// A DampingZone acts on whatever fluid is in its box: one that starts without water absorbs only
+// what reaches it (a misplaced box, or a zone above the water), and one over a moving body slows
+// the water that loads the body, whose fluid force is then partly the zone's. Both are judged
+// where the scene starts; the kernel reaches about 2 d, so the box is widened by that.
+void check_damping_zones(const Scene& scene, Report& report) {
+  constexpr std::string_view kCheck = "damping_zones";
+  if (scene.damping_zones.empty()) return;
+  const auto dimension = static_cast<std::size_t>(scene.dimension);
+  const double reach = 2.0 * scene.fluid.spacing;
+  auto inside = [&](const DampingZone& zone, const double* point, double margin) {
+    for (std::size_t k = 0; k < dimension; ++k) {
+      if (point[k] < zone.lower[k] - margin || point[k] > zone.upper[k] + margin) return false;
+    }
+    return true;
+  };
+  const std::vector<WorldMesh> meshes = world_meshes(scene);  // 2D only
+  for (const DampingZone& zone : scene.damping_zones) {
+    const std::size_t count = scene.fluid.count();
+    if (count > 0) {
+      std::size_t in_zone = 0;
+      for (std::size_t i = 0; i < count; ++i)
+        in_zone += inside(zone, &scene.fluid.positions[i * dimension], 0.0) ? 1 : 0;
+      if (in_zone == 0) {
+        report.warn(kCheck, zone.location,
+                    "no particle of the FluidRegions starts in this DampingZone: it absorbs only "
+                    "the water that reaches it",
+                    "draw the box over the water where the waves should end (a flume's far end, "
+                    "from a little above the crests to the floor)");
+      }
+    }
+    // The first vertex or segment middle of a mesh within reach of the zone.
+    auto reached = [&](const WorldMesh& mesh) -> std::optional<Point> {
+      for (const auto& [a, b] : mesh.segments) {
+        for (const Point& p : {a, b, Point(0.5 * (a + b))}) {
+          const double point[2] = {p.x(), p.y()};
+          if (inside(zone, point, reach)) return p;
+        }
+      }
+      return std::nullopt;
+    };
+    for (const WorldMesh& mesh : meshes) {
+      if (mesh.owner == "the ground") continue;
+      const std::optional<Point> where = reached(mesh);
+      if (!where) continue;
+      report.warn(kCheck, zone.location,
+                  "this DampingZone reaches the mesh of " + mesh.owner + " (at " +
+                      point_text(*where) +
+                      ", within 2 d of the box): its drag slows the water that loads the body, "
+                      "whose fluid force is then partly the zone's",
+                  "end the zone at least 2 d (the kernel's reach) before the body, or leave the "
+                  "zone out where the body's loads are measured");
+    }
+  }
+}
+
 std::string Diagnostic::text() const {
   return location.text() + ": " + std::string(name(severity)) + " (" + check + "): " + message +
          (fix.empty() ? "" : "; " + fix);
@@ -1195,6 +1252,7 @@ std::vector<Diagnostic> physics_checks(const Scene& scene) {
   check_fluid_overlap(scene, report);
   check_gravity(scene, report);
   check_liggghts_scripts(scene, report);
+  check_damping_zones(scene, report);
   std::vector<Diagnostic> diagnostics = report.take();
   check_viscosity_match(scene, diagnostics);
   return diagnostics;

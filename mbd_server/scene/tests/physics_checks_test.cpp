@@ -684,6 +684,31 @@ TEST_F(SmallScene, SpeedOfSoundIsCabOrUnknown) {
 namespace fsi::scene {
 namespace {
 
+// A DampingZone acts on the fluid in its box: one that starts dry absorbs nothing there, one over
+// a moving body takes part of the body's fluid force. The small scene's fluid box spans
+// x = 0.01..0.09; a body 6 mm wide at x = 0.05; d = 0.526 mm, so 2 d = 1.05 mm.
+TEST_F(SmallScene, DampingZonesThatStartDryOrReachABodyAreWarned) {
+  const std::string body =
+      "RigidBody2D { name = \"float\"; mass = 0.01; inertia = 1e-6; position = [0.05, 0.01]\n"
+      "  Mesh { points = [[-0.003, -0.003], [0.003, -0.003], [0.003, 0.003], [-0.003, 0.003], "
+      "[-0.003, -0.003]] } }\n";
+  auto zone = [](const std::string& lower, const std::string& upper) {
+    return "DampingZone { lower = " + lower + "; upper = " + upper +
+           "; rate = 10; grows_toward = \"x+\" }\n";
+  };
+  const Scene scene =
+      build(kGoodSph, kGoodFluid + "\n" + body + zone("[0.06, 0]", "[0.1, 0.03]") +
+                          zone("[0.0535, 0]", "[0.1, 0.03]") + zone("[0.2, 0]", "[0.3, 0.03]"));
+  ASSERT_EQ(scene.damping_zones.size(), 3u);
+  const std::vector<Diagnostic> found = of(physics_checks(scene), "damping_zones");
+  ASSERT_EQ(found.size(), 2u) << listing(found);
+  EXPECT_CONTAINS(found[0].message,
+                  "this DampingZone reaches the mesh of body 'float' (at (0.053, ");
+  EXPECT_EQ(found[0].location.line, scene.damping_zones[1].location.line);
+  EXPECT_CONTAINS(found[1].message, "no particle of the FluidRegions starts in this DampingZone");
+  EXPECT_EQ(found[1].location.line, scene.damping_zones[2].location.line);
+}
+
 const std::string kTrueShapeBlock = FSI_EXAMPLES_DIR "/immersed_block/immersed_block_coarse.scene";
 const std::string kTrueShapeTank =
     FSI_EXAMPLES_DIR "/static_tank/static_tank_true_shape_coarse.scene";

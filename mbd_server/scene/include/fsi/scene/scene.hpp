@@ -227,6 +227,26 @@ struct SensorSpec {
 double structure_sensor_value(const mbd::Model& model, const SensorSpec& sensor,
                               const mbd::State& state);
 
+// A box where the fluid is slowed during the coupled run by a velocity drag -rate s^2 m v (block
+// DampingZone; docs/user-guide.md, "Absorbing waves: DampingZone"): s grows from 0 at the box's
+// side opposite the strong one to 1 at the strong side (uniform: 1 everywhere).
+struct DampingZone {
+  SourceLocation location;
+  std::array<double, 3> lower{}, upper{};  // 2D: z unused
+  double rate = 0.0;                       // lambda at s = 1 [1/s]
+  int axis = -1;                           // 0, 1, 2: s grows along it; -1: uniform
+  bool toward_upper = true;                // s = 1 at upper[axis] (else at lower[axis])
+};
+
+// The LIGGGHTS commands of the damping zones (a region, atom-style variables and a fix addforce
+// per zone, IDs fsi_damping_K): fsi-server appends them to script 2, so that they act from the
+// coupled run's first step. "" without zones.
+std::string damping_zone_commands(const std::vector<DampingZone>& zones, int dimension);
+
+struct Scene;
+// Script 2 as fsi-server sends it: the scene's script 2, then its damping zones' commands.
+std::string script2_sent(const Scene& scene);
+
 struct Scene {
   std::string file;
   Block parameters;                 // the evaluated parameter tree
@@ -258,6 +278,8 @@ struct Scene {
   // The same values as parameters named by their LIGGGHTS variable, each at the Fluid key that
   // sets it (or the Fluid block for a derived one): what sph_parameter finds.
   std::vector<Parameter> fluid_variables;
+  // The DampingZone blocks, in order.
+  std::vector<DampingZone> damping_zones;
 };
 
 // A LIGGGHTS variable the scene defines by name: an entry of LIGGGHTS_SPH_parameters, else a value
