@@ -158,11 +158,33 @@ void print_summary(const fsi::scene::Scene& scene, bool mbd_only) {
                                               : std::string("growing toward ") +
                                                     (zone.toward_upper ? "upper " : "lower ") +
                                                     kSides[zone.axis];
+      std::string box;
+      for (const auto* corner : {&zone.lower, &zone.upper}) {
+        box += box.empty() ? "(" : " to (";
+        for (int k = 0; k < scene.dimension; ++k) {
+          char value[32];
+          std::snprintf(value, sizeof value, "%s%g", k ? ", " : "",
+                        (*corner)[static_cast<std::size_t>(k)]);
+          box += value;
+        }
+        box += ")";
+      }
       std::printf(
-          "  damping zone (%s): drag rate up to %g 1/s, %s, from the coupled run's "
+          "  damping zone (%s): %s, drag rate up to %g 1/s, %s, from the coupled run's "
           "first step\n",
-          zone.location.text().c_str(), zone.rate, grows.c_str());
+          zone.location.text().c_str(), box.c_str(), zone.rate, grows.c_str());
     }
+  }
+  for (const fsi::scene::PlacedWavemaker& placed : scene.wavemakers) {
+    const fsi::scene::PistonWave& wave = placed.wave;
+    std::printf(
+        "  piston wavemaker (%s): H = %g m, T = %g s in h = %g m: k = %.5g 1/m (wavelength "
+        "%.4g m, kh = %.3g), stroke S = %.5g m (H/S = %.4g), phase speed %.4g m/s, group "
+        "speed %.4g m/s, steepness H/lambda = %.3g (breaks above %.3g)\n",
+        placed.location.text().c_str(), wave.height, wave.period, wave.depth, wave.wavenumber,
+        wave.wavelength, wave.wavenumber * wave.depth, wave.stroke, wave.height_per_stroke,
+        wave.phase_speed, wave.group_speed, wave.height / wave.wavelength,
+        wave.breaking_height / wave.wavelength);
   }
   if (scene.assembly) {
     for (const std::string& line : scene.assembly->lines())

@@ -152,8 +152,6 @@ std::vector<BlockSpec> fluid_blocks() {
   };
 }
 
-std::string format_exact(double value);
-
 // Writes one fluid region's lattice into `fluid` (and its points before the random displacement
 // into `undisplaced`); false, with a problem at the key, on a mistake.
 bool build_fluid_region(SceneBuilder& builder, const View& region, const std::string& name,
@@ -415,13 +413,6 @@ void build_fluid_regions(SceneBuilder& builder, const std::vector<View>& regions
       placed.push_back(region.location());
     });
   }
-}
-
-std::string format_exact(double value) {
-  // Shortest text that reads back to the same double.
-  char text[40];
-  const auto end = std::to_chars(text, text + sizeof text, value).ptr;
-  return std::string(text, end);
 }
 
 // The text of a LIGGGHTS script named at `key`; a problem there when it cannot be read.

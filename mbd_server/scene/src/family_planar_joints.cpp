@@ -7,9 +7,6 @@
 namespace fsi::scene::detail {
 namespace {
 
-// How many times across the run a PrescribedMotion's rate is checked against its position.
-constexpr int kPrescribedMotionChecks = 200;
-
 // The keys of RevoluteJoint and DistanceConstraint, whose points may lie on beams.
 std::vector<ParameterSpec> beam_two_points(std::vector<ParameterSpec> more) {
   return planar_two_points(std::move(more), true);
@@ -214,12 +211,7 @@ void build_prescribed_motions(SceneBuilder& builder) {
     const RuntimeExpression rate = builder.expression(p, "rate", {"t"});
     spec.position = [position](double time) { return position(time); };
     spec.rate = [rate](double time) { return rate(time); };
-    // t = 0 and 200 times across the run, off the round fractions of end_time where a drive's
-    // pieces tend to meet (a user's rate wrong for 0.5 < t < 2.5 s of a 30 s spin-up passed
-    // the 11 samples once taken every 3 s, and its index-2 run went wrong unseen).
-    spec.check_times.assign(1, 0.0);
-    for (int k = 1; k <= kPrescribedMotionChecks; ++k)
-      spec.check_times.push_back(builder.end_time * (k - 0.381966) / kPrescribedMotionChecks);
+    spec.check_times = prescribed_motion_check_times(builder.end_time);
     builder.add_joint(p, [&] { return builder.model.add_prescribed_motion(spec); },
                       {.rows = 1, .body = spec.body, .kind = "prescribed motion"});
   });

@@ -1,6 +1,7 @@
 #include "scene_builder.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <utility>
 
 #include "fsi/common/error.hpp"
@@ -384,6 +385,20 @@ mbd::Coordinate coordinate_of(const std::string& text) {
   if (text == "x") return mbd::Coordinate::X;
   if (text == "y") return mbd::Coordinate::Y;
   return mbd::Coordinate::Angle;  // "angle" or "torque"
+}
+
+std::string format_exact(double value) {
+  char text[40];
+  const auto end = std::to_chars(text, text + sizeof text, value).ptr;
+  return std::string(text, end);
+}
+
+std::vector<double> prescribed_motion_check_times(double end_time) {
+  constexpr int kChecks = 200;
+  std::vector<double> times(1, 0.0);
+  for (int k = 1; k <= kChecks; ++k)
+    times.push_back(end_time * (k - 0.381966) / kChecks);
+  return times;
 }
 
 std::string with_scene_numbers(std::string text) {

@@ -168,6 +168,16 @@ mbd::Coordinate coordinate_of(const std::string& text);
 // The doc of a block holding runtime expressions (SceneBuilder::expression): `text` and what
 // else its expressions may name.
 std::string with_scene_numbers(std::string text);
+
+// When a prescribed motion's rate is checked against its position (mbd::PrescribedMotionSpec::
+// check_times): t = 0 and 200 times across [0, end_time], off the round fractions of end_time
+// where a drive's pieces tend to meet (a user's rate wrong for 0.5 < t < 2.5 s of a 30 s spin-up
+// passed the 11 samples once taken every 3 s, and its index-2 run went wrong unseen).
+std::vector<double> prescribed_motion_check_times(double end_time);
+
+// The shortest text that reads back to the same double (LIGGGHTS values, numbers in messages that
+// must match the file's).
+std::string format_exact(double value);
 // A vector of the scene's dimension (2 or 3 components): the builder checks its length.
 ParameterSpec per_dimension(ParameterSpec spec);
 // body_a/point_a and body_b/point_b of a planar two-point element (body_b absent: point_b is a

@@ -709,6 +709,24 @@ TEST_F(SmallScene, DampingZonesThatStartDryOrReachABodyAreWarned) {
   EXPECT_EQ(found[1].location.line, scene.damping_zones[2].location.line);
 }
 
+// A PistonWavemaker's wave is noted with its height in particle spacings (SPH damps a wave the
+// more the fewer span it); the wave flume's sponge stands over water and away from the paddle.
+TEST(PhysicsChecks, TheWaveHeightInSpacingsIsNoted) {
+  const std::string flume = FSI_EXAMPLES_DIR "/wave_flume/wave_flume.scene";
+  const auto notes = [&](const std::vector<Override>& overrides) {
+    return of(physics_checks(build_scene(flume, overrides)), "wave_resolution", Severity::Info);
+  };
+  const std::vector<Diagnostic> coarse = notes({});
+  ASSERT_EQ(coarse.size(), 1u) << listing(coarse);
+  EXPECT_CONTAINS(coarse[0].message, "the wave is H/d = 2.47 particle spacings high");
+  EXPECT_CONTAINS(coarse[0].message, "a structure 2.39 m (a wavelength) down the flume");
+  EXPECT_CONTAINS(coarse[0].location.text(), "wave_flume_model.inc:");
+  const std::vector<Diagnostic> fine = notes({{"Resolution.spacing", "0.0125"}});
+  ASSERT_EQ(fine.size(), 1u) << listing(fine);
+  EXPECT_CONTAINS(fine[0].message, "H/d = 4.94");
+  EXPECT_TRUE(of(physics_checks(build_scene(flume, {})), "damping_zones").empty());
+}
+
 const std::string kTrueShapeBlock = FSI_EXAMPLES_DIR "/immersed_block/immersed_block_coarse.scene";
 const std::string kTrueShapeTank =
     FSI_EXAMPLES_DIR "/static_tank/static_tank_true_shape_coarse.scene";

@@ -227,6 +227,31 @@ struct SensorSpec {
 double structure_sensor_value(const mbd::Model& model, const SensorSpec& sensor,
                               const mbd::State& state);
 
+// Regular waves of a piston wavemaker by linear theory (block PistonWavemaker; docs/user-guide.md,
+// "Making waves: PistonWavemaker"): omega^2 = g k tanh(k h), H / S = 2 (cosh 2kh - 1) /
+// (sinh 2kh + 2kh) (Dean & Dalrymple 1991).
+struct PistonWave {
+  double height = 0.0, period = 0.0, depth = 0.0;  // H [m], T [s], h [m]
+  double omega = 0.0;                              // 2 pi / T [1/s]
+  double wavenumber = 0.0, wavelength = 0.0;       // k [1/m], 2 pi / k [m]
+  double height_per_stroke = 0.0;                  // H / S
+  double stroke = 0.0;                             // S: the paddle's full travel [m]
+  double phase_speed = 0.0, group_speed = 0.0;     // omega / k, d omega / dk [m/s]
+  double breaking_height = 0.0;                    // Miche: 0.142 tanh(kh) lambda [m]
+  double ramp_time = 0.0;                          // the stroke grows over [0, ramp_time] [s]
+  // The paddle's displacement from rest, S/2 r(t) sin(omega t), r = t/Tr - sin(2 pi t/Tr)/(2 pi)
+  // for t < Tr = ramp_time, else 1 (r(0) = r'(0) = 0, r' continuous), and its rate.
+  double offset(double time) const;
+  double offset_rate(double time) const;
+};
+PistonWave piston_wave(double height, double period, double depth, double gravity,
+                       double ramp_time = 0.0);
+
+struct PlacedWavemaker {
+  SourceLocation location;
+  PistonWave wave;
+};
+
 // A box where the fluid is slowed during the coupled run by a velocity drag -rate s^2 m v (block
 // DampingZone; docs/user-guide.md, "Absorbing waves: DampingZone"): s grows from 0 at the box's
 // side opposite the strong one to 1 at the strong side (uniform: 1 everywhere).
@@ -280,6 +305,8 @@ struct Scene {
   std::vector<Parameter> fluid_variables;
   // The DampingZone blocks, in order.
   std::vector<DampingZone> damping_zones;
+  // The PistonWavemaker blocks' waves, in order (each drives its paddle by a PrescribedMotion).
+  std::vector<PlacedWavemaker> wavemakers;
 };
 
 // A LIGGGHTS variable the scene defines by name: an entry of LIGGGHTS_SPH_parameters, else a value
