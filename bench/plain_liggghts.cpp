@@ -113,7 +113,8 @@ int main(int argc, char** argv) {
     driver.run_with_setup(0);
     if (scene.liggghts.equilibration_steps > 0)
       driver.run_with_setup(scene.liggghts.equilibration_steps);
-    driver.run_script(scene.liggghts.script2_name, scene.liggghts.script2_text);
+    // Script 2 as fsi-server sends it (with the scene's damping zones).
+    driver.run_script(scene.liggghts.script2_name, fsi::scene::script2_sent(scene));
     driver.run_with_setup(0);
     for (const std::string& line : extra_commands)
       driver.command(line);
