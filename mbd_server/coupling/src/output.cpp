@@ -25,7 +25,7 @@ void create_run_folder(const std::string& folder) {
 SensorFile::SensorFile(const std::string& path, const std::string& title,
                        const std::vector<std::string>& names, const std::vector<std::string>& units,
                        std::optional<std::uint64_t> resume_at)
-    : path_(path), last_flush_(std::chrono::steady_clock::now()) {
+    : columns_(names.size()), path_(path), last_flush_(std::chrono::steady_clock::now()) {
   std::string header = "# " + title + "\n# units: time [s]";
   for (std::size_t i = 0; i < names.size(); ++i)
     header += ", " + names[i] + " [" + units[i] + "]";
@@ -131,6 +131,7 @@ SensorFile::~SensorFile() {
 }
 
 void SensorFile::write(double time, const std::vector<double>& values) {
+  FSI_ASSERT(values.size() == columns_, "a row of another width than its CSV file's header");
   append_number(pending_, "", time);
   for (double value : values)
     append_number(pending_, ",", value);

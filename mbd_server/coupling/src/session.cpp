@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <cctype>
 #include <cmath>
 #include <csignal>
 #include <cstdio>
@@ -190,13 +191,21 @@ class Session {
     for (const auto& probe : scene_.probes)
       probe_columns_ += probes::columns(probe, scene_.dimension).size();
     const std::string work_unit = scene_.dimension == 3 ? "J" : "J/m";
+    std::vector<std::string> energy_columns{"work_fluid_on_structure", "work_structure_on_fluid",
+                                            "coupling_energy"};
+    // With several bodies, each body's own books too (the audit's parts, in their order).
+    const AuditParts parts = audit_parts();
+    if (parts.bodies.size() > 1) {
+      for (const std::string& body : parts.bodies) {
+        energy_columns.push_back("work_fluid_on_" + column_safe(body));
+        energy_columns.push_back("coupling_energy_" + column_safe(body));
+      }
+    }
     energy_ = std::make_unique<SensorFile>(
         (fs::path(options_.output_dir) / "energy.csv").string(),
         "fsi-server energy audit of the coupling of " + scene_.file +
             " (docs/theory.md, \"The energy audit\")",
-        std::vector<std::string>{"work_fluid_on_structure", "work_structure_on_fluid",
-                                 "coupling_energy"},
-        std::vector<std::string>{work_unit, work_unit, work_unit}, energy_length);
+        energy_columns, std::vector<std::string>(energy_columns.size(), work_unit), energy_length);
     if (scene_.output.snapshot_every_steps > 0) {
       fs::create_directories(fs::path(options_.output_dir) / "snapshots");
       vtk_ = std::make_unique<VtkOutput>(fs::path(options_.output_dir) / "vtk");
@@ -240,7 +249,7 @@ class Session {
       ScopedTimer timer(timings_.output);
       sensors_->write(0.0, with_probes(structure_->initial_sensor_readout(total_fluid_force_),
                                        probe_values, 0));
-      energy_->write(0.0, {0.0, 0.0, 0.0});
+      energy_->write(0.0, std::vector<double>(energy_->columns(), 0.0));
     }
     if (scene_.output.snapshot_every_steps > 0) take_snapshot(0);
   }
@@ -563,24 +572,43 @@ class Session {
     steps_done_ = n;
   }
 
-  // Each body's books of the energy audit (EnergyAudit::set_parts): the body of every dynamic
-  // vertex's values.
-  void audit_by_body() {
+  // The energy audit's books by body (EnergyAudit::set_parts): the body of every dynamic vertex's
+  // values, the bodies in the order their first vertex comes.
+  struct AuditParts {
+    std::vector<std::uint32_t> part_of_value;
+    std::vector<std::string> bodies;  // the bodies' names
+  };
+  AuditParts audit_parts() const {
     const scene::BoundaryMesh& boundary = scene_.boundary;
     const auto dimension = static_cast<std::size_t>(scene_.dimension);
     std::map<mbd::BodyId, std::uint32_t> part_of_body;
-    std::vector<std::string> names;
-    std::vector<std::uint32_t> part_of_value;
-    part_of_value.reserve(dimension * boundary.dynamic_vertex_count);
+    AuditParts parts;
+    parts.part_of_value.reserve(dimension * boundary.dynamic_vertex_count);
     for (std::size_t v = 0; v < boundary.dynamic_vertex_count; ++v) {
       const mbd::BodyId body =
           scene::vertex_body(boundary, scene_.model, static_cast<std::uint32_t>(v));
       auto [found, added] =
           part_of_body.emplace(body, static_cast<std::uint32_t>(part_of_body.size()));
-      if (added) names.push_back("body '" + scene_.model.body_name(body) + "'");
-      part_of_value.insert(part_of_value.end(), dimension, found->second);
+      if (added) parts.bodies.push_back(scene_.model.body_name(body));
+      parts.part_of_value.insert(parts.part_of_value.end(), dimension, found->second);
     }
-    audit_.set_parts(std::move(part_of_value), std::move(names));
+    return parts;
+  }
+
+  // A body's name as part of a CSV column name: letters, digits and '_' kept, the rest '_'.
+  static std::string column_safe(std::string name) {
+    for (char& c : name) {
+      if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_') c = '_';
+    }
+    return name;
+  }
+
+  void audit_by_body() {
+    AuditParts parts = audit_parts();
+    std::vector<std::string> names;
+    for (const std::string& body : parts.bodies)
+      names.push_back("body '" + body + "'");
+    audit_.set_parts(std::move(parts.part_of_value), std::move(names));
   }
 
   // The energy audit of this exchange (energy_audit.hpp); its totals go to energy.csv at the
@@ -605,8 +633,15 @@ class Session {
     if (sensor_row || !audit_.stop().empty()) {
       ScopedTimer timer(timings_.output);
       const EnergyTotals& totals = audit_.totals();
-      energy_->write(structure_->time(), {totals.work_fluid_on_structure,
-                                          totals.work_structure_on_fluid, totals.coupling_energy});
+      std::vector<double> row{totals.work_fluid_on_structure, totals.work_structure_on_fluid,
+                              totals.coupling_energy};
+      if (audit_.parts().size() > 1) {
+        for (const EnergyAudit::Part& part : audit_.parts()) {
+          row.push_back(part.totals.work_fluid_on_structure);
+          row.push_back(part.totals.coupling_energy);
+        }
+      }
+      energy_->write(structure_->time(), row);
     }
     if (!audit_.stop().empty()) {
       health_.record_failed_check(kCheckCouplingEnergy);

@@ -52,9 +52,9 @@ class SessionLoop : public ::testing::Test {
     return nlohmann::json::parse(in);
   }
 
-  // sensors.csv as columns by name.
-  std::map<std::string, std::vector<double>> sensors() const {
-    std::ifstream in(output_ / "sensors.csv");
+  // sensors.csv (or another of the run's CSV files) as columns by name.
+  std::map<std::string, std::vector<double>> sensors(const char* file = "sensors.csv") const {
+    std::ifstream in(output_ / file);
     std::string line;
     std::vector<std::string> header;
     std::map<std::string, std::vector<double>> columns;
@@ -145,6 +145,40 @@ TEST_F(SessionLoop, SetsUpEquilibratesAndCouplesOneHundredSteps) {
   EXPECT_TRUE(fs::exists(output_ / "snapshots" / "particles_000000000.csv"));
   EXPECT_TRUE(fs::exists(output_ / "snapshots" / "particles_000000050.csv"));
   EXPECT_TRUE(fs::exists(output_ / "vtk" / "boundary.pvd"));
+}
+
+// energy.csv holds the whole's books and, with several bodies, each body's: the static tank's
+// bottom and piston. The fake pushes every dynamic vertex down; the piston moves down under it
+// (the fluid works on it), the bottom is held (no work), and the bodies' works add up to the
+// whole's at every row.
+TEST_F(SessionLoop, EnergyCsvKeepsEachBodysBooks) {
+  scene::Scene scene = static_tank();
+  FakeFluidSide fluid(2, [&](const BoundaryMotion& motion) {
+    std::vector<double> forces(motion.positions.size(), 0.0);
+    for (std::size_t i = 1; i < forces.size(); i += 2)
+      forces[i] = -0.25;
+    return forces;
+  });
+  ASSERT_EQ(run_session(scene, options_, fluid), 0);
+  const auto columns = sensors("energy.csv");
+  for (const char* name : {"work_fluid_on_structure", "work_structure_on_fluid", "coupling_energy",
+                           "work_fluid_on_bottom", "coupling_energy_bottom", "work_fluid_on_piston",
+                           "coupling_energy_piston"})
+    ASSERT_TRUE(columns.contains(name)) << name;
+  const auto rows = columns.at("time").size();
+  ASSERT_EQ(rows, static_cast<std::size_t>(kSteps) + 1);
+  for (std::size_t row = 0; row < rows; ++row) {
+    const double whole = columns.at("work_fluid_on_structure")[row];
+    EXPECT_NEAR(columns.at("work_fluid_on_bottom")[row] + columns.at("work_fluid_on_piston")[row],
+                whole, 1e-12 * std::max(1.0, std::abs(whole)))
+        << "row " << row;
+    EXPECT_NEAR(
+        columns.at("coupling_energy_bottom")[row] + columns.at("coupling_energy_piston")[row],
+        columns.at("coupling_energy")[row], 1e-15)
+        << "row " << row;
+  }
+  EXPECT_GT(columns.at("work_fluid_on_piston").back(), 0.0);
+  EXPECT_EQ(columns.at("work_fluid_on_bottom").back(), 0.0);
 }
 
 // run.json follows a run at the progress log's pace, so that a script reading it mid-run finds

@@ -3,6 +3,7 @@
 // wavemaker theory, the motion is a PrescribedMotion of the paddle's x that the block builds.
 
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 
 #include "fsi/scene/scene.hpp"
@@ -103,13 +104,18 @@ void build_wavemakers(SceneBuilder& builder) {
         piston_wave(block.number("height"), block.number("period"), block.number("depth"), gravity,
                     block.number("ramp_periods") * block.number("period"));
     if (wave.height > wave.breaking_height) {
+      const auto text = [](double value) {
+        char buffer[32];
+        std::snprintf(buffer, sizeof buffer, "%.4g", value);
+        return std::string(buffer);
+      };
       builder.problem(
           block.location("height"),
-          "a wave " + std::to_string(wave.height) + " m high and " +
-              std::to_string(wave.wavelength) + " m long in water " + std::to_string(wave.depth) +
-              " m deep is steeper than Miche's limit H = 0.142 " + "tanh(kh) lambda = " +
-              std::to_string(wave.breaking_height) + " m: it breaks at the paddle",
-          "lower the height, or lengthen the period");
+          "a wave " + text(wave.height) + " m high and " + text(wave.wavelength) +
+              " m long in water " + text(wave.depth) +
+              " m deep is steeper than Miche's limit H = 0.142 tanh(kh) lambda = " +
+              text(wave.breaking_height) + " m: it breaks at the paddle",
+          "lower the height below " + text(wave.breaking_height) + " m, or lengthen the period");
       return;
     }
     const mbd::BodyId body = builder.find_body(block, "body");

@@ -37,7 +37,9 @@ class SensorFile {
 
   // Appends a row; rows reach the file about once a second and at flush(). Throws an fsi::Error
   // naming the file when the system refuses the write (a full disk).
+  // values: one per column (the header's, time excluded); another count is a bug (asserted).
   void write(double time, const std::vector<double>& values);
+  std::size_t columns() const { return columns_; }
   void flush();
   // Flushes and returns the file's length: whole rows up to the last one written (a checkpoint
   // records it, a resume cuts the file back to it).
@@ -49,6 +51,7 @@ class SensorFile {
   // written (at most about a second's).
   void append(const std::string& text);
   int descriptor_ = -1;
+  std::size_t columns_ = 0;  // values per row, time excluded
   std::string path_;
   std::string pending_;  // whole rows not yet written
   std::chrono::steady_clock::time_point last_flush_;
