@@ -1,7 +1,9 @@
 #!/usr/bin/python3
 """Wave flume: how much of the wave the flume's end sends back, from the five gauges.
 
-  analyze.py RUN_DIR [--window T0 T1] [--max-reflection F] [--min-reflection F] [--figure PNG]
+  analyze.py RUN_DIR [--window T0 T1] [--period T] [--depth H] [--stroke S] [--at X]
+             [--gauges NAME=X ...] [--max-reflection F] [--min-reflection F] [--figure PNG]
+             [--compare RUN_DIR]
 
 Each gauge's first harmonic B_j (eta = Re(B_j e^{i w t}) plus a mean and a drift, least squares
 over the window) is split into an incident and a reflected wave, B_j = a_I e^{-(ik + delta) x_j} +
@@ -13,7 +15,15 @@ at the gauges without the decay. The default window 9.0-11.8 s (two periods) sta
 wall's reflection has come back past every gauge (group velocity 1.30 m/s: the wave front
 reaches the wall at about 4.2 s and the reflection x = 1.0 m at about 7.6 s).
 --max-reflection F fails the run when K_r at x = 3.0 exceeds F; --min-reflection F when it is
-below F (the reflecting flume)."""
+below F (the reflecting flume).
+
+Another flume: --period and --depth give its wave (defaults: this example's 1.4 s, 0.4 m),
+--stroke its paddle's full stroke for the wavemaker theory's height (default 0.06 m), --at the x
+where K_r is referred to (default 3.0 m), and --gauges the FreeSurfaceProbes to use with their x
+(default: every probe named gXY, at x = X.Y m). At least four gauges (the fit has five unknowns:
+two complex amplitudes and the decay; three gauges of this run gave 0.075 against five's 0.028),
+spread over a fraction of a wavelength, none two a multiple of half a wavelength apart (where
+the split is singular)."""
 import argparse
 import math
 import os
@@ -27,18 +37,25 @@ from fsi_results import finish_figure, pyplot, read_run, write_analysis  # noqa:
 parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
 parser.add_argument("run_dir")
 parser.add_argument("--window", nargs=2, type=float, default=[9.0, 11.8])
+parser.add_argument("--period", type=float, default=1.4)
+parser.add_argument("--depth", type=float, default=0.40)
+parser.add_argument("--stroke", type=float, default=0.06)
+parser.add_argument("--at", type=float, default=3.0)
+parser.add_argument("--gauges", nargs="+", metavar="NAME=X")
 parser.add_argument("--max-reflection", type=float)
 parser.add_argument("--min-reflection", type=float)
 parser.add_argument("--figure")
+parser.add_argument("--compare", metavar="RUN_DIR",
+                    help="a second run (e.g. the flume without its sponge) drawn below")
 args = parser.parse_args()
 
-T, depth, g = 1.4, 0.40, 9.81
+T, depth, g = args.period, args.depth, 9.81
 w = 2 * math.pi / T
 k = w * w / g
 for _ in range(200):
     k = w * w / (g * math.tanh(k * depth))
 # Linear piston wavemaker (Dean & Dalrymple): H / S = 2 (cosh 2kh - 1) / (sinh 2kh + 2kh).
-stroke = 0.06
+stroke = args.stroke
 H_theory = stroke * 2 * (math.cosh(2 * k * depth) - 1) / (math.sinh(2 * k * depth) + 2 * k * depth)
 
 run, sensors = read_run(args.run_dir)
@@ -48,8 +65,20 @@ if time[-1] < t1:
     sys.exit(f"{args.run_dir}: the run ends at t = {time[-1]:.3f} s, before the window's end "
              f"{t1} s; run the scene to its end_time (12 s)")
 inside = (time >= t0) & (time <= t1)
-gauges = sorted((name for name in sensors if name.endswith("_elevation")), key=lambda n: n)
-xs = np.array([int(name[1:3]) / 10.0 for name in gauges])
+if args.gauges:
+    pairs = [item.split("=", 1) for item in args.gauges]
+    if any(len(pair) != 2 for pair in pairs):
+        sys.exit("--gauges: give each as NAME=X, e.g. g10=1.0 (NAME: the FreeSurfaceProbe's name)")
+    gauges, xs = [name + "_elevation" for name, _ in pairs], np.array([float(x) for _, x in pairs])
+else:
+    gauges = sorted(name for name in sensors
+                    if name.endswith("_elevation") and name[1:-len("_elevation")].isdigit()
+                    and name.startswith("g"))
+    xs = np.array([int(name[1:-len("_elevation")]) / 10.0 for name in gauges])
+missing = [name for name in gauges if name not in sensors]
+if missing or len(gauges) < 4:
+    sys.exit(f"{args.run_dir}: need at least four FreeSurfaceProbe columns; missing {missing}, "
+             f"found {gauges} (name them gXY for x = X.Y m, or give --gauges NAME=X ...)")
 B = []
 for name in gauges:
     eta = np.array(sensors[name])[inside]
@@ -70,7 +99,7 @@ best = min(((split(d)[0], d) for d in np.linspace(0.0, 0.4, 401)))
 residual, delta = best
 _, (aI, aR) = split(delta)
 _, (aI0, aR0) = split(0.0)
-x_zone = 3.0
+x_zone = args.at
 reflection = abs(aR) * math.exp(delta * x_zone) / (abs(aI) * math.exp(-delta * x_zone))
 print(f"{args.run_dir}: window {t0}-{t1} s, k = {k:.4f} 1/m (lambda {2 * math.pi / k:.3f} m), "
       f"linear wavemaker theory H = {H_theory:.4f} m")
@@ -93,13 +122,22 @@ write_analysis(args.run_dir, {"window": [t0, t1], "k": k, "H_theory": H_theory,
                               "gauges_x": list(xs), "gauges_H": [2 * abs(b) for b in B],
                               "H_incident": 2 * abs(aI), "H_reflected": 2 * abs(aR), "decay": delta,
                               "reflection": reflection, "reflection_no_decay": abs(aR0) / abs(aI0)})
-if args.figure:
-    plt = pyplot("analyze.py")
-    figure, axes = plt.subplots(figsize=(8, 4))
-    for name, x in zip(gauges, xs):
-        axes.plot(time, np.array(sensors[name]) - depth, label=f"x = {x:.1f} m", linewidth=0.8)
-    axes.axvspan(t0, t1, color="0.9")
-    axes.set_xlabel("t [s]")
-    axes.set_ylabel("elevation [m]")
-    finish_figure(figure, axes, f"Wave gauges, K_r = {reflection:.3f}", args.figure)
+plt = pyplot("analyze.py") if args.figure else None
+if plt:
+    runs = [(args.run_dir, sensors, f"K_r = {reflection:.3f}")]
+    if args.compare:
+        _, other = read_run(args.compare)
+        runs.append((args.compare, other, "the run compared"))
+    figure, panels = plt.subplots(len(runs), 1, figsize=(8, 3.2 * len(runs)), sharex=True,
+                                  squeeze=False)
+    for (run_dir, columns, what), axes in zip(runs, panels[:, 0]):
+        for name, x in zip(gauges, xs):
+            axes.plot(columns["time"], np.array(columns[name]) - depth, label=f"x = {x:.1f} m",
+                      linewidth=0.8)
+        axes.axvspan(t0, t1, color="0.9")
+        axes.set_ylabel("elevation [m]")
+        finish_figure(figure, axes, f"{os.path.basename(os.path.normpath(run_dir))}: {what}",
+                      args.figure)
+    panels[-1, 0].set_xlabel("t [s]")
+    figure.savefig(args.figure, dpi=120)
 sys.exit(1 if failures else 0)
