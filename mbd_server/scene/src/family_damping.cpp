@@ -4,7 +4,6 @@
 // right after script 2 (damping_zone_commands).
 
 #include <cmath>
-#include <cstdio>
 
 #include "fsi/scene/scene.hpp"
 #include "scene_builder.hpp"
@@ -74,11 +73,7 @@ void build_damping_zones(SceneBuilder& builder) {
       }
     }
     const double step = builder.scene.solver.step_size;
-    const auto rounded = [](double value) {
-      char text[32];
-      std::snprintf(text, sizeof text, "%.6g", value);
-      return std::string(text);
-    };
+    const auto rounded = [](double value) { return format_significant(value, 6); };
     if (step > 0.0 && zone.rate * step > 1.0) {
       builder.problem(block.location("rate"),
                       "the DampingZone's rate " + format_exact(zone.rate) +

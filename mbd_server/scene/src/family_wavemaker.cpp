@@ -3,7 +3,6 @@
 // wavemaker theory, the motion is a PrescribedMotion of the paddle's x that the block builds.
 
 #include <cmath>
-#include <cstdio>
 #include <numbers>
 
 #include "fsi/scene/scene.hpp"
@@ -104,11 +103,7 @@ void build_wavemakers(SceneBuilder& builder) {
         piston_wave(block.number("height"), block.number("period"), block.number("depth"), gravity,
                     block.number("ramp_periods") * block.number("period"));
     if (wave.height > wave.breaking_height) {
-      const auto text = [](double value) {
-        char buffer[32];
-        std::snprintf(buffer, sizeof buffer, "%.4g", value);
-        return std::string(buffer);
-      };
+      const auto text = [](double value) { return format_significant(value, 4); };
       builder.problem(
           block.location("height"),
           "a wave " + text(wave.height) + " m high and " + text(wave.wavelength) +
