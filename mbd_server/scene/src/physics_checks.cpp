@@ -1190,9 +1190,9 @@ void check_damping_zones(const Scene& scene, Report& report) {
   if (scene.damping_zones.empty()) return;
   const auto dimension = static_cast<std::size_t>(scene.dimension);
   const double reach = 2.0 * scene.fluid.spacing;
-  auto inside = [&](const DampingZone& zone, const double* point, double margin) {
+  auto inside = [&](const DampingZone& zone, const double* point) {
     for (std::size_t k = 0; k < dimension; ++k) {
-      if (point[k] < zone.lower[k] - margin || point[k] > zone.upper[k] + margin) return false;
+      if (point[k] < zone.lower[k] || point[k] > zone.upper[k]) return false;
     }
     return true;
   };
@@ -1202,7 +1202,7 @@ void check_damping_zones(const Scene& scene, Report& report) {
     if (count > 0) {
       std::size_t in_zone = 0;
       for (std::size_t i = 0; i < count; ++i)
-        in_zone += inside(zone, &scene.fluid.positions[i * dimension], 0.0) ? 1 : 0;
+        in_zone += inside(zone, &scene.fluid.positions[i * dimension]) ? 1 : 0;
       if (in_zone == 0) {
         report.warn(kCheck, zone.location,
                     "no particle of the FluidRegions starts in this DampingZone: it absorbs only "
@@ -1211,13 +1211,23 @@ void check_damping_zones(const Scene& scene, Report& report) {
                     "from a little above the crests to the floor)");
       }
     }
-    // The first vertex or segment middle of a mesh within reach of the zone.
+    // Where a mesh first comes within reach of the zone: each segment clipped to the box grown by
+    // the reach (Liang & Barsky), so a long segment crossing the box between its ends counts.
     auto reached = [&](const WorldMesh& mesh) -> std::optional<Point> {
       for (const auto& [a, b] : mesh.segments) {
-        for (const Point& p : {a, b, Point(0.5 * (a + b))}) {
-          const double point[2] = {p.x(), p.y()};
-          if (inside(zone, point, reach)) return p;
+        double enter = 0.0, leave = 1.0;
+        for (int k = 0; k < 2 && enter <= leave; ++k) {
+          const double lo = zone.lower[k] - reach, hi = zone.upper[k] + reach;
+          const double delta = b[k] - a[k];
+          if (delta == 0.0) {
+            if (a[k] < lo || a[k] > hi) enter = 2.0;  // parallel and outside
+            continue;
+          }
+          const double t_lo = (lo - a[k]) / delta, t_hi = (hi - a[k]) / delta;
+          enter = std::max(enter, std::min(t_lo, t_hi));
+          leave = std::min(leave, std::max(t_lo, t_hi));
         }
+        if (enter <= leave) return Point(a + enter * (b - a));
       }
       return std::nullopt;
     };

@@ -692,21 +692,29 @@ TEST_F(SmallScene, DampingZonesThatStartDryOrReachABodyAreWarned) {
       "RigidBody2D { name = \"float\"; mass = 0.01; inertia = 1e-6; position = [0.05, 0.01]\n"
       "  Mesh { points = [[-0.003, -0.003], [0.003, -0.003], [0.003, 0.003], [-0.003, 0.003], "
       "[-0.003, -0.003]] } }\n";
+  // One long segment through the third zone: its ends and its middle lie outside it.
+  const std::string plate =
+      "RigidBody2D { name = \"plate\"; mass = 0.01; inertia = 1e-6; position = [0.35, 0.02]\n"
+      "  Mesh { points = [[-0.2, 0], [0.2, 0]] } }\n";
   auto zone = [](const std::string& lower, const std::string& upper) {
     return "DampingZone { lower = " + lower + "; upper = " + upper +
            "; rate = 10; grows_toward = \"x+\" }\n";
   };
   const Scene scene =
-      build(kGoodSph, kGoodFluid + "\n" + body + zone("[0.06, 0]", "[0.1, 0.03]") +
+      build(kGoodSph, kGoodFluid + "\n" + body + plate + zone("[0.06, 0]", "[0.1, 0.03]") +
                           zone("[0.0535, 0]", "[0.1, 0.03]") + zone("[0.2, 0]", "[0.3, 0.03]"));
   ASSERT_EQ(scene.damping_zones.size(), 3u);
   const std::vector<Diagnostic> found = of(physics_checks(scene), "damping_zones");
-  ASSERT_EQ(found.size(), 2u) << listing(found);
+  ASSERT_EQ(found.size(), 3u) << listing(found);
+  // Where the float's bottom edge enters the zone grown by 2 d (d = 0.001/1.9 m).
   EXPECT_CONTAINS(found[0].message,
-                  "this DampingZone reaches the mesh of body 'float' (at (0.053, ");
+                  "this DampingZone reaches the mesh of body 'float' (at (0.0524, 0.007)");
   EXPECT_EQ(found[0].location.line, scene.damping_zones[1].location.line);
   EXPECT_CONTAINS(found[1].message, "no particle of the FluidRegions starts in this DampingZone");
   EXPECT_EQ(found[1].location.line, scene.damping_zones[2].location.line);
+  EXPECT_CONTAINS(found[2].message,
+                  "this DampingZone reaches the mesh of body 'plate' (at (0.199, 0.02)");
+  EXPECT_EQ(found[2].location.line, scene.damping_zones[2].location.line);
 }
 
 // A PistonWavemaker's wave is noted with its height in particle spacings (SPH damps a wave the
