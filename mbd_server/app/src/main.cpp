@@ -11,11 +11,13 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <mutex>
+#include <numbers>
 #include <optional>
 
 #include "fsi/common/error.hpp"
@@ -176,15 +178,24 @@ void print_summary(const fsi::scene::Scene& scene, bool mbd_only) {
     }
   }
   for (const fsi::scene::PlacedWavemaker& placed : scene.wavemakers) {
-    const fsi::scene::PistonWave& wave = placed.wave;
+    const fsi::scene::PaddleWave& wave = placed.wave;
+    std::string paddle = "piston wavemaker";
+    if (wave.flap()) {
+      char hinge[160];
+      std::snprintf(hinge, sizeof hinge,
+                    "flap wavemaker hinged %g m below the still surface, swinging up to %.3g deg",
+                    wave.hinge_depth,
+                    std::atan(0.5 * wave.stroke / wave.hinge_depth) * 180.0 / std::numbers::pi);
+      paddle = hinge;
+    }
     std::printf(
-        "  piston wavemaker (%s): H = %g m, T = %g s in h = %g m: k = %.5g 1/m (wavelength "
-        "%.4g m, kh = %.3g), stroke S = %.5g m (H/S = %.4g), phase speed %.4g m/s, group "
+        "  %s (%s): H = %g m, T = %g s in h = %g m: k = %.5g 1/m (wavelength "
+        "%.4g m, kh = %.3g), stroke S = %.5g m%s (H/S = %.4g), phase speed %.4g m/s, group "
         "speed %.4g m/s, steepness H/lambda = %.3g (breaks above %.3g)\n",
-        placed.location.text().c_str(), wave.height, wave.period, wave.depth, wave.wavenumber,
-        wave.wavelength, wave.wavenumber * wave.depth, wave.stroke, wave.height_per_stroke,
-        wave.phase_speed, wave.group_speed, wave.height / wave.wavelength,
-        wave.breaking_height / wave.wavelength);
+        paddle.c_str(), placed.location.text().c_str(), wave.height, wave.period, wave.depth,
+        wave.wavenumber, wave.wavelength, wave.wavenumber * wave.depth, wave.stroke,
+        wave.flap() ? " at the surface" : "", wave.height_per_stroke, wave.phase_speed,
+        wave.group_speed, wave.height / wave.wavelength, wave.breaking_height / wave.wavelength);
   }
   if (scene.assembly) {
     for (const std::string& line : scene.assembly->lines())

@@ -1,10 +1,11 @@
-// PistonWavemaker (family_wavemaker.cpp): linear piston-wavemaker theory, the paddle's motion,
-// and the blocks refused.
+// PistonWavemaker and FlapWavemaker (family_wavemaker.cpp): linear wavemaker theory, the
+// paddle's motion, and the blocks refused.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 
+#include "fsi/mbd/integrator.hpp"
 #include "test_files.hpp"
 
 namespace fsi::scene {
@@ -14,7 +15,7 @@ TEST(PistonWave, LinearTheoryOfTheWaveFlapUsersFlume) {
   // T = 1.4 s, h = 0.4 m: the user computed k = 2.626 1/m and H/S = 1.028 by hand (Dean &
   // Dalrymple), and a stroke of 0.06 m made H = 0.0617 m 0.4 m from the paddle (docs/
   // validation.md, "Users' unseen cases").
-  const PistonWave wave = piston_wave(0.0617, 1.4, 0.4, 9.81);
+  const PaddleWave wave = piston_wave(0.0617, 1.4, 0.4, 9.81);
   const double omega = 2.0 * std::numbers::pi / 1.4;
   EXPECT_NEAR(wave.wavenumber * std::tanh(wave.wavenumber * 0.4), omega * omega / 9.81, 1e-12);
   EXPECT_NEAR(wave.wavenumber, 2.626, 5e-4);
@@ -25,16 +26,20 @@ TEST(PistonWave, LinearTheoryOfTheWaveFlapUsersFlume) {
   EXPECT_LT(wave.group_speed, wave.phase_speed);
   // The limits of the transfer function: deep water H/S -> 2 (and k -> omega^2/g), shallow
   // water H/S -> kh.
-  const PistonWave deep = piston_wave(0.01, 0.5, 10.0, 9.81);
+  const PaddleWave deep = piston_wave(0.01, 0.5, 10.0, 9.81);
   EXPECT_NEAR(deep.height_per_stroke, 2.0, 1e-9);
   EXPECT_NEAR(deep.wavenumber, std::pow(2.0 * std::numbers::pi / 0.5, 2) / 9.81, 1e-9);
-  const PistonWave shallow = piston_wave(0.001, 20.0, 0.05, 9.81);
+  const PaddleWave shallow = piston_wave(0.001, 20.0, 0.05, 9.81);
   EXPECT_NEAR(shallow.height_per_stroke / (shallow.wavenumber * 0.05), 1.0, 1e-3);
   EXPECT_NEAR(shallow.phase_speed, std::sqrt(9.81 * 0.05), 1e-3);
+  // kh = 1610: sinh(2kh) overflows a double; the transfer function must not.
+  const PaddleWave deeper = piston_wave(0.01, 0.5, 100.0, 9.81);
+  EXPECT_NEAR(deeper.height_per_stroke, 2.0, 1e-9);
+  EXPECT_NEAR(deeper.group_speed, 0.5 * deeper.phase_speed, 1e-9);
 }
 
 TEST(PistonWave, ThePaddleRampsUpSmoothlyToItsStroke) {
-  const PistonWave wave = piston_wave(0.0617, 1.4, 0.4, 9.81, 2.8);
+  const PaddleWave wave = piston_wave(0.0617, 1.4, 0.4, 9.81, 2.8);
   EXPECT_EQ(wave.offset(0.0), 0.0);
   EXPECT_EQ(wave.offset_rate(0.0), 0.0);
   // After the ramp: S/2 sin(omega t); at a quarter period past 2.8 s the crest of the stroke.
@@ -46,6 +51,63 @@ TEST(PistonWave, ThePaddleRampsUpSmoothlyToItsStroke) {
     ASSERT_NEAR(wave.offset_rate(t), difference, 1e-6) << "t = " << t;
   }
   EXPECT_NEAR(largest, 0.5 * wave.stroke, 1e-6);
+}
+
+// The transfer function of a flap hinged at depth l, from the profile of the water it moves,
+// X(z)/(S/2) = 1 - z/l above the hinge and 0 below, integrated here by Simpson's rule instead of
+// in closed form: H/S = 4 k sinh(kh) / (sinh 2kh + 2kh) times the integral of X(z)/(S/2)
+// cosh k(h - z) over 0 <= z <= h (Dean & Dalrymple 1991, §6.2).
+double flap_height_per_stroke_by_quadrature(double k, double h, double l) {
+  const int n = 20000;  // even
+  const double dz = h / n;
+  double sum = 0.0;
+  for (int i = 0; i <= n; ++i) {
+    const double z = i * dz;
+    const double profile = z < l ? 1.0 - z / l : 0.0;
+    const double weight = (i == 0 || i == n) ? 1.0 : (i % 2 == 1 ? 4.0 : 2.0);
+    sum += weight * profile * std::cosh(k * (h - z));
+  }
+  const double integral = sum * dz / 3.0;
+  return 4.0 * k * std::sinh(k * h) * integral / (std::sinh(2.0 * k * h) + 2.0 * k * h);
+}
+
+TEST(FlapWave, LinearTheoryOfAFlapOnTheFloorAndAboveIt) {
+  // On the floor (l = h): Dean & Dalrymple's closed form 4 (sinh kh / kh)(kh sinh kh - cosh kh
+  // + 1) / (sinh 2kh + 2kh); T = 1.4 s, h = 0.4 m: kh = 1.0504, H/S = 0.5563.
+  const PaddleWave floor = flap_wave(0.0617, 1.4, 0.4, 0.4, 9.81);
+  const double kh = floor.wavenumber * 0.4;
+  EXPECT_NEAR(floor.wavenumber, 2.626, 5e-4);  // the dispersion relation, as the piston's
+  const double closed = 4.0 * (std::sinh(kh) / kh) * (kh * std::sinh(kh) - std::cosh(kh) + 1.0) /
+                        (std::sinh(2.0 * kh) + 2.0 * kh);
+  EXPECT_NEAR(floor.height_per_stroke, closed, 1e-12);
+  EXPECT_NEAR(floor.height_per_stroke, 0.5563, 1e-4);
+  EXPECT_NEAR(floor.stroke, 0.0617 / closed, 1e-12);
+  EXPECT_TRUE(floor.flap());
+  EXPECT_FALSE(piston_wave(0.0617, 1.4, 0.4, 9.81).flap());
+  // Hinged above the floor: against the quadrature of the moved water's profile.
+  for (const double l : {0.1, 0.25, 0.4}) {
+    const PaddleWave wave = flap_wave(0.05, 1.4, 0.4, l, 9.81);
+    EXPECT_NEAR(wave.height_per_stroke,
+                flap_height_per_stroke_by_quadrature(wave.wavenumber, 0.4, l), 1e-9)
+        << "l = " << l;
+  }
+  // The limits: shallow water H/S -> kh/2 (half the piston's), deep water -> 2 (the flap moves
+  // the top of the water, where the wave lives, like a piston).
+  const PaddleWave shallow = flap_wave(0.001, 20.0, 0.05, 0.05, 9.81);
+  EXPECT_NEAR(shallow.height_per_stroke / (0.5 * shallow.wavenumber * 0.05), 1.0, 1e-3);
+  const PaddleWave deep = flap_wave(0.01, 0.5, 100.0, 100.0, 9.81);
+  EXPECT_NEAR(deep.height_per_stroke, 2.0, 2.0 / (deep.wavenumber * 100.0) + 1e-9);
+}
+
+TEST(FlapWave, TheAngleMovesTheFlapsSurfacePointByTheOffset) {
+  const PaddleWave wave = flap_wave(0.0617, 1.4, 0.4, 0.3, 9.81, 2.8);
+  EXPECT_EQ(wave.flap_angle(0.0), 0.0);
+  for (double t = 0.0; t < 8.0; t += 1e-3) {
+    // The flap's line through the hinge crosses the still surface, l above it, at l tan(-angle).
+    ASSERT_NEAR(0.3 * std::tan(-wave.flap_angle(t)), wave.offset(t), 1e-14) << "t = " << t;
+    const double difference = (wave.flap_angle(t + 1e-6) - wave.flap_angle(t - 1e-6)) / 2e-6;
+    ASSERT_NEAR(wave.flap_angle_rate(t), difference, 1e-6) << "t = " << t;
+  }
 }
 
 class Wavemakers : public testing::FolderPerTest {
@@ -73,7 +135,7 @@ TEST_F(Wavemakers, TheBlockDrivesItsPaddleAndNamesItsWave) {
                              &built),
             "(accepted)");
   ASSERT_EQ(built.wavemakers.size(), 1u);
-  const PistonWave& wave = built.wavemakers[0].wave;
+  const PaddleWave& wave = built.wavemakers[0].wave;
   EXPECT_NEAR(wave.stroke, 0.0600, 1e-4);
   EXPECT_DOUBLE_EQ(wave.ramp_time, 2.8);  // the default two periods
   EXPECT_EQ(built.wavemakers[0].location.line, 8);
@@ -100,6 +162,53 @@ TEST_F(Wavemakers, WavesThatCannotBeMadeAreRefused) {
       "u.scene",
       scene("PistonWavemaker { body = \"padle\"; height = 0.05; period = 1.4; depth = 0.4 }\n"));
   EXPECT_NE(unknown.find("padle"), std::string::npos) << unknown;
+}
+
+// A flap on the floor of water 0.4 m deep, pinned at its foot: run by the scene's integrator, the
+// flap's line crosses the still surface where the theory's stroke puts it.
+TEST_F(Wavemakers, TheFlapTurnsAboutItsHingeSoThatTheSurfaceMovesByTheStroke) {
+  const std::string text =
+      "scene_language = 1\n"
+      "SolverOptions { end_time = 3.15; Timeint { step_size = 1e-3 } }\n"
+      "Gravity { acceleration = [0, -9.81] }\n"
+      "RigidBody2D { name = \"flap\"; mass = 2; inertia = 0.06; position = [0.1, 0.3]\n"
+      "  Mesh { points = [[0, -0.3], [0, 0.3]] } }\n"
+      "RevoluteJoint { name = \"hinge\"; body_a = \"flap\"; point_a = [0, -0.3]; point_b = "
+      "[0.1, 0] }\n"
+      "FlapWavemaker { name = \"swing\"; body = \"flap\"; height = 0.0617; period = 1.4; "
+      "depth = 0.4 }\n"
+      "Sensor { name = \"drive\"; type = \"joint_force\"; joint = \"swing\"; component = "
+      "\"torque\" }\n";
+  const Scene scene = build_scene(write("f.scene", text), {}, SceneMode::MbdOnly);
+  ASSERT_EQ(scene.wavemakers.size(), 1u);
+  const PaddleWave& wave = scene.wavemakers[0].wave;
+  EXPECT_DOUBLE_EQ(wave.hinge_depth, 0.4);  // absent: on the floor
+  EXPECT_NEAR(wave.stroke, 0.0617 / 0.5563, 1e-4);
+  mbd::RadauIIA integrator(scene.solver.integrator_options());
+  mbd::State state = scene.model.initial_state();
+  const auto steps = static_cast<long>(std::lround(3.15 / scene.solver.step_size));
+  for (long n = 0; n < steps; ++n)
+    integrator.step(scene.model, state, scene.solver.step_size);
+  // t = 2.8 s + a quarter period: the full half stroke. The foot stays at the hinge.
+  const double angle = state.q(2);
+  const double x = state.q(0), y = state.q(1);
+  EXPECT_NEAR(x + 0.3 * std::sin(angle), 0.1, 1e-9);  // the foot, [0, -0.3] in the body
+  EXPECT_NEAR(y - 0.3 * std::cos(angle), 0.0, 1e-9);
+  EXPECT_NEAR(0.4 * std::tan(-angle), 0.5 * wave.stroke, 1e-9);
+}
+
+TEST_F(Wavemakers, AFlapHingedBelowTheFloorIsRefused) {
+  const std::string below = mbd_only_outcome(
+      "h.scene", scene("FlapWavemaker { body = \"paddle\"; height = 0.05; period = 1.4; depth "
+                       "= 0.4; hinge_depth = 0.5 }\n"));
+  EXPECT_NE(below.find("the hinge 0.5 m below the still surface is under the floor (depth 0.4 m)"),
+            std::string::npos)
+      << below;
+  EXPECT_NE(below.find("give a hinge_depth of at most the depth"), std::string::npos) << below;
+  const std::string breaking =
+      mbd_only_outcome("b.scene", scene("FlapWavemaker { body = \"paddle\"; height = 0.3; "
+                                        "period = 1.4; depth = 0.4 }\n"));
+  EXPECT_NE(breaking.find("steeper than Miche's limit"), std::string::npos) << breaking;
 }
 
 }  // namespace

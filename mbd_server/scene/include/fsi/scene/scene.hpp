@@ -227,29 +227,43 @@ struct SensorSpec {
 double structure_sensor_value(const mbd::Model& model, const SensorSpec& sensor,
                               const mbd::State& state);
 
-// Regular waves of a piston wavemaker by linear theory (block PistonWavemaker; docs/user-guide.md,
-// "Making waves: PistonWavemaker"): omega^2 = g k tanh(k h), H / S = 2 (cosh 2kh - 1) /
-// (sinh 2kh + 2kh) (Dean & Dalrymple 1991).
-struct PistonWave {
+// Regular waves of a wavemaker paddle by linear theory (blocks PistonWavemaker and FlapWavemaker;
+// docs/user-guide.md, "Making waves"): omega^2 = g k tanh(k h); the paddle moves the water at
+// depth z below the still surface by X(z) = S/2 sin(omega t) for a piston, X(z) = S/2 (1 - z/l)
+// above a flap's hinge at depth l (0 below it), and the progressive wave's height is
+// H = 4 k sinh(kh) / (sinh 2kh + 2kh) times the integral of X(z)/(S/2) cosh k(h - z) over the depth
+// (Dean & Dalrymple 1991, §6.2): H / S = 2 (cosh 2kh - 1) / (sinh 2kh + 2kh) for a piston.
+struct PaddleWave {
   double height = 0.0, period = 0.0, depth = 0.0;  // H [m], T [s], h [m]
+  double hinge_depth = 0.0;                        // l: a flap's hinge below the surface; 0: piston
   double omega = 0.0;                              // 2 pi / T [1/s]
   double wavenumber = 0.0, wavelength = 0.0;       // k [1/m], 2 pi / k [m]
   double height_per_stroke = 0.0;                  // H / S
-  double stroke = 0.0;                             // S: the paddle's full travel [m]
-  double phase_speed = 0.0, group_speed = 0.0;     // omega / k, d omega / dk [m/s]
-  double breaking_height = 0.0;                    // Miche: 0.142 tanh(kh) lambda [m]
-  double ramp_time = 0.0;                          // the stroke grows over [0, ramp_time] [s]
-  // The paddle's displacement from rest, S/2 r(t) sin(omega t), r = t/Tr - sin(2 pi t/Tr)/(2 pi)
-  // for t < Tr = ramp_time, else 1 (r(0) = r'(0) = 0, r' continuous), and its rate.
+  double stroke = 0.0;  // S: the paddle's full travel at the still surface [m]
+  double phase_speed = 0.0, group_speed = 0.0;  // omega / k, d omega / dk [m/s]
+  double breaking_height = 0.0;                 // Miche: 0.142 tanh(kh) lambda [m]
+  double ramp_time = 0.0;                       // the stroke grows over [0, ramp_time] [s]
+  bool flap() const { return hinge_depth > 0.0; }
+  // The paddle's displacement from rest at the still surface, S/2 r(t) sin(omega t),
+  // r = t/Tr - sin(2 pi t/Tr)/(2 pi) for t < Tr = ramp_time, else 1 (r(0) = r'(0) = 0, r'
+  // continuous), and its rate.
   double offset(double time) const;
   double offset_rate(double time) const;
+  // A flap's rotation from rest that moves the still surface's point of it by offset(t),
+  // -atan(offset / l) (counterclockwise positive: the top moves toward +x for a negative angle),
+  // and its rate.
+  double flap_angle(double time) const;
+  double flap_angle_rate(double time) const;
 };
-PistonWave piston_wave(double height, double period, double depth, double gravity,
+PaddleWave piston_wave(double height, double period, double depth, double gravity,
                        double ramp_time = 0.0);
+// A flap hinged hinge_depth below the still surface (hinge_depth = depth: on the floor).
+PaddleWave flap_wave(double height, double period, double depth, double hinge_depth, double gravity,
+                     double ramp_time = 0.0);
 
 struct PlacedWavemaker {
   SourceLocation location;
-  PistonWave wave;
+  PaddleWave wave;
 };
 
 // A box where the fluid is slowed during the coupled run by a velocity drag -rate s^2 m v (block
