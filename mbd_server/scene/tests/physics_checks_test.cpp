@@ -728,7 +728,7 @@ TEST(PhysicsChecks, TheWaveHeightInSpacingsIsNoted) {
   ASSERT_EQ(coarse.size(), 1u) << listing(coarse);
   EXPECT_CONTAINS(coarse[0].message, "the wave is H/d = 2.47 particle spacings high");
   EXPECT_CONTAINS(coarse[0].message, "a structure 2.39 m (a wavelength) down the flume");
-  EXPECT_CONTAINS(coarse[0].location.text(), "wave_flume_model.inc:");
+  EXPECT_CONTAINS(coarse[0].location.text(), "piston_paddle.inc:");
   const std::vector<Diagnostic> fine = notes({{"Resolution.spacing", "0.0125"}});
   ASSERT_EQ(fine.size(), 1u) << listing(fine);
   EXPECT_CONTAINS(fine[0].message, "H/d = 4.94");
