@@ -185,7 +185,7 @@ void print_summary(const fsi::scene::Scene& scene, bool mbd_only) {
       std::snprintf(hinge, sizeof hinge,
                     "flap wavemaker hinged %g m below the still surface, swinging up to %.3g deg",
                     wave.hinge_depth,
-                    std::atan(0.5 * wave.stroke / wave.hinge_depth) * 180.0 / std::numbers::pi);
+                    std::atan(wave.largest_offset / wave.hinge_depth) * 180.0 / std::numbers::pi);
       paddle = hinge;
     }
     std::printf(
@@ -196,6 +196,15 @@ void print_summary(const fsi::scene::Scene& scene, bool mbd_only) {
         wave.wavenumber, wave.wavelength, wave.wavenumber * wave.depth, wave.stroke,
         wave.flap() ? " at the surface" : "", wave.height_per_stroke, wave.phase_speed,
         wave.group_speed, wave.height / wave.wavelength, wave.breaking_height / wave.wavelength);
+    if (wave.spectrum != "regular") {
+      std::printf(
+          "    irregular: %s spectrum (gamma %g), H and T above are H_m0 and T_p and the stroke "
+          "the peak's; %zu components from %.4g to %.4g 1/s, repeating after %.4g s; the "
+          "paddle's largest excursion at the surface %.4g m\n",
+          wave.spectrum.c_str(), wave.peak_enhancement, wave.components.size(),
+          wave.components.front().omega, wave.components.back().omega, wave.repeat_period,
+          wave.largest_offset);
+    }
   }
   if (scene.assembly) {
     for (const std::string& line : scene.assembly->lines())

@@ -110,6 +110,76 @@ TEST(FlapWave, TheAngleMovesTheFlapsSurfacePointByTheOffset) {
   }
 }
 
+// JONSWAP's density written here from DNV-RP-C205 eq. (3.5.5) with Hs = 1, independently of the
+// code under test.
+double jonswap_density(double omega, double peak, double gamma) {
+  const double sigma = omega <= peak ? 0.07 : 0.09;
+  const double alpha =
+      std::exp(-(omega - peak) * (omega - peak) / (2 * sigma * sigma * peak * peak));
+  const double pm = 5.0 / 16.0 * std::pow(peak, 4) / std::pow(omega, 5) *
+                    std::exp(-5.0 / 4.0 * std::pow(omega / peak, -4));
+  return (1 - 0.287 * std::log(gamma)) * pm * std::pow(gamma, alpha);
+}
+
+TEST(IrregularWave, TheComponentsFollowTheSpectrumAndSumToItsSignificantHeight) {
+  for (const double gamma : {1.0, 3.3}) {
+    SpectrumRequest request;
+    request.significant_height = 0.05;
+    request.peak_period = 1.4;
+    request.gamma = gamma;
+    const PaddleWave sea = irregular_wave(request, 0.4, 0.0, 9.81, 2.8);
+    ASSERT_EQ(sea.components.size(), 64u);
+    const double peak = 2 * std::numbers::pi / 1.4, width = 2.5 * peak / 64;
+    EXPECT_NEAR(sea.repeat_period, 2 * std::numbers::pi / width, 1e-9);
+    double m0 = 0.0;
+    for (std::size_t i = 0; i < sea.components.size(); ++i) {
+      const WaveComponent& c = sea.components[i];
+      EXPECT_NEAR(c.omega, (13 + i) * width, 1e-12);  // 0.5 peak / width = 12.8: bands from 13
+      EXPECT_GE(c.phase, 0.0);
+      EXPECT_LT(c.phase, 2 * std::numbers::pi);
+      m0 += c.height * c.height / 8;
+      // Each component's stroke is the regular wave's of its height and frequency.
+      const PaddleWave alone = piston_wave(c.height, 2 * std::numbers::pi / c.omega, 0.4, 9.81);
+      EXPECT_NEAR(c.half_stroke, 0.5 * alone.stroke, 1e-15);
+      // The discrete amplitude 2 sqrt(2 S d omega), S for Hs = 0.05: the scale that makes the
+      // sum's 4 sqrt(m0) exact stays within what the band's tails and A_gamma leave out.
+      const double expected =
+          2 * std::sqrt(2 * 0.05 * 0.05 * jonswap_density(c.omega, peak, gamma) * width);
+      EXPECT_NEAR(c.height / expected, 1.0, gamma == 1.0 ? 0.01 : 0.05) << "gamma " << gamma;
+    }
+    EXPECT_NEAR(4 * std::sqrt(m0), 0.05, 1e-12);
+  }
+}
+
+TEST(IrregularWave, TheSeaRepeatsAndIsTheSameForTheSameSeed) {
+  SpectrumRequest request;
+  request.significant_height = 0.05;
+  request.peak_period = 1.4;
+  const PaddleWave sea = irregular_wave(request, 0.4, 0.4, 9.81, 2.8);  // a flap on the floor
+  for (double t = 3.0; t < 10.0; t += 0.37) {
+    ASSERT_NEAR(sea.offset(t + sea.repeat_period), sea.offset(t), 1e-12) << t;
+    const double difference = (sea.offset(t + 1e-6) - sea.offset(t - 1e-6)) / 2e-6;
+    ASSERT_NEAR(sea.offset_rate(t), difference, 1e-6) << t;
+  }
+  EXPECT_EQ(sea.offset(0.0), 0.0);
+  EXPECT_EQ(sea.offset_rate(0.0), 0.0);
+  // A flap's components take the flap's transfer function.
+  const WaveComponent& c = sea.components[10];
+  EXPECT_NEAR(c.half_stroke,
+              0.5 * flap_wave(c.height, 2 * std::numbers::pi / c.omega, 0.4, 0.4, 9.81).stroke,
+              1e-15);
+  EXPECT_GT(sea.largest_offset, 0.0);
+  const PaddleWave again = irregular_wave(request, 0.4, 0.4, 9.81, 2.8);
+  request.seed = 2;
+  const PaddleWave other = irregular_wave(request, 0.4, 0.4, 9.81, 2.8);
+  int differ = 0;
+  for (std::size_t i = 0; i < sea.components.size(); ++i) {
+    EXPECT_EQ(again.components[i].phase, sea.components[i].phase);
+    differ += other.components[i].phase != sea.components[i].phase;
+  }
+  EXPECT_EQ(differ, 64);
+}
+
 class Wavemakers : public testing::FolderPerTest {
  protected:
   std::string scene(const std::string& wavemaker,
@@ -209,6 +279,38 @@ TEST_F(Wavemakers, AFlapHingedBelowTheFloorIsRefused) {
       mbd_only_outcome("b.scene", scene("FlapWavemaker { body = \"paddle\"; height = 0.3; "
                                         "period = 1.4; depth = 0.4 }\n"));
   EXPECT_NE(breaking.find("steeper than Miche's limit"), std::string::npos) << breaking;
+}
+
+TEST_F(Wavemakers, AnIrregularSeaIsASpectrumsComponentsAndItsKeysAreChecked) {
+  Scene built;
+  ASSERT_EQ(mbd_only_outcome("j.scene",
+                             scene("PistonWavemaker { name = \"stroke\"; body = \"paddle\"; height "
+                                   "= 0.05; period = 1.4; depth = 0.4; spectrum = \"jonswap\"; "
+                                   "components = 32; gamma = 2; band = [0.6, 2.5]; seed = 7 }\n"),
+                             &built),
+            "(accepted)");
+  ASSERT_EQ(built.wavemakers.size(), 1u);
+  const PaddleWave& sea = built.wavemakers[0].wave;
+  EXPECT_EQ(sea.spectrum, "jonswap");
+  EXPECT_EQ(sea.components.size(), 32u);
+  EXPECT_DOUBLE_EQ(sea.peak_enhancement, 2.0);
+  const double peak = 2 * std::numbers::pi / 1.4;
+  // 0.6 / (1.9 / 32) = 10.1: the first band's middle nearest 11 widths.
+  EXPECT_NEAR(sea.components.front().omega, 11 * peak * 1.9 / 32, 1e-12);
+  const std::string regular = mbd_only_outcome(
+      "r.scene", scene("PistonWavemaker { name = \"stroke\"; body = \"paddle\"; height = 0.05; "
+                       "period = 1.4; depth = 0.4; gamma = 2 }\n"));
+  EXPECT_NE(regular.find("'gamma' describes an irregular sea, and this wave is regular"),
+            std::string::npos)
+      << regular;
+  // The refused wavemaker skips the sensor naming it instead of a second problem about it.
+  EXPECT_EQ(regular.find("no joint named 'stroke'"), std::string::npos) << regular;
+  const std::string band = mbd_only_outcome(
+      "b.scene", scene("PistonWavemaker { name = \"stroke\"; body = \"paddle\"; height = 0.05; "
+                       "period = 1.4; depth = 0.4; spectrum = \"jonswap\"; band = [1.2, 3] }\n"));
+  EXPECT_NE(band.find("the band [1.2, 3] does not run from below the peak frequency to above it"),
+            std::string::npos)
+      << band;
 }
 
 }  // namespace

@@ -227,13 +227,22 @@ struct SensorSpec {
 double structure_sensor_value(const mbd::Model& model, const SensorSpec& sensor,
                               const mbd::State& state);
 
-// Regular waves of a wavemaker paddle by linear theory (blocks PistonWavemaker and FlapWavemaker;
+// Waves of a wavemaker paddle by linear theory (blocks PistonWavemaker and FlapWavemaker;
 // docs/user-guide.md, "Making waves"): omega^2 = g k tanh(k h); the paddle moves the water at
 // depth z below the still surface by X(z) = S/2 sin(omega t) for a piston, X(z) = S/2 (1 - z/l)
 // above a flap's hinge at depth l (0 below it), and the progressive wave's height is
 // H = 4 k sinh(kh) / (sinh 2kh + 2kh) times the integral of X(z)/(S/2) cosh k(h - z) over the depth
 // (Dean & Dalrymple 1991, §6.2): H / S = 2 (cosh 2kh - 1) / (sinh 2kh + 2kh) for a piston.
+// Irregular waves are a sum of such regular components, each with its own stroke.
+struct WaveComponent {
+  double omega = 0.0;        // [1/s]
+  double height = 0.0;       // the component's wave height, twice its amplitude [m]
+  double half_stroke = 0.0;  // S_i / 2 at the still surface [m]
+  double phase = 0.0;        // [rad]
+};
 struct PaddleWave {
+  // Regular: H, T; irregular (spectrum "jonswap"): the significant height H_m0 = 4 sqrt(m0) and
+  // the peak period T_p, and every other scalar below is the peak frequency's.
   double height = 0.0, period = 0.0, depth = 0.0;  // H [m], T [s], h [m]
   double hinge_depth = 0.0;                        // l: a flap's hinge below the surface; 0: piston
   double omega = 0.0;                              // 2 pi / T [1/s]
@@ -243,10 +252,16 @@ struct PaddleWave {
   double phase_speed = 0.0, group_speed = 0.0;  // omega / k, d omega / dk [m/s]
   double breaking_height = 0.0;                 // Miche: 0.142 tanh(kh) lambda [m]
   double ramp_time = 0.0;                       // the stroke grows over [0, ramp_time] [s]
+  // The motion: one component (phase 0) for regular waves, many for a spectrum.
+  std::vector<WaveComponent> components;
+  std::string spectrum = "regular";  // or "jonswap"
+  double peak_enhancement = 1.0;     // JONSWAP's gamma
+  double repeat_period = 0.0;        // 2 pi / (the components' spacing); regular: T
+  double largest_offset = 0.0;       // max |offset| over a repeat period, ramp done [m]
   bool flap() const { return hinge_depth > 0.0; }
-  // The paddle's displacement from rest at the still surface, S/2 r(t) sin(omega t),
-  // r = t/Tr - sin(2 pi t/Tr)/(2 pi) for t < Tr = ramp_time, else 1 (r(0) = r'(0) = 0, r'
-  // continuous), and its rate.
+  // The paddle's displacement from rest at the still surface, r(t) sum S_i/2 sin(omega_i t +
+  // phi_i), r = t/Tr - sin(2 pi t/Tr)/(2 pi) for t < Tr = ramp_time, else 1 (r(0) = r'(0) = 0,
+  // r' continuous), and its rate.
   double offset(double time) const;
   double offset_rate(double time) const;
   // A flap's rotation from rest that moves the still surface's point of it by offset(t),
@@ -260,6 +275,21 @@ PaddleWave piston_wave(double height, double period, double depth, double gravit
 // A flap hinged hinge_depth below the still surface (hinge_depth = depth: on the floor).
 PaddleWave flap_wave(double height, double period, double depth, double hinge_depth, double gravity,
                      double ramp_time = 0.0);
+// An irregular sea of a JONSWAP spectrum (DNV-RP-C205 §3.5.5: S(omega) = (1 - 0.287 ln gamma)
+// 5/16 Hs^2 wp^4 omega^-5 exp(-5/4 (omega/wp)^-4) gamma^exp(-(omega - wp)^2 / (2 sigma^2 wp^2)),
+// sigma 0.07 below wp and 0.09 above; gamma = 1: Pierson-Moskowitz) made by `count` components at
+// the middles of equal bands over [band_low, band_high] times the peak frequency (moved by less
+// than half a band so that each is a whole multiple of the band's width: the sea repeats after
+// 2 pi / width), each of height 2 sqrt(2 S(omega_i) d omega) scaled so that 4 sqrt(m0) of the
+// sum is Hs exactly, its phase drawn from a 64-bit Mersenne twister seeded with `seed` (the same on every machine).
+struct SpectrumRequest {
+  double significant_height = 0.0, peak_period = 0.0, gamma = 3.3;
+  int count = 64;
+  double band_low = 0.5, band_high = 3.0;
+  std::uint64_t seed = 1;
+};
+PaddleWave irregular_wave(const SpectrumRequest& request, double depth, double hinge_depth,
+                          double gravity, double ramp_time = 0.0);
 
 struct PlacedWavemaker {
   SourceLocation location;
