@@ -1,7 +1,7 @@
-// Wavemakers: a paddle driven so that it makes regular waves of a given height and period
-// (docs/user-guide.md, "Making waves"): a piston (its x prescribed) or a flap (its angle about a
-// hinge below the water). The stroke comes from linear wavemaker theory; the motion is a
-// PrescribedMotion that the block builds.
+// Wavemakers: a paddle driven so that it makes regular waves of a given height and period, or an
+// irregular sea of a JONSWAP spectrum (docs/user-guide.md, "Making waves"): a piston (its x
+// prescribed) or a flap (its angle about a hinge below the water). Each wave component's stroke
+// comes from linear wavemaker theory; the motion is a PrescribedMotion that the block builds.
 
 #include <cmath>
 #include <cstdint>
@@ -248,8 +248,7 @@ std::vector<BlockSpec> wavemaker_blocks() {
           "sensor on its name reads the force that drives the paddle); hold the paddle's y and "
           "angle with CoordinateConstraints. --check prints the stroke, the wavelength and the "
           "speeds; a wave steeper than Miche's breaking limit is refused. spectrum = \"jonswap\": "
-          "an "
-          "irregular sea instead, each component with its own stroke.",
+          "an irregular sea instead, each component with its own stroke.",
           wave_keys({}))
           .as_list()
           .planar(),
