@@ -281,7 +281,9 @@ PaddleWave flap_wave(double height, double period, double depth, double hinge_de
 // the middles of equal bands over [band_low, band_high] times the peak frequency (moved by less
 // than half a band so that each is a whole multiple of the band's width: the sea repeats after
 // 2 pi / width), each of height 2 sqrt(2 S(omega_i) d omega) scaled so that 4 sqrt(m0) of the
-// sum is Hs exactly, its phase drawn from a 64-bit Mersenne twister seeded with `seed` (the same on every machine).
+// sum is Hs exactly, its phase drawn from a 64-bit Mersenne twister seeded with `seed` (the same
+// on every machine). The sea's Hs is judged against Miche's limit at T_p like a regular wave's H;
+// its highest waves (about 1.9 Hs) may still break.
 struct SpectrumRequest {
   double significant_height = 0.0, peak_period = 0.0, gamma = 3.3;
   int count = 64;
