@@ -49,7 +49,7 @@ TEST_F(CheckpointStoreTest, ACommittedCheckpointIsReadBackWithItsManifest) {
   EXPECT_EQ(read_checkpoint_file(*newest, "server.state"), std::string("state\0with a zero", 17));
   EXPECT_EQ(newest->files[0].bytes, 17u);
   const std::string manifest = file_text(newest->folder / "checkpoint.json");
-  EXPECT_NE(manifest.find("\"format_version\": 2"), std::string::npos) << manifest;
+  EXPECT_NE(manifest.find("\"format_version\": 3"), std::string::npos) << manifest;
   EXPECT_NE(manifest.find(newest->files[1].sha256), std::string::npos) << manifest;
   EXPECT_FALSE(fs::exists(folder_ / "checkpoints" / "step-000000100.partial"));
 }
@@ -120,14 +120,15 @@ TEST_F(CheckpointStoreTest, AnotherFormatVersionIsRefusedByName) {
   store_checkpoint(store, 10, "good");
   const fs::path manifest = folder_ / "checkpoints" / "step-000000010" / "checkpoint.json";
   std::string text = file_text(manifest);
-  // Version 1: a checkpoint of the releases before 2026-12-06 (no unsettled release in the fluid
-  // health's state).
-  text.replace(text.find("\"format_version\": 2"), 19, "\"format_version\": 1");
+  // Version 2: a checkpoint of the releases before 2026-12-07 (no particle pairs in the
+  // session's state).
+  text.replace(text.find("\"format_version\": 3"), 19, "\"format_version\": 2");
   std::ofstream(manifest) << text;
   std::vector<std::string> skipped;
   EXPECT_FALSE(store.newest_valid(&skipped).has_value());
-  EXPECT_TRUE(mentions(skipped, "checkpoint format version 1, this program reads 2 (resume it with "
-                                "the release that wrote it)"));
+  EXPECT_TRUE(mentions(skipped,
+                       "checkpoint format version 2, this program reads 3 (resume it with "
+                       "the release that wrote it)"));
 }
 
 // A full disk while writing a checkpoint (/dev/full stands in for it): the write fails with the

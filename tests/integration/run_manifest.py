@@ -1,9 +1,9 @@
-"""One reader for run.json (format_version 7) of every run mode: checks that the manifest has the
+"""One reader for run.json (format_version 8) of every run mode: checks that the manifest has the
 one shape fsi-server writes for coupled and --mbd-only runs, and returns it as a dict."""
 import json
 import os
 
-FORMAT_VERSION = 7
+FORMAT_VERSION = 8
 
 # Every key of the shape, with the keys of its objects; None marks a leaf.
 SHAPE = {
@@ -26,8 +26,9 @@ SHAPE = {
         "max_action_reaction_relative", "closest_approach_over_r0", "particles_initial",
         "particles_final", "snapshots_checked", "max_density_deviation_at_snapshots",
         "max_particle_speed_at_snapshots", "speed_of_sound",
-        "max_particle_speed_over_speed_of_sound_at_snapshots", "position_constraint_drift",
-        "velocity_constraint_drift")},
+        "max_particle_speed_over_speed_of_sound_at_snapshots", "max_particle_pairs_at_snapshots",
+        "closest_particle_pair_over_spacing_at_snapshots", "closest_particle_pair_place",
+        "closest_particle_pair_time", "position_constraint_drift", "velocity_constraint_drift")},
     "release": None,
     "health": None,
     "energy_audit": None,

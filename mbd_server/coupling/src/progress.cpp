@@ -41,6 +41,15 @@ std::string format_progress(const ProgressSample& sample) {
       std::snprintf(text, sizeof text, " = %.3g c", *sample.max_speed / *sample.speed_of_sound);
       line += text;
     }
+    if (sample.close_pairs) {
+      std::snprintf(text, sizeof text, ", %llu pairs < d/2",
+                    static_cast<unsigned long long>(*sample.close_pairs));
+      line += text;
+      if (sample.closest_pair_over_spacing) {
+        std::snprintf(text, sizeof text, " (closest %.2f d)", *sample.closest_pair_over_spacing);
+        line += text;
+      }
+    }
   } else {
     line += " | no particle snapshot yet";
   }

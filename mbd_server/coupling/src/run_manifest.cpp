@@ -132,6 +132,10 @@ json checks_entry(const RunRecord& record) {
                  {"max_particle_speed_at_snapshots", nullptr},
                  {"speed_of_sound", nullptr},
                  {"max_particle_speed_over_speed_of_sound_at_snapshots", nullptr},
+                 {"max_particle_pairs_at_snapshots", nullptr},
+                 {"closest_particle_pair_over_spacing_at_snapshots", nullptr},
+                 {"closest_particle_pair_place", nullptr},
+                 {"closest_particle_pair_time", nullptr},
                  {"position_constraint_drift", optional_number(record.position_constraint_drift)},
                  {"velocity_constraint_drift", optional_number(record.velocity_constraint_drift)}};
   if (!record.fluid) return checks;
@@ -150,6 +154,16 @@ json checks_entry(const RunRecord& record) {
   checks["max_particle_speed_over_speed_of_sound_at_snapshots"] =
       health && fluid.speed_of_sound ? json(fluid.max_particle_speed / *fluid.speed_of_sound)
                                      : json(nullptr);
+  // Particle pairs closer than d/2 (particle_pairs.hpp): the most in one snapshot, and the
+  // closest pair over all of them (null: none).
+  if (health) {
+    checks["max_particle_pairs_at_snapshots"] = fluid.max_close_pairs;
+    if (fluid.closest_pair_over_spacing) {
+      checks["closest_particle_pair_over_spacing_at_snapshots"] = *fluid.closest_pair_over_spacing;
+      checks["closest_particle_pair_place"] = fluid.closest_pair_where;
+      checks["closest_particle_pair_time"] = fluid.closest_pair_time;
+    }
+  }
   return checks;
 }
 

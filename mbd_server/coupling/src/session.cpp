@@ -22,6 +22,7 @@
 #include "fsi/coupling/fluid_health.hpp"
 #include "fsi/coupling/force_predictor.hpp"
 #include "fsi/coupling/output.hpp"
+#include "fsi/coupling/particle_pairs.hpp"
 #include "fsi/coupling/progress.hpp"
 #include "fsi/coupling/release_check.hpp"
 #include "fsi/coupling/run_manifest.hpp"
@@ -95,6 +96,8 @@ struct FluidWatch {
   double last_snapshot_time = 0.0;
   double last_density_deviation = 0.0;  // max |rho/rho0 - 1| in the latest snapshot
   double last_max_speed = 0.0;          // max |v| in the latest snapshot [m/s]
+  std::uint64_t last_close_pairs = 0;   // particle pairs closer than d/2 in it
+  double last_closest_pair = 0.0;       // the closest of them [m]; 0: none
   double closest_since_report = std::numeric_limits<double>::infinity();
 };
 
@@ -156,6 +159,7 @@ class Session {
       spdlog::error("writing run.json failed: {}", failure.what());
       status = 1;
     }
+    report_particle_pairs();
     if (status == 0) {
       spdlog::info("run completed: {} steps in {:.1f} s; results in {}", steps_done_,
                    timings_.total.seconds(), options_.output_dir);
@@ -430,11 +434,25 @@ class Session {
     for (std::size_t k = 0; k < dimension; ++k)
       where += (k ? ", " : "") + fmt::format("{:.6g}", snapshot.positions[dimension * worst + k]);
     where += ")";
+    // A pair closer than d/2 is what the Shepard filter lets form along the walls: c is not
+    // the cure there.
+    std::string pair;
+    const double spacing = scene_.fluid.spacing;
+    if (const auto nearest =
+            nearest_particle_distance(snapshot.positions, snapshot.dimension, worst);
+        nearest && spacing > 0.0 && *nearest < 0.5 * spacing) {
+      pair = fmt::format(
+          "; it is one of a particle pair {:.2f} d apart, closer than d/2: a pair that LIGGGHTS' "
+          "Shepard density filter does not push apart, which a wall moving through it compresses; "
+          "a larger speed of sound only delays this stop (docs/theory.md, \"Particle pairs along "
+          "the walls\")",
+          *nearest / spacing);
+    }
     return fmt::format(
         "; the particle of the extreme density at this step: id {} at {} m, rho = {:.6g} kg/m^3 "
-        "(snapshots/particles_{:09d}.csv holds the fluid of this step)",
-        worst < snapshot.ids.size() ? snapshot.ids[worst] : 0, where, snapshot.density[worst],
-        step);
+        "(snapshots/particles_{:09d}.csv holds the fluid of this step){}",
+        worst < snapshot.ids.size() ? snapshot.ids[worst] : 0, where, snapshot.density[worst], step,
+        pair);
   }
 
   void couple() {
@@ -690,6 +708,11 @@ class Session {
       sample.snapshot_time = watch_.last_snapshot_time;
       sample.density_deviation = watch_.last_density_deviation;
       sample.max_speed = watch_.last_max_speed;
+      if (scene_.fluid.spacing > 0.0) {
+        sample.close_pairs = watch_.last_close_pairs;
+        if (watch_.last_close_pairs > 0)
+          sample.closest_pair_over_spacing = watch_.last_closest_pair / scene_.fluid.spacing;
+      }
     }
     sample.speed_of_sound = watch_.record.speed_of_sound;
     const std::string line = format_progress(sample);
@@ -744,6 +767,43 @@ class Session {
     watch_.last_max_speed = std::sqrt(speed2);
     record.max_density_deviation = std::max(record.max_density_deviation, deviation);
     record.max_particle_speed = std::max(record.max_particle_speed, watch_.last_max_speed);
+    if (scene_.fluid.spacing <= 0.0) return;
+    const ParticlePairs pairs = particle_pairs_closer_than(
+        snapshot.positions, scene_.fluid.dimension, 0.5 * scene_.fluid.spacing);
+    watch_.last_close_pairs = pairs.count;
+    watch_.last_closest_pair = pairs.closest.value_or(0.0);
+    record.max_close_pairs = std::max<std::uint64_t>(record.max_close_pairs, pairs.count);
+    const double spacing = scene_.fluid.spacing;
+    if (pairs.closest && (!record.closest_pair_over_spacing ||
+                          *pairs.closest / spacing < *record.closest_pair_over_spacing)) {
+      record.closest_pair_over_spacing = *pairs.closest / spacing;
+      record.closest_pair_where = pairs.where;
+      record.closest_pair_time = snapshot.time;
+    }
+  }
+
+  // The pairs the snapshots saw, for the end of the log (docs/theory.md, "Particle pairs along
+  // the walls"): where a wall moves through such a pair, long runs stop on its density.
+  void report_particle_pairs() const {
+    const FluidRecord& record = watch_.record;
+    if (record.snapshots_checked == 0 || scene_.fluid.spacing <= 0.0) return;
+    if (!record.closest_pair_over_spacing) {
+      spdlog::info("particle pairs: none closer than d/2 = {:.3g} m in {} snapshot(s)",
+                   0.5 * scene_.fluid.spacing, record.snapshots_checked);
+      return;
+    }
+    std::string where;
+    for (double x : record.closest_pair_where)
+      where += fmt::format("{}{:.4g}", where.empty() ? "(" : ", ", x);
+    spdlog::info(
+        "particle pairs: up to {} closer than d/2 = {:.3g} m at once in {} snapshot(s); the "
+        "closest "
+        "{:.2f} d apart at {}) m, t = {:.4g} s (pairs along the walls, first in concave corners, "
+        "are what LIGGGHTS' Shepard density filter does not push apart; a wall moving through "
+        "one can end a long run on the density check: docs/theory.md, \"Particle pairs along the "
+        "walls\")",
+        record.max_close_pairs, 0.5 * scene_.fluid.spacing, record.snapshots_checked,
+        *record.closest_pair_over_spacing, where, record.closest_pair_time);
   }
 
   // --- Checkpoints and resume (issue 16; docs/user-guide.md, "Checkpoints and resume") ---
@@ -854,6 +914,14 @@ class Session {
     out.put(fluid.particles_initial);
     out.put(fluid.particles_final);
     out.put(fluid.snapshots_checked);
+    out.put(fluid.max_close_pairs);
+    put_optional(out, fluid.closest_pair_over_spacing);
+    out.put(static_cast<std::uint64_t>(fluid.closest_pair_where.size()));
+    for (double x : fluid.closest_pair_where)
+      out.put(x);
+    for (double value : {fluid.closest_pair_time, watch_.last_closest_pair})
+      out.put(value);
+    out.put(watch_.last_close_pairs);
     out.put(watch_.balance_warned);
     out.put(release_.has_value());
     if (release_) {
@@ -981,6 +1049,14 @@ class Session {
     fluid.particles_initial = in.u64("particles at the start");
     fluid.particles_final = in.u64("particles at the checkpoint");
     fluid.snapshots_checked = in.u64("snapshots checked");
+    fluid.max_close_pairs = in.u64("most particle pairs");
+    fluid.closest_pair_over_spacing = optional_f64(in, "closest particle pair");
+    fluid.closest_pair_where.resize(in.count("closest pair's place"));
+    for (double& x : fluid.closest_pair_where)
+      x = in.f64("closest pair's place");
+    fluid.closest_pair_time = in.f64("closest pair's time");
+    watch_.last_closest_pair = in.f64("last closest pair");
+    watch_.last_close_pairs = in.u64("last particle pairs");
     watch_.balance_warned = in.boolean("balance warned");
     if (in.boolean("release")) {
       ReleaseCheck r;

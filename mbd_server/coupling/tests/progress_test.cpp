@@ -28,6 +28,17 @@ TEST(CouplingProgress, LineHasTimePercentRateEtaAndHealth) {
             "snapshot t = 0.0500 s: max |rho/rho0-1| 1.31e-03, max speed 0.032 m/s = 0.0016 c");
 }
 
+TEST(CouplingProgress, TheSnapshotsParticlePairsFollowItsHealth) {
+  ProgressSample sample = third_of_the_tank();
+  sample.close_pairs = 0;
+  EXPECT_TRUE(format_progress(sample).ends_with("= 0.0016 c, 0 pairs < d/2"))
+      << format_progress(sample);
+  sample.close_pairs = 2;
+  sample.closest_pair_over_spacing = 0.1349;
+  EXPECT_TRUE(format_progress(sample).ends_with("= 0.0016 c, 2 pairs < d/2 (closest 0.13 d)"))
+      << format_progress(sample);
+}
+
 TEST(CouplingProgress, MissingNumbersAreSaidNotInvented) {
   ProgressSample sample = third_of_the_tank();
   sample.speed_of_sound.reset();

@@ -19,8 +19,9 @@
 namespace fsi::output {
 
 // Version of checkpoint.json, of the folder layout and of the parts' states; a reader refuses
-// another one by name. 2 (2026-12-06): the fluid health keeps an unsettled release.
-inline constexpr int kCheckpointFormatVersion = 2;
+// another one by name. 2 (2026-12-06): the fluid health keeps an unsettled release; 3
+// (2026-12-07): the particle pairs of the snapshots.
+inline constexpr int kCheckpointFormatVersion = 3;
 
 struct CheckpointFile {
   std::string name;  // relative to the checkpoint folder, no subfolders

@@ -30,7 +30,7 @@ namespace fsi::coupling {
 // until the end is recorded), always whole (a temporary name and a rename).
 // Version 7: "checkpoints" (interval, how many written, the last step) and "resumes" (each resume
 // of the run: when, from which checkpoint); "scene" names the run's --set overrides.
-inline constexpr int kRunManifestFormatVersion = 7;
+inline constexpr int kRunManifestFormatVersion = 8;
 
 // run.json's times ("started_utc", resumes) come from fsi::utc_now (fsi/common/utc_time.hpp).
 
@@ -55,6 +55,12 @@ struct FluidRecord {
   double max_density_deviation = 0.0;   // max |rho/rho0 - 1| over those snapshots
   double max_particle_speed = 0.0;
   std::optional<double> speed_of_sound;
+  // Particle pairs closer than d/2 over those snapshots (particle_pairs.hpp): the most at once,
+  // and the closest pair (its distance over d) with its midpoint and time.
+  std::uint64_t max_close_pairs = 0;
+  std::optional<double> closest_pair_over_spacing;
+  std::vector<double> closest_pair_where;
+  double closest_pair_time = 0.0;
 };
 
 // The fluid health checks of a coupled run (fluid_health.hpp).
