@@ -3,7 +3,8 @@
 particles closer than d/2, and the settled tank of examples/wave_flume/corner_tank.scene (320
 particles, the flume's scripts) holds such a pair in each floor corner, which LIGGGHTS' Shepard
 density filter lets form; the same tank without the filter holds none. Runs the example's own
-particle_pairs.py for those two variants (about 10 s)."""
+particle_pairs.py for those two variants, then the tank with a density limit its corner pair
+exceeds: the stop names the pair and says that the speed of sound is not the cure (about 15 s)."""
 import os
 import subprocess
 import sys
@@ -40,4 +41,22 @@ unfiltered = read_run_manifest(os.path.join(work, "no_filter"))
 check(unfiltered["checks"]["max_particle_pairs_at_snapshots"] == 0
       and unfiltered["checks"]["closest_particle_pair_over_spacing_at_snapshots"] is None,
       "without the Shepard filter no pair closer than d/2 forms")
+
+# The corner pair is the densest place of the settled tank (1.0064 rho0, measured 2026-12-07): a
+# limit of 0.0064 stops the run at release there.
+stop_dir = os.path.join(work, "stop")
+result = subprocess.run([binary("fsi-run"), example("wave_flume", "corner_tank.scene"), "--np", "1",
+                         "--output", stop_dir, "--set", "FluidHealth.max_density_deviation=0.0064",
+                         "--set", "FluidHealth.warn_density_deviation=0.005"],
+                        env=ENV, capture_output=True, text=True, timeout=600)
+stopped = read_run_manifest(stop_dir)
+reason = stopped["reason"] or ""
+print(reason[-1500:])
+check(result.returncode == 1 and stopped["health"]["failed_check"] == "density_deviation",
+      f"the tight limit stops the run on density_deviation (exit {result.returncode})")
+check("it is one of a particle pair" in reason and "d apart (closer than d/2)" in reason,
+      "the stop names the extreme particle's pair")
+check("a larger speed of sound only delays such a stop" in reason
+      and reason.index("only delays") < reason.index("raise Fluid.speed_of_sound"),
+      "the advice says first that c is not the cure for a pair")
 cleanup(work)
