@@ -415,6 +415,7 @@ class Session {
       vtk_->write(snapshot, scene_.model, structure_->state(), scene_.boundary,
                   structure_->vertex_loads());
       ++snapshots_;
+      record_health(snapshot);  // its pairs and extremes belong to the run's record
     } catch (const std::exception& failure) {
       spdlog::warn("no snapshot of the stopping step: {}", failure.what());
       return {};
@@ -774,8 +775,8 @@ class Session {
     record.max_density_deviation = std::max(record.max_density_deviation, deviation);
     record.max_particle_speed = std::max(record.max_particle_speed, watch_.last_max_speed);
     if (scene_.fluid.spacing <= 0.0) return;
-    const ParticlePairs pairs = particle_pairs_closer_than(
-        snapshot.positions, scene_.fluid.dimension, 0.5 * scene_.fluid.spacing);
+    const ParticlePairs pairs = particle_pairs_closer_than(snapshot.positions, snapshot.dimension,
+                                                           0.5 * scene_.fluid.spacing);
     watch_.last_close_pairs = pairs.count;
     watch_.last_closest_pair = pairs.closest.value_or(0.0);
     record.max_close_pairs = std::max<std::uint64_t>(record.max_close_pairs, pairs.count);
@@ -803,11 +804,10 @@ class Session {
       where += fmt::format("{}{:.4g}", where.empty() ? "(" : ", ", x);
     spdlog::info(
         "particle pairs: up to {} closer than d/2 = {:.3g} m at once in {} snapshot(s); the "
-        "closest "
-        "{:.2f} d apart at {}) m, t = {:.4g} s (pairs along the walls, first in concave corners, "
-        "are what LIGGGHTS' Shepard density filter does not push apart; a wall moving through "
-        "one can end a long run on the density check: docs/theory.md, \"Particle pairs along the "
-        "walls\")",
+        "closest {:.2f} d apart at {}) m, t = {:.4g} s (pairs along the walls, first in concave "
+        "corners, are what LIGGGHTS' Shepard density filter does not push apart; a wall moving "
+        "through one can end a long run on the density check: docs/theory.md, \"Particle pairs "
+        "along the walls\")",
         record.max_close_pairs, 0.5 * scene_.fluid.spacing, record.snapshots_checked,
         *record.closest_pair_over_spacing, where, record.closest_pair_time);
   }
