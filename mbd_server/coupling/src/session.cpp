@@ -14,6 +14,7 @@
 #include <limits>
 #include <map>
 #include <optional>
+#include <span>
 #include <thread>
 
 #include "fsi/common/error.hpp"
@@ -50,6 +51,14 @@ struct Timings {
 // The checkpoint files of the two sides.
 constexpr const char* kServerStateFile = "server.state";
 constexpr const char* kFluidStateFile = "fluid.state";
+
+// A point as "(x, y)" or "(x, y, z)" with `digits` significant digits, for the log.
+std::string point_text(std::span<const double> point, int digits) {
+  std::string text = "(";
+  for (std::size_t k = 0; k < point.size(); ++k)
+    text += (k ? ", " : "") + fmt::format("{:.{}g}", point[k], digits);
+  return text + ")";
+}
 
 void put_optional(output::StateWriter& out, const std::optional<double>& value) {
   out.put(value.has_value());
@@ -434,10 +443,8 @@ class Session {
     }
     if (worst >= snapshot.density.size() || dimension * (worst + 1) > snapshot.positions.size())
       return {};
-    std::string where = "(";
-    for (std::size_t k = 0; k < dimension; ++k)
-      where += (k ? ", " : "") + fmt::format("{:.6g}", snapshot.positions[dimension * worst + k]);
-    where += ")";
+    const std::string where =
+        point_text(std::span(snapshot.positions).subspan(dimension * worst, dimension), 6);
     // A pair closer than d/2 is what the Shepard filter lets form along the walls: c is not
     // the cure there.
     std::string pair;
@@ -799,17 +806,15 @@ class Session {
                    0.5 * scene_.fluid.spacing, record.snapshots_checked);
       return;
     }
-    std::string where;
-    for (double x : record.closest_pair_where)
-      where += fmt::format("{}{:.4g}", where.empty() ? "(" : ", ", x);
     spdlog::info(
         "particle pairs: up to {} closer than d/2 = {:.3g} m at once in {} snapshot(s); the "
-        "closest {:.2f} d apart at {}) m, t = {:.4g} s (pairs along the walls, first in concave "
+        "closest {:.2f} d apart at {} m, t = {:.4g} s (pairs along the walls, first in concave "
         "corners, are what LIGGGHTS' Shepard density filter does not push apart; a wall moving "
         "through one can end a long run on the density check: docs/theory.md, \"Particle pairs "
         "along the walls\")",
         record.max_close_pairs, 0.5 * scene_.fluid.spacing, record.snapshots_checked,
-        *record.closest_pair_over_spacing, where, record.closest_pair_time);
+        *record.closest_pair_over_spacing, point_text(record.closest_pair_where, 4),
+        record.closest_pair_time);
   }
 
   // --- Checkpoints and resume (issue 16; docs/user-guide.md, "Checkpoints and resume") ---
