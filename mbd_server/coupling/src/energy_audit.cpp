@@ -1,4 +1,5 @@
 #include "fsi/coupling/energy_audit.hpp"
+#include "fsi/common/text.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -20,9 +21,7 @@ void require_size(std::span<const double> values, std::size_t expected, const ch
 }
 
 std::string number(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.3g", value);
-  return text;
+  return significant(value, 3);
 }
 
 }  // namespace

@@ -1,4 +1,5 @@
 #include "fsi/coupling/fluid_health.hpp"
+#include "fsi/common/text.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -29,9 +30,7 @@ constexpr double kShortWallReach = 1.0;
 constexpr double kDensityAim = 0.01;
 
 std::string number(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.3g", value);
-  return text;
+  return significant(value, 3);
 }
 
 // A value the advice compares with a limit or a present value: enough significant digits (up to

@@ -1,4 +1,5 @@
 #include "fsi/coupling/session.hpp"
+#include "fsi/common/text.hpp"
 
 #include <spdlog/spdlog.h>
 
@@ -51,14 +52,6 @@ struct Timings {
 // The checkpoint files of the two sides.
 constexpr const char* kServerStateFile = "server.state";
 constexpr const char* kFluidStateFile = "fluid.state";
-
-// A point as "(x, y)" or "(x, y, z)" with `digits` significant digits, for the log.
-std::string point_text(std::span<const double> point, int digits) {
-  std::string text = "(";
-  for (std::size_t k = 0; k < point.size(); ++k)
-    text += (k ? ", " : "") + fmt::format("{:.{}g}", point[k], digits);
-  return text + ")";
-}
 
 void put_optional(output::StateWriter& out, const std::optional<double>& value) {
   out.put(value.has_value());

@@ -5,8 +5,8 @@
 #include <cmath>
 
 #include "fsi/common/error.hpp"
+#include "fsi/common/text.hpp"
 #include "hermite_element.hpp"
-#include "number_text.hpp"
 
 namespace fsi::mbd::detail {
 namespace {
@@ -49,7 +49,7 @@ Eigen::Matrix2d tangent_map(const Eigen::Vector2d& a) {
 
 // Input values in messages: all 17 digits.
 std::string number(double value) {
-  return number_text(value, 17);
+  return significant(value, 17);
 }
 
 // Strain energy density and, on request, its gradient and Hessian with respect to the 8

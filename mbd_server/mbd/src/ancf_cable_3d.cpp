@@ -5,8 +5,8 @@
 #include <cmath>
 
 #include "fsi/common/error.hpp"
+#include "fsi/common/text.hpp"
 #include "hermite_element.hpp"
-#include "number_text.hpp"
 
 namespace fsi::mbd::detail {
 namespace {
@@ -21,7 +21,7 @@ constexpr int kMassPoints = 4;
 
 // Input values in messages: all 17 digits.
 std::string number(double value) {
-  return number_text(value, 17);
+  return significant(value, 17);
 }
 
 // (a x b)_k = a^T C_k b, (C_k)_ij the Levi-Civita symbol eps_kij.

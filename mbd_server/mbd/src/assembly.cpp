@@ -6,12 +6,10 @@
 #include <utility>
 
 #include "fsi/common/error.hpp"
-#include "number_text.hpp"
+#include "fsi/common/text.hpp"
 
 namespace fsi::mbd {
 namespace {
-
-using detail::number_text;
 
 // Two polishing steps after the tolerance is met take a quadratically converging Newton from
 // ~1e-12 to round-off, so that the integrator starts on the constraints, not near them.
@@ -120,7 +118,7 @@ std::string open_elements(const Model& model, const std::vector<int>& rows,
     entry->second.above = entry->second.above || !(std::abs(value) <= limit);
     if (!component.empty()) {
       entry->second.components +=
-          (entry->second.components.empty() ? "" : ", ") + component + ": " + number_text(value);
+          (entry->second.components.empty() ? "" : ", ") + component + ": " + significant(value, 9);
     }
   }
   std::string text;
@@ -130,7 +128,7 @@ std::string open_elements(const Model& model, const std::vector<int>& rows,
     if (!open.above) continue;
     const double gap = std::sqrt(open.squared);
     total_gap += gap;
-    text += "\n  " + element + ": residual " + number_text(gap) +
+    text += "\n  " + element + ": residual " + significant(gap, 9) +
             (open.components.empty() ? "" : " (" + open.components + ")");
   }
   return text;
@@ -208,10 +206,10 @@ int assemble_positions(const Model& model, const MinimumChange& metric,
     double total_gap = 0.0;
     const std::string elements = open_elements(
         model, rows, residual, scaled_tolerance(options.tolerance, state.q), total_gap);
-    throw Error("the constraints cannot be closed at t = " + number_text(state.time) + ": after " +
-                    std::to_string(steps) +
+    throw Error("the constraints cannot be closed at t = " + significant(state.time, 9) +
+                    ": after " + std::to_string(steps) +
                     " Gauss-Newton steps the least |C| leaves these constraint elements open" +
-                    elements + "\n  the loop misses by " + number_text(total_gap) +
+                    elements + "\n  the loop misses by " + significant(total_gap, 9) +
                     " (sum of the residuals; m for point and distance rows)",
                 "initial assembly", kCannotCloseRemedy);
   }
@@ -240,7 +238,7 @@ void assemble_velocities(const Model& model, const MinimumChange& metric,
     const std::string elements =
         open_elements(model, rows, rate, scaled_tolerance(options.tolerance, state.v), total);
     throw Error("the velocity equations (G v + dC/dt = 0, G v = g(t)) cannot be met at t = " +
-                    number_text(state.time) + "; these constraint elements stay violated" +
+                    significant(state.time, 9) + "; these constraint elements stay violated" +
                     elements,
                 "initial assembly",
                 "a driving coordinate's velocity contradicts a constraint: give it the velocity "
@@ -291,12 +289,12 @@ std::vector<BodyCorrection> body_corrections(const Model& model, const State& ap
 std::vector<std::string> AssemblyReport::lines() const {
   std::vector<std::string> text;
   text.push_back("initial assembly: " + std::to_string(iterations) +
-                 " Gauss-Newton steps, max |C| = " + number_text(position_residual, 3) +
-                 ", max velocity residual = " + number_text(velocity_residual, 3));
+                 " Gauss-Newton steps, max |C| = " + significant(position_residual, 3) +
+                 ", max velocity residual = " + significant(velocity_residual, 3));
   for (const BodyCorrection& body : bodies) {
     const auto change = [](double value, const std::string& coordinate) {
       return value == 0.0 ? std::string("unchanged")
-                          : "by " + number_text(value, 3) + " (" + coordinate + ")";
+                          : "by " + significant(value, 3) + " (" + coordinate + ")";
     };
     text.push_back("  body '" + body.name + "': position " +
                    change(body.largest_position_change, body.position_coordinate) + ", velocity " +
@@ -311,7 +309,7 @@ AssemblyReport assemble(const Model& model, const State& approximate,
   FSI_ASSERT(approximate.q.size() == n && approximate.v.size() == n,
              "the approximate state does not match the model");
   if (!(options.tolerance > 0.0) || options.max_iterations < 1) {
-    throw Error("assembly tolerance " + number_text(options.tolerance) + " and " +
+    throw Error("assembly tolerance " + significant(options.tolerance, 9) + " and " +
                     std::to_string(options.max_iterations) + " iterations",
                 "initial assembly", "give a positive tolerance and at least one iteration");
   }

@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include "fsi/common/error.hpp"
-#include "number_text.hpp"
+#include "fsi/common/text.hpp"
 
 namespace fsi::mbd::detail {
 
@@ -44,7 +44,7 @@ GaussRule gauss_rule(int size) {
 std::string elastic_line_problems(int elements, double axial_stiffness, double bending_stiffness,
                                   double mass_per_length, double axial_damping,
                                   double bending_damping) {
-  auto number = [](double value) { return number_text(value, 17); };
+  auto number = [](double value) { return significant(value, 17); };
   std::string problems;
   if (elements < 1) problems += " element count " + std::to_string(elements) + " < 1;";
   if (!(std::isfinite(axial_stiffness) && axial_stiffness > 0.0)) {

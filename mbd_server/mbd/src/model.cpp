@@ -12,15 +12,14 @@
 #include "coordinate_rows.hpp"
 #include "direction_rows.hpp"
 #include "fsi/common/error.hpp"
+#include "fsi/common/text.hpp"
 #include "model_data.hpp"
-#include "number_text.hpp"
 #include "point_rows.hpp"
 #include "rigid_body_3d.hpp"
 #include "spring_damper.hpp"
 
 namespace fsi::mbd {
 
-using detail::number_text;
 namespace {
 
 using detail::Marker;
@@ -199,7 +198,7 @@ int Model::add_prescribed_motion(const PrescribedMotionSpec& spec) {
     const double s = spec.position(t);
     const double given = spec.rate(t);
     if (!std::isfinite(s) || !std::isfinite(given)) {
-      throw Error("s(t) or ds/dt is not finite at t = " + number_text(t), user,
+      throw Error("s(t) or ds/dt is not finite at t = " + significant(t, 9), user,
                   "check the expressions");
     }
     double closest = std::numeric_limits<double>::quiet_NaN();
@@ -214,9 +213,9 @@ int Model::add_prescribed_motion(const PrescribedMotionSpec& spec) {
       if (!(std::abs(given - difference) >= std::abs(given - closest))) closest = difference;
     }
     if (!agrees) {
-      throw Error("the rate " + number_text(given) + " at t = " + number_text(t) +
+      throw Error("the rate " + significant(given, 9) + " at t = " + significant(t, 9) +
                       " is not the derivative of the position (central difference " +
-                      number_text(closest) + ", the closest of steps 1e-3 to 2.4e-7 (1 + |t|))",
+                      significant(closest, 9) + ", the closest of steps 1e-3 to 2.4e-7 (1 + |t|))",
                   user, "give rate = ds/dt of the position expression");
     }
   }
@@ -262,7 +261,7 @@ int Model::add_distance_constraint(const BodyPointSpec& a, const BodyPointSpec& 
   const double rod =
       length.value_or((data_->initial_position(b) - data_->initial_position(a)).norm());
   if (!(rod > 0.0) || !std::isfinite(rod)) {
-    throw Error("the length must be positive and finite, got " + number_text(rod), user,
+    throw Error("the length must be positive and finite, got " + significant(rod, 9), user,
                 "give a positive length, or place the points apart initially");
   }
   data_->constraints.push_back(std::make_unique<detail::DistanceConstraint>(
@@ -288,7 +287,7 @@ void Model::set_release_time(int row, double time) {
   // Before the start the row would never have held: the initial state would then have to satisfy
   // a constraint that does not exist, so a negative time is refused rather than guessed at.
   if (!(time >= 0.0)) {
-    throw Error("release time " + detail::number_text(time) + " s is negative or not a number",
+    throw Error("release time " + significant(time, 9) + " s is negative or not a number",
                 data_->constraints[row]->description(),
                 "give a release time >= 0 s (0: held at the start only, released at once)");
   }
@@ -567,19 +566,19 @@ void Model::check_consistency(const State& state) const {
     if (constraint.level() == ConstraintLevel::Position) {
       if (!(std::abs(residual) <= position_tolerance)) {
         problems += "\n  " + constraint.description() +
-                    ": position residual C = " + number_text(residual) +
-                    " at t = " + number_text(state.time);
+                    ": position residual C = " + significant(residual, 9) +
+                    " at t = " + significant(state.time, 9);
       }
       const double rate = jacobian_v(k) + constraint.explicit_time_derivative(state.time, state.q);
       if (!(std::abs(rate) <= velocity_tolerance)) {
         problems += "\n  " + constraint.description() +
-                    ": velocity residual dC/dt = " + number_text(rate) +
+                    ": velocity residual dC/dt = " + significant(rate, 9) +
                     " (the constrained coordinate has a velocity)";
       }
     } else if (!(std::abs(residual) <= velocity_tolerance)) {
       problems += "\n  " + constraint.description() +
-                  ": velocity residual = " + number_text(residual) +
-                  " at t = " + number_text(state.time);
+                  ": velocity residual = " + significant(residual, 9) +
+                  " at t = " + significant(state.time, 9);
     }
   }
   // Incremental rank: a row that does not raise the rank of the rows before it is redundant

@@ -11,17 +11,16 @@
 #include "coordinate_rows.hpp"
 #include "force_elements.hpp"
 #include "fsi/common/error.hpp"
+#include "fsi/common/text.hpp"
 #include "fsi/mbd/model.hpp"
 #include "measured_force.hpp"
 #include "model_data.hpp"
-#include "number_text.hpp"
 #include "point_rows.hpp"
 
 namespace fsi::mbd {
 
 using detail::element_name;
 
-using detail::number_text;
 namespace {
 
 void require_two_ends(BodyId a, BodyId b, const std::string& user) {
@@ -146,8 +145,8 @@ double rest_length_of(const std::optional<double>& given, double initial, const 
   }
   const double rest = given.value_or(initial);
   if (!non_negative(rest)) {
-    throw Error("the rest length must be finite and non-negative, got " + number_text(rest), user,
-                "give rest_length >= 0 or none (the initial distance)");
+    throw Error("the rest length must be finite and non-negative, got " + significant(rest, 9),
+                user, "give rest_length >= 0 or none (the initial distance)");
   }
   return rest;
 }

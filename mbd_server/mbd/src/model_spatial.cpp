@@ -9,9 +9,9 @@
 #include "direction_rows.hpp"
 #include "force_elements.hpp"
 #include "fsi/common/error.hpp"
+#include "fsi/common/text.hpp"
 #include "fsi/mbd/model.hpp"
 #include "model_data.hpp"
-#include "number_text.hpp"
 #include "point_rows.hpp"
 #include "rigid_body_3d.hpp"
 #include "spring_damper.hpp"
@@ -20,7 +20,6 @@ namespace fsi::mbd {
 
 using detail::element_name;
 
-using detail::number_text;
 namespace {
 
 constexpr const char* kAxisNames[3] = {" (x)", " (y)", " (z)"};
@@ -151,7 +150,7 @@ int Model::add_revolute_joint_3d(const RevoluteJoint3DSpec& spec) {
     throw Error("the axis must be a finite, non-zero vector", user, "give e.g. axis = [0, 0, 1]");
   }
   if (spec.rate && !std::isfinite(*spec.rate)) {
-    throw Error("the drive rate is not finite, got " + number_text(*spec.rate), user,
+    throw Error("the drive rate is not finite, got " + significant(*spec.rate, 9), user,
                 "give a finite rate [rad/s], or none for a free hinge");
   }
   data_->check_pair({spec.a.body, {}}, {spec.b.body, {}}, user);
@@ -260,7 +259,7 @@ int Model::add_spatial_distance_constraint(const SpatialPointSpec& a, const Spat
   const double rod = length.value_or(
       (data_->initial_spatial_position(b) - data_->initial_spatial_position(a)).norm());
   if (!(rod > 0.0) || !std::isfinite(rod)) {
-    throw Error("the length must be positive and finite, got " + number_text(rod), user,
+    throw Error("the length must be positive and finite, got " + significant(rod, 9), user,
                 "give a positive length, or place the points apart initially");
   }
   data_->constraints.push_back(

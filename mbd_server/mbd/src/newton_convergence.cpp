@@ -1,4 +1,5 @@
 #include "newton_convergence.hpp"
+#include "fsi/common/text.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -20,9 +21,7 @@ constexpr double kRoundOffDrop = 1e-6;
 
 // Three significant digits, and a power of ten for tolerances.
 std::string number(double value) {
-  char text[48];
-  std::snprintf(text, sizeof text, "%.3g", value);
-  return text;
+  return significant(value, 3);
 }
 std::string tolerance(double value) {
   char text[48];

@@ -2,7 +2,7 @@
 
 #include "body.hpp"
 #include "fsi/common/error.hpp"
-#include "number_text.hpp"
+#include "fsi/common/text.hpp"
 
 namespace fsi::mbd::detail {
 namespace {
@@ -22,7 +22,7 @@ Eigen::Vector2d rotate_derivative(double angle, const Eigen::Vector2d& p) {
 
 // Input values in messages: all 17 digits.
 std::string number(double value) {
-  return number_text(value, 17);
+  return significant(value, 17);
 }
 
 }  // namespace

@@ -4,7 +4,7 @@
 #include <utility>
 
 #include "fsi/common/error.hpp"
-#include "number_text.hpp"
+#include "fsi/common/text.hpp"
 
 namespace fsi::mbd::detail {
 namespace {
@@ -23,7 +23,7 @@ RigidBody3D::RigidBody3D(const RigidBody3DSpec& spec) : spec_(spec) {
     throw Error("a rigid body has no name", "rigid body", "give every body a unique name");
   }
   if (!(std::isfinite(spec.mass) && spec.mass > 0.0)) {
-    throw Error("mass must be positive and finite, got " + number_text(spec.mass), where,
+    throw Error("mass must be positive and finite, got " + significant(spec.mass, 9), where,
                 "give the body a positive mass [kg]");
   }
   if (!spec.inertia.allFinite() || !spec.position.allFinite() || !spec.orientation.allFinite() ||
@@ -44,8 +44,8 @@ RigidBody3D::RigidBody3D(const RigidBody3DSpec& spec) : spec_(spec) {
   const Eigen::Vector3d principal =
       Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(spec.inertia).eigenvalues();
   if (!(principal.minCoeff() > 0.0) || !(moments.eigenvalues().minCoeff() > 1e-12 * size)) {
-    throw Error("the inertia tensor (principal moments " + number_text(principal(0)) + ", " +
-                    number_text(principal(1)) + ", " + number_text(principal(2)) +
+    throw Error("the inertia tensor (principal moments " + significant(principal(0), 9) + ", " +
+                    significant(principal(1), 9) + ", " + significant(principal(2), 9) +
                     " kg m^2) is not that of a body with volume: every principal moment must be "
                     "positive and less than the sum of the other two",
                 where, "check the inertia tensor; give a flat body a small thickness");
@@ -53,8 +53,8 @@ RigidBody3D::RigidBody3D(const RigidBody3DSpec& spec) : spec_(spec) {
   const Eigen::Matrix3d& r = spec.orientation;
   const double defect = (r.transpose() * r - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
   if (!(defect <= 1e-10) || !(r.determinant() > 0.0)) {
-    throw Error("the orientation is not a rotation matrix (|R^T R - I| = " + number_text(defect) +
-                    ", det R = " + number_text(r.determinant()) + ")",
+    throw Error("the orientation is not a rotation matrix (|R^T R - I| = " +
+                    significant(defect, 9) + ", det R = " + significant(r.determinant(), 9) + ")",
                 where,
                 "give orthonormal body axes as the columns, right-handed (or an axis and angle "
                 "in the scene)");
@@ -120,7 +120,7 @@ PointMass3D::PointMass3D(const PointMassSpec& spec) : spec_(spec) {
     throw Error("a point mass has no name", "point mass", "give every body a unique name");
   }
   if (!(std::isfinite(spec.mass) && spec.mass > 0.0)) {
-    throw Error("mass must be positive and finite, got " + number_text(spec.mass), where,
+    throw Error("mass must be positive and finite, got " + significant(spec.mass, 9), where,
                 "give the point mass a positive mass [kg]");
   }
   if (!spec.position.allFinite() || !spec.velocity.allFinite()) {
@@ -152,8 +152,8 @@ double PointMass3D::spatial_gravity_potential(const ConstVector& q,
 void PointMass3D::check_spatial_local(const Eigen::Vector3d& local, const std::string& user) const {
   if (!local.isZero(0.0)) {
     throw Error(user + " on point mass '" + spec_.name + "' is at local (" +
-                    number_text(local.x()) + ", " + number_text(local.y()) + ", " +
-                    number_text(local.z()) +
+                    significant(local.x(), 9) + ", " + significant(local.y(), 9) + ", " +
+                    significant(local.z(), 9) +
                     "), but a point mass has only the point local = (0, 0, 0)",
                 "point mass '" + spec_.name + "'",
                 "attach at (0, 0, 0), or use a RigidBody3D for a body with extent");

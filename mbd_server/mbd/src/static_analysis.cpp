@@ -10,11 +10,10 @@
 #include <string>
 
 #include "fsi/common/error.hpp"
-#include "number_text.hpp"
+#include "fsi/common/text.hpp"
 
 namespace fsi::mbd {
 
-using detail::number_text;
 namespace {
 
 // Holds the model's gravity and point loads and puts them back when the solve ends.
@@ -119,9 +118,10 @@ StaticResult solve_static(Model& model, const State& start, const StaticOptions&
                   (at_round_off || max_abs(dlambda) <= options.tolerance * (1.0 + max_abs(lambda)));
     }
     if (!converged) {
-      throw Error("Newton did not converge at load factor " + number_text(factor) + " (load step " +
-                      std::to_string(step) + " of " + std::to_string(options.load_steps) +
-                      "); last relative increment " + number_text(last_step),
+      throw Error("Newton did not converge at load factor " + significant(factor, 9) +
+                      " (load step " + std::to_string(step) + " of " +
+                      std::to_string(options.load_steps) + "); last relative increment " +
+                      significant(last_step, 9),
                   "static solve",
                   "raise StaticOptions::load_steps or max_iterations, or check that the "
                   "constraints hold the model (no free rigid-body motion)");

@@ -7,50 +7,50 @@ namespace {
 
 BlockSpec timeint_spec() {
   return block_spec(
-             "Timeint", "Time integration of the multibody system (fixed step when coupled).",
-             {number("step_size", "s",
-                     "coupled time step, the same on both sides; SPH needs <= 0.125 h/c; "
-                     "--mbd-only with an error-controlled method: the output step; absent in a "
-                     "coupled scene with a Fluid block: the largest step within the block's "
-                     "time-step rule that divides end_time into whole structure steps "
-                     "(docs/user-guide.md, \"The Fluid block\")")
-                  .positive()
-                  .optional(),
-              text("method",
-                   "fixed: the tableau at step_size; adaptive: the tableau with step-doubling "
-                   "error control; ida: SUNDIALS IDA (BDF 1-5); the last two for --mbd-only "
-                   "(ErrorControl), a coupled run always takes the fixed step")
-                  .one_of({"fixed", "adaptive", "ida"})
-                  .with_default("fixed"),
-              text("tableau", "implicit Runge-Kutta scheme (HOTINT's tableau_name)")
-                  .one_of({"RadauIIA", "LobattoIIIA"})
-                  .with_default("RadauIIA"),
-              integer("stages",
-                      "Radau IIA: 1, 2, 3 (orders 1, 3, 5; 1 is implicit Euler, which damps "
-                      "oscillations: --check states how much); Lobatto IIIA: 2, 3 (orders 2, 4 on "
-                      "free bodies; 2 and 2 on constrained ones, docs/theory.md)")
-                  .with_default(3)
-                  .between(1, 3),
-              integer("substeps",
-                      "multi-rate coupling: fluid steps of step_size per structure step; the "
-                      "structure steps k * step_size and the walls move on its stage values in "
-                      "between (docs/theory.md, \"Multi-rate coupling\"); coupled runs only, "
-                      "--mbd-only steps at step_size")
-                  .with_default(1)
-                  .between(1, 1000),
-              text("force_predictor",
-                   "multi-rate coupling: none holds the fluid's average force of the last k "
-                   "fluid steps over the structure step; linear extrapolates it over the k - 1 "
-                   "steps it lags, from the last two averages (docs/theory.md, \"Multi-rate "
-                   "coupling\"); no effect with substeps = 1")
-                  .one_of({"none", "linear"})
-                  .with_default("none"),
-              text("constraint_form",
-                   "index3: position constraints C = 0 at the stages (no drift); index2: their "
-                   "rates G v + dC/dt = 0 (positions drift by the integration error; HOTINT's "
-                   "alternative)")
-                  .one_of({"index3", "index2"})
-                  .with_default("index3")});
+      "Timeint", "Time integration of the multibody system (fixed step when coupled).",
+      {number("step_size", "s",
+              "coupled time step, the same on both sides; SPH needs <= 0.125 h/c; "
+              "--mbd-only with an error-controlled method: the output step; absent in a "
+              "coupled scene with a Fluid block: the largest step within the block's "
+              "time-step rule that divides end_time into whole structure steps "
+              "(docs/user-guide.md, \"The Fluid block\")")
+           .positive()
+           .optional(),
+       text("method",
+            "fixed: the tableau at step_size; adaptive: the tableau with step-doubling "
+            "error control; ida: SUNDIALS IDA (BDF 1-5); the last two for --mbd-only "
+            "(ErrorControl), a coupled run always takes the fixed step")
+           .one_of({"fixed", "adaptive", "ida"})
+           .with_default("fixed"),
+       text("tableau", "implicit Runge-Kutta scheme (HOTINT's tableau_name)")
+           .one_of({"RadauIIA", "LobattoIIIA"})
+           .with_default("RadauIIA"),
+       integer("stages",
+               "Radau IIA: 1, 2, 3 (orders 1, 3, 5; 1 is implicit Euler, which damps "
+               "oscillations: --check states how much); Lobatto IIIA: 2, 3 (orders 2, 4 on "
+               "free bodies; 2 and 2 on constrained ones, docs/theory.md)")
+           .with_default(3)
+           .between(1, 3),
+       integer("substeps",
+               "multi-rate coupling: fluid steps of step_size per structure step; the "
+               "structure steps k * step_size and the walls move on its stage values in "
+               "between (docs/theory.md, \"Multi-rate coupling\"); coupled runs only, "
+               "--mbd-only steps at step_size")
+           .with_default(1)
+           .between(1, 1000),
+       text("force_predictor",
+            "multi-rate coupling: none holds the fluid's average force of the last k "
+            "fluid steps over the structure step; linear extrapolates it over the k - 1 "
+            "steps it lags, from the last two averages (docs/theory.md, \"Multi-rate "
+            "coupling\"); no effect with substeps = 1")
+           .one_of({"none", "linear"})
+           .with_default("none"),
+       text("constraint_form",
+            "index3: position constraints C = 0 at the stages (no drift); index2: their "
+            "rates G v + dC/dt = 0 (positions drift by the integration error; HOTINT's "
+            "alternative)")
+           .one_of({"index3", "index2"})
+           .with_default("index3")});
   // Not required: every key has a default but step_size, which a Fluid block may derive (a
   // scene without either is told so at SolverOptions).
 }

@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "fsi/common/text.hpp"
 #include "fsi/scene/scene.hpp"
 #include "scene_builder.hpp"
 
@@ -54,8 +55,8 @@ void build_damping_zones(SceneBuilder& builder) {
       if (!(zone.upper[i] > zone.lower[i])) {
         builder.problem(block.location("upper"),
                         std::string("the DampingZone's upper ") + kAxes[k] + " = " +
-                            format_exact(zone.upper[i]) + " is not above its lower " + kAxes[k] +
-                            " = " + format_exact(zone.lower[i]) + " (an empty box)",
+                            exact(zone.upper[i]) + " is not above its lower " + kAxes[k] + " = " +
+                            exact(zone.lower[i]) + " (an empty box)",
                         "give lower the smaller and upper the larger coordinate of each axis");
         return;
       }
@@ -73,10 +74,10 @@ void build_damping_zones(SceneBuilder& builder) {
       }
     }
     const double step = builder.scene.solver.step_size;
-    const auto rounded = [](double value) { return format_significant(value, 6); };
+    const auto rounded = [](double value) { return significant(value, 6); };
     if (step > 0.0 && zone.rate * step > 1.0) {
       builder.problem(block.location("rate"),
-                      "the DampingZone's rate " + format_exact(zone.rate) +
+                      "the DampingZone's rate " + exact(zone.rate) +
                           " 1/s times the fluid's step " + rounded(step) + " s is " +
                           rounded(zone.rate * step) +
                           " > 1: the drag would reverse the particles' velocities every step",
@@ -106,26 +107,24 @@ std::string damping_zone_commands(const std::vector<DampingZone>& zones, int dim
     const std::string id = "fsi_damping_" + std::to_string(i);
     auto bound = [&](int k, bool upper) {
       if (k >= dimension) return std::string(upper ? "1e10" : "-1e10");  // 2D: every z
-      return detail::format_exact(upper ? zone.upper[static_cast<std::size_t>(k)]
-                                        : zone.lower[static_cast<std::size_t>(k)]);
+      return fsi::exact(upper ? zone.upper[static_cast<std::size_t>(k)]
+                              : zone.lower[static_cast<std::size_t>(k)]);
     };
     // s = (x - x0) / L toward upper x, (x1 - x) / L toward lower x: 0 at the inner side.
     std::string shape = "1.0";
     if (zone.axis >= 0) {
       const auto a = static_cast<std::size_t>(zone.axis);
-      const std::string length = detail::format_exact(zone.upper[a] - zone.lower[a]);
+      const std::string length = fsi::exact(zone.upper[a] - zone.lower[a]);
       const std::string coordinate(1, kAxes[zone.axis]);
-      shape = zone.toward_upper ? "((" + coordinate + "-(" + detail::format_exact(zone.lower[a]) +
-                                      "))/" + length + ")^2"
-                                : "(((" + detail::format_exact(zone.upper[a]) + ")-" + coordinate +
-                                      ")/" + length + ")^2";
+      shape = zone.toward_upper
+                  ? "((" + coordinate + "-(" + fsi::exact(zone.lower[a]) + "))/" + length + ")^2"
+                  : "(((" + fsi::exact(zone.upper[a]) + ")-" + coordinate + ")/" + length + ")^2";
     }
     out += "# fsi-server: DampingZone " + zone.location.text() + ", a drag -rate s^2 m v\n";
     out += "region " + id + " block " + bound(0, false) + " " + bound(0, true) + " " +
            bound(1, false) + " " + bound(1, true) + " " + bound(2, false) + " " + bound(2, true) +
            " units box\n";
-    out +=
-        "variable " + id + "_c atom -" + detail::format_exact(zone.rate) + "*mass*" + shape + "\n";
+    out += "variable " + id + "_c atom -" + fsi::exact(zone.rate) + "*mass*" + shape + "\n";
     std::string forces;
     for (int k = 0; k < 3; ++k) {
       const std::string component(1, kAxes[k]);

@@ -9,6 +9,8 @@
 #include <sstream>
 
 #include "fsi/common/error.hpp"
+#include "fsi/common/text.hpp"
+#include "fsi/contact/cell_grid.hpp"
 #include "fsi/contact/wall_contact_3d.hpp"
 #include "scene_builder.hpp"
 
@@ -172,9 +174,8 @@ bool build_fluid_region(SceneBuilder& builder, const View& region, const std::st
       const double own = region.number(key), fluid_value = derived->value(symbol);
       if (std::abs(own - fluid_value) > 1e-12 * std::abs(fluid_value)) {
         builder.problem(region.location(key),
-                        name + "." + key + " = " + format_exact(own) +
-                            " differs from the Fluid block's " + key + " = " +
-                            format_exact(fluid_value),
+                        name + "." + key + " = " + exact(own) + " differs from the Fluid block's " +
+                            key + " = " + exact(fluid_value),
                         std::string("write ") + key + " = Fluid." + key + " here");
       }
     }
@@ -297,7 +298,7 @@ bool build_fluid_region(SceneBuilder& builder, const View& region, const std::st
 }
 
 // The first point of `points` closer than `radius` to one of `others` (dimension values each),
-// and how many are; a cell list of cells `radius` wide.
+// and how many are.
 struct CloseCount {
   std::size_t count = 0;
   std::vector<double> first;
@@ -305,48 +306,16 @@ struct CloseCount {
 CloseCount points_closer_than(const std::vector<double>& points, const std::vector<double>& others,
                               int dimension, double radius) {
   const auto dim = static_cast<std::size_t>(dimension);
-  using Cell = std::array<long long, 3>;
-  const auto cell_of = [&](const double* x) {
-    Cell cell{0, 0, 0};
-    for (std::size_t k = 0; k < dim; ++k)
-      cell[k] = static_cast<long long>(std::floor(x[k] / radius));
-    return cell;
-  };
-  std::map<Cell, std::vector<std::size_t>> cells;
-  for (std::size_t j = 0; j + dim <= others.size(); j += dim)
-    cells[cell_of(&others[j])].push_back(j);
   CloseCount close;
-  for (std::size_t i = 0; i + dim <= points.size(); i += dim) {
-    const Cell home = cell_of(&points[i]);
-    bool found = false;
-    for (long long dx = -1; dx <= 1 && !found; ++dx) {
-      for (long long dy = -1; dy <= 1 && !found; ++dy) {
-        for (long long dz = dim == 3 ? -1 : 0; dz <= (dim == 3 ? 1 : 0) && !found; ++dz) {
-          const auto near = cells.find({home[0] + dx, home[1] + dy, home[2] + dz});
-          if (near == cells.end()) continue;
-          for (std::size_t j : near->second) {
-            double squared = 0.0;
-            for (std::size_t k = 0; k < dim; ++k)
-              squared += (points[i + k] - others[j + k]) * (points[i + k] - others[j + k]);
-            if (squared < radius * radius) {
-              found = true;
-              break;
-            }
-          }
-        }
-      }
-    }
-    if (!found) continue;
-    if (close.count++ == 0) close.first.assign(points.begin() + i, points.begin() + i + dim);
-  }
+  std::optional<std::size_t> last;  // the last point counted (a point's partners come together)
+  contact::for_each_close_pair(
+      points, others, dimension, radius, [&](std::size_t i, std::size_t, double) {
+        if (last == i) return;
+        last = i;
+        if (close.count++ == 0)
+          close.first.assign(points.begin() + dim * i, points.begin() + dim * (i + 1));
+      });
   return close;
-}
-
-std::string point_text(const std::vector<double>& point) {
-  std::string text = "(";
-  for (std::size_t k = 0; k < point.size(); ++k)
-    text += (k ? ", " : "") + format_exact(point[k]);
-  return text + ")";
 }
 
 // Every FluidRegion's lattice into the scene's one fluid: they must share the particle (spacing,
@@ -373,9 +342,9 @@ void build_fluid_regions(SceneBuilder& builder, const std::vector<View>& regions
       const auto differs = [&](std::string_view key, double own, double first) {
         if (std::abs(own - first) <= 1e-12 * std::abs(first)) return;
         builder.problem(region.location(key),
-                        name + "." + std::string(key) + " = " + format_exact(own) +
-                            " differs from " + format_exact(first) + " of the first FluidRegion (" +
-                            placed.front().text() + "): the fluid has one particle mass",
+                        name + "." + std::string(key) + " = " + exact(own) + " differs from " +
+                            exact(first) + " of the first FluidRegion (" + placed.front().text() +
+                            "): the fluid has one particle mass",
                         "give every FluidRegion the same spacing, density and atom_type");
         same = false;
       };
@@ -390,7 +359,7 @@ void build_fluid_regions(SceneBuilder& builder, const std::vector<View>& regions
             region.location(),
             name + " overlaps an earlier FluidRegion: " + std::to_string(close.count) +
                 " of its lattice points lie within d/2 of theirs, the first at " +
-                point_text(close.first) + " (two particles in one place)",
+                point_text(close.first, 0) + " (two particles in one place)",
             "draw the regions so that they do not overlap (touching is fine: their lattices "
             "then stay d apart), or make them one region (a polygon, with Hole blocks)");
         return;
@@ -467,13 +436,13 @@ void build_liggghts(SceneBuilder& builder) {
   });
   // The Fluid block's values first (a LIGGGHTS_SPH_parameters entry of the same name is refused).
   for (const Parameter& p : builder.scene.fluid_variables)
-    setup.variables.emplace_back(p.key, format_exact(p.value.number));
+    setup.variables.emplace_back(p.key, exact(p.value.number));
   const Block* sph = builder.scene.parameters.child("LIGGGHTS_SPH_parameters");
   if (sph == nullptr) return;
   for (const Parameter& p : sph->parameters) {
     if (p.failed) continue;
     if (p.value.kind == ValueKind::Number) {
-      setup.variables.emplace_back(p.key, format_exact(p.value.number));
+      setup.variables.emplace_back(p.key, exact(p.value.number));
     } else if (p.value.kind == ValueKind::String) {
       setup.variables.emplace_back(p.key, p.value.text);
     } else {

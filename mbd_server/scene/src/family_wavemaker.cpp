@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "fsi/common/error.hpp"
+#include "fsi/common/text.hpp"
 #include "fsi/scene/scene.hpp"
 #include "scene_builder.hpp"
 
@@ -287,7 +288,7 @@ PaddleWave asked_wave(const SceneBuilder& builder, const View& block, bool flap)
                     " needs gravity (the waves' dispersion relation), and the scene has none",
                 block.location().text(), "add Gravity { acceleration = [0, -9.81] }");
   }
-  const auto text = [](double value) { return format_significant(value, 4); };
+  const auto text = [](double value) { return significant(value, 4); };
   const double depth = block.number("depth");
   const double ramp_time = block.number("ramp_periods") * block.number("period");
   double hinge_depth = 0.0;

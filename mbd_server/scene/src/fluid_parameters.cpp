@@ -1,4 +1,5 @@
 #include "fsi/scene/fluid_parameters.hpp"
+#include "fsi/common/text.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -23,9 +24,7 @@ double kernel_ratio(int dimension) {
 }
 
 std::string number(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.4g", value);
-  return text;
+  return significant(value, 4);
 }
 
 std::vector<FluidQuantity> make_quantities() {

@@ -1,6 +1,7 @@
 // Lattice fills of boxes, polygons and closed triangle surfaces; the STL reader.
 
 #include "fsi/scene/fluid_region.hpp"
+#include "fsi/common/text.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -18,10 +19,7 @@ namespace fsi::scene {
 namespace {
 
 std::string number(double value) {
-  std::ostringstream out;
-  out.precision(6);
-  out << value;
-  return out.str();
+  return significant(value, 6);
 }
 
 void check_options(const LatticeOptions& options, const std::string& what) {

@@ -1,4 +1,5 @@
 #include "fsi/scene/physics_checks.hpp"
+#include "fsi/common/text.hpp"
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -49,15 +50,14 @@ using Point = Eigen::Vector2d;
 
 // Three significant digits; thousands up to millions without an exponent (17500, not 1.75e+04).
 std::string number(double value) {
-  char text[32];
   const double size = std::abs(value);
   if (size >= 1e3 && size < 1e7) {
     const double unit = std::pow(10.0, std::floor(std::log10(size)) - 2.0);
+    char text[32];
     std::snprintf(text, sizeof text, "%.0f", std::round(value / unit) * unit);
-  } else {
-    std::snprintf(text, sizeof text, "%.3g", value);
+    return text;
   }
-  return text;
+  return significant(value, 3);
 }
 
 std::string point_text(const Point& point) {

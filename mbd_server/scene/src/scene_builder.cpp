@@ -388,18 +388,6 @@ mbd::Coordinate coordinate_of(const std::string& text) {
   return mbd::Coordinate::Angle;  // "angle" or "torque"
 }
 
-std::string format_exact(double value) {
-  char text[40];
-  const auto end = std::to_chars(text, text + sizeof text, value).ptr;
-  return std::string(text, end);
-}
-
-std::string format_significant(double value, int digits) {
-  char text[40];
-  std::snprintf(text, sizeof text, "%.*g", digits, value);
-  return text;
-}
-
 std::vector<double> prescribed_motion_check_times(double end_time) {
   constexpr int kChecks = 200;
   std::vector<double> times(1, 0.0);

@@ -175,11 +175,6 @@ std::string with_scene_numbers(std::string text);
 // passed the 11 samples once taken every 3 s, and its index-2 run went wrong unseen).
 std::vector<double> prescribed_motion_check_times(double end_time);
 
-// The shortest text that reads back to the same double (LIGGGHTS values, numbers in messages that
-// must match the file's).
-std::string format_exact(double value);
-// `digits` significant digits (printf's %g), for computed numbers in messages.
-std::string format_significant(double value, int digits);
 // A vector of the scene's dimension (2 or 3 components): the builder checks its length.
 ParameterSpec per_dimension(ParameterSpec spec);
 // body_a/point_a and body_b/point_b of a planar two-point element (body_b absent: point_b is a

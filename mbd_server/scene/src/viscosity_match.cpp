@@ -1,4 +1,5 @@
 #include "viscosity_match.hpp"
+#include "fsi/common/text.hpp"
 
 #include <muParser.h>
 
@@ -23,9 +24,7 @@ constexpr double kFactor = 2.0;
 constexpr double kMomentRuleTolerance = 0.05;
 
 std::string number(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.3g", value);
-  return text;
+  return significant(value, 3);
 }
 
 // A value set by the scripts, with where it was set.

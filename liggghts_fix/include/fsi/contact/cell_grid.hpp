@@ -32,6 +32,12 @@ class CellGrid {
   // layout; only the first D are used) into cells at least `range` wide. A far-away member must
   // not blow up memory: the cell count is capped (4 per member, at least 4096) by coarsening.
   void build(const double* positions, std::span<const std::uint8_t> member, double range) {
+    build(positions, 3, member, range);
+  }
+
+  // The same for `stride` doubles per particle (at least D; D for packed points).
+  void build(const double* positions, std::size_t stride, std::span<const std::uint8_t> member,
+             double range) {
     constexpr double kInfinity = std::numeric_limits<double>::infinity();
     std::array<double, D> low, high;
     low.fill(kInfinity);
@@ -41,8 +47,8 @@ class CellGrid {
       if (!member[i]) continue;
       ++members;
       for (int k = 0; k < D; ++k) {
-        low[k] = std::min(low[k], positions[3 * i + k]);
-        high[k] = std::max(high[k], positions[3 * i + k]);
+        low[k] = std::min(low[k], positions[stride * i + k]);
+        high[k] = std::max(high[k], positions[stride * i + k]);
       }
     }
     geometry_ = GridGeometry<D>{};
@@ -78,7 +84,7 @@ class CellGrid {
     cell_of_.resize(member.size());
     for (std::size_t i = 0; i < member.size(); ++i) {
       if (!member[i]) continue;
-      const std::uint32_t cell = cell_of(positions + 3 * i);
+      const std::uint32_t cell = cell_of(positions + stride * i);
       cell_of_[i] = cell;
       ++start_[cell + 1];
     }
@@ -153,5 +159,35 @@ class CellGrid {
   std::vector<std::uint32_t> cell_of_;
   std::vector<std::uint32_t> fill_;
 };
+
+// Calls visit(i, j, squared distance) for every point i of `points` and every point j of
+// `others` (both `dimension` = 2 or 3 packed values per point) closer than `radius` (> 0), the
+// points in order and each one's partners in the grid's order: a cell grid over `others`, so the
+// cost is linear in the points for any lattice-like set. For the pairs within one set pass it
+// twice and keep j > i.
+template <class Visit>
+void for_each_close_pair(std::span<const double> points, std::span<const double> others,
+                         int dimension, double radius, Visit&& visit) {
+  const auto run = [&]<int D>() {
+    CellGrid<D> grid;
+    const std::vector<std::uint8_t> all(others.size() / D, 1);
+    grid.build(others.data(), D, all, radius);
+    for (std::size_t i = 0; i < points.size() / D; ++i) {
+      const double* x = points.data() + D * i;
+      grid.visit_near(x, radius, [&](std::uint32_t j) {
+        double squared = 0.0;
+        for (int k = 0; k < D; ++k) {
+          const double delta = x[k] - others[D * j + k];
+          squared += delta * delta;
+        }
+        if (squared < radius * radius) visit(i, std::size_t{j}, squared);
+      });
+    }
+  };
+  if (dimension == 2)
+    run.template operator()<2>();
+  else
+    run.template operator()<3>();
+}
 
 }  // namespace fsi::contact
