@@ -9,10 +9,11 @@ particles) once per variant below, each 4000 settling steps (unless the variant 
 and 0.3 s of coupled run, one rank, and prints per variant: how the run ended, the closest pair and
 the pairs closer than d/2 right after the settling (t = 0, the first snapshot) and the closest over
 the run (fsi-server's own count, run.json "checks") with the largest density deviation of the
-snapshots. The variants change one thing each: the
-settling's length, the density filter of script 1 (its `fix ... sph/density/corr shepard every N`
-line: another N, or none) or the kernel (every `spiky2d` of script 1). Their scripts are written
-into OUT_DIR beside the runs; wave_flume.in1 itself is not changed. About a minute in all.
+snapshots. The variants change one thing each: the settling's length, the density filter of
+script 1 (its `fix ... sph/density/corr shepard every N` line: another N, or none), the kernel
+(every `spiky2d` of script 1) or the floor corners (corner_tank_rounded.scene, arcs of radius r
+instead of right angles). Their scripts are written into OUT_DIR beside the runs; wave_flume.in1
+itself is not changed. About half a minute in all.
 --bin: the folder of fsi-run (default: the PATH's).
 """
 import argparse
@@ -30,16 +31,20 @@ SPACING = 0.025  # corner_tank.scene's Fluid.spacing
 FILTER = re.compile(r"^fix\s+density_filter\s+all\s+sph/density/corr\s+shepard\s+every\s+\d+\s*$",
                     re.MULTILINE)
 
-# name: (what it changes, equilibration steps, the filter line's replacement or None, kernel)
+# name: (what it changes, equilibration steps, the filter line's replacement or None, kernel,
+# the --set values of corner_tank_rounded.scene (none: corner_tank.scene))
 VARIANTS = {
-    "as committed": ("Shepard filter every 20 steps, spiky kernel", 4000, None, None),
-    "settle 500": ("500 settling steps", 500, None, None),
-    "settle 1000": ("1000 settling steps", 1000, None, None),
-    "settle 2000": ("2000 settling steps", 2000, None, None),
-    "filter every 5": ("Shepard filter every 5 steps", 4000, "every 5", None),
-    "filter every 100": ("Shepard filter every 100 steps", 4000, "every 100", None),
-    "no filter": ("no density filter (continuity alone)", 4000, "none", None),
-    "wendland": ("Wendland kernel (zero gradient at r = 0)", 4000, None, "wendland2d"),
+    "as committed": ("Shepard filter every 20 steps, spiky kernel", 4000, None, None, ()),
+    "settle 500": ("500 settling steps", 500, None, None, ()),
+    "settle 1000": ("1000 settling steps", 1000, None, None, ()),
+    "settle 2000": ("2000 settling steps", 2000, None, None, ()),
+    "filter every 5": ("Shepard filter every 5 steps", 4000, "every 5", None, ()),
+    "filter every 100": ("Shepard filter every 100 steps", 4000, "every 100", None, ()),
+    "no filter": ("no density filter (continuity alone)", 4000, "none", None, ()),
+    "wendland": ("Wendland kernel (zero gradient at r = 0)", 4000, None, "wendland2d", ()),
+    "rounded r = 2 d": ("floor corners rounded, radius 0.05 m", 4000, None, None, ("Tank.r=0.05",)),
+    "rounded r = 4 d": ("floor corners rounded, radius 0.1 m", 4000, None, None, ("Tank.r=0.1",)),
+    "rounded r = 8 d": ("floor corners rounded, radius 0.2 m", 4000, None, None, ("Tank.r=0.2",)),
 }
 
 
@@ -86,11 +91,13 @@ def main():
     os.makedirs(args.out_dir, exist_ok=True)
     rows = []
     for name in args.only or VARIANTS:
-        what, steps, filter_change, kernel = VARIANTS[name]
+        what, steps, filter_change, kernel, sets = VARIANTS[name]
         run_dir = os.path.join(args.out_dir, re.sub(r"\W+", "_", name))
-        command = [fsi_run, os.path.join(HERE, "corner_tank.scene"), "--np", "1", "--output",
-                   run_dir, "--overwrite", "--no-live",
-                   "--set", f"LIGGGHTS.equilibration_steps={steps}"]
+        scene = "corner_tank_rounded.scene" if sets else "corner_tank.scene"
+        command = [fsi_run, os.path.join(HERE, scene), "--np", "1", "--output", run_dir,
+                   "--overwrite", "--no-live", "--set", f"LIGGGHTS.equilibration_steps={steps}"]
+        for value in sets:
+            command += ["--set", value]
         if filter_change or kernel:
             script = script_variant(args.out_dir, name, filter_change, kernel)
             command += ["--set", f'LIGGGHTS.script1="{os.path.abspath(script)}"']
