@@ -1,12 +1,11 @@
 #include "fsi/coupling/energy_audit.hpp"
-#include "fsi/common/text.hpp"
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <utility>
 
 #include "fsi/common/error.hpp"
+#include "fsi/common/text.hpp"
 
 namespace fsi::coupling {
 

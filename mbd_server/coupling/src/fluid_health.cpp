@@ -1,11 +1,10 @@
 #include "fsi/coupling/fluid_health.hpp"
-#include "fsi/common/text.hpp"
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <sstream>
 
+#include "fsi/common/text.hpp"
 #include "fsi/scene/physics_checks.hpp"
 
 namespace fsi::coupling {
@@ -37,10 +36,8 @@ std::string number(double value) {
 // 6) that it does not print as that reference (0.01004 against the 1 % aim, not "0.01").
 std::string number_beside(double value, double reference) {
   for (int digits = 3; digits <= 6; ++digits) {
-    char text[32], other[32];
-    std::snprintf(text, sizeof text, "%.*g", digits, value);
-    std::snprintf(other, sizeof other, "%.*g", digits, reference);
-    if (std::string(text) != other) return text;
+    std::string text = significant(value, digits);
+    if (text != significant(reference, digits)) return text;
   }
   return number(value);
 }

@@ -1,10 +1,6 @@
 #include "fsi/coupling/particle_pairs.hpp"
 
-#include <algorithm>
-#include <array>
 #include <cmath>
-#include <cstdint>
-#include <utility>
 
 #include "fsi/common/error.hpp"
 #include "fsi/contact/cell_grid.hpp"

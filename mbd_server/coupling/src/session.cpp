@@ -1,5 +1,4 @@
 #include "fsi/coupling/session.hpp"
-#include "fsi/common/text.hpp"
 
 #include <spdlog/spdlog.h>
 
@@ -20,6 +19,7 @@
 
 #include "fsi/common/error.hpp"
 #include "fsi/common/stopwatch.hpp"
+#include "fsi/common/text.hpp"
 #include "fsi/coupling/energy_audit.hpp"
 #include "fsi/coupling/fluid_health.hpp"
 #include "fsi/coupling/force_predictor.hpp"

@@ -1,9 +1,10 @@
 #include "newton_convergence.hpp"
-#include "fsi/common/text.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+
+#include "fsi/common/text.hpp"
 
 namespace fsi::mbd::detail {
 namespace {

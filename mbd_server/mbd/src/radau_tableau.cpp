@@ -79,7 +79,8 @@ ButcherTableau lobatto_iiia(int stages) {
       tableau.c << 0.0, 0.5, 1.0;
       break;
     default:
-      throw_unavailable("Lobatto IIIA", stages, "choose 2 or 3 stages (orders 2, 4; 2 on constrained systems)");
+      throw_unavailable("Lobatto IIIA", stages,
+                        "choose 2 or 3 stages (orders 2, 4; 2 on constrained systems)");
   }
   return stiffly_accurate("Lobatto IIIA", std::move(tableau), 2 * stages - 2);
 }

@@ -1,5 +1,4 @@
 #include "fsi/scene/fluid_parameters.hpp"
-#include "fsi/common/text.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,6 +6,7 @@
 #include <numbers>
 
 #include "fsi/common/error.hpp"
+#include "fsi/common/text.hpp"
 
 namespace fsi::scene {
 namespace {

@@ -1,5 +1,4 @@
 #include "fsi/scene/physics_checks.hpp"
-#include "fsi/common/text.hpp"
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -13,6 +12,7 @@
 #include <numbers>
 #include <optional>
 
+#include "fsi/common/text.hpp"
 #include "fsi/contact/fix_arguments.hpp"
 #include "fsi/contact/force_law.hpp"
 #include "fsi/contact/script_text.hpp"

@@ -1,15 +1,14 @@
 #include "viscosity_match.hpp"
-#include "fsi/common/text.hpp"
 
 #include <muParser.h>
 
 #include <cctype>
 #include <cmath>
-#include <cstdio>
 #include <map>
 #include <optional>
 #include <string>
 
+#include "fsi/common/text.hpp"
 #include "fsi/contact/fix_arguments.hpp"
 #include "fsi/contact/script_text.hpp"
 #include "fsi/scene/fluid_parameters.hpp"
@@ -105,9 +104,7 @@ class ScriptReader {
           for (std::size_t i = 3; i < w.size(); ++i)
             expression += w[i];
           if (const auto value = evaluate(expression)) {
-            char buffer[40];
-            std::snprintf(buffer, sizeof buffer, "%.17g", *value);
-            variables_[w[1]] = buffer;
+            variables_[w[1]] = significant(*value, 17);
           } else {
             variables_.erase(w[1]);
           }
