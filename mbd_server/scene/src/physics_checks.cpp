@@ -60,7 +60,8 @@ std::string number(double value) {
   return significant(value, 3);
 }
 
-std::string point_text(const Point& point) {
+// A point in number()'s format (not fsi::point_text's %g: these are the checks' readable numbers).
+std::string readable_point(const Point& point) {
   return "(" + number(point.x()) + ", " + number(point.y()) + ")";
 }
 
@@ -803,8 +804,8 @@ std::vector<FluidOutline> fluid_outlines(const Scene& scene) {
                             {lower.at(0), upper.at(1)}},
                            {}},
                           "fluid box",
-                          " " + point_text(Point(lower.at(0), lower.at(1))) + "-" +
-                              point_text(Point(upper.at(0), upper.at(1))),
+                          " " + readable_point(Point(lower.at(0), lower.at(1))) + "-" +
+                              readable_point(Point(upper.at(0), upper.at(1))),
                           "FluidRegion" + which + ".lower/upper",
                           region.location("lower")});
       continue;
@@ -911,8 +912,8 @@ void check_true_shape_gaps(const Scene& scene, const Inputs& in,
     // with gaps of 0.5 d).
     report.note(kCheck, in.where("FluidRegion.spacing"),
                 "the water starts " + number(widest / d) + " d from the mesh of " + mesh.owner +
-                    " at " + point_text(widest_at) + " (the particle at " +
-                    point_text(widest_particle) +
+                    " at " + readable_point(widest_at) + " (the particle at " +
+                    readable_point(widest_particle) +
                     "), below its top (true-shape wall: d/2 with the region's edge on the wall): "
                     "the gap of " +
                     number(widest - 0.5 * d) +
@@ -949,8 +950,8 @@ void check_true_shape_start(const Scene& scene, const Inputs& in, Report& report
     }
     if (!below(closest, kTrueShapeStartFraction * d)) continue;
     report.warn(kCheck, in.where("FluidRegion.spacing"),
-                "a particle at " + point_text(closest_particle) + " starts " + number(closest / d) +
-                    " d from the mesh of " + mesh.owner +
+                "a particle at " + readable_point(closest_particle) + " starts " +
+                    number(closest / d) + " d from the mesh of " + mesh.owner +
                     " (true-shape wall: the lattice's cell centres lie d/2 inside the water's "
                     "outline): it starts inside the structure or its wall",
                 "draw the FluidRegion (and its Hole blocks) along the water's true outline, so "
@@ -974,8 +975,8 @@ void check_outline_against_meshes(const FluidOutline& outline, const std::vector
       }
     }
     if (mesh.segments.empty()) continue;
-    const std::string segment = point_text(mesh.segments[closest_segment].first) + "-" +
-                                point_text(mesh.segments[closest_segment].second);
+    const std::string segment = readable_point(mesh.segments[closest_segment].first) + "-" +
+                                readable_point(mesh.segments[closest_segment].second);
     const std::string name = "the " + outline.kind + outline.extent;
     if (closest == 0.0) {
       report.warn(kCheck, outline.where,
@@ -1237,7 +1238,7 @@ void check_damping_zones(const Scene& scene, Report& report) {
       if (!where) continue;
       report.warn(kCheck, zone.location,
                   "this DampingZone reaches the mesh of " + mesh.owner + " (at " +
-                      point_text(*where) +
+                      readable_point(*where) +
                       ", within 2 d of the box): its drag slows the water that loads the body, "
                       "whose fluid force is then partly the zone's",
                   "end the zone at least 2 d (the kernel's reach) before the body, or leave the "
