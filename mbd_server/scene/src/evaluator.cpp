@@ -24,10 +24,6 @@ std::string in_quotes(std::string_view text) {
   return "'" + std::string(text) + "'";
 }
 
-std::string count(std::size_t n, const std::string& noun) {
-  return std::to_string(n) + " " + noun + (n == 1 ? "" : "s");
-}
-
 bool is_blank(char c) {
   return c == ' ' || c == '\t' || c == '\n' || c == '\r';
 }
@@ -663,13 +659,6 @@ class Evaluator {
       if (!items_of(parameter, items[r], row_items) || !numbers_of(parameter, row_items, row)) {
         ok = false;
         continue;
-      }
-      if (ok && r > 0 && row.size() != value.matrix.front().size()) {
-        report(parameter, items[r].begin,
-               "matrix row " + std::to_string(r + 1) + " has " + count(row.size(), "value") +
-                   ", row 1 has " + count(value.matrix.front().size(), "value"),
-               "give every row the same number of values");
-        ok = false;
       }
       value.matrix.push_back(std::move(row));
     }

@@ -12,6 +12,7 @@
 #include "fsi/common/text.hpp"
 #include "fsi/contact/cell_grid.hpp"
 #include "fsi/contact/wall_contact_3d.hpp"
+#include "fsi/scene/rounded_corners.hpp"
 #include "scene_builder.hpp"
 
 namespace fsi::scene::detail {
@@ -37,7 +38,9 @@ BlockSpec fluid_region_spec() {
        text("stl", "stl: closed STL surface (ASCII or binary), relative to the scene").optional(),
        matrix("points", 2, "m",
               "polygon: vertices in order around the region (concave allowed, must not cross "
-              "itself)")
+              "itself); a row [x, y, r] rounds the corner there with an arc of radius r, as a "
+              "Mesh's")
+           .or_rows_of(3)
            .optional(),
        number("spacing", "m", "lattice constant d").positive(),
        number("density", "kg/m^3", "initial density rho0; particle mass = rho0 d^2 (3D: rho0 d^3)")
@@ -67,7 +70,8 @@ BlockSpec fluid_region_spec() {
            .positive()
            .with_default(7.0)},
       {block_spec("Hole", "polygon: a region left empty, inside the polygon (even-odd rule)",
-                  {matrix("points", 2, "m", "hole vertices in order")})
+                  {matrix("points", 2, "m", "hole vertices in order; [x, y, r] rounds a corner")
+                       .or_rows_of(3)})
            .as_list()});
 }
 
@@ -245,15 +249,10 @@ bool build_fluid_region(SceneBuilder& builder, const View& region, const std::st
                          Point3{(*upper)[0], (*upper)[1], (*upper)[2]}, lattice);
     }
     if (shape == "stl") return fill_closed_surface(*surface, lattice);
-    Polygon polygon;
-    for (const auto& row : region.matrix("points"))
-      polygon.outer.push_back({row[0], row[1]});
-    for (const View& hole : region.blocks("Hole")) {
-      polygon.holes.emplace_back();
-      for (const auto& row : hole.matrix("points"))
-        polygon.holes.back().push_back({row[0], row[1]});
-    }
-    return fill_polygon(polygon, lattice);
+    std::vector<NumberMatrix> holes;
+    for (const View& hole : region.blocks("Hole"))
+      holes.push_back(hole.matrix("points"));
+    return fill_polygon(rounded_polygon(region.matrix("points"), holes), lattice);
   };
   try {
     fluid.positions = fill(options);

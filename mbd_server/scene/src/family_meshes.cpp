@@ -2,6 +2,8 @@
 // ground triangles of STL files (3D). Built after every body, so that the ground's (static)
 // vertices follow the bodies' (dynamic) ones.
 
+#include "fsi/common/error.hpp"
+#include "fsi/scene/rounded_corners.hpp"
 #include "scene_builder.hpp"
 
 namespace fsi::scene::detail {
@@ -12,7 +14,11 @@ std::vector<BlockSpec> mesh_blocks() {
       "Mesh",
       "2D: surface line segments through the given world points (thesis §4.3); 3D: the "
       "triangles of an STL file (either orientation: the fix treats both sides alike).",
-      {matrix("points", 2, "m", "2D: polyline vertices, one [x, y] per row").optional(),
+      {matrix("points", 2, "m",
+              "2D: polyline vertices, one [x, y] per row; a row [x, y, r] rounds the corner "
+              "there with an arc of radius r (docs/user-guide.md, \"Rounded corners\")")
+           .or_rows_of(3)
+           .optional(),
        integer("closed", "1: also join the last point to the first").with_default(0).between(0, 1),
        text("stl", "3D: ASCII or binary STL file, relative to the scene").optional(),
        number("scale", "", "3D: the STL coordinates times this are metres")
@@ -145,15 +151,21 @@ void add_polyline_mesh(SceneBuilder& builder, const View& mesh, mbd::BodyId body
                     "add points = [[x, y], [x, y], ...]");
     return;
   }
-  const auto points = mesh.matrix("points");
-  if (points.size() < 2) {
+  if (mesh.matrix("points").size() < 2) {
     builder.problem(mesh.location("points"), "a mesh needs at least 2 points", "add points");
     return;
   }
   const bool closed = mesh.integer("closed") == 1;
+  std::vector<Point2> points;
+  try {
+    points = round_corners(outline_points(mesh.matrix("points")), closed);
+  } catch (const Error& error) {
+    builder.problem(mesh.location("points"), error.fault(), error.remedy());
+    return;
+  }
   mbd::Model& model = builder.model;
   const auto first = static_cast<std::uint32_t>(model.marker_count());
-  for (const auto& point : points)
+  for (const Point2& point : points)
     model.add_marker(body, {point[0], point[1]});
   const auto count = static_cast<std::uint32_t>(points.size());
   auto& segments = builder.scene.boundary.segments;

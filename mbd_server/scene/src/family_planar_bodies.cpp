@@ -10,7 +10,11 @@ BlockSpec body_mesh_spec() {
   return block_spec("Mesh",
                     "Surface line segments through the given points (body coordinates on a body, "
                     "world coordinates on the ground), thesis §4.3.",
-                    {matrix("points", 2, "m", "polyline vertices, one [x, y] per row"),
+                    {matrix("points", 2, "m",
+                            "polyline vertices, one [x, y] per row; a row [x, y, r] rounds the "
+                            "corner there with an arc of radius r (docs/user-guide.md, "
+                            "\"Rounded corners\")")
+                         .or_rows_of(3),
                      integer("closed", "1: also join the last point to the first")
                          .with_default(0)
                          .between(0, 1)})

@@ -12,11 +12,13 @@
 #include <numbers>
 #include <optional>
 
+#include "fsi/common/error.hpp"
 #include "fsi/common/text.hpp"
 #include "fsi/contact/fix_arguments.hpp"
 #include "fsi/contact/force_law.hpp"
 #include "fsi/contact/script_text.hpp"
 #include "fsi/scene/fluid_region.hpp"
+#include "fsi/scene/rounded_corners.hpp"
 #include "viscosity_match.hpp"
 
 namespace fsi::scene {
@@ -816,12 +818,13 @@ std::vector<FluidOutline> fluid_outlines(const Scene& scene) {
                          which.empty() ? "" : " FluidRegion" + which,
                          "FluidRegion" + which + ".points (or a Hole's points)",
                          region.location("points")};
-    for (const auto& row : region.matrix("points"))
-      outline.region.outer.push_back({row.at(0), row.at(1)});
-    for (const View& hole : region.blocks("Hole")) {
-      outline.region.holes.emplace_back();
-      for (const auto& row : hole.matrix("points"))
-        outline.region.holes.back().push_back({row.at(0), row.at(1)});
+    std::vector<NumberMatrix> holes;
+    for (const View& hole : region.blocks("Hole"))
+      holes.push_back(hole.matrix("points"));
+    try {
+      outline.region = rounded_polygon(region.matrix("points"), holes);
+    } catch (const Error&) {
+      continue;  // the scene builder reported it
     }
     outlines.push_back(std::move(outline));
   }

@@ -50,7 +50,10 @@ std::string how_to_write(const ParameterSpec& spec) {
       return "write a bracketed list, e.g. " + spec.key + " = [" +
              (spec.length == 2 ? "x, y" : "a, b, c") + "]";
     case Kind::Matrix:
-      return "write one bracketed row per line, e.g. " + spec.key + " = [[x, y], [x, y]]";
+      return "write one bracketed row per line, e.g. " + spec.key + " = [[x, y], [x, y]]" +
+             (spec.other_length ? "; a row may also hold " + std::to_string(*spec.other_length) +
+                                      " values (fsi-server --help-params says what they are)"
+                                : "");
   }
   return "";
 }
@@ -243,10 +246,12 @@ class Validator {
         return;
       case Kind::Matrix:
         for (std::size_t r = 0; r < value.matrix.size(); ++r) {
-          if (spec.length && value.matrix[r].size() != *spec.length) {
+          const std::size_t values = value.matrix[r].size();
+          if (spec.length && values != *spec.length && values != spec.other_length) {
             add(where,
-                in_quotes(full) + " has rows of " + std::to_string(value.matrix[r].size()) +
-                    " values, it needs " + std::to_string(*spec.length),
+                in_quotes(full) + " row " + std::to_string(r + 1) + " has " +
+                    std::to_string(values) + (values == 1 ? " value" : " values") + ", it needs " +
+                    detail::row_length_text(spec),
                 how_to_write(spec));
             return;
           }
@@ -334,6 +339,11 @@ ParameterSpec ParameterSpec::one_of(std::vector<std::string> allowed) const {
 ParameterSpec ParameterSpec::with_length(std::size_t components) const {
   ParameterSpec copy = *this;
   copy.length = components;
+  return copy;
+}
+ParameterSpec ParameterSpec::or_rows_of(std::size_t values) const {
+  ParameterSpec copy = *this;
+  copy.other_length = values;
   return copy;
 }
 

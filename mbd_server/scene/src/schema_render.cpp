@@ -27,6 +27,12 @@ std::string choices_text(const std::vector<std::string>& choices) {
   return text;
 }
 
+std::string row_length_text(const ParameterSpec& spec) {
+  std::string text = spec.length ? std::to_string(*spec.length) : "";
+  if (spec.other_length) text += " or " + std::to_string(*spec.other_length);
+  return text;
+}
+
 std::string default_text(const ParameterSpec& spec) {
   if (spec.default_value) return format_value(*spec.default_value);
   return spec.optional_without_default ? "(optional)" : "(required)";
@@ -46,7 +52,7 @@ std::string allowed_text(const ParameterSpec& spec) {
   }
   if (!spec.choices.empty()) parts.push_back(detail::choices_text(spec.choices));
   if (spec.length) {
-    parts.push_back(std::to_string(*spec.length) +
+    parts.push_back(detail::row_length_text(spec) +
                     (spec.kind == Kind::Matrix ? " values per row" : " components"));
   }
   std::string text;

@@ -89,7 +89,7 @@ TEST(Schema, ReportsEveryProblemAtOnce) {
   EXPECT_CONTAINS(all,
                   "s.scene:4:1: required parameter 'RigidBody2D[0].name' is missing (unique name)");
   EXPECT_CONTAINS(all,
-                  "s.scene:5:44: 'RigidBody2D[1].Mesh.points' has rows of 3 values, it needs 2");
+                  "s.scene:5:44: 'RigidBody2D[1].Mesh.points' row 1 has 3 values, it needs 2");
   EXPECT_CONTAINS(all,
                   "s.scene:6:1: unknown block 'SolverOptoins'; did you mean 'SolverOptions'? If "
                   "this is your own parameter block, rename it");

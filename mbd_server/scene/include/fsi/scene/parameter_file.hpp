@@ -41,7 +41,7 @@ inline constexpr long kSceneLanguageVersion = 1;
 enum class ValueKind { Number, String, Vector, Matrix };
 std::string_view name(ValueKind kind);
 
-using NumberMatrix = std::vector<std::vector<double>>;  // rows of equal length
+using NumberMatrix = std::vector<std::vector<double>>;  // rows; the schema says how long
 
 // An evaluated value; only the member named by `kind` is meaningful.
 struct Value {

@@ -39,6 +39,7 @@ struct ParameterSpec {
   std::optional<double> maximum;      // inclusive
   std::vector<std::string> choices;   // allowed strings; empty: any
   std::optional<std::size_t> length;  // vectors: components; matrices: values per row
+  std::optional<std::size_t> other_length;  // matrices: rows may have this many values instead
 
   // Must the file give it? (no default and not optional)
   bool is_required() const { return !default_value && !optional_without_default; }
@@ -61,6 +62,7 @@ struct ParameterSpec {
   ParameterSpec between(double inclusive_minimum, double inclusive_maximum) const;
   ParameterSpec one_of(std::vector<std::string> allowed) const;
   ParameterSpec with_length(std::size_t components) const;
+  ParameterSpec or_rows_of(std::size_t values) const;  // matrices: a second row length allowed
 };
 
 // Declarations by kind (the kind's natural unit argument where it has one).
