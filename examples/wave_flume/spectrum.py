@@ -1,18 +1,20 @@
 #!/usr/bin/python3
 """Wave flume, irregular sea: the gauges' wave spectra against the JONSWAP spectrum asked for.
 
-  spectrum.py RUN_DIR [--hs H] [--tp T] [--gamma G] [--components N] [--band LOW HIGH]
-              [--start T0] [--max-hm0-error F] [--figure PNG]
+  spectrum.py RUN_DIR [--wavemaker NAME] [--start T0] [--max-hm0-error F] [--figure PNG]
 
 The wavemaker (PistonWavemaker or FlapWavemaker with spectrum = "jonswap", docs/user-guide.md,
-"Making waves") makes N regular components at whole multiples n dw of the band's width
-dw = (HIGH - LOW) w_p / N, so the sea repeats after 2 pi / dw. Over one such period from T0 each
-gauge's record is fitted by least squares with those N frequencies (and a mean): each component's
-height at the gauge, with no leakage between them. Printed per gauge: the significant height
-H_m0 = 4 sqrt(m0) of the band, its ratio to the asked H_s, and the peak period of the measured
-spectrum smoothed over five components; the target is JONSWAP written here from DNV-RP-C205
-§3.5.5, scaled as the wavemaker scales it (4 sqrt(m0) = H_s over its components). The paddle's
-own record (sensor paddle_x, if there) is fitted too: the stroke it made.
+"Making waves") makes N regular components at whole multiples n dw of the band's width, so the
+sea repeats after 2 pi / dw. The sea asked for (H_s, T_p, gamma) and the components' frequencies
+are read from the run's run.json ("wavemakers", format_version 9), so nothing is typed twice.
+Over one repeat period from T0 each gauge's record is fitted by least squares with those N
+frequencies (and a mean): each component's height at the gauge, with no leakage between them.
+Printed per gauge: the significant height H_m0 = 4 sqrt(m0) of the band, its ratio to the asked
+H_s, and the peak period of the measured spectrum smoothed over five components; the target is
+JONSWAP written here from DNV-RP-C205 §3.5.5 at the recorded frequencies, scaled as the
+wavemaker scales it (4 sqrt(m0) = H_s over its components), and compared with the heights the
+wavemaker recorded. The paddle's own record (sensor paddle_x, if there) is fitted too: the
+stroke it made.
 --max-hm0-error F fails the run when H_m0 at the first gauge is off H_s by more than the fraction F
 (the SPH wave loses height as it travels: 10-16 % per metre at this resolution for the regular
 wave, docs/validation.md "Making waves")."""
@@ -28,35 +30,47 @@ from fsi_results import finish_figure, pyplot, read_run, write_analysis  # noqa:
 
 parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
 parser.add_argument("run_dir")
-parser.add_argument("--hs", type=float, default=0.05)
-parser.add_argument("--tp", type=float, default=1.4)
-parser.add_argument("--gamma", type=float, default=3.3)
-parser.add_argument("--components", type=int, default=32)
-parser.add_argument("--band", nargs=2, type=float, default=[0.5, 3.0])
+parser.add_argument("--wavemaker", metavar="NAME",
+                    help="the wavemaker's name (default: the run's one irregular wavemaker)")
 parser.add_argument("--start", type=float, default=12.0,
                     help="start of the analysed repeat period (after the ramp and the sea's travel)")
 parser.add_argument("--max-hm0-error", type=float, metavar="F")
 parser.add_argument("--figure")
 args = parser.parse_args()
 
-wp = 2 * math.pi / args.tp
-width = (args.band[1] - args.band[0]) * wp / args.components
-first = round(args.band[0] * wp / width + 0.5)
-omegas = (first + np.arange(args.components)) * width
-repeat = 2 * math.pi / width
+run, sensors = read_run(args.run_dir)
+if run.get("format_version", 0) < 9 or "wavemakers" not in run:
+    sys.exit(f"{args.run_dir}/run.json: format_version {run.get('format_version')} records no "
+             "wavemakers (version 9 and later do); run the scene again with this fsi-server")
+seas = [w for w in run["wavemakers"] if w["spectrum"] != "regular"
+        and (args.wavemaker is None or w["name"] == args.wavemaker)]
+if len(seas) != 1:
+    names = ", ".join(f"{w['name']} ({w['spectrum']})" for w in run["wavemakers"]) or "none"
+    sys.exit(f"{args.run_dir}: {len(seas)} irregular wavemakers match (the run's wavemakers: "
+             f"{names}); give spectrum = \"jonswap\" to one, or name it with --wavemaker")
+sea = seas[0]
+hs, tp, gamma = sea["height"], sea["period"], sea["peak_enhancement"]
+wp = 2 * math.pi / tp
+omegas = np.array(sea["components"]["omega"])
+repeat = sea["repeat_period"]
+width = 2 * math.pi / repeat
 
 
 def jonswap(w):
     sigma = np.where(w <= wp, 0.07, 0.09)
     alpha = np.exp(-(w - wp) ** 2 / (2 * sigma ** 2 * wp ** 2))
-    pm = 5.0 / 16.0 * args.hs ** 2 * wp ** 4 * w ** -5.0 * np.exp(-1.25 * (w / wp) ** -4.0)
-    return (1 - 0.287 * math.log(args.gamma)) * pm * args.gamma ** alpha
+    pm = 5.0 / 16.0 * hs ** 2 * wp ** 4 * w ** -5.0 * np.exp(-1.25 * (w / wp) ** -4.0)
+    return (1 - 0.287 * math.log(gamma)) * pm * gamma ** alpha
 
 
 target = 2 * np.sqrt(2 * jonswap(omegas) * width)  # component heights
-target *= args.hs / (4 * math.sqrt(np.sum(target ** 2) / 8))
+target *= hs / (4 * math.sqrt(np.sum(target ** 2) / 8))
+recorded = np.array(sea["components"]["height"])
+mismatch = float(np.max(np.abs(recorded - target)) / np.max(target))
+if mismatch > 1e-9:
+    sys.exit(f"{args.run_dir}: the wavemaker's component heights differ from JONSWAP here by "
+             f"{mismatch:.2e} of the largest: fsi-server and this script disagree on the spectrum")
 
-run, sensors = read_run(args.run_dir)
 time = np.array(sensors["time"])
 t0, t1 = args.start, args.start + repeat
 if time[-1] < t1 - 1e-9:
@@ -83,9 +97,9 @@ def hm0(h):
     return 4 * math.sqrt(np.sum(h ** 2) / 8)
 
 
-print(f"{args.run_dir}: JONSWAP H_s = {args.hs} m, T_p = {args.tp} s, gamma {args.gamma}; "
-      f"{args.components} components {omegas[0]:.3f}-{omegas[-1]:.3f} 1/s, window {t0:.2f}-"
-      f"{t1:.2f} s (one repeat period)")
+print(f"{args.run_dir}: JONSWAP H_s = {hs} m, T_p = {tp} s, gamma {gamma} (wavemaker "
+      f"{sea['name']}); {len(omegas)} components {omegas[0]:.3f}-{omegas[-1]:.3f} 1/s, window "
+      f"{t0:.2f}-{t1:.2f} s (one repeat period)")
 result = {"window": [t0, t1], "gauges": {}}
 if "paddle_x" in sensors:
     stroke = heights(np.array(sensors["paddle_x"])[inside])
@@ -100,12 +114,12 @@ for name in gauges:
     h = heights(np.array(sensors[name])[inside])
     measured[name] = h
     x = int(name[1:-len("_elevation")]) / 10.0
-    ratio = hm0(h) / args.hs
+    ratio = hm0(h) / hs
     print(f"  x = {x:.1f} m: H_m0 = {hm0(h):.4f} m ({100 * (ratio - 1):+.1f} % from H_s), "
-          f"T_p = {peak_period(h):.3f} s ({100 * (peak_period(h) / args.tp - 1):+.1f} %)")
+          f"T_p = {peak_period(h):.3f} s ({100 * (peak_period(h) / tp - 1):+.1f} %)")
     result["gauges"][name] = {"x": x, "Hm0": hm0(h), "Tp": peak_period(h)}
 first_gauge = gauges[0]
-error = hm0(measured[first_gauge]) / args.hs - 1
+error = hm0(measured[first_gauge]) / hs - 1
 result["Hm0_error_first_gauge"] = error
 write_analysis(args.run_dir, result)
 failures = 0

@@ -1,9 +1,9 @@
-"""One reader for run.json (format_version 8) of every run mode: checks that the manifest has the
+"""One reader for run.json (format_version 9) of every run mode: checks that the manifest has the
 one shape fsi-server writes for coupled and --mbd-only runs, and returns it as a dict."""
 import json
 import os
 
-FORMAT_VERSION = 8
+FORMAT_VERSION = 9
 
 # Every key of the shape, with the keys of its objects; None marks a leaf.
 SHAPE = {
@@ -15,6 +15,7 @@ SHAPE = {
     "model": {"gravity": None, "bodies": None, "constraints": None, "integrator": None},
     "fluid": None,
     "mesh": {"vertices": None, "dynamic_vertices": None, "refinement_resolution": None},
+    "wavemakers": None,
     "time_step": None, "end_time": None, "steps": None, "snapshots": None,
     "timings_seconds": {name: None for name in (
         "total", "setup_and_equilibration", "client_setup", "client_equilibration", "coupled_phase",
@@ -72,4 +73,6 @@ def read_run_manifest(run_dir):
                             f"in a {manifest['dimension']}D run")
     if not isinstance(manifest["model"]["bodies"], list):
         raise ManifestError(f"{path}: model.bodies is not a list")
+    if not isinstance(manifest["wavemakers"], list):
+        raise ManifestError(f"{path}: wavemakers is not a list")
     return manifest

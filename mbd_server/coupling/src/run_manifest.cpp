@@ -73,6 +73,43 @@ json mesh_entry(const scene::Scene& scene) {
           {"refinement_resolution", scene.boundary.refinement_resolution}};
 }
 
+// Each wavemaker's waves (scene.hpp, PaddleWave): what was asked, what linear theory made of it,
+// and every component of the paddle's motion, so that a script rebuilds the motion and the
+// target sea from the run alone (examples/wave_flume/spectrum.py).
+json wavemakers_entry(const scene::Scene& scene) {
+  json wavemakers = json::array();
+  for (const scene::PlacedWavemaker& placed : scene.wavemakers) {
+    const scene::PaddleWave& wave = placed.wave;
+    json omega = json::array(), height = json::array(), half_stroke = json::array(),
+         phase = json::array();
+    for (const scene::WaveComponent& component : wave.components) {
+      omega.push_back(component.omega);
+      height.push_back(component.height);
+      half_stroke.push_back(component.half_stroke);
+      phase.push_back(component.phase);
+    }
+    const bool irregular = wave.spectrum != "regular";
+    wavemakers.push_back(
+        {{"name", placed.name.empty() ? json(nullptr) : json(placed.name)},
+         {"body", placed.body},
+         {"kind", wave.flap() ? "flap" : "piston"},
+         {"hinge_depth", wave.flap() ? json(wave.hinge_depth) : json(nullptr)},
+         {"spectrum", wave.spectrum},
+         {"height", wave.height},
+         {"period", wave.period},
+         {"depth", wave.depth},
+         {"peak_enhancement", irregular ? json(wave.peak_enhancement) : json(nullptr)},
+         {"wavelength", wave.wavelength},
+         {"stroke", wave.stroke},
+         {"largest_offset", wave.largest_offset},
+         {"ramp_time", wave.ramp_time},
+         {"repeat_period", wave.repeat_period},
+         {"components",
+          {{"omega", omega}, {"height", height}, {"half_stroke", half_stroke}, {"phase", phase}}}});
+  }
+  return wavemakers;
+}
+
 json fluid_entry(const scene::Scene& scene, const FluidRecord& fluid) {
   return {{"particle_count", fluid.particle_count ? fluid.particle_count : scene.fluid.count()},
           {"generated_particles", scene.fluid.count()},
@@ -270,6 +307,7 @@ void write_run_manifest(const fs::path& output_dir, const scene::Scene& scene,
   manifest["model"] = model_entry(scene, record.mode);
   manifest["fluid"] = record.fluid ? fluid_entry(scene, *record.fluid) : json(nullptr);
   manifest["mesh"] = mesh_entry(scene);
+  manifest["wavemakers"] = wavemakers_entry(scene);
   manifest["time_step"] = scene.solver.step_size;
   manifest["end_time"] = scene.solver.end_time;
   manifest["steps"] = record.steps;

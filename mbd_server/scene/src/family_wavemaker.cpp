@@ -372,7 +372,7 @@ void build_wavemaker(SceneBuilder& builder, const View& block, bool flap) {
   spec.check_times = prescribed_motion_check_times(builder.end_time);
   builder.add_joint(block, [&] { return builder.model.add_prescribed_motion(spec); },
                     {.rows = 1, .body = body, .kind = "prescribed motion"});
-  builder.scene.wavemakers.push_back({block.location(), wave});
+  builder.scene.wavemakers.push_back({block.location(), spec.name, block.string("body"), wave});
 }
 
 void build_wavemakers(SceneBuilder& builder) {

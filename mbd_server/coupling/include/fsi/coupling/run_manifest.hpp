@@ -30,7 +30,9 @@ namespace fsi::coupling {
 // until the end is recorded), always whole (a temporary name and a rename).
 // Version 7: "checkpoints" (interval, how many written, the last step) and "resumes" (each resume
 // of the run: when, from which checkpoint); "scene" names the run's --set overrides.
-inline constexpr int kRunManifestFormatVersion = 8;
+// Version 8: particle pairs in "checks". Version 9: "wavemakers", each wavemaker's waves with
+// the components of its paddle's motion.
+inline constexpr int kRunManifestFormatVersion = 9;
 
 // run.json's times ("started_utc", resumes) come from fsi::utc_now (fsi/common/utc_time.hpp).
 

@@ -295,6 +295,8 @@ PaddleWave irregular_wave(const SpectrumRequest& request, double depth, double h
 
 struct PlacedWavemaker {
   SourceLocation location;
+  std::string name;  // "" when unnamed
+  std::string body;  // the paddle
   PaddleWave wave;
 };
 
