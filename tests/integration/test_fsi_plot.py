@@ -3,8 +3,8 @@
 non-trivial size per sensor, the stacked sensors.png, the example's declared figure
 (examples/static_tank/fsi-plot.json) with N m g equal to run.json's counts, one frame per snapshot by default and one per
 requested time with --frames; --mp4 makes an H.264 video of every snapshot that ffprobe decodes
-(frame count), and says how to install ffmpeg when it is missing; a folder without sensors.csv is refused with what/where/how and a
-non-zero status; --help works."""
+(frame count), and says how to install ffmpeg when it is missing; a series' expression over sensors plots what
+the sensor does; a folder without sensors.csv is refused with what/where/how and a non-zero status; --help works."""
 import json
 import os
 import struct
@@ -140,6 +140,38 @@ print(result.stderr)
 check(result.returncode == 2 and f"{bad}: figures[0].panels[0].references[0].value" in result.stderr and
       "unknown name 'gravity'" in result.stderr and "how to fix" in result.stderr,
       "an unknown name in a declared reference: exit 2 with file, entry and the names to use")
+
+# A series' "expression" combines sensors (and the run's values): the same curve written two ways
+# gives the same mean; an unknown name lists the sensors; a series with both or neither is refused.
+def declared_series(name, *series):
+    path = os.path.join(output, f"{name}.json")
+    with open(path, "w") as handle:
+        json.dump({"format": "fsi-plot-figures", "version": 1, "figures": [{"file": f"{name}.png", "panels": [
+            {"series": list(series), "references": [{"value": "N*m*g", "label": "Nmg", "window": [0, "t_end/2"]}]}]}]},
+                  handle)
+    return fsi_plot(run_dir, "--no-frames", "--figures", path, "--output", os.path.join(output, name))
+
+
+result = declared_series("expression", {"sensor": "bottom_fluid_force_y", "scale": -1, "label": "sensor"},
+                         {"expression": "-(2*bottom_fluid_force_y - bottom_fluid_force_y) + 0*time*g",
+                          "label": "expression"})
+print(result.stdout, result.stderr)
+means = {}
+for line in result.stdout.splitlines():
+    for label in ("sensor", "expression"):
+        if f"mean of '{label}'" in line:
+            means[label] = line.split(" = ")[-1]
+check(result.returncode == 0 and len(means) == 2 and means["sensor"] == means["expression"]
+      and 0.5 < float(means["sensor"].split(" x ")[0]) < 1.5,
+      f"an expression over a sensor plots the sensor's curve: means {means}")
+result = declared_series("unknown", {"expression": "bottom_fluid_force_y - bottom_fluid_force_z"})
+print(result.stderr)
+check(result.returncode == 2 and "figures[0].panels[0].series[0].expression" in result.stderr
+      and "unknown name 'bottom_fluid_force_z'" in result.stderr and "piston_position_y" in result.stderr,
+      "an unknown name in an expression: exit 2 with the entry and the sensors it could use")
+result = declared_series("both", {"sensor": "bottom_fluid_force_y", "expression": "bottom_fluid_force_y"})
+check(result.returncode == 2 and "a series needs a \"sensor\" or an \"expression\", one of them" in result.stderr,
+      "a series with a sensor and an expression is refused")
 
 # "change": true plots the change since the first row; anything but a boolean is refused.
 for change, status in ((True, 0), ("yes", 2)):
