@@ -1,5 +1,7 @@
 #include "fsi/scene/rounded_corners.hpp"
 
+#include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <cmath>
 #include <cstddef>
 #include <numbers>
@@ -11,28 +13,18 @@
 namespace fsi::scene {
 namespace {
 
+using Vector = Eigen::Vector2d;
+
 std::string number(double value) {
   return fsi::significant(value, 4);
 }
 
 std::string point_name(std::size_t index, const Point2& at) {
-  return "point " + std::to_string(index) + " (" + number(at[0]) + ", " + number(at[1]) + ")";
+  return "point " + std::to_string(index) + " " + fsi::point_text(at, 4);
 }
 
-struct Vector2 {
-  double x = 0.0, y = 0.0;
-};
-Vector2 between(const Point2& from, const Point2& to) {
-  return {to[0] - from[0], to[1] - from[1]};
-}
-double length(const Vector2& v) {
-  return std::hypot(v.x, v.y);
-}
-double dot(const Vector2& a, const Vector2& b) {
-  return a.x * b.x + a.y * b.y;
-}
-double cross(const Vector2& a, const Vector2& b) {
-  return a.x * b.y - a.y * b.x;
+Vector vector(const Point2& point) {
+  return {point[0], point[1]};
 }
 
 // One rounded corner: where its arc meets the two edges, and the turn it makes.
@@ -76,15 +68,16 @@ std::vector<Point2> round_corners(const std::vector<OutlinePoint>& points, bool 
                       " m), but it ends the open outline: there is no corner to round",
                   "", "drop its third value, or close the outline (closed = 1)");
     }
-    const Vector2 back = between(points[i].at, points[neighbour(i, false)].at);
-    const Vector2 ahead = between(points[i].at, points[neighbour(i, true)].at);
-    if (!(length(back) > 0.0) || !(length(ahead) > 0.0)) {
+    const Vector back = vector(points[neighbour(i, false)].at) - vector(points[i].at);
+    const Vector ahead = vector(points[neighbour(i, true)].at) - vector(points[i].at);
+    if (!(back.norm() > 0.0) || !(ahead.norm() > 0.0)) {
       throw Error(point_name(i, points[i].at) + " repeats a neighbour, so its corner (radius " +
                       number(radius) + " m) has no edge to round",
                   "", "remove the repeated point");
     }
     // The angle between the two edges, and the turn the outline makes there.
-    const double angle = std::atan2(std::abs(cross(back, ahead)), dot(back, ahead));
+    const double angle =
+        std::atan2(std::abs(back.x() * ahead.y() - back.y() * ahead.x()), back.dot(ahead));
     const double turn = std::numbers::pi - angle;
     if (turn < kStraight) continue;  // a straight run: nothing to round
     if (angle < 1e-6) {
@@ -100,7 +93,7 @@ std::vector<Point2> round_corners(const std::vector<OutlinePoint>& points, bool 
     if (!closed && i + 1 == count) break;
     const std::size_t j = neighbour(i, true);
     const double needed = corners[i].tangent_length + corners[j].tangent_length;
-    const double edge = length(between(points[i].at, points[j].at));
+    const double edge = (vector(points[j].at) - vector(points[i].at)).norm();
     if (needed > edge * (1.0 + 1e-9)) {
       const double scale = edge / needed;
       throw Error("the edge from " + point_name(i, points[i].at) + " to " +
@@ -117,35 +110,30 @@ std::vector<Point2> round_corners(const std::vector<OutlinePoint>& points, bool 
   std::vector<Point2> outline;
   outline.reserve(count);
   for (std::size_t i = 0; i < count; ++i) {
-    const Point2& p = points[i].at;
     const Corner& corner = corners[i];
     if (corner.tangent_length == 0.0) {
-      outline.push_back(p);
+      outline.push_back(points[i].at);
       continue;
     }
-    const Vector2 back = between(p, points[neighbour(i, false)].at);
-    const Vector2 ahead = between(p, points[neighbour(i, true)].at);
-    const Vector2 u{back.x / length(back), back.y / length(back)};
-    const Vector2 w{ahead.x / length(ahead), ahead.y / length(ahead)};
-    const Point2 start{p[0] + corner.tangent_length * u.x, p[1] + corner.tangent_length * u.y};
-    const Point2 end{p[0] + corner.tangent_length * w.x, p[1] + corner.tangent_length * w.y};
-    // The centre lies on the bisector, at distance r / sin(angle / 2) from the point.
-    const Vector2 bisector{u.x + w.x, u.y + w.y};
-    const double to_centre = points[i].radius / std::cos(0.5 * corner.turn);  // sin(angle / 2)
-    const Point2 centre{p[0] + to_centre * bisector.x / length(bisector),
-                        p[1] + to_centre * bisector.y / length(bisector)};
-    const Vector2 from_centre = between(centre, start);
-    const double sense = cross(from_centre, between(centre, end)) >= 0.0 ? 1.0 : -1.0;
+    const Vector p = vector(points[i].at);
+    const Vector u = (vector(points[neighbour(i, false)].at) - p).normalized();
+    const Vector w = (vector(points[neighbour(i, true)].at) - p).normalized();
+    const Vector start = p + corner.tangent_length * u, end = p + corner.tangent_length * w;
+    // The centre lies on the bisector, r / sin(angle / 2) = r / cos(turn / 2) from the point.
+    const Vector centre = p + points[i].radius / std::cos(0.5 * corner.turn) * (u + w).normalized();
+    const Vector from_centre = start - centre, to_end = end - centre;
+    const double sense =
+        from_centre.x() * to_end.y() - from_centre.y() * to_end.x() >= 0.0 ? 1.0 : -1.0;
     const double max_bend = kMaxBendDegrees * std::numbers::pi / 180.0;
     const auto pieces = static_cast<int>(std::ceil(corner.turn / max_bend - 1e-9));
-    outline.push_back(start);
+    outline.push_back({start.x(), start.y()});
     for (int k = 1; k < pieces; ++k) {
-      const double phi = sense * corner.turn * k / pieces;
-      const double c = std::cos(phi), s = std::sin(phi);
-      outline.push_back({centre[0] + c * from_centre.x - s * from_centre.y,
-                         centre[1] + s * from_centre.x + c * from_centre.y});
+      const Vector on =
+          centre +
+          Eigen::Rotation2Dd(sense * corner.turn * k / pieces).toRotationMatrix() * from_centre;
+      outline.push_back({on.x(), on.y()});
     }
-    outline.push_back(end);
+    outline.push_back({end.x(), end.y()});
   }
   return outline;
 }
