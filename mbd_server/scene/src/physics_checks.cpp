@@ -928,18 +928,59 @@ void check_true_shape_gaps(const Scene& scene, const Inputs& in,
   }
 }
 
+// How far a point lies from a ring's edges (the ring closed).
+double distance_to_ring(const std::vector<Point2>& ring, const Point& point) {
+  double closest = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < ring.size(); ++i) {
+    const Point2& a = ring[i];
+    const Point2& b = ring[(i + 1) % ring.size()];
+    const Point start(a[0], a[1]), edge = Point(b[0], b[1]) - start;
+    const double along = edge.squaredNorm() > 0.0
+                             ? std::clamp((point - start).dot(edge) / edge.squaredNorm(), 0.0, 1.0)
+                             : 0.0;
+    closest = std::min(closest, (point - (start + along * edge)).norm());
+  }
+  return closest;
+}
+
+// Does a fluid outline run along the segment a-b (its ends and its middle on one ring's edges)?
+// Such a stretch of wall is the water's own edge: where it is slanted or curved (a rounded corner
+// drawn with the same radius in the mesh and the water) the lattice meets it at every distance
+// from 0 to d, and a particle close to it starts in the water, not in the structure.
+bool water_follows(const std::vector<FluidOutline>& outlines, const Point& a, const Point& b,
+                   double tolerance) {
+  const auto on = [&](const std::vector<Point2>& ring) {
+    return ring.size() > 1 && distance_to_ring(ring, a) <= tolerance &&
+           distance_to_ring(ring, b) <= tolerance &&
+           distance_to_ring(ring, 0.5 * (a + b)) <= tolerance;
+  };
+  for (const FluidOutline& outline : outlines) {
+    if (on(outline.region.outer)) return true;
+    for (const auto& hole : outline.region.holes) {
+      if (on(hole)) return true;
+    }
+  }
+  return false;
+}
+
 void check_true_shape_start(const Scene& scene, const Inputs& in, Report& report) {
   constexpr std::string_view kCheck = "fluid_overlap";
   const double d = scene.fluid.spacing;
   const auto& xy = scene.fluid.positions;
   const std::vector<WorldMesh> meshes = world_meshes(scene);
   check_true_shape_gaps(scene, in, meshes, report);
+  const std::vector<FluidOutline> outlines = fluid_outlines(scene);
   for (const WorldMesh& mesh : meshes) {
+    std::vector<bool> followed;
+    for (const auto& [a, b] : mesh.segments)
+      followed.push_back(water_follows(outlines, a, b, 1e-6 * d));
     double closest = std::numeric_limits<double>::infinity();
     Point closest_particle = Point::Zero();
     for (std::size_t p = 0; p + 1 < xy.size(); p += 2) {
       const Point particle(xy[p], xy[p + 1]);
-      for (const auto& [a, b] : mesh.segments) {
+      for (std::size_t s = 0; s < mesh.segments.size(); ++s) {
+        if (followed[s]) continue;
+        const auto& [a, b] = mesh.segments[s];
         const Point ab = b - a;
         const double along = ab.squaredNorm() > 0.0
                                  ? std::clamp((particle - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0)

@@ -810,6 +810,24 @@ TEST(PhysicsChecks, TrueShapeParticlesStartingInsideABodyAreNamed) {
   EXPECT_CONTAINS(found[0].fix, "along the water's true outline");
 }
 
+// A rounded corner drawn with the same radius in the walls and the water (docs/user-guide.md,
+// "Rounded corners"): the lattice meets the arcs at every distance (a particle 0.16 d from one
+// here), and those particles start in the water, not in the wall. With the water's corners
+// rounded by half the walls' radius the water reaches past the walls' arcs, into the wall.
+TEST(PhysicsChecks, ParticlesBesideAWallTheWaterFollowsStartInTheWater) {
+  const std::string tank = FSI_EXAMPLES_DIR "/wave_flume/corner_tank_rounded.scene";
+  const std::vector<Diagnostic> followed =
+      of(physics_checks(build_scene(tank, {})), "fluid_overlap");
+  EXPECT_TRUE(followed.empty()) << listing(followed);
+  const std::vector<Diagnostic> past = of(
+      physics_checks(build_scene(
+          tank, {{"FluidRegion.points", "[[0, 0, 0.05], [0.5, 0, 0.05], [0.5, 0.4], [0, 0.4]]"}})),
+      "fluid_overlap");
+  ASSERT_EQ(past.size(), 1u) << listing(past);
+  EXPECT_CONTAINS(past[0].message, "d from the mesh of the ground");
+  EXPECT_CONTAINS(past[0].message, "it starts inside the structure or its wall");
+}
+
 TEST(PhysicsChecks, TrueShapeContactTimeStepUsesTheStiffnessAtRest) {
   const std::vector<Diagnostic> found =
       of(physics_checks(build_scene(kTrueShapeBlock, {{"SolverOptions.Timeint.step_size", "2e-4"},
