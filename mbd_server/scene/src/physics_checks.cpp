@@ -928,17 +928,21 @@ void check_true_shape_gaps(const Scene& scene, const Inputs& in,
   }
 }
 
+// How far a point lies from the segment a-b.
+double distance_to_segment(const Point& point, const Point& a, const Point& b) {
+  const Point ab = b - a;
+  const double along =
+      ab.squaredNorm() > 0.0 ? std::clamp((point - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
+  return (point - (a + along * ab)).norm();
+}
+
 // How far a point lies from a ring's edges (the ring closed).
 double distance_to_ring(const std::vector<Point2>& ring, const Point& point) {
   double closest = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < ring.size(); ++i) {
     const Point2& a = ring[i];
     const Point2& b = ring[(i + 1) % ring.size()];
-    const Point start(a[0], a[1]), edge = Point(b[0], b[1]) - start;
-    const double along = edge.squaredNorm() > 0.0
-                             ? std::clamp((point - start).dot(edge) / edge.squaredNorm(), 0.0, 1.0)
-                             : 0.0;
-    closest = std::min(closest, (point - (start + along * edge)).norm());
+    closest = std::min(closest, distance_to_segment(point, Point(a[0], a[1]), Point(b[0], b[1])));
   }
   return closest;
 }
@@ -980,12 +984,8 @@ void check_true_shape_start(const Scene& scene, const Inputs& in, Report& report
       const Point particle(xy[p], xy[p + 1]);
       for (std::size_t s = 0; s < mesh.segments.size(); ++s) {
         if (followed[s]) continue;
-        const auto& [a, b] = mesh.segments[s];
-        const Point ab = b - a;
-        const double along = ab.squaredNorm() > 0.0
-                                 ? std::clamp((particle - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0)
-                                 : 0.0;
-        const double distance = (particle - (a + along * ab)).norm();
+        const double distance =
+            distance_to_segment(particle, mesh.segments[s].first, mesh.segments[s].second);
         if (distance < closest) {
           closest = distance;
           closest_particle = particle;
