@@ -4,7 +4,7 @@ non-trivial size per sensor, the stacked sensors.png, the example's declared fig
 (examples/static_tank/fsi-plot.json) with N m g equal to run.json's counts, one frame per snapshot by default and one per
 requested time with --frames; --mp4 makes an H.264 video of every snapshot that ffprobe decodes
 (frame count), and says how to install ffmpeg when it is missing; a series' expression over sensors plots what
-the sensor does; a folder without sensors.csv is refused with what/where/how and a non-zero status; --help works."""
+the sensor does, integral() and derivative() along time give the closed forms; a folder without sensors.csv is refused with what/where/how and a non-zero status; --help works."""
 import json
 import os
 import struct
@@ -164,6 +164,41 @@ for line in result.stdout.splitlines():
 check(result.returncode == 0 and len(means) == 2 and means["sensor"] == means["expression"]
       and 0.5 < float(means["sensor"].split(" x ")[0]) < 1.5,
       f"an expression over a sensor plots the sensor's curve: means {means}")
+# integral() and derivative() along sensors.csv's time: the integral of t is t^2/2 (trapezoids are
+# exact for it), the piston driven at v0 has the rate -v0; the window's means are those of the
+# closed forms (a sum without the rows' time steps, or a difference quotient without them, is not).
+def window_means(result, labels):
+    means = {}
+    for line in result.stdout.splitlines():
+        for label in labels:
+            if f"mean of '{label}'" in line:
+                means[label] = line.split(" = ")[-1]
+    return means
+
+
+# (Scaled to print their digits beside N m g: the run lasts 0.01 s.)
+result = declared_series("along_time", {"expression": "1e6*integral(time)", "label": "integral"},
+                         {"expression": "1e6*time*time/2", "label": "t^2/2"},
+                         {"expression": "-1000*derivative(piston_position_y)", "label": "rate"},
+                         {"expression": "1000*Geometry.piston_v0 + 0*time", "label": "v0"})
+print(result.stdout, result.stderr)
+means = window_means(result, ("integral", "t^2/2", "rate", "v0"))
+check(result.returncode == 0 and len(means) == 4 and means["integral"] == means["t^2/2"]
+      and means["rate"] == means["v0"] and float(means["t^2/2"].split(" x ")[0]) > 0.1
+      and float(means["v0"].split(" x ")[0]) > 1,
+      f"integral(time) = t^2/2 and -derivative(piston_position_y) = v0 over the window: {means}")
+result = declared_series("integral_args", {"expression": "integral(time, time)"})
+check(result.returncode == 2 and "integral() takes one argument" in result.stderr,
+      f"integral() with two arguments is refused: {result.stderr[-300:]}")
+path = os.path.join(output, "integral_number.json")
+with open(path, "w") as handle:
+    json.dump({"format": "fsi-plot-figures", "version": 1, "figures": [{"file": "n.png", "panels": [
+        {"series": [{"sensor": "bottom_fluid_force_y"}], "references": [{"value": "integral(N)"}]}]}]}, handle)
+result = fsi_plot(run_dir, "--no-frames", "--figures", path, "--output", os.path.join(output, "integral_number"))
+check(result.returncode == 2 and "integral() works along sensors.csv's time" in result.stderr
+      and "figures[0].panels[0].references[0]" in result.stderr,
+      f"integral() in a number of the declaration is refused with the entry: {result.stderr[-300:]}")
+
 result = declared_series("unknown", {"expression": "bottom_fluid_force_y - bottom_fluid_force_z"})
 print(result.stderr)
 check(result.returncode == 2 and "figures[0].panels[0].series[0].expression" in result.stderr
