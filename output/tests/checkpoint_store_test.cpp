@@ -49,7 +49,7 @@ TEST_F(CheckpointStoreTest, ACommittedCheckpointIsReadBackWithItsManifest) {
   EXPECT_EQ(read_checkpoint_file(*newest, "server.state"), std::string("state\0with a zero", 17));
   EXPECT_EQ(newest->files[0].bytes, 17u);
   const std::string manifest = file_text(newest->folder / "checkpoint.json");
-  EXPECT_NE(manifest.find("\"format_version\": 3"), std::string::npos) << manifest;
+  EXPECT_NE(manifest.find("\"format_version\": 4"), std::string::npos) << manifest;
   EXPECT_NE(manifest.find(newest->files[1].sha256), std::string::npos) << manifest;
   EXPECT_FALSE(fs::exists(folder_ / "checkpoints" / "step-000000100.partial"));
 }
@@ -122,12 +122,12 @@ TEST_F(CheckpointStoreTest, AnotherFormatVersionIsRefusedByName) {
   std::string text = file_text(manifest);
   // Version 2: a checkpoint of the releases before 2026-12-07 (no particle pairs in the
   // session's state).
-  text.replace(text.find("\"format_version\": 3"), 19, "\"format_version\": 2");
+  text.replace(text.find("\"format_version\": 4"), 19, "\"format_version\": 2");
   std::ofstream(manifest) << text;
   std::vector<std::string> skipped;
   EXPECT_FALSE(store.newest_valid(&skipped).has_value());
   EXPECT_TRUE(mentions(skipped,
-                       "checkpoint format version 2, this program reads 3 (resume it with "
+                       "checkpoint format version 2, this program reads 4 (resume it with "
                        "the release that wrote it)"));
 }
 

@@ -99,7 +99,8 @@ StructureSide::StructureSide(scene::Scene& scene, scene::IntegrationMethod metho
       held_(coupled ? " with the fluid forces held" : ""),
       state_(scene.model.initial_state()),
       integrator_(scene.solver.integrator_options()),
-      crossing_(scene, state_) {
+      crossing_(scene, state_),
+      works_(scene.sensors.size(), 0.0) {
   for (const std::string& pair : crossing_.excluded_pairs()) {
     spdlog::info(
         "mesh crossing check: the meshes of {} (they touch or cross at t = 0; a Contact block "
@@ -180,8 +181,19 @@ mbd::IntegratorStatistics StructureSide::statistics() const {
   return totals;
 }
 
+std::vector<double> StructureSide::work_sensor_powers() const {
+  std::vector<double> powers;
+  for (const scene::SensorSpec& sensor : scene_.sensors) {
+    if (sensor.type == scene::SensorType::Work)
+      powers.push_back(mbd::force_element_power(scene_.model, state_, sensor.force_element));
+  }
+  return powers;
+}
+
 void StructureSide::advance(std::uint64_t step, double step_size) {
   const bool multi_rate = scene_.solver.substeps > 1;
+  const double start_time = state_.time;
+  const std::vector<double> start_powers = work_sensor_powers();
   StepStart start;
   if (multi_rate) {
     start.time = state_.time;
@@ -204,6 +216,15 @@ void StructureSide::advance(std::uint64_t step, double step_size) {
     }
   }
   state_.time = static_cast<double>(step) * step_size;
+  if (!start_powers.empty()) {
+    const std::vector<double> end_powers = work_sensor_powers();
+    std::size_t k = 0;
+    for (std::size_t s = 0; s < scene_.sensors.size(); ++s) {
+      if (scene_.sensors[s].type != scene::SensorType::Work) continue;
+      works_[s] += 0.5 * (start_powers[k] + end_powers[k]) * (state_.time - start_time);
+      ++k;
+    }
+  }
   if (multi_rate) record_step_motion(start, step_size);
   try {
     crossing_.check(state_);
@@ -333,10 +354,18 @@ std::vector<double> StructureSide::readout(const mbd::State& state,
                                            const std::array<double, 3>& total_fluid_force) const {
   std::vector<double> values;
   values.reserve(scene_.sensors.size());
-  for (const auto& sensor : scene_.sensors) {
-    values.push_back(sensor.type == scene::SensorType::TotalFluidForce
-                         ? total_fluid_force[static_cast<std::size_t>(sensor.axis)]
-                         : scene::structure_sensor_value(scene_.model, sensor, state));
+  for (std::size_t k = 0; k < scene_.sensors.size(); ++k) {
+    const scene::SensorSpec& sensor = scene_.sensors[k];
+    switch (sensor.type) {
+      case scene::SensorType::TotalFluidForce:
+        values.push_back(total_fluid_force[static_cast<std::size_t>(sensor.axis)]);
+        break;
+      case scene::SensorType::Work:
+        values.push_back(works_[k]);
+        break;
+      default:
+        values.push_back(scene::structure_sensor_value(scene_.model, sensor, state));
+    }
   }
   return values;
 }
@@ -357,6 +386,7 @@ void StructureSide::save_state(output::StateWriter& out) {
   out.put(step_motion_.velocities);
   out.put(two_node_steps_);
   out.put(substepped_steps_);
+  out.put(works_);
   const mbd::IntegratorStatistics& totals = integrator_.statistics();
   for (std::uint64_t value : {totals.steps, totals.newton_iterations, totals.jacobian_evaluations,
                               totals.factorisations, totals.retries})
@@ -386,6 +416,13 @@ void StructureSide::restore_state(output::StateReader& in) {
   step_motion_.velocities = in.doubles("step node velocities");
   two_node_steps_ = in.u64("two-node steps");
   substepped_steps_ = in.u64("substepped steps");
+  works_ = in.doubles("work sensors' sums");
+  if (works_.size() != scene_.sensors.size()) {
+    throw Error("the checkpoint holds " + std::to_string(works_.size()) +
+                    " sensors' work sums, the scene has " + std::to_string(scene_.sensors.size()) +
+                    " sensors",
+                "structure state", "resume with the scene that wrote the checkpoint");
+  }
   mbd::IntegratorStatistics totals;
   totals.steps = in.u64("integrator steps");
   totals.newton_iterations = in.u64("Newton iterations");

@@ -35,6 +35,7 @@ constexpr SensorVariant kSensorVariants[] = {
     {"joint_force", SensorType::JointForce, F, R, F, R, F, true, "N/m", "N m/m", "N", "N m"},
     {"spring_force", SensorType::SpringForce, F, F, R, F, F, true, "N/m", "N m/m", "N", ""},
     {"power", SensorType::Power, F, F, R, F, F, true, "W/m", "", "W", ""},
+    {"work", SensorType::Work, F, F, R, F, F, true, "J/m", "", "J", ""},
     {"kinetic_energy", SensorType::KineticEnergy, F, F, F, F, F, true, "J/m", "", "J", ""},
     {"potential_energy", SensorType::PotentialEnergy, F, F, F, F, F, true, "J/m", "", "J", ""},
     {"strain_energy", SensorType::StrainEnergy, F, F, F, F, F, true, "J/m", "", "J", ""},
@@ -68,7 +69,10 @@ std::vector<BlockSpec> sensor_blocks() {
                 "BeamClamp's node); spring_force: "
                 "tension, or torque of a RotationalSpringDamper; power: the rate of work a "
                 "named spring or damper does on the bodies, Q . v (a damper's is minus what it "
-                "dissipates, -c omega^2: a power take-off absorbs minus its mean); "
+                "dissipates, -c omega^2: a power take-off absorbs minus its mean); work: the "
+                "time integral of that power from t = 0, trapezoids over every step (a damper's "
+                "is minus the energy it has dissipated, a power take-off's minus what it has "
+                "absorbed); "
                 "energies of the whole system, "
                 "potential = gravity + springs, strain = the beams' and cables' elastic "
                 "deformation; chord_deflection: the distance of an AncfBeam2D's point from the "
@@ -101,7 +105,8 @@ std::vector<BlockSpec> sensor_blocks() {
                 "moving tank, say")
                .optional(),
            text("joint", "joint_force: the name of a joint block").optional(),
-           text("element", "spring_force, power: the name of a spring or damper block").optional(),
+           text("element", "spring_force, power, work: the name of a spring or damper block")
+               .optional(),
            text("component",
                 "x, y, angle (torque for forces); 3D: x, y, z, and torque_x, torque_y, torque_z "
                 "(about the centre of mass) for fluid_force and joint_force, and torque for the "

@@ -171,9 +171,11 @@ double structure_sensor_value(const mbd::Model& model, const SensorSpec& sensor,
       return normal.dot((p - start).head<2>()) / chord.norm();
     }
     case SensorType::TotalFluidForce:
+    case SensorType::Work:
       break;
   }
-  FSI_ASSERT(false, "sensor '" + sensor.name + "' needs the fluid forces of the coupled run");
+  FSI_ASSERT(false, "sensor '" + sensor.name +
+                        "' needs the fluid forces of the coupled run or the run's history");
   return 0.0;
 }
 

@@ -20,8 +20,8 @@ namespace fsi::output {
 
 // Version of checkpoint.json, of the folder layout and of the parts' states; a reader refuses
 // another one by name. 2 (2026-12-06): the fluid health keeps an unsettled release; 3
-// (2026-12-07): the particle pairs of the snapshots.
-inline constexpr int kCheckpointFormatVersion = 3;
+// (2026-12-07): the particle pairs of the snapshots; 4 (2026-12-07): the structure's work sensors.
+inline constexpr int kCheckpointFormatVersion = 4;
 
 struct CheckpointFile {
   std::string name;  // relative to the checkpoint folder, no subfolders

@@ -66,6 +66,7 @@ class StructureSide {
   // fsi::Error naming the step and time when Newton fails or the state becomes non-finite; the
   // state is then the last good one. Also throws when two meshes without contact between them
   // cross (scene::CrossingWatch; the pairs touching at the start are logged and not watched).
+  // Adds each `work` sensor's element power over the step, by the trapezoid of its ends.
   void advance(std::uint64_t step, double step_size);
 
   // The dynamic vertices at the current state, for the fluid, and on a probe step the probes that
@@ -94,7 +95,8 @@ class StructureSide {
   std::vector<double> initial_sensor_readout(const std::array<double, 3>& total_fluid_force) const;
 
   // Checkpoints (issue 16; docs/user-guide.md, "Checkpoints and resume"): the state, the point
-  // loads held over the next step, the last step's motion and the statistics, bit for bit.
+  // loads held over the next step, the last step's motion, the work sensors' sums and the
+  // statistics, bit for bit.
   // save_state also drops the integrator's kept Newton matrix, so that the next step is the same
   // whether this process goes on or a resumed one does. Only the fixed-step method of coupled
   // runs is checkpointed; restore_state throws fsi::Error when the state does not fit the scene.
@@ -120,6 +122,8 @@ class StructureSide {
   void trim_to_dynamic(std::vector<double>& positions, std::vector<double>& velocities) const;
   std::vector<double> readout(const mbd::State& state,
                               const std::array<double, 3>& total_fluid_force) const;
+  // The power of each `work` sensor's element at the current state (scene order).
+  std::vector<double> work_sensor_powers() const;
 
   scene::Scene& scene_;
   scene::IntegrationMethod method_;
@@ -137,6 +141,8 @@ class StructureSide {
   };
   StepMotionData step_motion_;
   std::uint64_t two_node_steps_ = 0;
+  // Per sensor (zero but for `work` sensors): the element's work since t = 0.
+  std::vector<double> works_;
 };
 
 }  // namespace fsi::coupling

@@ -189,7 +189,8 @@ enum class SensorType {
   PotentialEnergy,
   StrainEnergy,
   ChordDeflection,  // a beam point's distance from the chord through the beam's ends
-  Power             // the rate of work a named spring or damper does on the bodies
+  Power,            // the rate of work a named spring or damper does on the bodies
+  Work              // its time integral from t = 0 (accumulated over the steps by the run)
 };
 
 // SensorSpec::axis of a driven RevoluteJoint3D's drive torque.
@@ -212,7 +213,7 @@ struct SensorSpec {
   // JointForce of a joint on an AncfBeam2D `body`: the beam point [s, eta] it acts at (a
   // BeamClamp's node, a pin's point_a); the torque is about that point.
   std::optional<std::array<double, 2>> beam_point;
-  int force_element = -1;  // SpringForce, Power: index among the model's force elements
+  int force_element = -1;  // SpringForce, Power, Work: index among the model's force elements
   // Planar position, velocity: the components in the axes of this rigid body, from its centre of
   // mass (an angle relative to its angle) instead of the world's.
   std::optional<mbd::BodyId> frame;
@@ -223,7 +224,8 @@ struct SensorSpec {
 };
 
 // The value of a sensor that the multibody state alone determines (every type but
-// TotalFluidForce; FluidForce from the point loads set on the model).
+// TotalFluidForce and Work, whose value depends on the run's history; FluidForce from the point
+// loads set on the model).
 double structure_sensor_value(const mbd::Model& model, const SensorSpec& sensor,
                               const mbd::State& state);
 
