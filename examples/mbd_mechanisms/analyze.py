@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """Checks an `fsi-server --mbd-only` run of mbd_mechanisms.scene (DIR/sensors.csv) against the
 closed forms in README.md: the block on the 30-degree incline, the torsion wheel, the valve on
-its one-sided spring actor, and the conservation of kinetic + potential energy.
+its one-sided spring actor, the rotor in its one-sided torsion stop, and the conservation of
+kinetic + potential energy.
 Prints one line per check; exit status 1 if one fails."""
 import math
 import os
@@ -45,8 +46,22 @@ def main():
     highest = max(s["valve_y"][i] for i in range(len(t)) if t[i] > 0.12 and t[i] < 0.3)
     check("valve back at its height [m]", highest, 0.1, 1e-4)
 
+    # The rotor (J = 0.25) turns at 2 rad/s from -0.2 rad into the stop at 0: a half oscillation
+    # of sqrt(k / J) inside it, out again at -2 rad/s.
+    inertia, spin, latch = 0.25, 2.0, 100.0
+    reach = spin * math.sqrt(inertia / latch)
+    inside = math.pi * math.sqrt(inertia / latch)
+    out = 0.2 / spin + inside
+    # Sampled every 1 ms: the peak is missed by at most reach (1 - cos(omega * 0.5 ms)) = 5e-6.
+    check("rotor's deepest turn [rad] (sampled)", max(s["rotor_angle"]), reach, 1e-5)
+    check("largest torque of the stop [N m/m] (sampled)", min(s["latch_torque"]), -latch * reach,
+          1e-3)
+    touching = [t[i] for i in range(len(t)) if s["latch_torque"][i] < 0.0]
+    check("time in the stop [s] (sampled every 1 ms)", touching[-1] - touching[0], inside, 2e-3)
+    check("rotor angle at t = 1 s [rad]", s["rotor_angle"][-1], -spin * (t[-1] - out), 1e-6)
+
     energy = [a + b for a, b in zip(s["kinetic_energy"], s["potential_energy"])]
-    start = 0.5 * 9.0 * 0.2 ** 2 + mass * G * 0.1
+    start = 0.5 * 9.0 * 0.2 ** 2 + mass * G * 0.1 + 0.5 * inertia * spin ** 2
     check("energy drift max |E - E0| [J/m]", max(abs(e - start) for e in energy), 0.0, 1e-5)
     checks.exit(count=True)
 

@@ -11,19 +11,17 @@ namespace fsi::mbd::detail {
 // ---- rotational spring-damper ----
 
 RotationalSpringDamper::RotationalSpringDamper(std::string description, int angle_a, int angle_b,
-                                               double stiffness, double damping, double rest_angle)
+                                               double rest_angle,
+                                               std::shared_ptr<const TensionLaw> law)
     : SparseForceElement(std::move(description)),
       angle_a_(angle_a),
       angle_b_(angle_b),
-      stiffness_(stiffness),
-      damping_(damping),
-      rest_angle_(rest_angle) {}
+      rest_angle_(rest_angle),
+      law_(std::move(law)) {}
 
 double RotationalSpringDamper::measured_force(double, const Eigen::VectorXd& q,
                                               const Eigen::VectorXd& v) const {
-  const double twist = angle(q, angle_a_) - angle(q, angle_b_) - rest_angle_;
-  const double twist_rate = angle(v, angle_a_) - angle(v, angle_b_);
-  return -stiffness_ * twist - damping_ * twist_rate;
+  return -law_->at(twist(q), twist_rate(v)).value;
 }
 
 void RotationalSpringDamper::add_force(double time, const Eigen::VectorXd& q,
@@ -33,25 +31,26 @@ void RotationalSpringDamper::add_force(double time, const Eigen::VectorXd& q,
   if (angle_b_ >= 0) force(angle_b_) -= torque;
 }
 
-bool RotationalSpringDamper::add_jacobian_entries(double, const Eigen::VectorXd&,
-                                                  const Eigen::VectorXd&,
+bool RotationalSpringDamper::add_jacobian_entries(double, const Eigen::VectorXd& q,
+                                                  const Eigen::VectorXd& v,
                                                   MatrixSink& force_by_position,
                                                   MatrixSink& force_by_velocity) const {
-  // The torque depends on phi_a - phi_b only: the pattern [-1 1; 1 -1] times k and c.
+  // The torque depends on phi_a - phi_b and its rate only: the pattern [-1 1; 1 -1] times the
+  // law's partial derivatives.
+  const Tension law = law_->at(twist(q), twist_rate(v));
   const std::array<std::pair<int, double>, 2> ends = {{{angle_a_, 1.0}, {angle_b_, -1.0}}};
   for (const auto& [row, row_sign] : ends) {
     for (const auto& [column, column_sign] : ends) {
       if (row < 0 || column < 0) continue;
-      force_by_position.add(row, column, -row_sign * column_sign * stiffness_);
-      force_by_velocity.add(row, column, -row_sign * column_sign * damping_);
+      force_by_position.add(row, column, -row_sign * column_sign * law.by_elongation);
+      force_by_velocity.add(row, column, -row_sign * column_sign * law.by_rate);
     }
   }
   return true;
 }
 
 double RotationalSpringDamper::potential_energy(const Eigen::VectorXd& q) const {
-  const double twist = angle(q, angle_a_) - angle(q, angle_b_) - rest_angle_;
-  return 0.5 * stiffness_ * twist * twist;
+  return law_->energy(twist(q));
 }
 
 // ---- tension laws ----

@@ -3,8 +3,9 @@
 // model_elements.cpp). All give exact dQ/dq and dQ/dv, except where a user function is
 // differentiated by central differences (UserTension).
 //
-//   RotationalSpringDamper   torque on a: T = -k (phi_a - phi_b - phi_0) - c (omega_a - omega_b),
-//                            -T on b (an angle index < 0 is the ground)
+//   RotationalSpringDamper   torque on a: T = -f(phi_a - phi_b - phi_0, omega_a - omega_b), -T on
+//                            b (an angle index < 0 is the ground), f a TensionLaw: the linear
+//                            k twist + c rate, or a user function
 //   PointToPointForce        tension T(l - l_0, dl/dt) along the line of two points, as the linear
 //                            spring-damper (spring_damper.hpp), with a TensionLaw
 //   PointForce, Torque       f(t) at a body point (world frame), tau(t) on a body angle
@@ -23,31 +24,6 @@
 
 namespace fsi::mbd::detail {
 
-class RotationalSpringDamper final : public SparseForceElement, public MeasuredForce {
- public:
-  RotationalSpringDamper(std::string description, int angle_a, int angle_b, double stiffness,
-                         double damping, double rest_angle);
-
-  void add_force(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
-                 Eigen::VectorXd& force) const override;
-  bool add_jacobian_entries(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
-                            MatrixSink& force_by_position,
-                            MatrixSink& force_by_velocity) const override;
-  double potential_energy(const Eigen::VectorXd& q) const override;
-  // The torque on body a [N m].
-  double measured_force(double time, const Eigen::VectorXd& q,
-                        const Eigen::VectorXd& v) const override;
-
- private:
-  double angle(const Eigen::VectorXd& x, int index) const { return index >= 0 ? x(index) : 0.0; }
-
-  int angle_a_;
-  int angle_b_;
-  double stiffness_;
-  double damping_;
-  double rest_angle_;
-};
-
 // The tension of a point-to-point element and its partial derivatives.
 struct Tension {
   double value = 0.0;
@@ -61,6 +37,54 @@ class TensionLaw {
   virtual Tension at(double elongation, double rate) const = 0;
   // The work stored by stretching from 0 to `elongation` at zero rate.
   virtual double energy(double elongation) const = 0;
+};
+
+// k * elongation + c * rate, exact.
+class LinearTension final : public TensionLaw {
+ public:
+  LinearTension(double stiffness, double damping) : stiffness_(stiffness), damping_(damping) {}
+  Tension at(double elongation, double rate) const override {
+    return {stiffness_ * elongation + damping_ * rate, stiffness_, damping_};
+  }
+  double energy(double elongation) const override {
+    return 0.5 * stiffness_ * elongation * elongation;
+  }
+
+ private:
+  double stiffness_;
+  double damping_;
+};
+
+class RotationalSpringDamper final : public SparseForceElement, public MeasuredForce {
+ public:
+  // The law's "elongation" is the twist phi_a - phi_b - rest_angle [rad], its "rate" the twist's
+  // rate [rad/s], its value the torque resisting the twist [N m].
+  RotationalSpringDamper(std::string description, int angle_a, int angle_b, double rest_angle,
+                         std::shared_ptr<const TensionLaw> law);
+
+  void add_force(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                 Eigen::VectorXd& force) const override;
+  bool add_jacobian_entries(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                            MatrixSink& force_by_position,
+                            MatrixSink& force_by_velocity) const override;
+  double potential_energy(const Eigen::VectorXd& q) const override;
+  // The torque on body a [N m].
+  double measured_force(double time, const Eigen::VectorXd& q,
+                        const Eigen::VectorXd& v) const override;
+
+ private:
+  double angle(const Eigen::VectorXd& x, int index) const { return index >= 0 ? x(index) : 0.0; }
+  double twist(const Eigen::VectorXd& q) const {
+    return angle(q, angle_a_) - angle(q, angle_b_) - rest_angle_;
+  }
+  double twist_rate(const Eigen::VectorXd& v) const {
+    return angle(v, angle_a_) - angle(v, angle_b_);
+  }
+
+  int angle_a_;
+  int angle_b_;
+  double rest_angle_;
+  std::shared_ptr<const TensionLaw> law_;
 };
 
 // Piecewise-linear in the elongation through the table points, continued with the end slopes,

@@ -120,18 +120,47 @@ int Model::add_clamp(const ClampSpec& spec) {
   return first_row;
 }
 
+namespace {
+
+// The angles of a rotational element between a and b and its rest angle, checked.
+struct RotationalEnds {
+  int a = -1;
+  int b = -1;
+  double rest = 0.0;
+};
+
+RotationalEnds rotational_ends(const Model& model, BodyId a, BodyId b,
+                               const std::optional<double>& rest_angle, const std::string& user) {
+  const AnglePair angles = body_first_angle_pair(model, a, b, user, "body a is the ground",
+                                                 "put the ground, if any, at end b");
+  const double rest = rest_angle.value_or(angles.initial_difference);
+  if (!std::isfinite(rest)) throw Error("the rest angle is not finite", user, "check rest_angle");
+  return {angles.a, angles.b, rest};
+}
+
+}  // namespace
+
 int Model::add_rotational_spring_damper(const RotationalSpringDamperSpec& spec) {
   const int index = force_element_count();
   const std::string user = element_name("rotational spring-damper", spec.name, index);
-  const AnglePair angles = body_first_angle_pair(
-      *this, spec.a, spec.b, user, "body a is the ground", "put the ground, if any, at end b");
-  const double rest = spec.rest_angle.value_or(angles.initial_difference);
-  if (!non_negative(spec.stiffness) || !non_negative(spec.damping) || !std::isfinite(rest)) {
-    throw Error("stiffness and damping must be finite and non-negative and the rest angle finite",
-                user, "check stiffness, damping and rest_angle");
+  const RotationalEnds ends = rotational_ends(*this, spec.a, spec.b, spec.rest_angle, user);
+  if (!non_negative(spec.stiffness) || !non_negative(spec.damping)) {
+    throw Error("stiffness and damping must be finite and non-negative", user,
+                "check stiffness and damping");
   }
   add_force_element(std::make_unique<detail::RotationalSpringDamper>(
-      user, angles.a, angles.b, spec.stiffness, spec.damping, rest));
+      user, ends.a, ends.b, ends.rest,
+      std::make_shared<detail::LinearTension>(spec.stiffness, spec.damping)));
+  return index;
+}
+
+int Model::add_nonlinear_rotational_spring_damper(const NonlinearRotationalSpringDamperSpec& spec) {
+  const int index = force_element_count();
+  const std::string user = element_name("nonlinear rotational spring-damper", spec.name, index);
+  if (!spec.torque) throw Error("no torque function", user, "give torque(rotation, rate)");
+  const RotationalEnds ends = rotational_ends(*this, spec.a, spec.b, spec.rest_angle, user);
+  add_force_element(std::make_unique<detail::RotationalSpringDamper>(
+      user, ends.a, ends.b, ends.rest, std::make_shared<detail::UserTension>(spec.torque)));
   return index;
 }
 

@@ -3,8 +3,10 @@
 // oscillator against cos(omega t), and a sine force integrated at the stage times.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -40,7 +42,8 @@ void expect_point_to_point_derivatives(const std::string& name, double rest_leng
 
 TEST(MbdForceElements, RotationalSpringDamperTorqueAndDerivatives) {
   const Pair pair;
-  const detail::RotationalSpringDamper spring("torsion", 2, 5, 40.0, 1.5, 0.5);
+  const auto linear = std::make_shared<detail::LinearTension>(40.0, 1.5);
+  const detail::RotationalSpringDamper spring("torsion", 2, 5, 0.5, linear);
   // -k (0.7 + 2.1 - 0.5) - c (2 - 3) = -92 + 1.5 on a, the opposite on b.
   Eigen::VectorXd force = Eigen::VectorXd::Zero(6);
   spring.add_force(0.0, pair.q, pair.v, force);
@@ -48,7 +51,25 @@ TEST(MbdForceElements, RotationalSpringDamperTorqueAndDerivatives) {
   EXPECT_DOUBLE_EQ(force(5), 40.0 * 2.3 - 1.5);
   EXPECT_DOUBLE_EQ(spring.potential_energy(pair.q), 0.5 * 40.0 * 2.3 * 2.3);
   testing::expect_exact_force_derivatives(spring, 0.0, pair.q, pair.v, "two bodies");
-  const detail::RotationalSpringDamper grounded("torsion", -1, 5, 40.0, 1.5, 0.5);
+  const detail::RotationalSpringDamper grounded("torsion", -1, 5, 0.5, linear);
+  testing::expect_exact_force_derivatives(grounded, 0.0, pair.q, pair.v, "to the ground");
+}
+
+// A user's torque law: the torque on a is -f(twist, rate), its derivatives those of the law.
+TEST(MbdForceElements, NonlinearRotationalSpringDamperTorqueAndDerivatives) {
+  const Pair pair;
+  const auto law = std::make_shared<detail::UserTension>(
+      [](double twist, double rate) { return 40.0 * twist + 3.0 * twist * twist * twist + rate; });
+  const detail::RotationalSpringDamper spring("torsion", 2, 5, 0.5, law);
+  // twist 0.7 + 2.1 - 0.5 = 2.3, rate 2 - 3 = -1.
+  const double torque = 40.0 * 2.3 + 3.0 * 2.3 * 2.3 * 2.3 - 1.0;
+  Eigen::VectorXd force = Eigen::VectorXd::Zero(6);
+  spring.add_force(0.0, pair.q, pair.v, force);
+  EXPECT_NEAR(force(2), -torque, 1e-12);
+  EXPECT_NEAR(force(5), torque, 1e-12);
+  EXPECT_NEAR(spring.potential_energy(pair.q), 20.0 * 2.3 * 2.3 + 0.75 * std::pow(2.3, 4), 1e-12);
+  testing::expect_exact_force_derivatives(spring, 0.0, pair.q, pair.v, "two bodies");
+  const detail::RotationalSpringDamper grounded("torsion", -1, 5, 0.5, law);
   testing::expect_exact_force_derivatives(grounded, 0.0, pair.q, pair.v, "to the ground");
 }
 
@@ -119,6 +140,56 @@ TEST(MbdForceElements, TorsionOscillatorFollowsTheCosine) {
   EXPECT_NEAR(kinetic_energy(model, state) + potential_energy(model, state), 0.18, 1e-10);
   EXPECT_NEAR(force_element_force(model, state, element),
               -9.0 * model.coordinate(state, wheel, Coordinate::Angle), 1e-12);
+}
+
+// A hardening torsion spring, J phi'' = -(k phi + a phi^3), conserves 0.5 J omega^2 + 0.5 k phi^2
+// + 0.25 a phi^4, and crosses zero after a quarter period, the integral of dphi / phi' over the
+// energy curve.
+TEST(MbdForceElements, NonlinearTorsionOscillatorConservesItsEnergy) {
+  Model model;
+  RigidBody2DSpec spec = rigid("wheel", 1.0, 0.25);
+  spec.angle = 0.5;
+  const BodyId wheel = model.add_rigid_body(spec);
+  model.add_coordinate_constraint(wheel, Coordinate::X);
+  model.add_coordinate_constraint(wheel, Coordinate::Y);
+  const int element = model.add_nonlinear_rotational_spring_damper(
+      {.name = "hardening",
+       .a = wheel,
+       .b = kGround,
+       .torque = [](double phi, double) { return 9.0 * phi + 40.0 * phi * phi * phi; },
+       .rest_angle = 0.0});
+  State state = model.initial_state();
+  const double energy = 0.5 * 9.0 * 0.25 + 10.0 * std::pow(0.5, 4);
+  EXPECT_NEAR(potential_energy(model, state), energy, 1e-14);
+  EXPECT_NEAR(force_element_force(model, state, element), -(9.0 * 0.5 + 40.0 * 0.125), 1e-13);
+  // The first zero crossing: a quarter period, T/4 = int_0^phi0 dphi / sqrt(2 (E - V(phi)) / J).
+  // Substituting phi = phi0 sin(s) removes the end's singularity; the integrand is then a smooth
+  // function of sin^2 s, on which the midpoint rule converges faster than any power.
+  double quarter = 0.0;
+  {
+    const int n = 400;
+    for (int k = 0; k < n; ++k) {
+      const double s = (k + 0.5) * (0.5 * std::numbers::pi) / n;
+      const double phi = 0.5 * std::sin(s);
+      const double v = 0.5 * 9.0 * phi * phi + 10.0 * std::pow(phi, 4);
+      quarter +=
+          0.5 * std::cos(s) / std::sqrt(2.0 * (energy - v) / 0.25) * (0.5 * std::numbers::pi) / n;
+    }
+  }
+  RadauIIA integrator(3, kTight);
+  double previous_time = 0.0, previous_angle = 0.5, crossing = -1.0, drift = 0.0;
+  for (int n = 1; n <= 1000; ++n) {
+    integrator.step(model, state, 1e-3);
+    const double angle = model.coordinate(state, wheel, Coordinate::Angle);
+    if (crossing < 0.0 && angle <= 0.0)
+      crossing = previous_time + 1e-3 * previous_angle / (previous_angle - angle);
+    previous_time = n * 1e-3;
+    previous_angle = angle;
+    drift = std::max(
+        drift, std::abs(kinetic_energy(model, state) + potential_energy(model, state) - energy));
+  }
+  EXPECT_LT(drift, 1e-8 * energy);
+  EXPECT_NEAR(crossing, quarter, 1e-6);
 }
 
 // m x'' = sin(t) from rest: x(t) = t - sin(t). At h = 0.05 Radau IIA (order 5) gives it to

@@ -36,6 +36,20 @@ std::vector<BlockSpec> spring_blocks() {
            number("rest_angle", "rad", "phi0 (default: the initial relative angle)").optional()})
           .as_list()
           .planar(),
+      block_spec(
+          "NonlinearRotationalSpringDamper",
+          with_scene_numbers(
+              "Rotational spring-damper whose torque resisting the twist is f(rotation, rate), a "
+              "muParser expression (rotation = phi_a - phi_b - phi0 [rad], rate = its rate "
+              "[rad/s]): the torque on body_a is -f, on body_b +f."),
+          {element_name_spec(), text("body_a", "name of a RigidBody2D"),
+           text("body_b", "name of a RigidBody2D; absent: the ground").optional(),
+           text("torque",
+                "torque [N m/m] resisting the twist, in rotation and rate, e.g. "
+                "\"rotation < 0 ? 50*rotation : 2*rotation + 0.1*rate\""),
+           number("rest_angle", "rad", "phi0 (default: the initial relative angle)").optional()})
+          .as_list()
+          .planar(),
       block_spec("NonlinearSpringDamper",
                  with_scene_numbers("Spring-damper along the line of the two points with "
                                     "tension = f(elongation, rate), a muParser expression "
@@ -108,6 +122,17 @@ void build_planar_actors(SceneBuilder& builder) {
     spec.rest_length = optional_number(f, "rest_length");
     builder.add_force_element(
         f, [&] { return model.add_nonlinear_spring_damper(spec); }, false);
+  });
+  builder.each("NonlinearRotationalSpringDamper", [&](const View& f) {
+    mbd::NonlinearRotationalSpringDamperSpec spec;
+    spec.name = name_of(f);
+    spec.a = builder.find_body(f, "body_a");
+    if (f.has("body_b")) spec.b = builder.find_body(f, "body_b");
+    const RuntimeExpression law = builder.expression(f, "torque", {"rotation", "rate"});
+    spec.torque = [law](double rotation, double rate) { return law(rotation, rate); };
+    spec.rest_angle = optional_number(f, "rest_angle");
+    builder.add_force_element(
+        f, [&] { return model.add_nonlinear_rotational_spring_damper(spec); }, true);
   });
   builder.each("SpringActor", [&](const View& f) {
     mbd::SpringActorSpec spec;

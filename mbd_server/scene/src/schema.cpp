@@ -478,8 +478,10 @@ const Value& View::value(std::string_view key) const {
     return given->value;
   }
   if (declared && declared->default_value) return *declared->default_value;
-  // A required block the scene leaves out: validate() reported the block, not each of its keys.
+  // A required block the scene leaves out: validate() reported the block, not each of its keys;
+  // a required key a block leaves out: validate() reported it at the block.
   if (owned_ && spec_->required) throw AlreadyReported(block_->location);
+  if (declared && declared->is_required()) throw AlreadyReported(block_->location);
   throw Error("'" + std::string(key) + "' is missing in " +
                   (block_->name.empty() ? std::string("the scene") : "block " + block_->name),
               block_->location.text(),

@@ -155,6 +155,55 @@ Sensor { name = "coil_power"; type = "power"; element = "coil" }
               1e-9);
 }
 
+// A torsion spring with a user's law: a one-sided stop that pushes a flap back only once it has
+// turned past its rest angle; the sensor reads the torque on body_a, the energy its integral.
+TEST_F(MechanismScene, ANonlinearRotationalSpringDampersTorqueIsTheUsersLaw) {
+  Scene scene = build_scene(write(R"scene(Geometry { k = 50 }
+RigidBody2D { name = "flap"; mass = 0.3; inertia = 0.01; angle = 0.1
+              Mesh { points = [[0, 0], [0.1, 0]] } }
+RevoluteJoint { name = "hinge"; body_a = "flap" }
+NonlinearRotationalSpringDamper { name = "stop"; body_a = "flap"; rest_angle = 0
+    torque = "rotation > 0 ? Geometry.k*rotation^2 + 2*rate : 0" }
+Sensor { name = "stop_torque"; type = "spring_force"; element = "stop" }
+Sensor { name = "stop_power"; type = "power"; element = "stop" }
+Sensor { name = "potential"; type = "potential_energy" }
+)scene"));
+  ASSERT_EQ(scene.sensors.size(), 3u);
+  EXPECT_EQ(scene.sensors[0].unit, "N m/m");
+  mbd::State state = scene.model.initial_state();
+  const int angle =
+      scene.model.coordinate_index(scene.model.find_body("flap"), mbd::Coordinate::Angle);
+  state.v(angle) = 3.0;
+  // Turned 0.1 rad past the stop at 3 rad/s: f = 50 * 0.01 + 2 * 3 = 6.5 N m; the torque on the
+  // flap -6.5 N m, its power -6.5 * 3 W, the energy 50 * 0.1^3 / 3 (the law at zero rate).
+  EXPECT_NEAR(structure_sensor_value(scene.model, scene.sensors[0], state), -6.5, 1e-9);
+  EXPECT_NEAR(structure_sensor_value(scene.model, scene.sensors[1], state), -19.5, 1e-8);
+  EXPECT_NEAR(structure_sensor_value(scene.model, scene.sensors[2], state), 50.0 / 3.0 * 1e-3,
+              1e-12);
+  // Turned back before the stop: no torque.
+  state.q(angle) = -0.1;
+  EXPECT_EQ(structure_sensor_value(scene.model, scene.sensors[0], state), 0.0);
+}
+
+TEST_F(MechanismScene, ANonlinearRotationalSpringDampersMistakesAreProblemsAtTheirLines) {
+  const std::string text = problems(
+      R"scene(RigidBody2D { name = "flap"; mass = 1; inertia = 1; Mesh { points = [[0, 0], [1, 0]] } }
+NonlinearRotationalSpringDamper { name = "a"; body_a = "flap"; torque = "5*angle" }
+NonlinearRotationalSpringDamper { name = "b"; body_a = "flop"; torque = "5*rotation" }
+NonlinearRotationalSpringDamper { name = "c"; body_a = "flap" }
+)scene");
+  EXPECT_NE(text.find("m.scene:4:"), std::string::npos) << text;  // angle is no variable
+  EXPECT_NE(text.find("'angle'"), std::string::npos) << text;
+  EXPECT_NE(text.find("m.scene:5:"), std::string::npos) << text;  // flop
+  EXPECT_NE(text.find("m.scene:6:"), std::string::npos) << text;  // no torque
+  EXPECT_NE(text.find("required parameter 'NonlinearRotationalSpringDamper[2].torque' is missing"),
+            std::string::npos)
+      << text;
+  // Said once: the builder that reads the key does not report it again.
+  EXPECT_EQ(text.find("is missing in block"), std::string::npos) << text;
+  EXPECT_NE(text.find("3 problem(s)"), std::string::npos) << text;
+}
+
 // release_time belongs to constraint blocks; in a spring or a load it is an unknown key like any
 // other (a user's fsi-server --check aborted on an assertion instead, 2026-12-06).
 TEST_F(MechanismScene, AReleaseTimeOutsideAConstraintIsAnUnknownKey) {

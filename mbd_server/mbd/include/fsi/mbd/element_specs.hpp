@@ -133,6 +133,18 @@ struct NonlinearSpringDamperSpec {
   std::optional<double> rest_length = std::nullopt;  // [m]; default: the initial distance
 };
 
+// A rotational spring-damper whose resisting torque is a user function of the twist
+// phi_a - phi_b - rest_angle [rad] and its rate [rad/s]: the torque on a is -torque(twist, rate),
+// the opposite on b (as RotationalSpringDamperSpec, whose law is k twist + c rate). Derivatives
+// by central differences; its energy is the integral of torque(s, 0) ds from 0.
+struct NonlinearRotationalSpringDamperSpec {
+  std::string name;  // default "nonlinear rotational spring-damper <k>"
+  BodyId a = kGround;
+  BodyId b = kGround;
+  TensionFunction torque;
+  std::optional<double> rest_angle = std::nullopt;  // [rad]; default: the initial relative angle
+};
+
 // The "spring actor" of thesis §6.5: a passive control element along the line between two
 // points whose tension is a piecewise-linear function of the elongation, given as a table of
 // (elongation [m], tension [N]) points in increasing elongation and continued beyond its ends

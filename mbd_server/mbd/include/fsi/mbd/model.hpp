@@ -120,6 +120,7 @@ class Model final : public ConstrainedSystem {
   int add_clamp(const ClampSpec& spec);
   int add_rotational_spring_damper(const RotationalSpringDamperSpec& spec);
   int add_nonlinear_spring_damper(const NonlinearSpringDamperSpec& spec);
+  int add_nonlinear_rotational_spring_damper(const NonlinearRotationalSpringDamperSpec& spec);
   int add_spring_actor(const SpringActorSpec& spec);
   int add_point_force(const PointForceSpec& spec);
   int add_torque(const TorqueSpec& spec);
