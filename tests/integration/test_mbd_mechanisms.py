@@ -27,12 +27,14 @@ check(analysis.returncode == 0, "every expected number of examples/mbd_mechanism
 
 # The two structural benchmarks of the same folder, each with its own analysis (about 1 s each):
 # Turek & Hron's CSM3 flag and the elastica at lam = 1 and 10 (a static shape the damped beam
-# settles to); and a damper's work sensor against the pendulum's energy change.
+# settles to); a damper's work sensor against the pendulum's energy change; and an actuator (a
+# spring law in time) against the closed form.
 for name, scene_file, script, settings in (
         ("csm3", "turek_hron_csm3.scene", "analyze_csm3.py", []),
         ("elastica1", "elastica.scene", "analyze_elastica.py", ["--set", "Geometry.lam=1"]),
         ("elastica10", "elastica.scene", "analyze_elastica.py", []),
-        ("pendulum", "damped_pendulum.scene", "analyze_pendulum.py", [])):
+        ("pendulum", "damped_pendulum.scene", "analyze_pendulum.py", []),
+        ("actuator", "actuator.scene", "analyze_actuator.py", [])):
     bench_dir = os.path.join(output, name)
     result = subprocess.run([binary("fsi-server"), example("mbd_mechanisms", scene_file), "--mbd-only",
                              "--output", bench_dir] + settings, env=ENV, capture_output=True, text=True, timeout=120)

@@ -19,9 +19,9 @@ RotationalSpringDamper::RotationalSpringDamper(std::string description, int angl
       rest_angle_(rest_angle),
       law_(std::move(law)) {}
 
-double RotationalSpringDamper::measured_force(double, const Eigen::VectorXd& q,
+double RotationalSpringDamper::measured_force(double time, const Eigen::VectorXd& q,
                                               const Eigen::VectorXd& v) const {
-  return -law_->at(twist(q), twist_rate(v)).value;
+  return -law_->at(twist(q), twist_rate(v), time).value;
 }
 
 void RotationalSpringDamper::add_force(double time, const Eigen::VectorXd& q,
@@ -31,13 +31,13 @@ void RotationalSpringDamper::add_force(double time, const Eigen::VectorXd& q,
   if (angle_b_ >= 0) force(angle_b_) -= torque;
 }
 
-bool RotationalSpringDamper::add_jacobian_entries(double, const Eigen::VectorXd& q,
+bool RotationalSpringDamper::add_jacobian_entries(double time, const Eigen::VectorXd& q,
                                                   const Eigen::VectorXd& v,
                                                   MatrixSink& force_by_position,
                                                   MatrixSink& force_by_velocity) const {
   // The torque depends on phi_a - phi_b and its rate only: the pattern [-1 1; 1 -1] times the
   // law's partial derivatives.
-  const Tension law = law_->at(twist(q), twist_rate(v));
+  const Tension law = law_->at(twist(q), twist_rate(v), time);
   const std::array<std::pair<int, double>, 2> ends = {{{angle_a_, 1.0}, {angle_b_, -1.0}}};
   for (const auto& [row, row_sign] : ends) {
     for (const auto& [column, column_sign] : ends) {
@@ -49,8 +49,8 @@ bool RotationalSpringDamper::add_jacobian_entries(double, const Eigen::VectorXd&
   return true;
 }
 
-double RotationalSpringDamper::potential_energy(const Eigen::VectorXd& q) const {
-  return law_->energy(twist(q));
+double RotationalSpringDamper::potential_energy(double time, const Eigen::VectorXd& q) const {
+  return law_->energy(twist(q), time);
 }
 
 // ---- tension laws ----
@@ -75,14 +75,14 @@ double PiecewiseLinearTension::spring(double elongation) const {
   return left.y() + slope * (elongation - left.x());
 }
 
-Tension PiecewiseLinearTension::at(double elongation, double rate) const {
+Tension PiecewiseLinearTension::at(double elongation, double rate, double) const {
   const std::size_t k = segment(elongation);
   const double slope =
       (points_[k + 1].y() - points_[k].y()) / (points_[k + 1].x() - points_[k].x());
   return {spring(elongation) + damping_ * rate, slope, damping_};
 }
 
-double PiecewiseLinearTension::energy(double elongation) const {
+double PiecewiseLinearTension::energy(double elongation, double) const {
   // Exact: the trapezoidal rule between 0, the table points in between, and the elongation.
   std::vector<double> nodes = {0.0};
   const double low = std::min(0.0, elongation);
@@ -98,10 +98,10 @@ double PiecewiseLinearTension::energy(double elongation) const {
   return elongation >= 0.0 ? work : -work;
 }
 
-UserTension::UserTension(std::function<double(double, double)> tension)
+UserTension::UserTension(std::function<double(double, double, double)> tension)
     : tension_(std::move(tension)) {}
 
-Tension UserTension::at(double elongation, double rate) const {
+Tension UserTension::at(double elongation, double rate, double time) const {
   // The step balances truncation (~step^2) against cancellation (~eps |T| / step); its floor,
   // 6e-6 m and 6e-6 m/s, keeps the cancellation small where elongation or rate are near zero
   // while the tension is not (a small rate term next to a large spring force). The partials only
@@ -109,12 +109,13 @@ Tension UserTension::at(double elongation, double rate) const {
   const double factor = std::cbrt(std::numeric_limits<double>::epsilon());
   const double de = factor * std::max(std::abs(elongation), 1.0);
   const double dr = factor * std::max(std::abs(rate), 1.0);
-  return {tension_(elongation, rate),
-          (tension_(elongation + de, rate) - tension_(elongation - de, rate)) / (2.0 * de),
-          (tension_(elongation, rate + dr) - tension_(elongation, rate - dr)) / (2.0 * dr)};
+  return {
+      tension_(elongation, rate, time),
+      (tension_(elongation + de, rate, time) - tension_(elongation - de, rate, time)) / (2.0 * de),
+      (tension_(elongation, rate + dr, time) - tension_(elongation, rate - dr, time)) / (2.0 * dr)};
 }
 
-double UserTension::energy(double elongation) const {
+double UserTension::energy(double elongation, double time) const {
   // Five-point Gauss-Legendre: exact for polynomial laws up to degree 9.
   constexpr std::array<double, 5> nodes = {0.0, -0.5384693101056831, 0.5384693101056831,
                                            -0.9061798459386640, 0.9061798459386640};
@@ -124,7 +125,7 @@ double UserTension::energy(double elongation) const {
   const double half = 0.5 * elongation;
   double sum = 0.0;
   for (std::size_t k = 0; k < nodes.size(); ++k)
-    sum += weights[k] * tension_(half * (1.0 + nodes[k]), 0.0);
+    sum += weights[k] * tension_(half * (1.0 + nodes[k]), 0.0, time);
   return half * sum;
 }
 
@@ -138,12 +139,12 @@ PointToPointForce::PointToPointForce(std::string description, BodyPoint a, BodyP
       rest_length_(rest_length),
       law_(std::move(law)) {}
 
-double PointToPointForce::measured_force(double, const Eigen::VectorXd& q,
+double PointToPointForce::measured_force(double time, const Eigen::VectorXd& q,
                                          const Eigen::VectorXd& v) const {
   const Eigen::Vector2d d = b_.position(q) - a_.position(q);
   const double length = d.norm();
   const double rate = d.dot(b_.velocity(q, v) - a_.velocity(q, v)) / length;
-  return law_->at(length - rest_length_, rate).value;
+  return law_->at(length - rest_length_, rate, time).value;
 }
 
 void PointToPointForce::add_force(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
@@ -155,7 +156,7 @@ void PointToPointForce::add_force(double time, const Eigen::VectorXd& q, const E
   b_.add_load(q, -pull, force);
 }
 
-bool PointToPointForce::add_jacobian_entries(double, const Eigen::VectorXd& q,
+bool PointToPointForce::add_jacobian_entries(double time, const Eigen::VectorXd& q,
                                              const Eigen::VectorXd& v,
                                              MatrixSink& force_by_position,
                                              MatrixSink& force_by_velocity) const {
@@ -163,7 +164,7 @@ bool PointToPointForce::add_jacobian_entries(double, const Eigen::VectorXd& q,
   const double length = d.norm();
   const Eigen::Vector2d e = d / length;
   const Eigen::Vector2d u = b_.velocity(q, v) - a_.velocity(q, v);
-  const Tension tension = law_->at(length - rest_length_, e.dot(u));
+  const Tension tension = law_->at(length - rest_length_, e.dot(u), time);
   // P = (I - e e^T) / l is de/dd; D = dd/dq; W = d(dd/dt)/dq at fixed v (non-zero columns).
   const Eigen::Matrix2d projector = (Eigen::Matrix2d::Identity() - e * e.transpose()) / length;
   SparseColumns separation, separation_rate;
@@ -196,8 +197,8 @@ bool PointToPointForce::add_jacobian_entries(double, const Eigen::VectorXd& q,
   return true;
 }
 
-double PointToPointForce::potential_energy(const Eigen::VectorXd& q) const {
-  return law_->energy((b_.position(q) - a_.position(q)).norm() - rest_length_);
+double PointToPointForce::potential_energy(double time, const Eigen::VectorXd& q) const {
+  return law_->energy((b_.position(q) - a_.position(q)).norm() - rest_length_, time);
 }
 
 // ---- time-dependent loads ----

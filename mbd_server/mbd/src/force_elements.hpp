@@ -34,19 +34,20 @@ struct Tension {
 class TensionLaw {
  public:
   virtual ~TensionLaw() = default;
-  virtual Tension at(double elongation, double rate) const = 0;
-  // The work stored by stretching from 0 to `elongation` at zero rate.
-  virtual double energy(double elongation) const = 0;
+  // A law may depend on the time [s] (a user's); the table and the linear law do not.
+  virtual Tension at(double elongation, double rate, double time) const = 0;
+  // The work stored by stretching from 0 to `elongation` at zero rate, with the law held at `time`.
+  virtual double energy(double elongation, double time) const = 0;
 };
 
 // k * elongation + c * rate, exact.
 class LinearTension final : public TensionLaw {
  public:
   LinearTension(double stiffness, double damping) : stiffness_(stiffness), damping_(damping) {}
-  Tension at(double elongation, double rate) const override {
+  Tension at(double elongation, double rate, double) const override {
     return {stiffness_ * elongation + damping_ * rate, stiffness_, damping_};
   }
-  double energy(double elongation) const override {
+  double energy(double elongation, double) const override {
     return 0.5 * stiffness_ * elongation * elongation;
   }
 
@@ -67,7 +68,7 @@ class RotationalSpringDamper final : public SparseForceElement, public MeasuredF
   bool add_jacobian_entries(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
                             MatrixSink& force_by_position,
                             MatrixSink& force_by_velocity) const override;
-  double potential_energy(const Eigen::VectorXd& q) const override;
+  double potential_energy(double time, const Eigen::VectorXd& q) const override;
   // The torque on body a [N m].
   double measured_force(double time, const Eigen::VectorXd& q,
                         const Eigen::VectorXd& v) const override;
@@ -92,8 +93,8 @@ class RotationalSpringDamper final : public SparseForceElement, public MeasuredF
 class PiecewiseLinearTension final : public TensionLaw {
  public:
   PiecewiseLinearTension(std::vector<Eigen::Vector2d> points, double damping);
-  Tension at(double elongation, double rate) const override;
-  double energy(double elongation) const override;
+  Tension at(double elongation, double rate, double time) const override;
+  double energy(double elongation, double time) const override;
 
  private:
   // The segment whose line holds at `elongation` (the end ones beyond the table).
@@ -104,16 +105,16 @@ class PiecewiseLinearTension final : public TensionLaw {
   double damping_;
 };
 
-// A user function; partial derivatives by central differences, energy by Gauss-Legendre
-// quadrature over [0, elongation].
+// A user function of (elongation, rate, time); partial derivatives by central differences, energy
+// by Gauss-Legendre quadrature over [0, elongation] at the given time.
 class UserTension final : public TensionLaw {
  public:
-  explicit UserTension(std::function<double(double, double)> tension);
-  Tension at(double elongation, double rate) const override;
-  double energy(double elongation) const override;
+  explicit UserTension(std::function<double(double, double, double)> tension);
+  Tension at(double elongation, double rate, double time) const override;
+  double energy(double elongation, double time) const override;
 
  private:
-  std::function<double(double, double)> tension_;
+  std::function<double(double, double, double)> tension_;
 };
 
 class PointToPointForce final : public SparseForceElement, public MeasuredForce {
@@ -126,7 +127,7 @@ class PointToPointForce final : public SparseForceElement, public MeasuredForce 
   bool add_jacobian_entries(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
                             MatrixSink& force_by_position,
                             MatrixSink& force_by_velocity) const override;
-  double potential_energy(const Eigen::VectorXd& q) const override;
+  double potential_energy(double time, const Eigen::VectorXd& q) const override;
   // The tension [N].
   double measured_force(double time, const Eigen::VectorXd& q,
                         const Eigen::VectorXd& v) const override;

@@ -279,7 +279,7 @@ bool MeshContact<Point, D>::add_jacobian_entries(double, const Eigen::VectorXd& 
 }
 
 template <typename Point, int D>
-double MeshContact<Point, D>::potential_energy(const Eigen::VectorXd& q) const {
+double MeshContact<Point, D>::potential_energy(double, const Eigen::VectorXd& q) const {
   double energy = 0.0;
   for (const ContactPair& pair : pairs(q))
     energy += 0.5 * law_.stiffness * pair.depth * pair.depth;

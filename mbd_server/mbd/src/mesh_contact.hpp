@@ -62,7 +62,7 @@ class MeshContact final : public SparseForceElement {
                             MatrixSink& force_by_position,
                             MatrixSink& force_by_velocity) const override;
   // stiffness delta^2 / 2 over the pairs in contact: the penalty energy.
-  double potential_energy(const Eigen::VectorXd& q) const override;
+  double potential_energy(double time, const Eigen::VectorXd& q) const override;
 
   // The pairs in contact at q (broad phase by bounding boxes, then per element).
   std::vector<ContactPair> pairs(const Eigen::VectorXd& q) const;

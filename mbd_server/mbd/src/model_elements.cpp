@@ -157,7 +157,7 @@ int Model::add_rotational_spring_damper(const RotationalSpringDamperSpec& spec) 
 int Model::add_nonlinear_rotational_spring_damper(const NonlinearRotationalSpringDamperSpec& spec) {
   const int index = force_element_count();
   const std::string user = element_name("nonlinear rotational spring-damper", spec.name, index);
-  if (!spec.torque) throw Error("no torque function", user, "give torque(rotation, rate)");
+  if (!spec.torque) throw Error("no torque function", user, "give torque(rotation, rate, time)");
   const RotationalEnds ends = rotational_ends(*this, spec.a, spec.b, spec.rest_angle, user);
   add_force_element(std::make_unique<detail::RotationalSpringDamper>(
       user, ends.a, ends.b, ends.rest, std::make_shared<detail::UserTension>(spec.torque)));
@@ -186,7 +186,8 @@ int Model::add_nonlinear_spring_damper(const NonlinearSpringDamperSpec& spec) {
   const int index = force_element_count();
   const std::string user = element_name("nonlinear spring-damper", spec.name, index);
   require_two_ends(spec.a.body, spec.b.body, user);
-  if (!spec.tension) throw Error("no tension function", user, "give tension(elongation, rate)");
+  if (!spec.tension)
+    throw Error("no tension function", user, "give tension(elongation, rate, time)");
   const detail::BodyPoint a = body_point(spec.a, user);
   const detail::BodyPoint b = body_point(spec.b, user);
   const double rest = rest_length_of(

@@ -171,7 +171,7 @@ double potential_energy(const Model& model, const State& state) {
     }
   }
   for (const auto& element : data.force_elements)
-    energy += element->potential_energy(state.q);
+    energy += element->potential_energy(state.time, state.q);
   return energy;
 }
 

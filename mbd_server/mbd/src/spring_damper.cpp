@@ -24,7 +24,7 @@ double BasicSpringDamper<Point, D>::tension(const Eigen::VectorXd& q,
 }
 
 template <typename Point, int D>
-double BasicSpringDamper<Point, D>::potential_energy(const Eigen::VectorXd& q) const {
+double BasicSpringDamper<Point, D>::potential_energy(double, const Eigen::VectorXd& q) const {
   const double stretch = (b_.position(q) - a_.position(q)).norm() - rest_length_;
   return 0.5 * stiffness_ * stretch * stretch;
 }

@@ -31,7 +31,7 @@ class BasicSpringDamper final : public SparseForceElement, public MeasuredForce 
                             MatrixSink& force_by_position,
                             MatrixSink& force_by_velocity) const override;
   // k (l - rest_length)^2 / 2.
-  double potential_energy(const Eigen::VectorXd& q) const override;
+  double potential_energy(double time, const Eigen::VectorXd& q) const override;
   double measured_force(double, const Eigen::VectorXd& q, const Eigen::VectorXd& v) const override {
     return tension(q, v);
   }

@@ -68,7 +68,7 @@ TEST(MbdBadModels, NonFiniteForceElementIsNamedAndTheStateKept) {
       {.name = "valve spring",
        .a = {kGround, {0.0, 0.0}},
        .b = {valve, {0.0, 0.0}},
-       .tension = [](double e, double) { return -100.0 * std::sqrt(0.1 - e); }});
+       .tension = [](double e, double, double) { return -100.0 * std::sqrt(0.1 - e); }});
   State state = model.initial_state();
   RadauIIA integrator(3);
   std::string message;
@@ -113,7 +113,7 @@ TEST(MbdBadModels, NonConvergentNewtonNamesTheLargestResidual) {
       {.name = "stiff",
        .a = {kGround, {1.0, -1.0}},
        .b = {bob, {0.0, 0.0}},
-       .tension = [](double e, double) { return 1e6 * e * e * e + 1e4 * e; },
+       .tension = [](double e, double, double) { return 1e6 * e * e * e + 1e4 * e; },
        .rest_length = 0.5});
   State state = model.initial_state();
   RadauIIA integrator(3, NewtonOptions{.relative_tolerance = 1e-12, .max_iterations = 1});

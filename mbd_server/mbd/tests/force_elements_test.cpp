@@ -49,7 +49,7 @@ TEST(MbdForceElements, RotationalSpringDamperTorqueAndDerivatives) {
   spring.add_force(0.0, pair.q, pair.v, force);
   EXPECT_DOUBLE_EQ(force(2), -40.0 * 2.3 + 1.5);
   EXPECT_DOUBLE_EQ(force(5), 40.0 * 2.3 - 1.5);
-  EXPECT_DOUBLE_EQ(spring.potential_energy(pair.q), 0.5 * 40.0 * 2.3 * 2.3);
+  EXPECT_DOUBLE_EQ(spring.potential_energy(0.0, pair.q), 0.5 * 40.0 * 2.3 * 2.3);
   testing::expect_exact_force_derivatives(spring, 0.0, pair.q, pair.v, "two bodies");
   const detail::RotationalSpringDamper grounded("torsion", -1, 5, 0.5, linear);
   testing::expect_exact_force_derivatives(grounded, 0.0, pair.q, pair.v, "to the ground");
@@ -58,8 +58,9 @@ TEST(MbdForceElements, RotationalSpringDamperTorqueAndDerivatives) {
 // A user's torque law: the torque on a is -f(twist, rate), its derivatives those of the law.
 TEST(MbdForceElements, NonlinearRotationalSpringDamperTorqueAndDerivatives) {
   const Pair pair;
-  const auto law = std::make_shared<detail::UserTension>(
-      [](double twist, double rate) { return 40.0 * twist + 3.0 * twist * twist * twist + rate; });
+  const auto law = std::make_shared<detail::UserTension>([](double twist, double rate, double) {
+    return 40.0 * twist + 3.0 * twist * twist * twist + rate;
+  });
   const detail::RotationalSpringDamper spring("torsion", 2, 5, 0.5, law);
   // twist 0.7 + 2.1 - 0.5 = 2.3, rate 2 - 3 = -1.
   const double torque = 40.0 * 2.3 + 3.0 * 2.3 * 2.3 * 2.3 - 1.0;
@@ -67,15 +68,17 @@ TEST(MbdForceElements, NonlinearRotationalSpringDamperTorqueAndDerivatives) {
   spring.add_force(0.0, pair.q, pair.v, force);
   EXPECT_NEAR(force(2), -torque, 1e-12);
   EXPECT_NEAR(force(5), torque, 1e-12);
-  EXPECT_NEAR(spring.potential_energy(pair.q), 20.0 * 2.3 * 2.3 + 0.75 * std::pow(2.3, 4), 1e-12);
+  EXPECT_NEAR(spring.potential_energy(0.0, pair.q), 20.0 * 2.3 * 2.3 + 0.75 * std::pow(2.3, 4),
+              1e-12);
   testing::expect_exact_force_derivatives(spring, 0.0, pair.q, pair.v, "two bodies");
   const detail::RotationalSpringDamper grounded("torsion", -1, 5, 0.5, law);
   testing::expect_exact_force_derivatives(grounded, 0.0, pair.q, pair.v, "to the ground");
 }
 
 TEST(MbdForceElements, NonlinearSpringDamperHasExactDerivatives) {
-  auto law = std::make_shared<detail::UserTension>(
-      [](double e, double r) { return 300.0 * e + 4e4 * e * e * e + 15.0 * r + 2.0 * r * r * r; });
+  auto law = std::make_shared<detail::UserTension>([](double e, double r, double) {
+    return 300.0 * e + 4e4 * e * e * e + 15.0 * r + 2.0 * r * r * r;
+  });
   expect_point_to_point_derivatives("cubic", 0.9, law);
 }
 
@@ -90,25 +93,26 @@ TEST(MbdForceElements, SpringActorHasExactDerivativesAwayFromItsKinks) {
 TEST(MbdForceElements, SpringActorCharacteristicIsPiecewiseLinear) {
   // Compression up to 2 cm at 50 N/m, tension up to 1 cm at 5000 N/m, continued beyond.
   const detail::PiecewiseLinearTension actor({{-0.02, -1.0}, {0.0, 0.0}, {0.01, 50.0}}, 3.0);
-  EXPECT_DOUBLE_EQ(actor.at(-0.03, 0.0).value, -1.5);  // extrapolated with 50 N/m
-  EXPECT_DOUBLE_EQ(actor.at(0.005, 0.0).value, 25.0);
-  EXPECT_DOUBLE_EQ(actor.at(0.02, 0.0).value, 100.0);  // extrapolated with 5000 N/m
-  EXPECT_DOUBLE_EQ(actor.at(0.005, 0.0).by_elongation, 5000.0);
-  EXPECT_DOUBLE_EQ(actor.at(-0.01, 2.0).value, -0.5 + 6.0);
-  EXPECT_DOUBLE_EQ(actor.at(-0.01, 2.0).by_rate, 3.0);
+  EXPECT_DOUBLE_EQ(actor.at(-0.03, 0.0, 0.0).value, -1.5);  // extrapolated with 50 N/m
+  EXPECT_DOUBLE_EQ(actor.at(0.005, 0.0, 0.0).value, 25.0);
+  EXPECT_DOUBLE_EQ(actor.at(0.02, 0.0, 0.0).value, 100.0);  // extrapolated with 5000 N/m
+  EXPECT_DOUBLE_EQ(actor.at(0.005, 0.0, 0.0).by_elongation, 5000.0);
+  EXPECT_DOUBLE_EQ(actor.at(-0.01, 2.0, 0.0).value, -0.5 + 6.0);
+  EXPECT_DOUBLE_EQ(actor.at(-0.01, 2.0, 0.0).by_rate, 3.0);
   // Energies: 5000 (0.01)^2 / 2 = 0.25 J, 50 (0.02)^2 / 2 = 0.01 J, 0.25 + 50 * 0.01 + 5000 *
   // 0.01^2 / 2 = 1.0 J at 2 cm.
-  EXPECT_NEAR(actor.energy(0.01), 0.25, 1e-15);
-  EXPECT_NEAR(actor.energy(-0.02), 0.01, 1e-15);
-  EXPECT_NEAR(actor.energy(0.02), 1.0, 1e-14);
+  EXPECT_NEAR(actor.energy(0.01, 0.0), 0.25, 1e-15);
+  EXPECT_NEAR(actor.energy(-0.02, 0.0), 0.01, 1e-15);
+  EXPECT_NEAR(actor.energy(0.02, 0.0), 1.0, 1e-14);
 }
 
 TEST(MbdForceElements, UserTensionEnergyIsTheIntegralOfTheLaw) {
-  const detail::UserTension law([](double e, double) { return 300.0 * e + 4e4 * e * e * e; });
+  const detail::UserTension law(
+      [](double e, double, double) { return 300.0 * e + 4e4 * e * e * e; });
   const double e = 0.07;
-  EXPECT_NEAR(law.energy(e), 150.0 * e * e + 1e4 * e * e * e * e, 1e-14);
-  EXPECT_NEAR(law.energy(-e), 150.0 * e * e + 1e4 * e * e * e * e, 1e-14);
-  const detail::Tension t = law.at(e, 0.0);
+  EXPECT_NEAR(law.energy(e, 0.0), 150.0 * e * e + 1e4 * e * e * e * e, 1e-14);
+  EXPECT_NEAR(law.energy(-e, 0.0), 150.0 * e * e + 1e4 * e * e * e * e, 1e-14);
+  const detail::Tension t = law.at(e, 0.0, 0.0);
   // Central differences of 6e-6 m: truncation 2e-9 relative.
   EXPECT_NEAR(t.by_elongation, 300.0 + 1.2e5 * e * e, 1e-8 * 888.0);
 }
@@ -156,7 +160,7 @@ TEST(MbdForceElements, NonlinearTorsionOscillatorConservesItsEnergy) {
       {.name = "hardening",
        .a = wheel,
        .b = kGround,
-       .torque = [](double phi, double) { return 9.0 * phi + 40.0 * phi * phi * phi; },
+       .torque = [](double phi, double, double) { return 9.0 * phi + 40.0 * phi * phi * phi; },
        .rest_angle = 0.0});
   State state = model.initial_state();
   const double energy = 0.5 * 9.0 * 0.25 + 10.0 * std::pow(0.5, 4);
@@ -192,6 +196,36 @@ TEST(MbdForceElements, NonlinearTorsionOscillatorConservesItsEnergy) {
   EXPECT_NEAR(crossing, quarter, 1e-6);
 }
 
+// An actuator: a spring whose rest point moves, T = k (e - a sin(w t)). From rest at e = 0,
+// m e'' = -k (e - a sin w t) gives e = A (sin w t - w / w0 sin w0 t), A = a w0^2 / (w0^2 - w^2).
+// The law is evaluated at the stage times (held at a step's start it would be off by ~h).
+TEST(MbdForceElements, ALawInTimeDrivesItsSpring) {
+  Model model;
+  RigidBody2DSpec spec = rigid("slider", 1.0, 1.0);
+  spec.position = {1.0, 0.0};
+  const BodyId slider = model.add_rigid_body(spec);
+  model.add_coordinate_constraint(slider, Coordinate::Y);
+  model.add_coordinate_constraint(slider, Coordinate::Angle);
+  const double k = 100.0, a = 0.05, w = 3.0, w0 = 10.0;
+  const int actuator = model.add_nonlinear_spring_damper(
+      {.name = "actuator",
+       .a = {kGround, {0.0, 0.0}},
+       .b = {slider, {0.0, 0.0}},
+       .tension = [=](double e, double, double t) { return k * (e - a * std::sin(w * t)); },
+       .rest_length = 1.0});
+  State state = model.initial_state();
+  RadauIIA integrator(3, kTight);
+  for (int n = 0; n < 1000; ++n)
+    integrator.step(model, state, 1e-3);
+  const double amplitude = a * w0 * w0 / (w0 * w0 - w * w);
+  const double e = model.coordinate(state, slider, Coordinate::X) - 1.0;
+  EXPECT_NEAR(e, amplitude * (std::sin(w) - w / w0 * std::sin(w0)), 1e-9);
+  EXPECT_NEAR(force_element_force(model, state, actuator), k * (e - a * std::sin(w)), 1e-9);
+  // The energy stored, with the law held at the state's time: the integral of k (s - a sin w t).
+  EXPECT_NEAR(model.force_element(actuator).potential_energy(state.time, state.q),
+              k * (0.5 * e * e - a * std::sin(w) * e), 1e-12);
+}
+
 // m x'' = sin(t) from rest: x(t) = t - sin(t). At h = 0.05 Radau IIA (order 5) gives it to
 // about 1e-9; a force held at the step start would be off by about h / 2 * (1 - cos 1) = 1e-2.
 TEST(MbdForceElements, TimeDependentForceIsEvaluatedAtTheStageTimes) {
@@ -225,7 +259,7 @@ TEST(MbdForceElements, SpringForcesAreMeasuredAndStoreEnergy) {
       {.name = "cubic",
        .a = {kGround, {0.0, 0.0}},
        .b = {valve, {0.0, 0.0}},
-       .tension = [](double e, double) { return 1000.0 * e * e * e; },
+       .tension = [](double e, double, double) { return 1000.0 * e * e * e; },
        .rest_length = 0.1});
   const State state = model.initial_state();
   // The actor's table has slope 10 N/m continued beyond 0: 0.1 m -> 1 N, 0.05 J; the cubic law

@@ -186,11 +186,12 @@ Model every_element_model(int beam_elements) {
                            .rest_length = std::nullopt});
   model.add_rotational_spring_damper(
       {.name = "hinge spring", .a = pendulum, .b = held, .stiffness = 3.0, .damping = 0.1});
-  model.add_nonlinear_spring_damper(
-      {.name = "rubber",
-       .a = {held, {0.1, 0.0}},
-       .b = {b, {0.8, -0.01}},
-       .tension = [](double s, double rate) { return 50.0 * s + 400.0 * s * s * s + 2.0 * rate; }});
+  model.add_nonlinear_spring_damper({.name = "rubber",
+                                     .a = {held, {0.1, 0.0}},
+                                     .b = {b, {0.8, -0.01}},
+                                     .tension = [](double s, double rate, double) {
+                                       return 50.0 * s + 400.0 * s * s * s + 2.0 * rate;
+                                     }});
   model.add_spring_actor({.name = "actor",
                           .a = {hanging, {0.05, 0.0}},
                           .b = {kGround, {1.0, -1.0}},

@@ -39,23 +39,24 @@ std::vector<BlockSpec> spring_blocks() {
       block_spec(
           "NonlinearRotationalSpringDamper",
           with_scene_numbers(
-              "Rotational spring-damper whose torque resisting the twist is f(rotation, rate), a "
-              "muParser expression (rotation = phi_a - phi_b - phi0 [rad], rate = its rate "
-              "[rad/s]): the torque on body_a is -f, on body_b +f."),
+              "Rotational spring-damper whose torque resisting the twist is f(rotation, rate, t), "
+              "a muParser expression (rotation = phi_a - phi_b - phi0 [rad], rate = its rate "
+              "[rad/s], t the time [s]): the torque on body_a is -f, on body_b +f."),
           {element_name_spec(), text("body_a", "name of a RigidBody2D"),
            text("body_b", "name of a RigidBody2D; absent: the ground").optional(),
            text("torque",
-                "torque [N m/m] resisting the twist, in rotation and rate, e.g. "
+                "torque [N m/m] resisting the twist, in rotation, rate and t, e.g. "
                 "\"rotation < 0 ? 50*rotation : 2*rotation + 0.1*rate\""),
            number("rest_angle", "rad", "phi0 (default: the initial relative angle)").optional()})
           .as_list()
           .planar(),
       block_spec("NonlinearSpringDamper",
                  with_scene_numbers("Spring-damper along the line of the two points with "
-                                    "tension = f(elongation, rate), a muParser expression "
-                                    "(elongation = l - l0 [m], rate = dl/dt [m/s])."),
+                                    "tension = f(elongation, rate, t), a muParser expression "
+                                    "(elongation = l - l0 [m], rate = dl/dt [m/s], t the time "
+                                    "[s])."),
                  two_points({text("tension",
-                                  "tension [N/m] in elongation and rate, e.g. "
+                                  "tension [N/m] in elongation, rate and t, e.g. "
                                   "\"1e4*elongation + 50*rate\""),
                              rest_length_spec()}))
           .as_list()
@@ -117,8 +118,10 @@ void build_planar_actors(SceneBuilder& builder) {
     spec.name = name_of(f);
     spec.a = builder.point(f, "a");
     spec.b = builder.point(f, "b");
-    const RuntimeExpression law = builder.expression(f, "tension", {"elongation", "rate"});
-    spec.tension = [law](double elongation, double rate) { return law(elongation, rate); };
+    const RuntimeExpression law = builder.expression(f, "tension", {"elongation", "rate", "t"});
+    spec.tension = [law](double elongation, double rate, double t) {
+      return law(elongation, rate, t);
+    };
     spec.rest_length = optional_number(f, "rest_length");
     builder.add_force_element(
         f, [&] { return model.add_nonlinear_spring_damper(spec); }, false);
@@ -128,8 +131,8 @@ void build_planar_actors(SceneBuilder& builder) {
     spec.name = name_of(f);
     spec.a = builder.find_body(f, "body_a");
     if (f.has("body_b")) spec.b = builder.find_body(f, "body_b");
-    const RuntimeExpression law = builder.expression(f, "torque", {"rotation", "rate"});
-    spec.torque = [law](double rotation, double rate) { return law(rotation, rate); };
+    const RuntimeExpression law = builder.expression(f, "torque", {"rotation", "rate", "t"});
+    spec.torque = [law](double rotation, double rate, double t) { return law(rotation, rate, t); };
     spec.rest_angle = optional_number(f, "rest_angle");
     builder.add_force_element(
         f, [&] { return model.add_nonlinear_rotational_spring_damper(spec); }, true);

@@ -92,4 +92,8 @@ double RuntimeExpression::operator()(double first, double second) const {
   return (*this)(std::vector<double>{first, second});
 }
 
+double RuntimeExpression::operator()(double first, double second, double third) const {
+  return (*this)(std::vector<double>{first, second, third});
+}
+
 }  // namespace fsi::scene::detail

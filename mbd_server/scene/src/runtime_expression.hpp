@@ -1,6 +1,7 @@
 #pragma once
 // A muParser expression in named variables that the multibody model evaluates while it runs:
-// the tension of a NonlinearSpringDamper in `elongation` and `rate`, a PointForce or Torque in `t`
+// the tension of a NonlinearSpringDamper in `elongation`, `rate` and `t`, a PointForce or Torque
+// in `t`
 // (internal to the scene builder). Other names are the scene's numbers (`Geometry.T`), fixed
 // when the expression is built. Copies share one parser; not thread-safe, like the model.
 
@@ -38,6 +39,7 @@ class RuntimeExpression {
   double operator()(const std::vector<double>& values) const;
   double operator()(double value) const;
   double operator()(double first, double second) const;
+  double operator()(double first, double second, double third) const;
 
  private:
   struct Parser;

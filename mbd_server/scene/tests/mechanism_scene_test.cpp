@@ -185,6 +185,34 @@ Sensor { name = "potential"; type = "potential_energy" }
   EXPECT_EQ(structure_sensor_value(scene.model, scene.sensors[0], state), 0.0);
 }
 
+// Both user laws may name the time: a spring engaged at t = 0.5 s, a torsion spring whose rest
+// angle turns (a servo), read at the state's time.
+TEST_F(MechanismScene, SpringLawsMayDependOnTheTime) {
+  Scene scene = build_scene(
+      write(R"scene(RigidBody2D { name = "arm"; mass = 1; inertia = 0.1; position = [0.5, 0]
+              Mesh { points = [[0, 0], [0.1, 0]] } }
+RevoluteJoint { name = "hinge"; body_a = "arm"; point_a = [-0.5, 0]; point_b = [0, 0] }
+NonlinearSpringDamper { name = "late"; body_a = "arm"; point_b = [0.5, -1]; rest_length = 0.5
+                        tension = "t < 0.5 ? 0 : 200*elongation" }
+NonlinearRotationalSpringDamper { name = "servo"; body_a = "arm"; rest_angle = 0
+                                  torque = "20*(rotation - 0.3*sin(2*t))" }
+Sensor { name = "late_tension"; type = "spring_force"; element = "late" }
+Sensor { name = "servo_torque"; type = "spring_force"; element = "servo" }
+Sensor { name = "potential"; type = "potential_energy" }
+)scene"));
+  mbd::State state = scene.model.initial_state();
+  // The spring's points are 1 m apart: elongation 0.5 m.
+  EXPECT_EQ(structure_sensor_value(scene.model, scene.sensors[0], state), 0.0);
+  EXPECT_NEAR(structure_sensor_value(scene.model, scene.sensors[1], state), 0.0, 1e-15);
+  EXPECT_NEAR(structure_sensor_value(scene.model, scene.sensors[2], state), 0.0, 1e-15);
+  state.time = 0.75;
+  EXPECT_NEAR(structure_sensor_value(scene.model, scene.sensors[0], state), 100.0, 1e-9);
+  EXPECT_NEAR(structure_sensor_value(scene.model, scene.sensors[1], state), 6.0 * std::sin(1.5),
+              1e-9);
+  // 200 * 0.5^2 / 2 and the integral of 20 (s - 0.3 sin 1.5) from 0 to 0 (no twist).
+  EXPECT_NEAR(structure_sensor_value(scene.model, scene.sensors[2], state), 25.0, 1e-9);
+}
+
 TEST_F(MechanismScene, ANonlinearRotationalSpringDampersMistakesAreProblemsAtTheirLines) {
   const std::string text = problems(
       R"scene(RigidBody2D { name = "flap"; mass = 1; inertia = 1; Mesh { points = [[0, 0], [1, 0]] } }

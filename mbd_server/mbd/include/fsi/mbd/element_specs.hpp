@@ -121,10 +121,11 @@ struct RotationalSpringDamperSpec {
 };
 
 // Spring-damper along the line between two points whose tension is a user function of the
-// elongation l - rest_length [m] and its rate dl/dt [m/s]; positive tension pulls the points
-// together (as SpringDamperSpec). Its derivatives are taken by central differences of the
-// function; its energy (potential_energy) is the integral of tension(s, 0) ds from 0.
-using TensionFunction = std::function<double(double elongation, double rate)>;
+// elongation l - rest_length [m], its rate dl/dt [m/s] and the time t [s]; positive tension pulls
+// the points together (as SpringDamperSpec). Its derivatives are taken by central differences of
+// the function; its energy (potential_energy) is the integral of tension(s, 0, t) ds from 0 (a
+// law that changes in time changes its stored energy by itself: what drives it does work).
+using TensionFunction = std::function<double(double elongation, double rate, double time)>;
 struct NonlinearSpringDamperSpec {
   std::string name;  // default "nonlinear spring-damper <k>"
   BodyPointSpec a;
@@ -134,9 +135,10 @@ struct NonlinearSpringDamperSpec {
 };
 
 // A rotational spring-damper whose resisting torque is a user function of the twist
-// phi_a - phi_b - rest_angle [rad] and its rate [rad/s]: the torque on a is -torque(twist, rate),
-// the opposite on b (as RotationalSpringDamperSpec, whose law is k twist + c rate). Derivatives
-// by central differences; its energy is the integral of torque(s, 0) ds from 0.
+// phi_a - phi_b - rest_angle [rad], its rate [rad/s] and the time [s]: the torque on a is
+// -torque(twist, rate, t), the opposite on b (as RotationalSpringDamperSpec, whose law is
+// k twist + c rate). Derivatives by central differences; its energy is the integral of
+// torque(s, 0, t) ds from 0.
 struct NonlinearRotationalSpringDamperSpec {
   std::string name;  // default "nonlinear rotational spring-damper <k>"
   BodyId a = kGround;

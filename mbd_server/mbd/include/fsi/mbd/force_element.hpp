@@ -55,7 +55,9 @@ class ForceElement {
   virtual std::string description() const { return "force element"; }
   // The elastic energy stored in the element at q (zero for non-conservative elements); summed
   // into Model::potential_energy.
-  virtual double potential_energy(const Eigen::VectorXd& /*q*/) const { return 0.0; }
+  virtual double potential_energy(double /*time*/, const Eigen::VectorXd& /*q*/) const {
+    return 0.0;
+  }
 };
 
 }  // namespace fsi::mbd
