@@ -197,6 +197,18 @@ def weight_check_arguments(description, settle_start_default, settle_start_help)
     return parser
 
 
+def closed_form_run(description, tolerance_default, tolerance_help):
+    """The command line of a check against a closed form (RUN_DIR and --tolerance of its main
+    check), parsed, and the run: (args, run.json as a dict, sensors.csv as columns, the scene's
+    parameters by their path)."""
+    parser = argparse.ArgumentParser(description=description, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("run_dir")
+    parser.add_argument("--tolerance", type=float, default=tolerance_default, help=tolerance_help)
+    args = parser.parse_args()
+    run, sensors = read_run(args.run_dir)
+    return args, run, sensors, run["parameters_flat"]
+
+
 def fluid_weight(run, particle_count):
     """The weight N m g of `particle_count` particles of the run's particle mass m under its
     gravity g, as (m, g, N m g)."""

@@ -5,22 +5,16 @@ e = A (sin w t - w/w0 sin w0 t), A = a w0^2 / (w0^2 - w^2), w0 = sqrt(k/m), at e
 --tolerance m (default 1e-8: measured 1.1e-14 at h = 1e-3 s, 2026-12-07); the actuator's tension
 k (e - a sin w t) at every row; and its work sensor against the cart's kinetic energy (the only
 force doing work on the cart; to 2e-6 J/m, measured 4.9e-7, the work sum's trapezoids). Prints one line per check; exit status 1 if one fails."""
-import argparse
 import math
 import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from fsi_results import Checks, read_run  # noqa: E402 (examples/fsi_results.py)
+from fsi_results import Checks, closed_form_run  # noqa: E402 (examples/fsi_results.py)
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("run_dir")
-    parser.add_argument("--tolerance", type=float, default=1e-8, help="largest |e - closed form| [m]")
-    args = parser.parse_args()
-    run, s = read_run(args.run_dir)
-    params = run["parameters_flat"]
+    args, _, s, params = closed_form_run(__doc__, 1e-8, "largest |e - closed form| [m]")
     k, a, w, m = (float(params["Geometry." + name]) for name in ("k", "a", "w", "m"))
     w0 = math.sqrt(k / m)
     amplitude = a * w0 * w0 / (w0 * w0 - w * w)

@@ -5,21 +5,15 @@ force that is not conservative) to --tolerance J/m (default 2e-6: measured 5.4e-
 h = 1e-3 s, 2026-12-07), it never rises (a damper only takes energy), and the pendulum, let go from
 the horizontal, has lost part of its energy but not all of it by the end. Prints one line per
 check; exit status 1 if one fails."""
-import argparse
 import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from fsi_results import Checks, read_run  # noqa: E402 (examples/fsi_results.py)
+from fsi_results import Checks, closed_form_run  # noqa: E402 (examples/fsi_results.py)
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("run_dir")
-    parser.add_argument("--tolerance", type=float, default=2e-6, help="largest |work - energy change| [J/m]")
-    args = parser.parse_args()
-    run, s = read_run(args.run_dir)
-    params = run["parameters_flat"]
+    args, _, s, params = closed_form_run(__doc__, 2e-6, "largest |work - energy change| [J/m]")
     released = float(params["Geometry.m"]) * 9.81 * 0.5 * float(params["Geometry.L"])  # to the lowest point
     energy = [k + p for k, p in zip(s["kinetic"], s["potential"])]
     gaps = [abs(w - (e - energy[0])) for w, e in zip(s["damper_work"], energy)]

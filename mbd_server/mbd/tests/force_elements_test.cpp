@@ -124,14 +124,20 @@ TEST(MbdForceElements, PointForceHasExactDerivatives) {
   testing::expect_exact_force_derivatives(force, 0.4, pair.q, pair.v, "body point");
 }
 
-// J phi'' = -k phi: phi(t) = phi0 cos(sqrt(k / J) t); the energy stays 0.5 k phi0^2.
-TEST(MbdForceElements, TorsionOscillatorFollowsTheCosine) {
-  Model model;
+// A wheel of 1 kg and J = 0.25 kg m^2 held at its centre, turned to `angle`, free to rotate.
+BodyId wheel_on_its_axle(Model& model, double angle) {
   RigidBody2DSpec spec = rigid("wheel", 1.0, 0.25);
-  spec.angle = 0.2;
+  spec.angle = angle;
   const BodyId wheel = model.add_rigid_body(spec);
   model.add_coordinate_constraint(wheel, Coordinate::X);
   model.add_coordinate_constraint(wheel, Coordinate::Y);
+  return wheel;
+}
+
+// J phi'' = -k phi: phi(t) = phi0 cos(sqrt(k / J) t); the energy stays 0.5 k phi0^2.
+TEST(MbdForceElements, TorsionOscillatorFollowsTheCosine) {
+  Model model;
+  const BodyId wheel = wheel_on_its_axle(model, 0.2);
   const int element = model.add_rotational_spring_damper(
       {.name = "torsion bar", .a = wheel, .b = kGround, .stiffness = 9.0, .rest_angle = 0.0});
   State state = model.initial_state();
@@ -151,11 +157,7 @@ TEST(MbdForceElements, TorsionOscillatorFollowsTheCosine) {
 // energy curve.
 TEST(MbdForceElements, NonlinearTorsionOscillatorConservesItsEnergy) {
   Model model;
-  RigidBody2DSpec spec = rigid("wheel", 1.0, 0.25);
-  spec.angle = 0.5;
-  const BodyId wheel = model.add_rigid_body(spec);
-  model.add_coordinate_constraint(wheel, Coordinate::X);
-  model.add_coordinate_constraint(wheel, Coordinate::Y);
+  const BodyId wheel = wheel_on_its_axle(model, 0.5);
   const int element = model.add_nonlinear_rotational_spring_damper(
       {.name = "hardening",
        .a = wheel,
