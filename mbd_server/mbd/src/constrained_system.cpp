@@ -95,6 +95,11 @@ std::string ConstrainedSystem::constraint_description(int row) const {
   return "constraint row " + std::to_string(row);
 }
 
+std::string ConstrainedSystem::equation_of_motion_note(int, double, const Eigen::VectorXd&,
+                                                       const Eigen::VectorXd&) const {
+  return {};
+}
+
 std::string ConstrainedSystem::non_finite_source(double, const Eigen::VectorXd&,
                                                  const Eigen::VectorXd&) const {
   return {};

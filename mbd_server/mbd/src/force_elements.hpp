@@ -34,6 +34,8 @@ struct Tension {
 class TensionLaw {
  public:
   virtual ~TensionLaw() = default;
+  // Written by a user (a function given to the model), not one of the engine's own forms.
+  virtual bool user() const { return false; }
   // A law may depend on the time [s] (a user's); the table and the linear law do not.
   virtual Tension at(double elongation, double rate, double time) const = 0;
   // The work stored by stretching from 0 to `elongation` at zero rate, with the law held at `time`.
@@ -69,6 +71,7 @@ class RotationalSpringDamper final : public SparseForceElement, public MeasuredF
                             MatrixSink& force_by_position,
                             MatrixSink& force_by_velocity) const override;
   double potential_energy(double time, const Eigen::VectorXd& q) const override;
+  bool user_law() const override { return law_->user(); }
   // The torque on body a [N m].
   double measured_force(double time, const Eigen::VectorXd& q,
                         const Eigen::VectorXd& v) const override;
@@ -110,6 +113,7 @@ class PiecewiseLinearTension final : public TensionLaw {
 class UserTension final : public TensionLaw {
  public:
   explicit UserTension(std::function<double(double, double, double)> tension);
+  bool user() const override { return true; }
   Tension at(double elongation, double rate, double time) const override;
   double energy(double elongation, double time) const override;
 
@@ -128,6 +132,7 @@ class PointToPointForce final : public SparseForceElement, public MeasuredForce 
                             MatrixSink& force_by_position,
                             MatrixSink& force_by_velocity) const override;
   double potential_energy(double time, const Eigen::VectorXd& q) const override;
+  bool user_law() const override { return law_->user(); }
   // The tension [N].
   double measured_force(double time, const Eigen::VectorXd& q,
                         const Eigen::VectorXd& v) const override;

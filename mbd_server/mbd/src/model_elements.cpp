@@ -248,6 +248,39 @@ int Model::add_torque(const TorqueSpec& spec) {
 
 // --- readouts ---
 
+namespace {
+
+// Whether an element writes any entry into one row of its derivatives.
+class RowWatch final : public MatrixSink {
+ public:
+  explicit RowWatch(int row) : row_(row) {}
+  void add(int row, int, double) override { seen_ = seen_ || row == row_; }
+  bool seen() const { return seen_; }
+
+ private:
+  int row_;
+  bool seen_ = false;
+};
+
+}  // namespace
+
+std::string Model::equation_of_motion_note(int index, double time, const Eigen::VectorXd& q,
+                                           const Eigen::VectorXd& v) const {
+  std::string names;
+  for (int k = 0; k < force_element_count(); ++k) {
+    if (!force_element(k).user_law()) continue;
+    RowWatch by_position(index), by_velocity(index);
+    force_element(k).add_jacobian_entries(time, q, v, by_position, by_velocity);
+    if (by_position.seen() || by_velocity.seen())
+      names += (names.empty() ? "" : ", ") + force_element(k).description();
+  }
+  if (names.empty()) return {};
+  return "; a user's law acts on it (" + names +
+         "): if a law jumps in its elongation (rotation) or rate, no step size gets Newton past "
+         "the jump - make it continuous, a kink is fine (docs/user-guide.md, \"Write user laws "
+         "continuous\")";
+}
+
 std::string Model::non_finite_source(double time, const Eigen::VectorXd& q,
                                      const Eigen::VectorXd& v) const {
   for (int i = 0; i < coordinate_count(); ++i) {

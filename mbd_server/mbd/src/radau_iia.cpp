@@ -295,7 +295,8 @@ struct RadauIIA::Workspace {
       return "; largest residual in the kinematics of " + system.coordinate_description(row);
     if (row < 2 * n) {
       return "; largest residual in the equation of motion of " +
-             system.coordinate_description(row - n);
+             system.coordinate_description(row - n) +
+             system.equation_of_motion_note(row - n, state.time, state.q, state.v);
     }
     return "; largest residual in " + system.constraint_description(row - 2 * n);
   }

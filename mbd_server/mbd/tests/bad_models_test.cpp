@@ -124,5 +124,42 @@ TEST(MbdBadModels, NonConvergentNewtonNamesTheLargestResidual) {
   EXPECT_TRUE(contains(message, "'bob'") || contains(message, "'rod'")) << message;
 }
 
+// A law that jumps (a preload dropped inside a seat) has no derivative at its jump: Newton fails
+// at every step size, and the message names the user's law on the failing equation, not the
+// user's law on another body.
+TEST(MbdBadModels, ALawThatJumpsIsNamedWhereNewtonFails) {
+  Model model;
+  RigidBody2DSpec spec = rigid("slider", 1.0, 1.0);
+  spec.position = {1.0, 0.0};
+  const BodyId slider = model.add_rigid_body(spec);
+  model.add_coordinate_constraint(slider, Coordinate::Y);
+  model.add_coordinate_constraint(slider, Coordinate::Angle);
+  model.add_nonlinear_spring_damper(
+      {.name = "seat",
+       .a = {kGround, {0.0, 0.0}},
+       .b = {slider, {0.0, 0.0}},
+       .tension = [](double e, double, double) { return e < 0.0 ? 1e3 * e : 5.0 + 10.0 * e; },
+       .rest_length = 1.0});
+  spec = rigid("other", 1.0, 1.0);
+  spec.position = {0.0, 3.0};
+  const BodyId other = model.add_rigid_body(spec);
+  model.add_nonlinear_spring_damper({.name = "smooth",
+                                     .a = {kGround, {0.0, 2.0}},
+                                     .b = {other, {0.0, 0.0}},
+                                     .tension = [](double e, double, double) { return 10.0 * e; }});
+  State state = model.initial_state();
+  RadauIIA integrator(3, NewtonOptions{.relative_tolerance = 1e-10, .max_iterations = 12});
+  const std::string message = error_message([&] {
+    for (int n = 0; n < 1000; ++n)
+      integrator.step(model, state, 1e-3);
+  });
+  std::printf("a law that jumps: %s\n", message.c_str());
+  EXPECT_TRUE(contains(message, "equation of motion of body 'slider'")) << message;
+  EXPECT_TRUE(contains(message, "a user's law acts on it (nonlinear spring-damper 'seat')"))
+      << message;
+  EXPECT_TRUE(contains(message, "Write user laws continuous")) << message;
+  EXPECT_FALSE(contains(message, "'smooth'")) << message;
+}
+
 }  // namespace
 }  // namespace fsi::mbd

@@ -125,6 +125,10 @@ class ConstrainedSystem {
   virtual std::string coordinate_description(int index) const;
   // "revolute joint 'hinge' (x)"; default "constraint row <row>".
   virtual std::string constraint_description(int row) const;
+  // What may keep Newton from converging in coordinate `index`'s equation of motion at (t, q, v)
+  // that no step size cures, as "; ..." for the message, or empty (default: empty).
+  virtual std::string equation_of_motion_note(int index, double time, const Eigen::VectorXd& q,
+                                              const Eigen::VectorXd& v) const;
   // The first contribution that is not finite at (t, q, v), by description, or empty (default:
   // empty, the messages then name the largest residual instead).
   virtual std::string non_finite_source(double time, const Eigen::VectorXd& q,

@@ -51,6 +51,10 @@ class ForceElement {
     return true;
   }
 
+  // True when the force is a user's function of the coordinates or velocities (a spring law
+  // written in a scene): Newton needs it continuous, which only its author can see to; the
+  // integrators' messages name such elements where Newton fails.
+  virtual bool user_law() const { return false; }
   // Names the element in messages (non-finite forces, sensors).
   virtual std::string description() const { return "force element"; }
   // The elastic energy stored in the element at q (zero for non-conservative elements); summed

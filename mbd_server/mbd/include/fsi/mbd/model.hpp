@@ -284,6 +284,10 @@ class Model final : public ConstrainedSystem {
   // load or a constraint row, by description; empty when all are finite. For error messages.
   std::string non_finite_source(double time, const Eigen::VectorXd& q,
                                 const Eigen::VectorXd& v) const override;
+  // The force elements with a user's law (ForceElement::user_law) acting on the coordinate, named,
+  // with what such a law needs (continuity); empty when none acts on it.
+  std::string equation_of_motion_note(int index, double time, const Eigen::VectorXd& q,
+                                      const Eigen::VectorXd& v) const override;
   // Throws fsi::Error naming `user` if the point is not a point of its body (unknown body,
   // planar/spatial mismatch, outside a beam or cable, off a cable's centre line). Two names, not
   // overloads: a braced point {body, {x, y}} would convert to either spec (Eigen's vector
