@@ -46,7 +46,7 @@ std::vector<BlockSpec> spring_blocks() {
            text("body_b", "name of a RigidBody2D; absent: the ground").optional(),
            text("torque",
                 "torque [N m/m] resisting the twist, in rotation, rate and t, e.g. "
-                "\"rotation < 0 ? 50*rotation : 2*rotation + 0.1*rate\""),
+                "\"(rotation < 0 ? 50*rotation : 2*rotation) + 0.1*rate\""),
            number("rest_angle", "rad", "phi0 (default: the initial relative angle)").optional()})
           .as_list()
           .planar(),

@@ -163,7 +163,7 @@ RigidBody2D { name = "flap"; mass = 0.3; inertia = 0.01; angle = 0.1
               Mesh { points = [[0, 0], [0.1, 0]] } }
 RevoluteJoint { name = "hinge"; body_a = "flap" }
 NonlinearRotationalSpringDamper { name = "stop"; body_a = "flap"; rest_angle = 0
-    torque = "rotation > 0 ? Geometry.k*rotation^2 + 2*rate : 0" }
+    torque = "rotation > 0 ? Geometry.k*rotation^2*(1 + 2*rate) : 0" }
 Sensor { name = "stop_torque"; type = "spring_force"; element = "stop" }
 Sensor { name = "stop_power"; type = "power"; element = "stop" }
 Sensor { name = "potential"; type = "potential_energy" }
@@ -174,10 +174,10 @@ Sensor { name = "potential"; type = "potential_energy" }
   const int angle =
       scene.model.coordinate_index(scene.model.find_body("flap"), mbd::Coordinate::Angle);
   state.v(angle) = 3.0;
-  // Turned 0.1 rad past the stop at 3 rad/s: f = 50 * 0.01 + 2 * 3 = 6.5 N m; the torque on the
-  // flap -6.5 N m, its power -6.5 * 3 W, the energy 50 * 0.1^3 / 3 (the law at zero rate).
-  EXPECT_NEAR(structure_sensor_value(scene.model, scene.sensors[0], state), -6.5, 1e-9);
-  EXPECT_NEAR(structure_sensor_value(scene.model, scene.sensors[1], state), -19.5, 1e-8);
+  // Turned 0.1 rad past the stop at 3 rad/s: f = 50 * 0.01 * (1 + 2 * 3) = 3.5 N m; the torque on
+  // the flap -3.5 N m, its power -3.5 * 3 W, the energy 50 * 0.1^3 / 3 (the law at zero rate).
+  EXPECT_NEAR(structure_sensor_value(scene.model, scene.sensors[0], state), -3.5, 1e-9);
+  EXPECT_NEAR(structure_sensor_value(scene.model, scene.sensors[1], state), -10.5, 1e-8);
   EXPECT_NEAR(structure_sensor_value(scene.model, scene.sensors[2], state), 50.0 / 3.0 * 1e-3,
               1e-12);
   // Turned back before the stop: no torque.
