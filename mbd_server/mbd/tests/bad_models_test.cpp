@@ -129,18 +129,14 @@ TEST(MbdBadModels, NonConvergentNewtonNamesTheLargestResidual) {
 // user's law on another body.
 TEST(MbdBadModels, ALawThatJumpsIsNamedWhereNewtonFails) {
   Model model;
-  RigidBody2DSpec spec = rigid("slider", 1.0, 1.0);
-  spec.position = {1.0, 0.0};
-  const BodyId slider = model.add_rigid_body(spec);
-  model.add_coordinate_constraint(slider, Coordinate::Y);
-  model.add_coordinate_constraint(slider, Coordinate::Angle);
+  const BodyId slider = testing::slider_along_x(model);
   model.add_nonlinear_spring_damper(
       {.name = "seat",
        .a = {kGround, {0.0, 0.0}},
        .b = {slider, {0.0, 0.0}},
        .tension = [](double e, double, double) { return e < 0.0 ? 1e3 * e : 5.0 + 10.0 * e; },
        .rest_length = 1.0});
-  spec = rigid("other", 1.0, 1.0);
+  RigidBody2DSpec spec = rigid("other", 1.0, 1.0);
   spec.position = {0.0, 3.0};
   const BodyId other = model.add_rigid_body(spec);
   model.add_nonlinear_spring_damper({.name = "smooth",

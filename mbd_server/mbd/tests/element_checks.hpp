@@ -31,6 +31,17 @@ inline RigidBody2DSpec rigid(const std::string& name, double mass, double inerti
   return spec;
 }
 
+// A 1 kg body at (1, 0) that may only slide along x (y and angle held): one end of a spring
+// from the origin.
+inline BodyId slider_along_x(Model& model) {
+  RigidBody2DSpec spec = rigid("slider", 1.0, 1.0);
+  spec.position = {1.0, 0.0};
+  const BodyId slider = model.add_rigid_body(spec);
+  model.add_coordinate_constraint(slider, Coordinate::Y);
+  model.add_coordinate_constraint(slider, Coordinate::Angle);
+  return slider;
+}
+
 // Two bodies at a general configuration with general velocities, q = (x, y, phi) of each.
 struct BodyPair {
   detail::RigidBody2D first{rigid("first", 2.0, 0.3)};

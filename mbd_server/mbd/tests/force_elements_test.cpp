@@ -203,11 +203,7 @@ TEST(MbdForceElements, NonlinearTorsionOscillatorConservesItsEnergy) {
 // The law is evaluated at the stage times (held at a step's start it would be off by ~h).
 TEST(MbdForceElements, ALawInTimeDrivesItsSpring) {
   Model model;
-  RigidBody2DSpec spec = rigid("slider", 1.0, 1.0);
-  spec.position = {1.0, 0.0};
-  const BodyId slider = model.add_rigid_body(spec);
-  model.add_coordinate_constraint(slider, Coordinate::Y);
-  model.add_coordinate_constraint(slider, Coordinate::Angle);
+  const BodyId slider = testing::slider_along_x(model);
   const double k = 100.0, a = 0.05, w = 3.0, w0 = 10.0;
   const int actuator = model.add_nonlinear_spring_damper(
       {.name = "actuator",
