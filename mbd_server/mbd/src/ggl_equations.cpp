@@ -157,15 +157,27 @@ bool GglEquations::consistent_vectors(const State& state, Eigen::VectorXd& y, Ei
 
 std::string GglEquations::describe_row(int row) const {
   FSI_ASSERT(system_ != nullptr && row >= 0 && row < size(), "row out of range");
-  if (row < v_offset()) return "kinematic row of coordinate " + std::to_string(row);
+  if (row < v_offset()) return "kinematics of " + system_->coordinate_description(row);
   if (row < lambda_offset()) {
-    return "equation of motion of coordinate " + std::to_string(row - v_offset()) +
-           " (applied forces)";
+    return "equation of motion of " + system_->coordinate_description(row - v_offset());
   }
   if (row < mu_offset()) {
     return "velocity level of " + system_->constraint_description(row - lambda_offset());
   }
   return "position level of " + system_->constraint_description(position_rows_[row - mu_offset()]);
+}
+
+std::string GglEquations::describe_variable(int index) const {
+  FSI_ASSERT(system_ != nullptr && index >= 0 && index < size(), "variable out of range");
+  if (index < v_offset()) return "position of " + system_->coordinate_description(index);
+  if (index < lambda_offset()) {
+    return "velocity of " + system_->coordinate_description(index - v_offset());
+  }
+  if (index < mu_offset()) {
+    return "multiplier of " + system_->constraint_description(index - lambda_offset());
+  }
+  return "position-level multiplier of " +
+         system_->constraint_description(position_rows_[index - mu_offset()]);
 }
 
 void GglEquations::to_state(const Eigen::VectorXd& y, double time, State& state) const {

@@ -67,9 +67,12 @@ class GglEquations {
   // [M G^T; G 0] [a; lambda] = [F; -remainder] (the current point loads), mu = 0, q' = v,
   // v' = a, lambda' = mu' = 0. Returns false if that system is singular (redundant rows).
   bool consistent_vectors(const State& state, Eigen::VectorXd& y, Eigen::VectorXd& yp);
-  // What residual row `row` is, for error messages: "equation of motion of coordinate 3",
-  // "velocity level of <constraint description>", ...
+  // What residual row `row` is, for error messages: "equation of motion of body 'arm' coordinate
+  // angle", "velocity level of <constraint description>", ...
   std::string describe_row(int row) const;
+  // What component `index` of y is: "velocity of body 'arm' coordinate angle", "multiplier of
+  // <constraint description>", ...
+  std::string describe_variable(int index) const;
   // q, v and lambda of y.
   void to_state(const Eigen::VectorXd& y, double time, State& state) const;
 

@@ -166,6 +166,43 @@ struct IdaIntegrator::Impl {
     self.last_message = std::string(module) + "/" + function + ": " + message;
   }
 
+  // The variable that stopped IDA, for its failure message: the largest weighted component of the
+  // last attempted step's correction (IDAGetEstLocalErrors: the corrector's change of the
+  // predicted y, which the error test measures). A failed corrector (IDA_CONV_FAIL) is judged on
+  // every variable, the error test and a step count run out (IDA_ERR_FAIL, IDA_TOO_MUCH_WORK) on
+  // the differential ones it tests. A coordinate's variable also names the user's laws acting on
+  // its equation of motion (ConstrainedSystem::equation_of_motion_note): a law that jumps, across
+  // which IDA chatters with ever smaller steps, is the usual cause.
+  std::string limiting_variable(int flag, double time) {
+    if (ida == nullptr || system == nullptr) return {};
+    N_Vector scratch = N_VClone(y);
+    if (scratch == nullptr) return {};
+    Eigen::VectorXd weighted;
+    if (IDAGetEstLocalErrors(ida, scratch) == IDA_SUCCESS) {
+      weighted = view(scratch);
+      if (IDAGetErrWeights(ida, scratch) == IDA_SUCCESS)
+        weighted.array() *= view(scratch).array();
+      else
+        weighted.resize(0);
+    }
+    N_VDestroy(scratch);
+    const int n = equations.coordinates();
+    const Eigen::Index tested =
+        flag == IDA_CONV_FAIL ? weighted.size() : std::min<Eigen::Index>(2 * n, weighted.size());
+    if (tested == 0 || !weighted.head(tested).allFinite()) return {};
+    Eigen::Index largest = 0;
+    if (!(weighted.head(tested).cwiseAbs().maxCoeff(&largest) > 0.0)) return {};
+    const int index = static_cast<int>(largest);
+    std::string text = (flag == IDA_CONV_FAIL ? "; the largest weighted correction is in the "
+                                              : "; the largest weighted local error is in the ") +
+                       equations.describe_variable(index);
+    if (index < 2 * n) {
+      const Eigen::VectorXd at = view(y);
+      text += system->equation_of_motion_note(index % n, time, at.head(n), at.segment(n, n));
+    }
+    return text;
+  }
+
   void check(int flag, const char* call) {
     if (flag >= 0) return;
     throw Error(std::string("SUNDIALS call ") + call + " failed with flag " + std::to_string(flag) +
@@ -334,14 +371,24 @@ void IdaIntegrator::advance_without_release(const ConstrainedSystem& system, Sta
     char* flag_name = IDAGetReturnFlagName(flag);  // allocated by SUNDIALS
     const std::string reason = flag_name != nullptr ? flag_name : "unknown";
     std::free(flag_name);
-    char text[640];
+    char text[256];
     std::snprintf(text, sizeof text,
-                  "IDA failed between t = %.9g s and %.9g s, at t = %.9g s: %s (flag %d)%s%s",
-                  state.time, end_time, reached, reason.c_str(), flag,
-                  (w.bad_residual.empty() ? w.last_message : w.bad_residual).empty() ? "" : ": ",
-                  (w.bad_residual.empty() ? w.last_message : w.bad_residual).c_str());
+                  "IDA failed between t = %.9g s and %.9g s, at t = %.9g s: %s (flag %d)",
+                  state.time, end_time, reached, reason.c_str(), flag);
+    std::string detail = w.bad_residual.empty() ? w.last_message : w.bad_residual;
+    while (!detail.empty() && (detail.back() == '.' || detail.back() == ' '))
+      detail.pop_back();
+    std::string message = text + (detail.empty() ? "" : ": " + detail);
+    if (w.bad_residual.empty()) {
+      realtype last_step = 0.0;
+      if (IDAGetLastStep(w.ida, &last_step) == IDA_SUCCESS && last_step > 0.0) {
+        std::snprintf(text, sizeof text, "; its last step was %.3g s", last_step);
+        message += text;
+      }
+      message += w.limiting_variable(flag, reached);
+    }
     // The scene's names (SolverOptions): IDA's options have no other way to the user.
-    throw Error(text, "multibody integration (IDA)",
+    throw Error(message, "multibody integration (IDA)",
                 w.bad_residual.empty()
                     ? "loosen SolverOptions.ErrorControl.absolute_tolerance (a corrector that "
                       "fails at ever smaller steps, at the start in particular, is held by it) "

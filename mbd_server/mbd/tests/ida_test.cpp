@@ -9,6 +9,7 @@
 #include <limits>
 #include <vector>
 
+#include "element_checks.hpp"
 #include "error_message.hpp"
 #include "fsi/common/error.hpp"
 #include "fsi/mbd/ida.hpp"
@@ -191,12 +192,43 @@ TEST(MbdIda, NonFiniteForceIsReportedWithTheTimeAndLeavesTheStateUnchanged) {
   State state = model.initial_state();
   const State before = state;
   const std::string text = testing::error_message([&] { ida.advance(model, state, 0.1); });
+  std::printf("IDA, a force that turns NaN: %s\n", text.c_str());
   EXPECT_NE(text.find("IDA failed between t = 0 s and 0.1 s"), std::string::npos) << text;
   EXPECT_NE(text.find("non-finite residual at t = 0.05"), std::string::npos) << text;
-  EXPECT_NE(text.find("equation of motion of coordinate 0"), std::string::npos) << text;
+  EXPECT_NE(text.find("equation of motion of body 'bob' coordinate"), std::string::npos) << text;
   EXPECT_EQ(state.time, before.time);
   EXPECT_EQ(state.q, before.q);
   EXPECT_TRUE(state.q.allFinite() && state.v.allFinite() && state.lambda.allFinite());
+}
+
+// A law that jumps (a preload dropped inside a seat) stops IDA as it stops Radau IIA's Newton: the
+// message names the variable whose correction IDA could not bring under its tolerance and the
+// user's law on its equation, not the smooth law on another body.
+TEST(MbdIda, ALawThatJumpsIsNamedWhereIdaFails) {
+  Model model;
+  const BodyId slider = testing::slider_along_x(model);
+  model.add_nonlinear_spring_damper(
+      {.name = "seat",
+       .a = {kGround, {0.0, 0.0}},
+       .b = {slider, {0.0, 0.0}},
+       .tension = [](double e, double, double) { return e < 0.0 ? 1e3 * e : 5.0 + 10.0 * e; },
+       .rest_length = 1.0});
+  RigidBody2DSpec spec = testing::rigid("other", 1.0, 1.0);
+  spec.position = {0.0, 3.0};
+  const BodyId other = model.add_rigid_body(spec);
+  model.add_nonlinear_spring_damper({.name = "smooth",
+                                     .a = {kGround, {0.0, 2.0}},
+                                     .b = {other, {0.0, 0.0}},
+                                     .tension = [](double e, double, double) { return 10.0 * e; }});
+  IdaIntegrator ida({.max_steps = 20000});
+  State state = model.initial_state();
+  const std::string text = testing::error_message([&] { ida.advance(model, state, 1.0); });
+  std::printf("IDA, a law that jumps: %s\n", text.c_str());
+  EXPECT_NE(text.find("body 'slider' coordinate x"), std::string::npos) << text;
+  EXPECT_NE(text.find("a user's law acts on it (nonlinear spring-damper 'seat')"),
+            std::string::npos)
+      << text;
+  EXPECT_EQ(text.find("'smooth'"), std::string::npos) << text;
 }
 
 TEST(MbdIda, InvalidOptionsNameTheOption) {
