@@ -6,8 +6,6 @@
 //   RotationalSpringDamper   torque on a: T = -f(phi_a - phi_b - phi_0, omega_a - omega_b), -T on
 //                            b (an angle index < 0 is the ground), f a TensionLaw: the linear
 //                            k twist + c rate, or a user function
-//   PointToPointForce        tension T(l - l_0, dl/dt) along the line of two points, as the linear
-//                            spring-damper (spring_damper.hpp), with a TensionLaw
 //   PointForce, Torque       f(t) at a body point (world frame), tau(t) on a body angle
 //   SpatialTorque            tau(t) on a spatial rigid body in natural coordinates
 
@@ -21,42 +19,9 @@
 #include "fsi/mbd/force_element.hpp"
 #include "measured_force.hpp"
 #include "sink_elements.hpp"
+#include "tension_law.hpp"
 
 namespace fsi::mbd::detail {
-
-// The tension of a point-to-point element and its partial derivatives.
-struct Tension {
-  double value = 0.0;
-  double by_elongation = 0.0;
-  double by_rate = 0.0;
-};
-
-class TensionLaw {
- public:
-  virtual ~TensionLaw() = default;
-  // Written by a user (a function given to the model), not one of the engine's own forms.
-  virtual bool user() const { return false; }
-  // A law may depend on the time [s] (a user's); the table and the linear law do not.
-  virtual Tension at(double elongation, double rate, double time) const = 0;
-  // The work stored by stretching from 0 to `elongation` at zero rate, with the law held at `time`.
-  virtual double energy(double elongation, double time) const = 0;
-};
-
-// k * elongation + c * rate, exact.
-class LinearTension final : public TensionLaw {
- public:
-  LinearTension(double stiffness, double damping) : stiffness_(stiffness), damping_(damping) {}
-  Tension at(double elongation, double rate, double) const override {
-    return {stiffness_ * elongation + damping_ * rate, stiffness_, damping_};
-  }
-  double energy(double elongation, double) const override {
-    return 0.5 * stiffness_ * elongation * elongation;
-  }
-
- private:
-  double stiffness_;
-  double damping_;
-};
 
 class RotationalSpringDamper final : public SparseForceElement, public MeasuredForce {
  public:
@@ -88,59 +53,6 @@ class RotationalSpringDamper final : public SparseForceElement, public MeasuredF
   int angle_a_;
   int angle_b_;
   double rest_angle_;
-  std::shared_ptr<const TensionLaw> law_;
-};
-
-// Piecewise-linear in the elongation through the table points, continued with the end slopes,
-// plus damping * rate (the spring actor of thesis §6.5).
-class PiecewiseLinearTension final : public TensionLaw {
- public:
-  PiecewiseLinearTension(std::vector<Eigen::Vector2d> points, double damping);
-  Tension at(double elongation, double rate, double time) const override;
-  double energy(double elongation, double time) const override;
-
- private:
-  // The segment whose line holds at `elongation` (the end ones beyond the table).
-  std::size_t segment(double elongation) const;
-  double spring(double elongation) const;
-
-  std::vector<Eigen::Vector2d> points_;
-  double damping_;
-};
-
-// A user function of (elongation, rate, time); partial derivatives by central differences, energy
-// by Gauss-Legendre quadrature over [0, elongation] at the given time.
-class UserTension final : public TensionLaw {
- public:
-  explicit UserTension(std::function<double(double, double, double)> tension);
-  bool user() const override { return true; }
-  Tension at(double elongation, double rate, double time) const override;
-  double energy(double elongation, double time) const override;
-
- private:
-  std::function<double(double, double, double)> tension_;
-};
-
-class PointToPointForce final : public SparseForceElement, public MeasuredForce {
- public:
-  PointToPointForce(std::string description, BodyPoint a, BodyPoint b, double rest_length,
-                    std::shared_ptr<const TensionLaw> law);
-
-  void add_force(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
-                 Eigen::VectorXd& force) const override;
-  bool add_jacobian_entries(double time, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
-                            MatrixSink& force_by_position,
-                            MatrixSink& force_by_velocity) const override;
-  double potential_energy(double time, const Eigen::VectorXd& q) const override;
-  bool user_law() const override { return law_->user(); }
-  // The tension [N].
-  double measured_force(double time, const Eigen::VectorXd& q,
-                        const Eigen::VectorXd& v) const override;
-
- private:
-  BodyPoint a_;
-  BodyPoint b_;
-  double rest_length_;
   std::shared_ptr<const TensionLaw> law_;
 };
 

@@ -15,8 +15,8 @@
 #include "fsi/common/text.hpp"
 #include "model_data.hpp"
 #include "point_rows.hpp"
+#include "point_to_point_force.hpp"
 #include "rigid_body_3d.hpp"
-#include "spring_damper.hpp"
 
 namespace fsi::mbd {
 
@@ -312,8 +312,9 @@ void Model::add_spring_damper(const SpringDamperSpec& spec) {
   const double rest = spec.rest_length.value_or(
       (data_->initial_position(spec.b) - data_->initial_position(spec.a)).norm());
   detail::check_spring_values(spec.stiffness, spec.damping, rest, user);
-  data_->force_elements.push_back(
-      std::make_unique<detail::SpringDamper>(first, second, spec.stiffness, spec.damping, rest));
+  data_->force_elements.push_back(std::make_unique<detail::PointToPointForce>(
+      user, first, second, rest,
+      std::make_shared<detail::LinearTension>(spec.stiffness, spec.damping)));
 }
 
 // --- structure ---

@@ -18,6 +18,7 @@
 #include "body_point.hpp"
 #include "coordinate_rows.hpp"
 #include "fsi/common/error.hpp"
+#include "fsi/common/text.hpp"
 #include "fsi/mbd/model.hpp"
 #include "point_rows.hpp"
 #include "rigid_body_3d.hpp"
@@ -69,6 +70,23 @@ inline void check_spring_values(double stiffness, double damping, double rest,
     throw Error("invalid parameters:" + problems, user,
                 "give finite, non-negative stiffness, damping and rest length");
   }
+}
+
+// The rest length of a point-to-point element: `given`, or the initial distance; throws
+// fsi::Error naming `user` if the points coincide initially (no direction) or the length is
+// negative or not finite.
+inline double rest_length_of(const std::optional<double>& given, double initial,
+                             const std::string& user) {
+  if (!(initial > 0.0)) {
+    throw Error("the two points coincide initially (the direction of the force is undefined)", user,
+                "place the points apart");
+  }
+  const double rest = given.value_or(initial);
+  if (!(rest >= 0.0) || !std::isfinite(rest)) {
+    throw Error("the rest length must be finite and non-negative, got " + significant(rest, 9),
+                user, "give rest_length >= 0 or none (the initial distance)");
+  }
+  return rest;
 }
 
 }  // namespace detail

@@ -16,6 +16,7 @@
 #include "measured_force.hpp"
 #include "model_data.hpp"
 #include "point_rows.hpp"
+#include "point_to_point_force.hpp"
 
 namespace fsi::mbd {
 
@@ -164,24 +165,6 @@ int Model::add_nonlinear_rotational_spring_damper(const NonlinearRotationalSprin
   return index;
 }
 
-namespace {
-
-// The rest length of a point-to-point element, checked.
-double rest_length_of(const std::optional<double>& given, double initial, const std::string& user) {
-  if (!(initial > 0.0)) {
-    throw Error("the two points coincide initially (the direction of the force is undefined)", user,
-                "place the points apart");
-  }
-  const double rest = given.value_or(initial);
-  if (!non_negative(rest)) {
-    throw Error("the rest length must be finite and non-negative, got " + significant(rest, 9),
-                user, "give rest_length >= 0 or none (the initial distance)");
-  }
-  return rest;
-}
-
-}  // namespace
-
 int Model::add_nonlinear_spring_damper(const NonlinearSpringDamperSpec& spec) {
   const int index = force_element_count();
   const std::string user = element_name("nonlinear spring-damper", spec.name, index);
@@ -190,7 +173,7 @@ int Model::add_nonlinear_spring_damper(const NonlinearSpringDamperSpec& spec) {
     throw Error("no tension function", user, "give tension(elongation, rate, time)");
   const detail::BodyPoint a = body_point(spec.a, user);
   const detail::BodyPoint b = body_point(spec.b, user);
-  const double rest = rest_length_of(
+  const double rest = detail::rest_length_of(
       spec.rest_length, (initial_point_position(spec.b) - initial_point_position(spec.a)).norm(),
       user);
   add_force_element(std::make_unique<detail::PointToPointForce>(
@@ -220,7 +203,7 @@ int Model::add_spring_actor(const SpringActorSpec& spec) {
   }
   const detail::BodyPoint a = body_point(spec.a, user);
   const detail::BodyPoint b = body_point(spec.b, user);
-  const double rest = rest_length_of(
+  const double rest = detail::rest_length_of(
       spec.rest_length, (initial_point_position(spec.b) - initial_point_position(spec.a)).norm(),
       user);
   add_force_element(std::make_unique<detail::PointToPointForce>(

@@ -13,8 +13,8 @@
 #include "fsi/mbd/model.hpp"
 #include "model_data.hpp"
 #include "point_rows.hpp"
+#include "point_to_point_force.hpp"
 #include "rigid_body_3d.hpp"
-#include "spring_damper.hpp"
 
 namespace fsi::mbd {
 
@@ -285,8 +285,25 @@ int Model::add_spatial_spring_damper(const SpatialSpringDamperSpec& spec) {
   const double rest = spec.rest_length.value_or(
       (data_->initial_spatial_position(spec.b) - data_->initial_spatial_position(spec.a)).norm());
   detail::check_spring_values(spec.stiffness, spec.damping, rest, user);
-  add_force_element(
-      std::make_unique<detail::SpatialSpringDamper>(a, b, spec.stiffness, spec.damping, rest));
+  add_force_element(std::make_unique<detail::SpatialPointToPointForce>(
+      user, a, b, rest, std::make_shared<detail::LinearTension>(spec.stiffness, spec.damping)));
+  return index;
+}
+
+int Model::add_spatial_nonlinear_spring_damper(const SpatialNonlinearSpringDamperSpec& spec) {
+  const int index = force_element_count();
+  const std::string user = element_name("nonlinear spring-damper", spec.name, index);
+  if (!spec.tension)
+    throw Error("no tension function", user, "give tension(elongation, rate, time)");
+  const detail::SpatialPoint a = data_->spatial_point(spec.a, user);
+  const detail::SpatialPoint b = data_->spatial_point(spec.b, user);
+  data_->check_pair({spec.a.body, {}}, {spec.b.body, {}}, user);
+  const double rest = detail::rest_length_of(
+      spec.rest_length,
+      (data_->initial_spatial_position(spec.b) - data_->initial_spatial_position(spec.a)).norm(),
+      user);
+  add_force_element(std::make_unique<detail::SpatialPointToPointForce>(
+      user, a, b, rest, std::make_shared<detail::UserTension>(spec.tension)));
   return index;
 }
 

@@ -14,6 +14,7 @@
 #include "body_point.hpp"
 #include "element_checks.hpp"
 #include "force_elements.hpp"
+#include "point_to_point_force.hpp"
 #include "fsi/common/error.hpp"
 #include "fsi/mbd/integrator.hpp"
 #include "fsi/mbd/model.hpp"

@@ -12,7 +12,7 @@
 #include "element_checks.hpp"
 #include "fsi/common/error.hpp"
 #include "point_rows.hpp"
-#include "spring_damper.hpp"
+#include "point_to_point_force.hpp"
 
 namespace fsi::mbd {
 namespace {
@@ -47,7 +47,8 @@ TEST(MbdJoints, SpringDamperForceDerivativesAreExact) {
   const Pair bodies;
   int pair_index = 0;
   for (const auto& [a, b] : bodies.point_pairs()) {
-    const detail::SpringDamper spring(a, b, 350.0, 12.0, 0.4);
+    const detail::PointToPointForce spring("spring", a, b, 0.4,
+                                           std::make_shared<detail::LinearTension>(350.0, 12.0));
     testing::expect_exact_force_derivatives(spring, 0.0, bodies.q, bodies.v,
                                             "pair " + std::to_string(pair_index++));
   }

@@ -8,8 +8,10 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <memory>
 #include <numbers>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "ancf_cable_3d.hpp"
@@ -23,8 +25,8 @@
 #include "fsi/mbd/readouts.hpp"
 #include "fsi/mbd/static_analysis.hpp"
 #include "point_rows.hpp"
+#include "point_to_point_force.hpp"
 #include "rigid_body_3d.hpp"
-#include "spring_damper.hpp"
 
 namespace fsi::mbd {
 namespace {
@@ -663,11 +665,13 @@ TEST(MbdSpatialLoads, SpringDamperHasExactDerivativesAndOscillatesAtItsFrequency
   const detail::SpatialPoint on_second(&pair.second, 12, {-0.1, 0.35, -0.2});
   const detail::SpatialPoint on_ground(nullptr, 0, {-0.4, 0.25, 0.1});
   testing::expect_exact_force_derivatives(
-      detail::SpatialSpringDamper(on_first, on_second, 350.0, 12.0, 0.4), 0.0, pair.q, pair.v,
-      "spatial spring, body-body");
+      detail::SpatialPointToPointForce("spring", on_first, on_second, 0.4,
+                                       std::make_shared<detail::LinearTension>(350.0, 12.0)),
+      0.0, pair.q, pair.v, "spatial spring, body-body");
   testing::expect_exact_force_derivatives(
-      detail::SpatialSpringDamper(on_ground, on_second, 350.0, 12.0, 0.4), 0.0, pair.q, pair.v,
-      "spatial spring, ground-body");
+      detail::SpatialPointToPointForce("spring", on_ground, on_second, 0.4,
+                                       std::make_shared<detail::LinearTension>(350.0, 12.0)),
+      0.0, pair.q, pair.v, "spatial spring, ground-body");
   // A point mass on an oblique spring: x(t) = amplitude cos(sqrt(k/m) t) along the spring.
   Model model;
   const Eigen::Vector3d along = Eigen::Vector3d(1.0, -2.0, 2.0) / 3.0;
@@ -685,6 +689,65 @@ TEST(MbdSpatialLoads, SpringDamperHasExactDerivativesAndOscillatesAtItsFrequency
   const double expected = 1.0 + 0.1 * std::cos(std::sqrt(200.0 / 0.5) * state.time);
   EXPECT_NEAR(state.q.head<3>().dot(along), expected, 1e-9);
   EXPECT_NEAR(force_element_force(model, state, spring), 200.0 * (expected - 1.0), 1e-6);
+}
+
+// A user's law along a spatial line: its derivatives (a law in elongation, rate and time), and a
+// rope (tension only when stretched) that catches a falling mass: free fall while slack, then the
+// deepest stretch of the energy balance m g (slack + e) = k e^2 / 2.
+TEST(MbdSpatialLoads, NonlinearSpringDamperIsTheUsersLawAlongTheLine) {
+  const SpatialPair pair;
+  const detail::SpatialPoint on_first(&pair.first, 0, {0.2, -0.15, 0.3});
+  const detail::SpatialPoint on_second(&pair.second, 12, {-0.1, 0.35, -0.2});
+  const detail::SpatialPoint on_ground(nullptr, 0, {-0.4, 0.25, 0.1});
+  const auto law = std::make_shared<detail::UserTension>([](double e, double r, double t) {
+    return 300.0 * e + 4e3 * e * e * e + 15.0 * r + 2.0 * r * r * r + 7.0 * std::sin(3.0 * t);
+  });
+  testing::expect_exact_force_derivatives(
+      detail::SpatialPointToPointForce("cubic", on_first, on_second, 0.4, law), 0.3, pair.q, pair.v,
+      "spatial nonlinear spring, body-body");
+  testing::expect_exact_force_derivatives(
+      detail::SpatialPointToPointForce("cubic", on_ground, on_second, 0.4, law), 0.3, pair.q,
+      pair.v, "spatial nonlinear spring, ground-body");
+
+  const double mass = 0.5, stiffness = 200.0, slack = 0.2, rest = 1.0;
+  Model model;
+  model.set_spatial_gravity({0.0, 0.0, -kGravity});
+  const BodyId bob =
+      model.add_point_mass({"bob", mass, {0.0, 0.0, -(rest - slack)}, Eigen::Vector3d::Zero()});
+  const int rope = model.add_spatial_nonlinear_spring_damper(
+      {.name = "rope",
+       .a = {kGround, Eigen::Vector3d::Zero()},
+       .b = {bob, Eigen::Vector3d::Zero()},
+       .tension = [&](double e, double, double) { return e > 0.0 ? stiffness * e : 0.0; },
+       .rest_length = rest});
+  RadauIIA integrator({.stages = 3, .newton = kTight});
+  State state = model.initial_state();
+  double deepest = 0.0, largest_tension = 0.0;
+  for (int i = 0; i < 4000; ++i) {
+    integrator.step(model, state, 1e-4);
+    if (i == 999) {  // t = 0.1 s: falling freely
+      EXPECT_NEAR(state.q(2), -(rest - slack) - 0.5 * kGravity * 0.01, 1e-12);
+      EXPECT_EQ(force_element_force(model, state, rope), 0.0);
+    }
+    deepest = std::max(deepest, -state.q(2) - rest);
+    largest_tension = std::max(largest_tension, force_element_force(model, state, rope));
+  }
+  const double weight = mass * kGravity;
+  const double expected =
+      (weight + std::sqrt(weight * weight + 2.0 * stiffness * weight * slack)) / stiffness;
+  std::printf("rope: deepest stretch %.9f m (energy balance %.9f), largest tension %.6f N\n",
+              deepest, expected, largest_tension);
+  EXPECT_NEAR(deepest, expected, 1e-6);
+  EXPECT_NEAR(largest_tension, stiffness * expected, 2e-4);
+  EXPECT_NEAR(state.q(0), 0.0, 1e-12);  // along the line only
+  EXPECT_NEAR(state.q(1), 0.0, 1e-12);
+
+  const std::string missing = error_message([&] {
+    model.add_spatial_nonlinear_spring_damper(
+        {.name = "loose", .a = {kGround, Eigen::Vector3d::Zero()}, .b = {bob, {}}, .tension = {}});
+  });
+  EXPECT_NE(missing.find("nonlinear spring-damper 'loose'"), std::string::npos) << missing;
+  EXPECT_NE(missing.find("no tension function"), std::string::npos) << missing;
 }
 
 // --- the cable ---

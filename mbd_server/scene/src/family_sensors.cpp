@@ -291,7 +291,7 @@ bool SensorBuilder::keys_fit() {
   need("body", variant.body, "\"...\"");
   need("joint", variant.joint, "\"...\" (a joint's name)");
   need("element", variant.element,
-       planar ? "\"...\" (a spring's name)" : "\"...\" (a SpringDamper3D's name)");
+       planar ? "\"...\" (a spring's name)" : "\"...\" (a spatial spring's name)");
   return complete;
 }
 
@@ -472,7 +472,9 @@ bool SensorBuilder::spring_fits() {
     throw AlreadyReported(s.location("element"));  // its own problem is reported
   if (found == builder.names.force_elements.end() || found->second < 0) {
     problem(s.location("element"), "no spring named '" + name + "'",
-            "give the " + std::string(builder.spatial() ? "SpringDamper3D block" : "spring block") +
+            "give the " +
+                std::string(builder.spatial() ? "SpringDamper3D or NonlinearSpringDamper3D block"
+                                              : "spring block") +
                 " name = \"" + name + "\"");
     return false;
   }

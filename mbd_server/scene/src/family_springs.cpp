@@ -78,9 +78,18 @@ std::vector<BlockSpec> spring_blocks() {
           "(spring_force sensors read it by name).",
           spatial_two_points({number("stiffness", "N/m", "k").at_least(0.0),
                               number("damping", "N s/m", "c").at_least(0.0).with_default(0.0),
-                              number("rest_length", "m", "l0 (default: the initial distance)")
-                                  .at_least(0.0)
-                                  .optional()}))
+                              rest_length_spec()}))
+          .as_list()
+          .spatial(),
+      block_spec("NonlinearSpringDamper3D",
+                 with_scene_numbers("Spring-damper along the line of the two points with "
+                                    "tension = f(elongation, rate, t), a muParser expression "
+                                    "(elongation = l - l0 [m], rate = dl/dt [m/s], t the time "
+                                    "[s]); spring_force sensors read the tension by name."),
+                 spatial_two_points({text("tension",
+                                          "tension [N] in elongation, rate and t, e.g. "
+                                          "\"elongation > 0 ? 1e4*elongation : 0\" (a rope)"),
+                                     rest_length_spec()}))
           .as_list()
           .spatial(),
   };
@@ -162,6 +171,19 @@ void build_spatial_springs(SceneBuilder& builder) {
     spec.rest_length = optional_number(f, "rest_length");
     builder.add_force_element(
         f, [&] { return builder.model.add_spatial_spring_damper(spec); }, false);
+  });
+  builder.each("NonlinearSpringDamper3D", [&](const View& f) {
+    mbd::SpatialNonlinearSpringDamperSpec spec;
+    spec.name = name_of(f);
+    spec.a = builder.point3(f, "a");
+    spec.b = builder.point3(f, "b");
+    const RuntimeExpression law = builder.expression(f, "tension", {"elongation", "rate", "t"});
+    spec.tension = [law](double elongation, double rate, double t) {
+      return law(elongation, rate, t);
+    };
+    spec.rest_length = optional_number(f, "rest_length");
+    builder.add_force_element(
+        f, [&] { return builder.model.add_spatial_nonlinear_spring_damper(spec); }, false);
   });
 }
 

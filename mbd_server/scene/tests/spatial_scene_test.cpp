@@ -161,6 +161,47 @@ Sensor { name = "face_vx"; type = "velocity"; body = "beam"; point = [1.5, 0.005
   EXPECT_NEAR(structure_sensor_value(planar.model, planar.sensors[2], planar_state), 0.0, 1e-15);
 }
 
+// A NonlinearSpringDamper3D's tension is the user's law at the elongation, rate and time; its
+// mistakes are problems at their lines.
+TEST_F(SpatialScene, ANonlinearSpatialSpringsTensionIsTheUsersLaw) {
+  Scene scene = build_scene(write(R"scene(
+PointMass { name = "bob"; mass = 0.5; position = [2, 0, -1]; velocity = [0, 0, -3] }
+NonlinearSpringDamper3D { name = "rope"; body_a = "bob"; point_b = [2, 0, -1.5]; rest_length = 0.4
+                          tension = "elongation > 0 ? 100*elongation + 2*rate + 5*t : 0" }
+Sensor { name = "rope_tension"; type = "spring_force"; element = "rope" }
+Ground { Mesh { stl = "box.stl"; offset = [0, 0, -3] } }
+)scene")
+                                .string());
+  mbd::Model& model = scene.model;
+  mbd::State state = model.initial_state();
+  ASSERT_EQ(scene.sensors.size(), 1u);
+  // Elongation 0.5 - 0.4 m; bob (point a) moves at 3 m/s towards point b: the rate is -3 m/s.
+  EXPECT_NEAR(structure_sensor_value(model, scene.sensors[0], state), 100.0 * 0.1 - 6.0, 1e-12);
+  state.time = 0.5;
+  EXPECT_NEAR(structure_sensor_value(model, scene.sensors[0], state), 100.0 * 0.1 - 6.0 + 2.5,
+              1e-12);
+
+  const std::string text = testing::build_error(write(R"scene(
+PointMass { name = "bob"; mass = 0.5; position = [2, 0, -1] }
+NonlinearSpringDamper3D { name = "a"; body_a = "bob"; tension = "100*stretch" }
+NonlinearSpringDamper3D { name = "b"; body_a = "bob"; point_b = [1, 0, 0] }
+NonlinearSpringDamper3D { name = "c"; body_a = "bob"; point_b = [2, 0, -1]; tension = "elongation" }
+)scene"));
+  for (const char* expected :
+       {"m.scene:6:", "stretch", "m.scene:7:", "'NonlinearSpringDamper3D[1].tension' is missing",
+        "m.scene:8:", "coincide initially"}) {
+    EXPECT_NE(text.find(expected), std::string::npos) << expected << "\n" << text;
+  }
+  const std::string planar = testing::build_error(write(R"scene(
+RigidBody2D { name = "plate"; mass = 1; inertia = 1 }
+NonlinearSpringDamper3D { body_a = "plate"; tension = "elongation" }
+)scene",
+                                                        2));
+  EXPECT_NE(planar.find("m.scene:6:1: NonlinearSpringDamper3D is a spatial (3D) element"),
+            std::string::npos)
+      << planar;
+}
+
 TEST_F(SpatialScene, TimeDependentLoadsSpinARotor) {
   // A rotor on a hinge about z, driven by a torque 0.4 t about z: J omega' = 0.4 t, so
   // omega(1 s) = 0.2 / J_z; a point force pushes a free point mass along x: m x'' = 3.

@@ -286,6 +286,18 @@ struct SpatialSpringDamperSpec {
   std::optional<double> rest_length = std::nullopt;  // [m]; default: the initial distance
 };
 
+// A spatial point-to-point force whose tension is a user function of the elongation
+// l - rest_length [m], its rate [m/s] and the time [s] (as NonlinearSpringDamperSpec, planar): a
+// one-sided stop, a preload, a hardening mooring line, an actuator. Derivatives by central
+// differences; its energy is the integral of tension(s, 0, t) ds from 0.
+struct SpatialNonlinearSpringDamperSpec {
+  std::string name;  // default "nonlinear spring-damper <k>"
+  SpatialPointSpec a;
+  SpatialPointSpec b;
+  TensionFunction tension;
+  std::optional<double> rest_length = std::nullopt;  // [m]; default: the initial distance
+};
+
 // A world-frame force that is a function of time at a point of a spatial body (evaluated at the
 // stage times, like PointForceSpec).
 struct SpatialPointForceSpec {

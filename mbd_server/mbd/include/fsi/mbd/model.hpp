@@ -160,6 +160,9 @@ class Model final : public ConstrainedSystem {
   int add_spatial_point_force(const SpatialPointForceSpec& spec);
   // Throws for negative or non-finite values; the points must never coincide.
   int add_spatial_spring_damper(const SpatialSpringDamperSpec& spec);
+  // Throws for a missing function, both points on one body, points that coincide initially or a
+  // negative rest length.
+  int add_spatial_nonlinear_spring_damper(const SpatialNonlinearSpringDamperSpec& spec);
   int add_spatial_torque(const SpatialTorqueSpec& spec);
   // Penalty contact between two surface meshes (ContactSpec; planar or spatial after the model's
   // dimension). Throws fsi::Error naming the contact for unknown bodies, cables (their tube
