@@ -129,20 +129,7 @@ TEST(MbdBadModels, NonConvergentNewtonNamesTheLargestResidual) {
 // user's law on another body.
 TEST(MbdBadModels, ALawThatJumpsIsNamedWhereNewtonFails) {
   Model model;
-  const BodyId slider = testing::slider_along_x(model);
-  model.add_nonlinear_spring_damper(
-      {.name = "seat",
-       .a = {kGround, {0.0, 0.0}},
-       .b = {slider, {0.0, 0.0}},
-       .tension = [](double e, double, double) { return e < 0.0 ? 1e3 * e : 5.0 + 10.0 * e; },
-       .rest_length = 1.0});
-  RigidBody2DSpec spec = rigid("other", 1.0, 1.0);
-  spec.position = {0.0, 3.0};
-  const BodyId other = model.add_rigid_body(spec);
-  model.add_nonlinear_spring_damper({.name = "smooth",
-                                     .a = {kGround, {0.0, 2.0}},
-                                     .b = {other, {0.0, 0.0}},
-                                     .tension = [](double e, double, double) { return 10.0 * e; }});
+  testing::slider_on_a_jumping_seat(model);
   State state = model.initial_state();
   RadauIIA integrator(3, NewtonOptions{.relative_tolerance = 1e-10, .max_iterations = 12});
   const std::string message = error_message([&] {

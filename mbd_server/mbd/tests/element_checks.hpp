@@ -42,6 +42,25 @@ inline BodyId slider_along_x(Model& model) {
   return slider;
 }
 
+// The slider on a seat whose law jumps at contact (a preload dropped inside the seat: no
+// integrator gets past it), and a smooth spring on another body that must not be blamed for it.
+inline void slider_on_a_jumping_seat(Model& model) {
+  const BodyId slider = slider_along_x(model);
+  model.add_nonlinear_spring_damper(
+      {.name = "seat",
+       .a = {kGround, {0.0, 0.0}},
+       .b = {slider, {0.0, 0.0}},
+       .tension = [](double e, double, double) { return e < 0.0 ? 1e3 * e : 5.0 + 10.0 * e; },
+       .rest_length = 1.0});
+  RigidBody2DSpec spec = rigid("other", 1.0, 1.0);
+  spec.position = {0.0, 3.0};
+  const BodyId other = model.add_rigid_body(spec);
+  model.add_nonlinear_spring_damper({.name = "smooth",
+                                     .a = {kGround, {0.0, 2.0}},
+                                     .b = {other, {0.0, 0.0}},
+                                     .tension = [](double e, double, double) { return 10.0 * e; }});
+}
+
 // Two bodies at a general configuration with general velocities, q = (x, y, phi) of each.
 struct BodyPair {
   detail::RigidBody2D first{rigid("first", 2.0, 0.3)};

@@ -206,20 +206,7 @@ TEST(MbdIda, NonFiniteForceIsReportedWithTheTimeAndLeavesTheStateUnchanged) {
 // user's law on its equation, not the smooth law on another body.
 TEST(MbdIda, ALawThatJumpsIsNamedWhereIdaFails) {
   Model model;
-  const BodyId slider = testing::slider_along_x(model);
-  model.add_nonlinear_spring_damper(
-      {.name = "seat",
-       .a = {kGround, {0.0, 0.0}},
-       .b = {slider, {0.0, 0.0}},
-       .tension = [](double e, double, double) { return e < 0.0 ? 1e3 * e : 5.0 + 10.0 * e; },
-       .rest_length = 1.0});
-  RigidBody2DSpec spec = testing::rigid("other", 1.0, 1.0);
-  spec.position = {0.0, 3.0};
-  const BodyId other = model.add_rigid_body(spec);
-  model.add_nonlinear_spring_damper({.name = "smooth",
-                                     .a = {kGround, {0.0, 2.0}},
-                                     .b = {other, {0.0, 0.0}},
-                                     .tension = [](double e, double, double) { return 10.0 * e; }});
+  testing::slider_on_a_jumping_seat(model);
   IdaIntegrator ida({.max_steps = 20000});
   State state = model.initial_state();
   const std::string text = testing::error_message([&] { ida.advance(model, state, 1.0); });

@@ -12,6 +12,12 @@ std::vector<ParameterSpec> two_points(std::vector<ParameterSpec> more) {
   return planar_two_points(std::move(more), true);
 }
 
+// A block's `tension` as the model's law of (elongation, rate, t).
+mbd::TensionFunction tension_law(SceneBuilder& builder, const View& f) {
+  const RuntimeExpression law = builder.expression(f, "tension", {"elongation", "rate", "t"});
+  return [law](double elongation, double rate, double t) { return law(elongation, rate, t); };
+}
+
 ParameterSpec rest_length_spec() {
   return number("rest_length", "m", "l0 (default: the initial distance)").at_least(0.0).optional();
 }
@@ -127,10 +133,7 @@ void build_planar_actors(SceneBuilder& builder) {
     spec.name = name_of(f);
     spec.a = builder.point(f, "a");
     spec.b = builder.point(f, "b");
-    const RuntimeExpression law = builder.expression(f, "tension", {"elongation", "rate", "t"});
-    spec.tension = [law](double elongation, double rate, double t) {
-      return law(elongation, rate, t);
-    };
+    spec.tension = tension_law(builder, f);
     spec.rest_length = optional_number(f, "rest_length");
     builder.add_force_element(
         f, [&] { return model.add_nonlinear_spring_damper(spec); }, false);
@@ -177,10 +180,7 @@ void build_spatial_springs(SceneBuilder& builder) {
     spec.name = name_of(f);
     spec.a = builder.point3(f, "a");
     spec.b = builder.point3(f, "b");
-    const RuntimeExpression law = builder.expression(f, "tension", {"elongation", "rate", "t"});
-    spec.tension = [law](double elongation, double rate, double t) {
-      return law(elongation, rate, t);
-    };
+    spec.tension = tension_law(builder, f);
     spec.rest_length = optional_number(f, "rest_length");
     builder.add_force_element(
         f, [&] { return builder.model.add_spatial_nonlinear_spring_damper(spec); }, false);
