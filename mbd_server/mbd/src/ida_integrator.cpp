@@ -173,7 +173,11 @@ struct IdaIntegrator::Impl {
   // the differential ones it tests. A coordinate's variable also names the user's laws acting on
   // its equation of motion (ConstrainedSystem::equation_of_motion_note): a law that jumps, across
   // which IDA chatters with ever smaller steps, is the usual cause.
-  std::string limiting_variable(int flag, double time) {
+  struct Limiting {
+    std::string text;       // "; the largest weighted local error is in the ..."
+    bool user_law = false;  // the text names a user's law on that variable's equation
+  };
+  Limiting limiting_variable(int flag, double time) {
     if (ida == nullptr || system == nullptr) return {};
     N_Vector scratch = N_VClone(y);
     if (scratch == nullptr) return {};
@@ -193,14 +197,18 @@ struct IdaIntegrator::Impl {
     Eigen::Index largest = 0;
     if (!(weighted.head(tested).cwiseAbs().maxCoeff(&largest) > 0.0)) return {};
     const int index = static_cast<int>(largest);
-    std::string text = (flag == IDA_CONV_FAIL ? "; the largest weighted correction is in the "
-                                              : "; the largest weighted local error is in the ") +
-                       equations.describe_variable(index);
+    Limiting found;
+    found.text = (flag == IDA_CONV_FAIL ? "; the largest weighted correction is in the "
+                                        : "; the largest weighted local error is in the ") +
+                 equations.describe_variable(index);
     if (index < 2 * n) {
       const Eigen::VectorXd at = view(y);
-      text += system->equation_of_motion_note(index % n, time, at.head(n), at.segment(n, n));
+      const std::string note =
+          system->equation_of_motion_note(index % n, time, at.head(n), at.segment(n, n));
+      found.text += note;
+      found.user_law = !note.empty();
     }
-    return text;
+    return found;
   }
 
   void check(int flag, const char* call) {
@@ -379,23 +387,30 @@ void IdaIntegrator::advance_without_release(const ConstrainedSystem& system, Sta
     while (!detail.empty() && (detail.back() == '.' || detail.back() == ' '))
       detail.pop_back();
     std::string message = text + (detail.empty() ? "" : ": " + detail);
+    Impl::Limiting limiting;
     if (w.bad_residual.empty()) {
       realtype last_step = 0.0;
       if (IDAGetLastStep(w.ida, &last_step) == IDA_SUCCESS && last_step > 0.0) {
         std::snprintf(text, sizeof text, "; its last step was %.3g s", last_step);
         message += text;
       }
-      message += w.limiting_variable(flag, reached);
+      limiting = w.limiting_variable(flag, reached);
+      message += limiting.text;
     }
     // The scene's names (SolverOptions): IDA's options have no other way to the user.
+    const std::string tolerances =
+        "loosen SolverOptions.ErrorControl.absolute_tolerance (a corrector that fails at ever "
+        "smaller steps, at the start in particular, is held by it) and relative_tolerance, or "
+        "integrate with Radau IIA (Timeint.method = \"fixed\" or \"adaptive\")";
     throw Error(message, "multibody integration (IDA)",
-                w.bad_residual.empty()
-                    ? "loosen SolverOptions.ErrorControl.absolute_tolerance (a corrector that "
-                      "fails at ever smaller steps, at the start in particular, is held by it) "
-                      "and relative_tolerance, or integrate with Radau IIA (Timeint.method = "
-                      "\"fixed\" or \"adaptive\")"
-                    : "find why that row is not finite at that time (a force or constraint "
-                      "expression, a body that left its range)");
+                !w.bad_residual.empty()
+                    ? "find why that row is not finite at that time (a force or constraint "
+                      "expression, a body that left its range)"
+                : limiting.user_law
+                    ? "look first at the user's law named above: a jump in it stops every "
+                      "integrator, no tolerance helps; if it is continuous, " +
+                          tolerances
+                    : tolerances);
   }
   w.equations.to_state(view(w.y), end_time, state);
   w.last = state;

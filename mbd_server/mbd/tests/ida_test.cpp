@@ -216,6 +216,7 @@ TEST(MbdIda, ALawThatJumpsIsNamedWhereIdaFails) {
             std::string::npos)
       << text;
   EXPECT_EQ(text.find("'smooth'"), std::string::npos) << text;
+  EXPECT_NE(text.find("look first at the user's law named above"), std::string::npos) << text;
 }
 
 TEST(MbdIda, InvalidOptionsNameTheOption) {
