@@ -1,6 +1,7 @@
 // Model's spatial (3D) bodies, connectors and markers (fsi/mbd/model.hpp, "spatial
 // bodies and connectors"); the planar ones are in model.cpp and model_elements.cpp.
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <string>
@@ -230,6 +231,61 @@ int Model::add_fixed_joint_3d(const FixedJoint3DSpec& spec) {
     data_->constraints.push_back(std::make_unique<detail::PerpendicularityConstraint>(
         user + " (e" + std::to_string(pair[0] + 1) + " . e" + std::to_string(pair[1] + 1) + "')",
         body_axis(pair[0]), held_axis(pair[1])));
+  }
+  return first;
+}
+
+int Model::add_prismatic_joint_3d(const PrismaticJoint3DSpec& spec) {
+  const int first = constraint_count();
+  const std::string user = element_name("prismatic joint", spec.name, first);
+  const std::string fix = "connect RigidBody3D bodies (or the ground)";
+  const detail::RigidBody3D* body_a = data_->rigid_body_3d_or_ground(spec.a.body, user, fix);
+  const detail::RigidBody3D* body_b = data_->rigid_body_3d_or_ground(spec.b.body, user, fix);
+  const double axis_length = spec.axis.norm();
+  if (!(axis_length > 0.0) || !spec.axis.allFinite()) {
+    throw Error("the axis must be a finite, non-zero vector", user, "give e.g. axis = [1, 0, 0]");
+  }
+  data_->check_pair({spec.a.body, {}}, {spec.b.body, {}}, user);
+  const Eigen::Matrix3d frame_a =
+      body_a != nullptr ? Eigen::Matrix3d(body_a->spec().orientation) : Eigen::Matrix3d::Identity();
+  const Eigen::Matrix3d frame_b =
+      body_b != nullptr ? Eigen::Matrix3d(body_b->spec().orientation) : Eigen::Matrix3d::Identity();
+  const Eigen::Vector3d unit = spec.axis / axis_length;
+  const Eigen::Vector3d offset =
+      data_->initial_spatial_position(spec.b) - data_->initial_spatial_position(spec.a);
+  const double off_line = (offset - offset.dot(frame_a * unit) * (frame_a * unit)).norm();
+  if (off_line > 1e-9 * std::max(1.0, offset.norm())) {
+    throw Error("point_b is " + significant(off_line, 6) +
+                    " m off the sliding line through point_a along the axis",
+                user, "place point_b on that line (or point_a on it, or turn the axis)");
+  }
+  const detail::SpatialPoint pa = data_->spatial_point(spec.a, user);
+  const detail::SpatialPoint pb = data_->spatial_point(spec.b, user);
+  // The offset b - a stays normal to the two normals of the axis fixed in a.
+  const detail::SpatialDirection offset_direction{pa, pb};
+  const auto [n1, n2] = normals(unit);
+  int which = 1;
+  for (const Eigen::Vector3d& n : {n1, n2}) {
+    const detail::SpatialDirection normal{
+        pa, data_->spatial_point({spec.a.body, spec.a.local + n}, user)};
+    data_->constraints.push_back(std::make_unique<detail::PerpendicularityConstraint>(
+        user + " (normal " + std::to_string(which++) + ")", offset_direction, normal));
+  }
+  // a's axes e_k and the directions of b that coincide with them initially stay perpendicular.
+  const Eigen::Matrix3d a_in_b = frame_b.transpose() * frame_a;
+  auto axis_of_a = [&](int k) {
+    return detail::SpatialDirection{
+        pa, data_->spatial_point({spec.a.body, spec.a.local + Eigen::Vector3d::Unit(k)}, user)};
+  };
+  auto axis_on_b = [&](int k) {
+    return detail::SpatialDirection{
+        pb, data_->spatial_point({spec.b.body, spec.b.local + a_in_b.col(k)}, user)};
+  };
+  static constexpr int kPairs[3][2] = {{0, 1}, {0, 2}, {1, 2}};
+  for (const auto& pair : kPairs) {
+    data_->constraints.push_back(std::make_unique<detail::PerpendicularityConstraint>(
+        user + " (e" + std::to_string(pair[0] + 1) + " . e" + std::to_string(pair[1] + 1) + "')",
+        axis_of_a(pair[0]), axis_on_b(pair[1])));
   }
   return first;
 }

@@ -750,6 +750,73 @@ TEST(MbdSpatialLoads, NonlinearSpringDamperIsTheUsersLawAlongTheLine) {
   EXPECT_NE(missing.find("no tension function"), std::string::npos) << missing;
 }
 
+// A bead on a rod turned at a constant rate w about z slides out as r0 cosh(w t) (no force along
+// the rod; in the turning frame r'' = w^2 r) and turns with the rod: the prismatic joint holds the
+// bead on the rod's line and its orientation to the rod's, here with both bodies turned off their
+// principal frames.
+TEST(MbdSpatialJoints, PrismaticJointSlidesABeadOutOnATurningRod) {
+  const double w = 2.0, r0 = 0.1;
+  const Eigen::Vector3d z = Eigen::Vector3d::UnitZ();
+  const Eigen::Vector3d along(std::cos(0.3), std::sin(0.3), 0.0);
+  Model model;
+  model.set_spatial_gravity({0.0, 0.0, -kGravity});  // carried by the joints, normal to the rod
+  RigidBody3DSpec rod = top_spec();
+  rod.name = "rod";
+  rod.position.setZero();
+  rod.velocity.setZero();
+  rod.angular_velocity = w * z;
+  const BodyId turning = model.add_rigid_body_3d(rod);
+  model.add_revolute_joint_3d({.name = "motor",
+                               .a = {turning, Eigen::Vector3d::Zero()},
+                               .b = {kGround, Eigen::Vector3d::Zero()},
+                               .axis = rod.orientation.transpose() * z,
+                               .rate = w});
+  RigidBody3DSpec bead = top_spec();
+  bead.name = "bead";
+  bead.mass = 0.2;
+  bead.position = r0 * along;
+  bead.velocity = w * z.cross(bead.position);
+  bead.angular_velocity = w * z;
+  const BodyId sliding = model.add_rigid_body_3d(bead);
+  const int first = model.add_prismatic_joint_3d({.name = "slider",
+                                                  .a = {sliding, Eigen::Vector3d::Zero()},
+                                                  .b = {turning, Eigen::Vector3d::Zero()},
+                                                  .axis = bead.orientation.transpose() * along});
+  EXPECT_EQ(model.constraint_count() - first, 5);
+  model.check_consistency(model.initial_state());
+  RadauIIA integrator({.stages = 3, .newton = kTight});
+  State state = model.initial_state();
+  for (int i = 0; i < 1000; ++i)
+    integrator.step(model, state, 1e-3);
+  const Eigen::Vector3d centre = state.q.segment<3>(12);
+  const Eigen::Matrix3d turned = rotation(w * state.time, z);
+  const double radius = r0 * std::cosh(w * state.time);
+  std::printf(
+      "bead on a turning rod: r(1 s) = %.12f m (r0 cosh(w t) = %.12f), off the rod's "
+      "line %.2e m\n",
+      centre.norm(), radius, (centre - radius * (turned * along)).norm());
+  EXPECT_NEAR(centre.norm(), radius, 1e-9);
+  EXPECT_LT((centre - radius * (turned * along)).norm(), 1e-9);
+  for (int k = 0; k < 3; ++k) {  // the bead's axes turned with the rod
+    EXPECT_LT((state.q.segment<3>(15 + 3 * k) - turned * bead.orientation.col(k)).norm(), 1e-9)
+        << "axis " << k;
+  }
+
+  const auto mistake = [&](const PrismaticJoint3DSpec& spec) {
+    return error_message([&] { model.add_prismatic_joint_3d(spec); });
+  };
+  const std::string off = mistake(
+      {.name = "off", .a = {sliding, {}}, .b = {turning, {0.0, 0.0, 0.05}}, .axis = {1, 0, 0}});
+  EXPECT_NE(off.find("prismatic joint 'off'"), std::string::npos) << off;
+  EXPECT_NE(off.find("off the sliding line"), std::string::npos) << off;
+  const std::string zero =
+      mistake({.name = "", .a = {sliding, {}}, .b = {turning, {}}, .axis = {0, 0, 0}});
+  EXPECT_NE(zero.find("the axis must be a finite, non-zero vector"), std::string::npos) << zero;
+  const std::string same =
+      mistake({.name = "", .a = {sliding, {}}, .b = {sliding, {}}, .axis = {1, 0, 0}});
+  EXPECT_NE(same.find("same body"), std::string::npos) << same;
+}
+
 // --- the cable ---
 
 AncfCableSpec steel_cable(int elements, const Eigen::Vector3d& end) {

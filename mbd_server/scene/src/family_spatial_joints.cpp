@@ -37,6 +37,16 @@ std::vector<BlockSpec> spatial_joint_blocks() {
                    .optional()}))
           .as_list()
           .spatial(),
+      block_spec(
+          "PrismaticJoint3D",
+          "A slider: point_b stays on the line through point_a along `axis` (in body_a's axes) "
+          "and the relative orientation is locked: body_a slides along body_b (or the ground). "
+          "RigidBody3D bodies; point_b must lie on that line initially. 5 rows: two normal "
+          "forces, three orientation rows; joint_force reads the force and torque on body_a.",
+          spatial_two_points({vector("axis", 3, "", "sliding direction in body_a's axes")
+                                  .with_default({1.0, 0.0, 0.0})}))
+          .as_list()
+          .spatial(),
       block_spec("FixedJoint3D",
                  "Fixes `body` (a RigidBody3D) at its initial position and orientation relative "
                  "to `to` (6 rows; joint_force reads the force and torque it exerts on body).",
@@ -80,6 +90,15 @@ void build_spatial_joints(SceneBuilder& builder) {
                        .body = spec.a.body,
                        .kind = "revolute joint",
                        .drive = spec.rate.has_value()});
+  });
+  builder.each("PrismaticJoint3D", [&](const View& j) {
+    mbd::PrismaticJoint3DSpec spec;
+    spec.name = name_of(j);
+    spec.a = builder.point3(j, "a");
+    spec.b = builder.point3(j, "b");
+    spec.axis = vector3(j, "axis");
+    builder.add_joint(j, [&] { return model.add_prismatic_joint_3d(spec); },
+                      {.rows = 5, .body = spec.a.body, .kind = "prismatic joint"});
   });
   builder.each("FixedJoint3D", [&](const View& j) {
     mbd::FixedJoint3DSpec spec;

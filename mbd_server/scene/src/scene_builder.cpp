@@ -14,12 +14,16 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// What a scene of the other dimension suggests instead of a refused block.
-std::string counterpart_hint(int block_dimension) {
-  return block_dimension == 2
-             ? "set dimension = 2, or use its spatial counterpart (RigidBody3D, AncfCable3D, "
-               "SphericalJoint, RevoluteJoint3D, FixedJoint3D, DistanceConstraint3D, CableClamp)"
-             : "set dimension = 3 at the top of the scene, or use a planar element";
+// What a scene of the other dimension suggests instead of a refused block: for a planar block,
+// the spatial blocks there are (from their specs).
+std::string counterpart_hint(int block_dimension, const std::vector<BlockSpec>& blocks) {
+  if (block_dimension != 2)
+    return "set dimension = 3 at the top of the scene, or use a planar element";
+  std::string spatial;
+  for (const BlockSpec& spec : blocks) {
+    if (spec.dimension == 3) spatial += (spatial.empty() ? "" : ", ") + spec.name;
+  }
+  return "set dimension = 2, or use its spatial counterpart among " + spatial;
 }
 
 // The number at `path` ("Geometry.T", "RigidBody2D[1].mass": blocks down from `root`, then the
@@ -82,7 +86,7 @@ void SceneBuilder::build() {
                         " is a planar (2D) element: planar bodies and their "
                         "joints need dimension = 2"
                   : spec.name + " is a spatial (3D) element: it needs dimension = 3",
-              counterpart_hint(spec.dimension));
+              counterpart_hint(spec.dimension, root.spec().blocks));
     }
   }
   for (const ElementFamily& family : element_families()) {

@@ -228,6 +228,39 @@ Torque3D { body = "rotor"; torque_z = "0.4*q" }
       << text;
 }
 
+// A block on a PrismaticJoint3D down a 45 degree incline slides at g / sqrt(2); the joint's
+// normal force on it is m g / sqrt(2) along the incline's normal, so its z component is m g / 2.
+TEST_F(SpatialScene, APrismaticJoint3DHoldsTheBlockOnItsLine) {
+  const Scene scene = build_scene(write(R"scene(
+Gravity { acceleration = [0, 0, -9.81] }
+RigidBody3D { name = "block"; mass = 2; inertia = [0.3, 0.4, 0.5]; position = [0, 0, 1]
+              Mesh { stl = "box.stl"; scale = 0.1 } }
+PrismaticJoint3D { name = "rail"; body_a = "block"; point_b = [1, 0, 0]; axis = [1, 0, -1] }
+Sensor { name = "rail_z"; type = "joint_force"; joint = "rail"; component = "z" }
+Sensor { name = "rail_ty"; type = "joint_force"; joint = "rail"; component = "torque_y" }
+)scene")
+                                      .string());
+  mbd::RadauIIA integrator(scene.solver.integrator_options());
+  mbd::State state = scene.model.initial_state();
+  for (int i = 0; i < 500; ++i)
+    integrator.step(scene.model, state, 1e-3);
+  const double s = 9.81 / std::sqrt(2.0) * 0.25 / 2.0;  // along the incline at t = 0.5 s
+  EXPECT_NEAR(state.q(0), s / std::sqrt(2.0), 1e-9);
+  EXPECT_NEAR(state.q(1), 0.0, 1e-12);
+  EXPECT_NEAR(state.q(2), 1.0 - s / std::sqrt(2.0), 1e-9);
+  EXPECT_NEAR(structure_sensor_value(scene.model, scene.sensors[0], state), 2.0 * 9.81 / 2.0, 1e-6);
+  EXPECT_NEAR(structure_sensor_value(scene.model, scene.sensors[1], state), 0.0, 1e-6);
+  const std::string text = testing::build_error(write(R"scene(
+RigidBody3D { name = "block"; mass = 2; inertia = [0.3, 0.4, 0.5]; Mesh { stl = "box.stl" } }
+PrismaticJoint3D { body_a = "block"; point_b = [1, 0.5, 0] }
+PrismaticJoint3D { body_a = "block"; axis = [0, 0, 0] }
+)scene"));
+  EXPECT_NE(text.find("m.scene:6:1: "), std::string::npos) << text;
+  EXPECT_NE(text.find("off the sliding line"), std::string::npos) << text;
+  EXPECT_NE(text.find("m.scene:7:1: "), std::string::npos) << text;
+  EXPECT_NE(text.find("the axis must be a finite, non-zero vector"), std::string::npos) << text;
+}
+
 TEST_F(SpatialScene, DrivenRevoluteJointTurnsTheRotorAndReportsItsTorque) {
   // rate = 5 rad/s about z against a load torque of 0.3 N m about z: after 0.2 s the rotor has
   // turned by 1 rad, spins at 5 rad/s, and the drive torque on it is -0.3 N m.
@@ -291,12 +324,27 @@ RigidBody3D { name = "broken"; mass = 1; inertia = [1, 1, 1]; position = [1, 2] 
 Sensor { name = "b"; type = "position"; body = "broken"; component = "x" }
 Ground { Mesh { stl = "box.stl" } }
 )scene"));
-  for (const char* expected :
-       {"m.scene:5:", "less than the sum of the other two", "m.scene:8:", "not a rigid body",
-        "m.scene:9:", "no body named 'nobody'", "m.scene:10:", "is an AncfCable3D",
-        "m.scene:11:", "has components x, y or z", "m.scene:12:", "has no 3D form yet",
-        "m.scene:13:1: RigidBody2D is a planar (2D) element", "m.scene:14:", "off the centre line",
-        "m.scene:15:", "a 3D velocity sensor has components x, y or z"}) {
+  for (const char* expected : {"m.scene:5:",
+                               "less than the sum of the other two",
+                               "m.scene:8:",
+                               "not a rigid body",
+                               "m.scene:9:",
+                               "no body named 'nobody'",
+                               "m.scene:10:",
+                               "is an AncfCable3D",
+                               "m.scene:11:",
+                               "has components x, y or z",
+                               "m.scene:12:",
+                               "has no 3D form yet",
+                               "m.scene:13:1: RigidBody2D is a planar (2D) element",
+                               "spatial counterpart among",
+                               "RigidBody3D",
+                               "PrismaticJoint3D",
+                               "NonlinearSpringDamper3D",
+                               "m.scene:14:",
+                               "off the centre line",
+                               "m.scene:15:",
+                               "a 3D velocity sensor has components x, y or z"}) {
     EXPECT_NE(text.find(expected), std::string::npos) << expected << "\n" << text;
   }
   // And the spatial blocks in a planar scene.

@@ -265,6 +265,18 @@ struct RevoluteJoint3DSpec {
   std::optional<double> rate = std::nullopt;  // [rad/s]; absent: a free hinge (5 rows)
 };
 
+// Prismatic joint in space: point b stays on the line through point a along `axis` (body a's
+// frame) and the relative orientation of the two bodies is locked: body a slides along body b (or
+// the ground). RigidBody3D bodies or kGround. Five rows: (r_b - r_a) . n1 and . n2 with n1, n2
+// normals of the axis fixed in a (the normal forces), then e1 . e2', e1 . e3', e2 . e3' with e_k
+// a's axes and e_k' the directions of b that coincide with them initially (perpendicularity rows).
+struct PrismaticJoint3DSpec {
+  std::string name;  // in messages; default "prismatic joint <row>"
+  SpatialPointSpec a;
+  SpatialPointSpec b;
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitX();
+};
+
 // Fixed joint in space: `body` (a RigidBody3D) keeps its initial position and orientation
 // relative to `to` (another RigidBody3D, or kGround). Six rows: x, y, z of the body's centre of
 // mass seen from `to` (spherical rows), then e1 . e2', e1 . e3', e2 . e3' with e_k' the body's

@@ -144,6 +144,9 @@ class Model final : public ConstrainedSystem {
                           const std::string& name = {});
   int add_revolute_joint_3d(const RevoluteJoint3DSpec& spec);
   int add_fixed_joint_3d(const FixedJoint3DSpec& spec);
+  // Throws for a zero axis, a body that is not a RigidBody3D, both ends on one body or point_b off
+  // the sliding line initially. Returns the first of its five rows.
+  int add_prismatic_joint_3d(const PrismaticJoint3DSpec& spec);
   // A boundary vertex on the tube of radius `radius` around a cable: the centre-line point at s
   // plus radius (cos(angle) n1 + sin(angle) n2), (n1, n2) the normals of the straight initial
   // cable carried along by the rotation that turns the initial tangent into the current one (the
