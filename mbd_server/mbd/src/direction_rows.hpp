@@ -4,7 +4,8 @@
 //
 //   perpendicularity   d_a . d_b = 0 with the spatial body directions d = r(p + u) - r(p), exact
 //                      for rigid bodies; two of them keep a revolute joint's axis, three a fixed
-//                      joint's orientation
+//                      joint's orientation; a prismatic joint adds two whose first "direction"
+//                      is the offset between points of its two bodies
 //   drive              a revolute joint's relative rotation about its axis held at rate * t
 //   slope on a body    a beam node's slope held in the frame of a planar rigid body
 //
@@ -21,7 +22,8 @@
 
 namespace fsi::mbd::detail {
 
-// A body direction as the difference of two of its material points (tip - base).
+// A body direction as the difference of two of its material points (tip - base); the two points
+// may be on different bodies (the offset a prismatic joint holds normal to its axis).
 struct SpatialDirection {
   SpatialPoint base;
   SpatialPoint tip;

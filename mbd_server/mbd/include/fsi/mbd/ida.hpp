@@ -48,8 +48,9 @@ class IdaIntegrator {
   // IDA keeps its history between calls as long as `state` is the one it returned, the model is
   // the same and its point loads have not changed; otherwise it restarts from `state` with
   // multipliers and accelerations made consistent ([M G^T; G 0] [a; lambda] = [F; -remainder]).
-  // Throws fsi::Error naming the time reached and IDA's reason on failure; `state` is then left
-  // unchanged.
+  // Throws fsi::Error naming the time reached, IDA's reason, its last step and the variable with
+  // the largest weighted local error (with the user's laws on its equation) on failure; `state` is
+  // then left unchanged.
   // A constraint row released before end_time (ConstrainedSystem::release_within) stops IDA at
   // its release time, from where it restarts with the row's multiplier zero.
   void advance(const ConstrainedSystem& system, State& state, double end_time);
