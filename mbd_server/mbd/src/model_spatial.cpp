@@ -5,6 +5,7 @@
 #include <cmath>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "ancf_cable_3d.hpp"
 #include "direction_rows.hpp"
@@ -32,6 +33,20 @@ std::pair<Eigen::Vector3d, Eigen::Vector3d> normals(const Eigen::Vector3d& axis)
   a.cwiseAbs().minCoeff(&smallest);
   const Eigen::Vector3d first = a.cross(Eigen::Vector3d::Unit(smallest)).normalized();
   return {first, a.cross(first)};
+}
+
+// Three rows that lock the relative orientation of two bodies: e_k . e_l' = 0 for (k, l) = (1, 2),
+// (1, 3), (2, 3), with e_k = own(k) the axes of one body and e_l' = held(l) the directions of the
+// other that coincide with them initially (the fixed and the prismatic joint in space).
+template <typename Own, typename Held>
+void add_orientation_rows(std::vector<std::unique_ptr<ConstraintElement>>& constraints,
+                          const std::string& user, const Own& own, const Held& held) {
+  static constexpr int kPairs[3][2] = {{0, 1}, {0, 2}, {1, 2}};
+  for (const auto& pair : kPairs) {
+    constraints.push_back(std::make_unique<detail::PerpendicularityConstraint>(
+        user + " (e" + std::to_string(pair[0] + 1) + " . e" + std::to_string(pair[1] + 1) + "')",
+        own(pair[0]), held(pair[1])));
+  }
 }
 
 // The spatial body `body` as a Kind (RigidBody3D, AncfCable3D); a body of another kind is a user's
@@ -226,12 +241,7 @@ int Model::add_fixed_joint_3d(const FixedJoint3DSpec& spec) {
     return detail::SpatialDirection{held,
                                     data_->spatial_point({spec.to, centre + axes.col(k)}, user)};
   };
-  static constexpr int kPairs[3][2] = {{0, 1}, {0, 2}, {1, 2}};
-  for (const auto& pair : kPairs) {
-    data_->constraints.push_back(std::make_unique<detail::PerpendicularityConstraint>(
-        user + " (e" + std::to_string(pair[0] + 1) + " . e" + std::to_string(pair[1] + 1) + "')",
-        body_axis(pair[0]), held_axis(pair[1])));
-  }
+  add_orientation_rows(data_->constraints, user, body_axis, held_axis);
   return first;
 }
 
@@ -281,12 +291,7 @@ int Model::add_prismatic_joint_3d(const PrismaticJoint3DSpec& spec) {
     return detail::SpatialDirection{
         pb, data_->spatial_point({spec.b.body, spec.b.local + a_in_b.col(k)}, user)};
   };
-  static constexpr int kPairs[3][2] = {{0, 1}, {0, 2}, {1, 2}};
-  for (const auto& pair : kPairs) {
-    data_->constraints.push_back(std::make_unique<detail::PerpendicularityConstraint>(
-        user + " (e" + std::to_string(pair[0] + 1) + " . e" + std::to_string(pair[1] + 1) + "')",
-        axis_of_a(pair[0]), axis_on_b(pair[1])));
-  }
+  add_orientation_rows(data_->constraints, user, axis_of_a, axis_on_b);
   return first;
 }
 
