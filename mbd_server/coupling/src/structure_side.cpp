@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <functional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "fsi/common/error.hpp"
 #include "fsi/mbd/readouts.hpp"
@@ -121,6 +123,15 @@ StructureSide::StructureSide(scene::Scene& scene, scene::IntegrationMethod metho
                         .absolute_tolerance = solver.absolute_tolerance,
                         .max_step = solver.max_step});
   }
+  // The work sensors' powers, integrated by the integrator over each of its own steps.
+  mbd::Integrand works = work_integrand();
+  if (adaptive_) {
+    adaptive_->set_integrand(std::move(works));
+  } else if (ida_) {
+    ida_->set_integrand(std::move(works));
+  } else {
+    integrator_.set_integrand(std::move(works));
+  }
 }
 
 void StructureSide::integrate_to(double end_time, double step_size) {
@@ -128,9 +139,18 @@ void StructureSide::integrate_to(double end_time, double step_size) {
     case scene::IntegrationMethod::FixedStep: {
       std::string why;
       const double start = state_.time;
+      // Every step's integral, the failed attempts' included: the last `substeps` are the step's.
+      std::vector<Eigen::VectorXd> pieces;
       const int substeps = advance_in_substeps(
-          [this](mbd::State& state, double h) { integrator_.step(scene_.model, state, h); }, state_,
-          step_size, kMaxStructureSubsteps, held_, &why);
+          [this, &pieces](mbd::State& state, double h) {
+            integrator_.step(scene_.model, state, h);
+            pieces.push_back(integrator_.last_step_integral());
+          },
+          state_, step_size, kMaxStructureSubsteps, held_, &why);
+      step_work_.setZero(integrator_.last_step_integral().size());
+      for (std::size_t k = pieces.size() - static_cast<std::size_t>(substeps); k < pieces.size();
+           ++k)
+        step_work_ += pieces[k];
       if (substeps > 1) {
         if (substepped_steps_ == 0) {
           spdlog::warn(
@@ -145,9 +165,11 @@ void StructureSide::integrate_to(double end_time, double step_size) {
     }
     case scene::IntegrationMethod::AdaptiveRadau:
       adaptive_->advance(scene_.model, state_, end_time);
+      step_work_ = adaptive_->last_advance_integral();
       return;
     case scene::IntegrationMethod::Ida:
       ida_->advance(scene_.model, state_, end_time);
+      step_work_ = ida_->last_advance_integral();
       return;
   }
 }
@@ -181,19 +203,23 @@ mbd::IntegratorStatistics StructureSide::statistics() const {
   return totals;
 }
 
-std::vector<double> StructureSide::work_sensor_powers() const {
-  std::vector<double> powers;
+mbd::Integrand StructureSide::work_integrand() const {
+  std::vector<int> elements;
   for (const scene::SensorSpec& sensor : scene_.sensors) {
-    if (sensor.type == scene::SensorType::Work)
-      powers.push_back(mbd::force_element_power(scene_.model, state_, sensor.force_element));
+    if (sensor.type == scene::SensorType::Work) elements.push_back(sensor.force_element);
   }
-  return powers;
+  if (elements.empty()) return {};
+  const mbd::Model& model = scene_.model;
+  return {static_cast<int>(elements.size()),
+          [&model, elements](const mbd::State& state, Eigen::VectorXd& powers) {
+            for (std::size_t k = 0; k < elements.size(); ++k)
+              powers(static_cast<Eigen::Index>(k)) =
+                  mbd::force_element_power(model, state, elements[k]);
+          }};
 }
 
 void StructureSide::advance(std::uint64_t step, double step_size) {
   const bool multi_rate = scene_.solver.substeps > 1;
-  const double start_time = state_.time;
-  const std::vector<double> start_powers = work_sensor_powers();
   StepStart start;
   if (multi_rate) {
     start.time = state_.time;
@@ -216,13 +242,10 @@ void StructureSide::advance(std::uint64_t step, double step_size) {
     }
   }
   state_.time = static_cast<double>(step) * step_size;
-  if (!start_powers.empty()) {
-    const std::vector<double> end_powers = work_sensor_powers();
-    std::size_t k = 0;
+  if (step_work_.size() > 0) {
+    Eigen::Index k = 0;
     for (std::size_t s = 0; s < scene_.sensors.size(); ++s) {
-      if (scene_.sensors[s].type != scene::SensorType::Work) continue;
-      works_[s] += 0.5 * (start_powers[k] + end_powers[k]) * (state_.time - start_time);
-      ++k;
+      if (scene_.sensors[s].type == scene::SensorType::Work) works_[s] += step_work_(k++);
     }
   }
   if (multi_rate) record_step_motion(start, step_size);

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <limits>
 #include <string>
+#include <utility>
 
 #include "fsi/common/error.hpp"
 
@@ -47,6 +48,7 @@ struct AdaptiveRadau::Impl {
   double exponent;         // 1 / (s + 1)
   double h;
   AdaptiveStatistics stats;
+  Eigen::VectorXd advance_integral, trial_integral;
 
   Impl(const RadauOptions& radau, const AdaptiveOptions& adaptive)
       : options(adaptive),
@@ -103,6 +105,7 @@ void AdaptiveRadau::advance(const ConstrainedSystem& system, State& state, doubl
   }
   // A step that would leave less than 1e-3 of itself before end_time is stretched to it.
   const double tiny = 1e-12 * std::max(1.0, std::abs(end_time));
+  w.advance_integral.setZero(w.halves.last_step_integral().size());
   while (state.time < end_time - tiny) {
     if (o.max_step > 0.0) w.h = std::min(w.h, o.max_step);
     const double remaining = end_time - state.time;
@@ -114,7 +117,9 @@ void AdaptiveRadau::advance(const ConstrainedSystem& system, State& state, doubl
     try {
       w.count(w.whole.step(system, coarse, h));
       w.count(w.halves.step(system, fine, 0.5 * h));
+      w.trial_integral = w.halves.last_step_integral();
       w.count(w.halves.step(system, fine, 0.5 * h));
+      w.trial_integral += w.halves.last_step_integral();
       err = w.error(coarse, fine, h);
     } catch (const Error&) {
       converged = false;
@@ -122,6 +127,7 @@ void AdaptiveRadau::advance(const ConstrainedSystem& system, State& state, doubl
     if (converged && std::isfinite(err) && err <= 1.0) {
       ++w.stats.accepted;
       state = fine;
+      w.advance_integral += w.trial_integral;
       if (last) state.time = end_time;  // no round-off left over
       const double factor =
           err > 0.0 ? std::min(o.max_growth,
@@ -152,6 +158,15 @@ void AdaptiveRadau::advance(const ConstrainedSystem& system, State& state, doubl
                   "lower min_step");
     }
   }
+}
+
+void AdaptiveRadau::set_integrand(Integrand integrand) {
+  impl_->halves.set_integrand(std::move(integrand));
+  impl_->advance_integral.setZero(impl_->halves.last_step_integral().size());
+}
+
+const Eigen::VectorXd& AdaptiveRadau::last_advance_integral() const {
+  return impl_->advance_integral;
 }
 
 double AdaptiveRadau::step_size() const {

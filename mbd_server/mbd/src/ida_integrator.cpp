@@ -4,7 +4,7 @@
 
 #include "fsi/mbd/ida.hpp"
 
-#include <ida/ida.h>
+#include <idas/idas.h>
 #include <nvector/nvector_serial.h>
 #include <sundials/sundials_context.h>
 #include <sunlinsol/sunlinsol_dense.h>
@@ -57,6 +57,7 @@ struct IdaIntegrator::Impl {
   SUNContext context = nullptr;
   void* ida = nullptr;
   N_Vector y = nullptr, yp = nullptr, id = nullptr;
+  N_Vector quad = nullptr;  // the integrand's integral since start() (IDAS' quadrature)
   SUNMatrix matrix = nullptr;
   SUNLinearSolver solver = nullptr;
   detail::GglEquations equations;
@@ -73,6 +74,11 @@ struct IdaIntegrator::Impl {
   double first_step = 0.0;  // the step IDA starts with (error_weights' h before it has one)
   std::string last_message;
   std::string bad_residual;  // set by residual() when it returns a failure
+  Integrand integrand;
+  Eigen::VectorXd quad_before;       // the quadrature at the end of the last advance
+  Eigen::VectorXd advance_integral;  // the integral over the current / last advance()
+  State quad_state_;
+  Eigen::VectorXd quad_values_;
   // Scratch for the callbacks (the vectors are copied: N_Vector data is not an Eigen::VectorXd).
   Eigen::VectorXd y_, yp_, r_;
 
@@ -92,7 +98,7 @@ struct IdaIntegrator::Impl {
     if (ida != nullptr) IDAFree(&ida);
     if (solver != nullptr) SUNLinSolFree(solver);
     if (matrix != nullptr) SUNMatDestroy(matrix);
-    for (N_Vector* x : {&y, &yp, &id}) {
+    for (N_Vector* x : {&y, &yp, &id, &quad}) {
       if (*x != nullptr) N_VDestroy(*x);
       *x = nullptr;
     }
@@ -116,6 +122,21 @@ struct IdaIntegrator::Impl {
     char text[96];
     std::snprintf(text, sizeof text, "non-finite residual at t = %.9g s in the ", t);
     self.bad_residual = text + self.equations.describe_row(row);
+    return -1;
+  }
+
+  // IDAS' quadrature right-hand side: the integrand at (t, q, v, lambda) of y.
+  static int quadrature(realtype t, N_Vector yy, N_Vector, N_Vector rq, void* data) {
+    auto& self = *static_cast<Impl*>(data);
+    self.y_ = view(yy);
+    self.equations.to_state(self.y_, t, self.quad_state_);
+    self.integrand.evaluate(self.quad_state_, self.quad_values_);
+    view(rq) = self.quad_values_;
+    if (self.quad_values_.allFinite()) return 0;
+    char text[96];
+    std::snprintf(text, sizeof text, "a non-finite integrand (a work sensor's power) at t = %.9g s",
+                  t);
+    self.bad_residual = text;
     return -1;
   }
 
@@ -288,6 +309,16 @@ struct IdaIntegrator::Impl {
     }
     check(IDASetLinearSolver(ida, solver, matrix), "IDASetLinearSolver");
     check(IDASetJacFn(ida, &Impl::jacobian), "IDASetJacFn");
+    if (integrand.size > 0) {
+      quad = N_VNew_Serial(integrand.size, context);
+      if (quad == nullptr)
+        throw Error("cannot allocate SUNDIALS vectors", "IDA integrator", "free memory");
+      view(quad).setZero();
+      quad_values_.setZero(integrand.size);
+      // Not error-tested (IDASetQuadErrCon's default): the integrand does not change the steps.
+      check(IDAQuadInit(ida, &Impl::quadrature, quad), "IDAQuadInit");
+    }
+    quad_before.setZero(integrand.size);
     counted_steps = counted_newton = counted_jacobians = counted_residuals = 0;
     counted_error_fails = counted_convergence_fails = 0;
     system = &candidate;
@@ -352,6 +383,7 @@ void IdaIntegrator::advance(const ConstrainedSystem& system, State& state, doubl
   // BDF's history does not survive a multiplier that drops to zero: IDA stops at every release
   // and restarts there with the row's equation lambda = 0.
   const State before = state;
+  impl_->advance_integral.setZero(impl_->integrand.size);
   try {
     while (const std::optional<double> release = system.release_within(state.time, end_time))
       advance_without_release(system, state, *release);
@@ -413,9 +445,30 @@ void IdaIntegrator::advance_without_release(const ConstrainedSystem& system, Sta
                     : tolerances);
   }
   w.equations.to_state(view(w.y), end_time, state);
+  if (w.integrand.size > 0) {
+    w.check(IDAGetQuad(w.ida, &reached, w.quad), "IDAGetQuad");
+    const auto now = view(w.quad);
+    w.advance_integral += now - w.quad_before;
+    w.quad_before = now;
+  }
   w.last = state;
   const auto loads = system.point_loads();
   w.last_loads.assign(loads.begin(), loads.end());
+}
+
+void IdaIntegrator::set_integrand(Integrand integrand) {
+  if (integrand.size < 0 || (integrand.size > 0 && !integrand.evaluate)) {
+    throw Error("an integrand of size " + std::to_string(integrand.size) +
+                    (integrand.size > 0 ? " has no function" : ""),
+                "IDA integrand", "give a size >= 0 and, for a size > 0, its function");
+  }
+  impl_->integrand = std::move(integrand);
+  impl_->advance_integral.setZero(impl_->integrand.size);
+  impl_->running = false;  // the next advance() starts the quadrature with it
+}
+
+const Eigen::VectorXd& IdaIntegrator::last_advance_integral() const {
+  return impl_->advance_integral;
 }
 
 void IdaIntegrator::reset() {

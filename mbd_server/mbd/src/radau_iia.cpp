@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "fsi/common/error.hpp"
@@ -67,6 +68,8 @@ struct RadauIIA::Workspace {
   NewtonOptions options;
   IntegratorStatistics statistics;
   StepStages last_stages;
+  Integrand integrand;
+  Eigen::VectorXd step_integral, integrand_values;
   detail::RadauStageEquations equations;
   Eigen::VectorXd unknowns, residual, increment, previous_increment, solve_rounding;
   Eigen::MatrixXd jacobian;
@@ -351,9 +354,30 @@ struct RadauIIA::Workspace {
     }
   }
 
+  // The integrand's quadrature over the step: h sum_i b_i g(t0 + c_i h, Q_i, V_i, Lambda_i)
+  // (Lobatto IIIA's first stage, c = 0, is the step's start).
+  void integrate(const State& start, double h) {
+    if (integrand.size == 0) return;
+    State stage;
+    for (int i = 0; i < equations.stages(); ++i) {
+      const double c = tableau.c(i);
+      if (c == 0.0) {
+        stage = start;
+      } else {
+        stage.time = start.time + c * h;
+        stage.q = equations.position(unknowns, i);
+        stage.v = equations.velocity(unknowns, i);
+        stage.lambda = equations.multiplier(unknowns, i);
+      }
+      integrand.evaluate(stage, integrand_values);
+      step_integral += (h * tableau.b(i)) * integrand_values;
+    }
+  }
+
   // --- finalise: the last stage is the solution (stiffly accurate) ---
   void finalise(State& state, double h, const StepStatistics& stats) {
     record_stages(state, h);
+    integrate(state, h);
     const int last = equations.stages() - 1;
     state.q = equations.position(unknowns, last);
     state.v = equations.velocity(unknowns, last);
@@ -385,6 +409,7 @@ StepStatistics RadauIIA::step(const ConstrainedSystem& system, State& state, dou
   // of rows, and the released row's multiplier drops to zero exactly at its release time (the
   // point loads stay those of the whole step, thesis Fig. 4.10). The parts land on the caller's
   // end time exactly.
+  work_->step_integral.setZero(work_->integrand.size);
   const double end = state.time + step_size;
   std::optional<double> release = system.release_within(state.time, end);
   // Without a release the step is taken as given: the same h keeps the Newton matrix.
@@ -454,6 +479,21 @@ void RadauIIA::reset() {
 
 void RadauIIA::set_statistics(const IntegratorStatistics& statistics) {
   work_->statistics = statistics;
+}
+
+void RadauIIA::set_integrand(Integrand integrand) {
+  if (integrand.size < 0 || (integrand.size > 0 && !integrand.evaluate)) {
+    throw Error("an integrand of size " + std::to_string(integrand.size) +
+                    (integrand.size > 0 ? " has no function" : ""),
+                "Radau IIA integrand", "give a size >= 0 and, for a size > 0, its function");
+  }
+  work_->integrand = std::move(integrand);
+  work_->integrand_values.setZero(work_->integrand.size);
+  work_->step_integral.setZero(work_->integrand.size);
+}
+
+const Eigen::VectorXd& RadauIIA::last_step_integral() const {
+  return work_->step_integral;
 }
 
 const StepStages& RadauIIA::last_step_stages() const {

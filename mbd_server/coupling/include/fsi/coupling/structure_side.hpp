@@ -66,7 +66,9 @@ class StructureSide {
   // fsi::Error naming the step and time when Newton fails or the state becomes non-finite; the
   // state is then the last good one. Also throws when two meshes without contact between them
   // cross (scene::CrossingWatch; the pairs touching at the start are logged and not watched).
-  // Adds each `work` sensor's element power over the step, by the trapezoid of its ends.
+  // Adds each `work` sensor's element power integrated over the step by the integrator itself
+  // (fsi/mbd/integrand.hpp: the tableau's quadrature on the stages of each of its steps, IDAS'
+  // quadrature).
   void advance(std::uint64_t step, double step_size);
 
   // The dynamic vertices at the current state, for the fluid, and on a probe step the probes that
@@ -122,8 +124,8 @@ class StructureSide {
   void trim_to_dynamic(std::vector<double>& positions, std::vector<double>& velocities) const;
   std::vector<double> readout(const mbd::State& state,
                               const std::array<double, 3>& total_fluid_force) const;
-  // The power of each `work` sensor's element at the current state (scene order).
-  std::vector<double> work_sensor_powers() const;
+  // The power of each `work` sensor's element (scene order) as the integrators' integrand.
+  mbd::Integrand work_integrand() const;
 
   scene::Scene& scene_;
   scene::IntegrationMethod method_;
@@ -135,6 +137,8 @@ class StructureSide {
   std::vector<double> loads_;
   scene::CrossingWatch crossing_;
   std::uint64_t substepped_steps_ = 0;
+  // The work_integrand()'s integral over the last integrate_to (empty without work sensors).
+  Eigen::VectorXd step_work_;
   // The last structure step's nodes and dynamic vertices there (multi-rate coupling).
   struct StepMotionData {
     std::vector<double> nodes, positions, velocities;

@@ -55,6 +55,12 @@ class AdaptiveRadau {
   // step falls below min_step; `state` is then the last accepted state.
   void advance(const ConstrainedSystem& system, State& state, double end_time);
 
+  // Integrates `integrand` along the solution (fsi/mbd/integrand.hpp): every accepted step adds
+  // the tableau's quadrature over its two half steps (the solution it keeps).
+  void set_integrand(Integrand integrand);
+  // The integrand's integral over the last advance(); size 0 without an integrand.
+  const Eigen::VectorXd& last_advance_integral() const;
+
   double step_size() const;  // the next step size the controller proposes
   const AdaptiveStatistics& statistics() const;
 

@@ -1,6 +1,7 @@
 #pragma once
-// SUNDIALS IDA (variable-order, variable-step BDF, orders 1-5) as the alternative integrator of
-// a ConstrainedSystem (fsi::mbd::Model), for runs of the multibody system alone. The constraints
+// SUNDIALS IDA (variable-order, variable-step BDF, orders 1-5; linked as IDAS, IDA with
+// quadratures, for the integrands) as the alternative integrator of a ConstrainedSystem
+// (fsi::mbd::Model), for runs of the multibody system alone. The constraints
 // are posed in the stabilised index-2 form of Gear, Gupta and Leimkuhler (position and velocity
 // level both enforced, the multipliers excluded from the error test); the Newton matrix is the
 // model's analytic Jacobian, factorised by SUNDIALS' dense LU. Formulation and why: docs/theory.md;
@@ -12,6 +13,7 @@
 #include <memory>
 
 #include "fsi/mbd/constrained_system.hpp"
+#include "fsi/mbd/integrand.hpp"
 
 namespace fsi::mbd {
 
@@ -54,6 +56,13 @@ class IdaIntegrator {
   // A constraint row released before end_time (ConstrainedSystem::release_within) stops IDA at
   // its release time, from where it restarts with the row's multiplier zero.
   void advance(const ConstrainedSystem& system, State& state, double end_time);
+
+  // Integrates `integrand` along the solution (fsi/mbd/integrand.hpp) by IDAS' quadrature over
+  // IDA's own steps (not error-tested: the steps are the motion's). Takes effect at the next
+  // advance(), which restarts IDA.
+  void set_integrand(Integrand integrand);
+  // The integrand's integral over the last advance(); size 0 without an integrand.
+  const Eigen::VectorXd& last_advance_integral() const;
 
   // Forgets the history: the next advance() restarts.
   void reset();

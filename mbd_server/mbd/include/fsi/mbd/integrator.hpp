@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "fsi/mbd/constrained_system.hpp"
+#include "fsi/mbd/integrand.hpp"
 
 namespace fsi::mbd {
 
@@ -132,6 +133,13 @@ class RadauIIA {
   // parts' start_time then lies inside the step). The last node's values are the step's end
   // state exactly (stiffly accurate).
   const StepStages& last_step_stages() const;
+
+  // Integrates `integrand` over every step from now on (fsi/mbd/integrand.hpp): the step adds
+  // h sum_i b_i g(stage i), the tableau's quadrature on the stage values.
+  void set_integrand(Integrand integrand);
+  // The integrand's integral over the last step() (the sum of its parts when a release split
+  // it); size 0 without an integrand.
+  const Eigen::VectorXd& last_step_integral() const;
 
   const ButcherTableau& tableau() const;
   const NewtonOptions& options() const;
