@@ -21,6 +21,7 @@
 
 #include "fsi/common/error.hpp"
 #include "ggl_equations.hpp"
+#include "integrand_check.hpp"
 
 namespace fsi::mbd {
 namespace {
@@ -457,11 +458,7 @@ void IdaIntegrator::advance_without_release(const ConstrainedSystem& system, Sta
 }
 
 void IdaIntegrator::set_integrand(Integrand integrand) {
-  if (integrand.size < 0 || (integrand.size > 0 && !integrand.evaluate)) {
-    throw Error("an integrand of size " + std::to_string(integrand.size) +
-                    (integrand.size > 0 ? " has no function" : ""),
-                "IDA integrand", "give a size >= 0 and, for a size > 0, its function");
-  }
+  detail::check_integrand(integrand, "IDA integrand");
   impl_->integrand = std::move(integrand);
   impl_->advance_integral.setZero(impl_->integrand.size);
   impl_->running = false;  // the next advance() starts the quadrature with it

@@ -12,6 +12,7 @@
 
 #include "fsi/common/error.hpp"
 #include "fsi/mbd/integrator.hpp"
+#include "integrand_check.hpp"
 #include "newton_convergence.hpp"
 #include "radau_stage_equations.hpp"
 
@@ -482,11 +483,7 @@ void RadauIIA::set_statistics(const IntegratorStatistics& statistics) {
 }
 
 void RadauIIA::set_integrand(Integrand integrand) {
-  if (integrand.size < 0 || (integrand.size > 0 && !integrand.evaluate)) {
-    throw Error("an integrand of size " + std::to_string(integrand.size) +
-                    (integrand.size > 0 ? " has no function" : ""),
-                "Radau IIA integrand", "give a size >= 0 and, for a size > 0, its function");
-  }
+  detail::check_integrand(integrand, "Radau IIA integrand");
   work_->integrand = std::move(integrand);
   work_->integrand_values.setZero(work_->integrand.size);
   work_->step_integral.setZero(work_->integrand.size);
