@@ -5,7 +5,8 @@
 // the integral is as accurate as the motion it follows and not the trapezoid of a caller's
 // output interval:
 //   Radau IIA / Lobatto IIIA  h sum_i b_i g(t0 + c_i h, Q_i, V_i), the tableau's quadrature on the
-//                             stage values (order 2s - 1 / 2s - 2 for a smooth g),
+//                             stage values (exact for g a polynomial in t of degree 2s - 2 /
+//                             2s - 3; along a motion, as accurate as the stage values),
 //   adaptive Radau IIA        that, over the two half steps of every accepted step,
 //   IDA                       IDAS' quadrature, the BDF of the motion's steps (not error-tested:
 //                             an integrand does not change the steps the motion takes).
