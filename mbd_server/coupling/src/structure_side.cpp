@@ -125,6 +125,7 @@ StructureSide::StructureSide(scene::Scene& scene, scene::IntegrationMethod metho
   }
   // The work sensors' powers, integrated by the integrator over each of its own steps.
   mbd::Integrand works = work_integrand();
+  step_work_.setZero(works.size);
   if (adaptive_) {
     adaptive_->set_integrand(std::move(works));
   } else if (ida_) {
@@ -139,18 +140,22 @@ void StructureSide::integrate_to(double end_time, double step_size) {
     case scene::IntegrationMethod::FixedStep: {
       std::string why;
       const double start = state_.time;
-      // Every step's integral, the failed attempts' included: the last `substeps` are the step's.
+      // With work sensors, every step's integral, the failed attempts' included: the last
+      // `substeps` are the step's (without them nothing is kept: no allocation per step).
+      const bool integrates = step_work_.size() > 0;
       std::vector<Eigen::VectorXd> pieces;
       const int substeps = advance_in_substeps(
-          [this, &pieces](mbd::State& state, double h) {
+          [this, &pieces, integrates](mbd::State& state, double h) {
             integrator_.step(scene_.model, state, h);
-            pieces.push_back(integrator_.last_step_integral());
+            if (integrates) pieces.push_back(integrator_.last_step_integral());
           },
           state_, step_size, kMaxStructureSubsteps, held_, &why);
-      step_work_.setZero(integrator_.last_step_integral().size());
-      for (std::size_t k = pieces.size() - static_cast<std::size_t>(substeps); k < pieces.size();
-           ++k)
-        step_work_ += pieces[k];
+      if (integrates) {
+        step_work_.setZero();
+        for (std::size_t k = pieces.size() - static_cast<std::size_t>(substeps); k < pieces.size();
+             ++k)
+          step_work_ += pieces[k];
+      }
       if (substeps > 1) {
         if (substepped_steps_ == 0) {
           spdlog::warn(
