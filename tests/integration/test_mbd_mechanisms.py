@@ -27,14 +27,16 @@ check(analysis.returncode == 0, "every expected number of examples/mbd_mechanism
 
 # The two structural benchmarks of the same folder, each with its own analysis (about 1 s each):
 # Turek & Hron's CSM3 flag and the elastica at lam = 1 and 10 (a static shape the damped beam
-# settles to); a damper's work sensor against the pendulum's energy change; and an actuator (a
-# spring law in time) against the closed form.
+# settles to); a damper's work sensor against the pendulum's energy change; an actuator (a
+# spring law in time) against the closed form; and a door closer (a 3D rotational spring-damper)
+# against the damped oscillator's closed form.
 for name, scene_file, script, settings in (
         ("csm3", "turek_hron_csm3.scene", "analyze_csm3.py", []),
         ("elastica1", "elastica.scene", "analyze_elastica.py", ["--set", "Geometry.lam=1"]),
         ("elastica10", "elastica.scene", "analyze_elastica.py", []),
         ("pendulum", "damped_pendulum.scene", "analyze_pendulum.py", []),
-        ("actuator", "actuator.scene", "analyze_actuator.py", [])):
+        ("actuator", "actuator.scene", "analyze_actuator.py", []),
+        ("door", "door_closer_3d.scene", "analyze_door.py", [])):
     bench_dir = os.path.join(output, name)
     result = subprocess.run([binary("fsi-server"), example("mbd_mechanisms", scene_file), "--mbd-only",
                              "--output", bench_dir] + settings, env=ENV, capture_output=True, text=True, timeout=120)
@@ -69,6 +71,19 @@ check(bad["status"] == "failed" and "brittle" in bad.get("reason", ""), "run.jso
 rows = load_sensors(nan_run)
 check(len(rows["time"]) > 0 and all(math.isfinite(v) for column in rows.values() for v in column),
       f"sensors.csv ends at t = {rows['time'][-1]} s, the last good row, with no NaN or inf")
+
+# The door closer wound past the half turn it measures: the door let go 150 degrees open and pushed
+# shut at 3 rad/s against an undamped closer swings through shut to beyond -170 degrees (its
+# amplitude 187): the run stops naming the closer and the twist.
+wound_run = os.path.join(bad_dir, "wound_run")
+result = subprocess.run([binary("fsi-server"), example("mbd_mechanisms", "door_closer_3d.scene"), "--mbd-only",
+                         "--output", wound_run, "--set", "Geometry.c=0", "--set", "Geometry.open=pi*150/180",
+                         "--set", "Geometry.spin=-3"],
+                        env=ENV, capture_output=True, text=True, timeout=60)
+check(result.returncode == 1, f"a closer wound past +-170 degrees: exit 1 (got {result.returncode})")
+check("rotational spring-damper 'closer': twisted past" in result.stderr and "+-170 degrees from its rest angle" in result.stderr,
+      "the message names the closer and its twist:\n" + result.stderr[-600:])
+check(manifest(wound_run)["status"] == "failed", "run.json says failed")
 
 with open(os.path.join(bad_dir, "redundant.scene"), "w") as handle:
     handle.write(text + 'Clamp { name = "glue"; body = "wheel" }\n')

@@ -167,6 +167,13 @@ std::string GglEquations::describe_row(int row) const {
   return "position level of " + system_->constraint_description(position_rows_[row - mu_offset()]);
 }
 
+std::string GglEquations::non_finite_source(double time, const Eigen::VectorXd& y) const {
+  FSI_ASSERT(system_ != nullptr, "equations not bound");
+  State state;
+  to_state(y, time, state);
+  return system_->non_finite_source(time, state.q, state.v);
+}
+
 std::string GglEquations::describe_variable(int index) const {
   FSI_ASSERT(system_ != nullptr && index >= 0 && index < size(), "variable out of range");
   if (index < v_offset()) return "position of " + system_->coordinate_description(index);

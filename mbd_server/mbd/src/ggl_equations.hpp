@@ -75,6 +75,9 @@ class GglEquations {
   std::string describe_variable(int index) const;
   // q, v and lambda of y.
   void to_state(const Eigen::VectorXd& y, double time, State& state) const;
+  // The element whose force or row is not finite at y (ConstrainedSystem::non_finite_source,
+  // with its reason where it knows one); empty when all are.
+  std::string non_finite_source(double time, const Eigen::VectorXd& y) const;
 
  private:
   const ConstrainedSystem* system_ = nullptr;

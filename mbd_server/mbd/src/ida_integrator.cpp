@@ -123,6 +123,8 @@ struct IdaIntegrator::Impl {
     char text[96];
     std::snprintf(text, sizeof text, "non-finite residual at t = %.9g s in the ", t);
     self.bad_residual = text + self.equations.describe_row(row);
+    const std::string source = self.equations.non_finite_source(t, self.y_);
+    if (!source.empty()) self.bad_residual += "; not finite: " + source;
     return -1;
   }
 

@@ -276,7 +276,10 @@ std::string Model::non_finite_source(double time, const Eigen::VectorXd& q,
   for (int k = 0; k < force_element_count(); ++k) {
     force.setZero(coordinate_count());
     force_element(k).add_force(time, q, v, force);
-    if (!force.allFinite()) return force_element(k).description();
+    if (!force.allFinite()) {
+      const std::string reason = force_element(k).non_finite_reason(time, q, v);
+      return force_element(k).description() + (reason.empty() ? "" : ": " + reason);
+    }
     by_position.setZero(coordinate_count(), coordinate_count());
     by_velocity.setZero(coordinate_count(), coordinate_count());
     if (force_element(k).add_jacobians(time, q, v, by_position, by_velocity) &&

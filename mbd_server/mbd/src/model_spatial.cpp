@@ -17,6 +17,8 @@
 #include "point_rows.hpp"
 #include "point_to_point_force.hpp"
 #include "rigid_body_3d.hpp"
+#include "spatial_rotational_spring.hpp"
+#include "tension_law.hpp"
 
 namespace fsi::mbd {
 
@@ -379,6 +381,66 @@ int Model::add_spatial_torque(const SpatialTorqueSpec& spec) {
   }
   add_force_element(
       std::make_unique<detail::SpatialTorque>(user, data_->offsets[spec.body] + 3, spec.torque));
+  return index;
+}
+
+int Model::add_spatial_rotational_spring_damper(const SpatialRotationalSpringDamperSpec& spec) {
+  const int index = force_element_count();
+  const bool user_law = static_cast<bool>(spec.torque);
+  const std::string user =
+      element_name(user_law ? "nonlinear rotational spring-damper" : "rotational spring-damper",
+                   spec.name, index);
+  const std::string fix = "connect RigidBody3D bodies (or body_a to the ground)";
+  if (spec.a == kGround) {
+    throw Error("body a is the ground", user,
+                "give the body whose axis holds the spring as body_a, the ground (if any) as b");
+  }
+  const detail::RigidBody3D* body_a = data_->rigid_body_3d_or_ground(spec.a, user, fix);
+  const detail::RigidBody3D* body_b = data_->rigid_body_3d_or_ground(spec.b, user, fix);
+  data_->check_pair({spec.a, {}}, {spec.b, {}}, user);
+  const double axis_length = spec.axis.norm();
+  if (!(axis_length > 0.0) || !spec.axis.allFinite()) {
+    throw Error("the axis must be a finite, non-zero vector", user, "give e.g. axis = [0, 0, 1]");
+  }
+  if (!std::isfinite(spec.stiffness) || spec.stiffness < 0.0 || !std::isfinite(spec.damping) ||
+      spec.damping < 0.0) {
+    throw Error("stiffness and damping must be finite and non-negative", user,
+                "check stiffness and damping");
+  }
+  if (user_law && (spec.stiffness != 0.0 || spec.damping != 0.0)) {
+    throw Error("a torque law and a stiffness or damping", user,
+                "write the whole torque in the law (k*rotation + c*rate + ...)");
+  }
+  const double rest = spec.rest_angle.value_or(0.0);
+  if (!std::isfinite(rest)) throw Error("the rest angle is not finite", user, "check rest_angle");
+  if (std::abs(rest) > detail::SpatialRotationalSpringDamper::kTwistLimit) {
+    throw Error("the rest angle " + significant(rest, 6) +
+                    " rad is beyond the +-170 degrees (2.967 rad) the twist is measured within",
+                user,
+                "give the rest angle within half a turn of the initial configuration (a turn "
+                "more or less is the same rest position)");
+  }
+  // e1, e2 normal to the axis in a's axes (e1 x e2 = axis); u the direction of b (or of the
+  // world) along e1 initially: differences of material points, from the centres of mass.
+  const Eigen::Vector3d unit = spec.axis / axis_length;
+  const auto [e1, e2] = normals(unit);
+  const Eigen::Vector3d e1_world = Eigen::Matrix3d(body_a->spec().orientation) * e1;
+  auto direction = [&](BodyId body, const Eigen::Vector3d& local) {
+    return detail::SpatialDirection{data_->spatial_point({body, Eigen::Vector3d::Zero()}, user),
+                                    data_->spatial_point({body, local}, user)};
+  };
+  const detail::SpatialDirection u =
+      body_b != nullptr
+          ? direction(spec.b, Eigen::Matrix3d(body_b->spec().orientation).transpose() * e1_world)
+          : direction(kGround, e1_world);
+  std::shared_ptr<const detail::TensionLaw> law;
+  if (user_law) {
+    law = std::make_shared<detail::UserTension>(spec.torque);
+  } else {
+    law = std::make_shared<detail::LinearTension>(spec.stiffness, spec.damping);
+  }
+  add_force_element(std::make_unique<detail::SpatialRotationalSpringDamper>(
+      user, direction(spec.a, e1), direction(spec.a, e2), u, rest, std::move(law)));
   return index;
 }
 

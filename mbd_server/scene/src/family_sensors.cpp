@@ -33,7 +33,7 @@ constexpr SensorVariant kSensorVariants[] = {
     {"constraint_force", SensorType::ConstraintForce, R, F, F, R, F, false, "N/m", "N m/m", "", ""},
     {"total_fluid_force", SensorType::TotalFluidForce, F, F, F, R, F, true, "N/m", "", "N", ""},
     {"joint_force", SensorType::JointForce, F, R, F, R, F, true, "N/m", "N m/m", "N", "N m"},
-    {"spring_force", SensorType::SpringForce, F, F, R, F, F, true, "N/m", "N m/m", "N", ""},
+    {"spring_force", SensorType::SpringForce, F, F, R, F, F, true, "N/m", "N m/m", "N", "N m"},
     {"power", SensorType::Power, F, F, R, F, F, true, "W/m", "", "W", ""},
     {"work", SensorType::Work, F, F, R, F, F, true, "J/m", "", "J", ""},
     {"kinetic_energy", SensorType::KineticEnergy, F, F, F, F, F, true, "J/m", "", "J", ""},
@@ -67,7 +67,8 @@ std::vector<BlockSpec> sensor_blocks() {
                 "joint_force: what the joint exerts on its body_a (Clamp: body; the torque about "
                 "its centre of mass, on an AncfBeam2D about the joint's point on it, a "
                 "BeamClamp's node); spring_force: "
-                "tension, or torque of a (Nonlinear)RotationalSpringDamper; power: the rate of "
+                "tension, or torque of a (Nonlinear)RotationalSpringDamper(3D) on body_a; power: "
+                "the rate of "
                 "work a "
                 "named spring or damper does on the bodies, Q . v (a damper's is minus what it "
                 "dissipates, -c omega^2: a power take-off absorbs minus its mean); work: the "
@@ -474,14 +475,16 @@ bool SensorBuilder::spring_fits() {
   if (found == builder.names.force_elements.end() || found->second < 0) {
     problem(s.location("element"), "no spring named '" + name + "'",
             "give the " +
-                std::string(builder.spatial() ? "SpringDamper3D or NonlinearSpringDamper3D block"
+                std::string(builder.spatial() ? "SpringDamper3D, NonlinearSpringDamper3D or "
+                                                "(Nonlinear)RotationalSpringDamper3D block"
                                               : "spring block") +
                 " name = \"" + name + "\"");
     return false;
   }
   sensor.force_element = found->second;
   if (variant.kind == SensorType::SpringForce && builder.names.rotational[name])
-    sensor.unit = std::string(variant.planar_rotational_unit);
+    sensor.unit = std::string(builder.spatial() ? variant.spatial_torque_unit
+                                                : variant.planar_rotational_unit);
   return true;
 }
 

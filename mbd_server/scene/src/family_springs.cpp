@@ -22,6 +22,22 @@ ParameterSpec rest_length_spec() {
   return number("rest_length", "m", "l0 (default: the initial distance)").at_least(0.0).optional();
 }
 
+// The keys of a spatial rotational spring, around its law's.
+std::vector<ParameterSpec> spatial_rotational_spring(std::vector<ParameterSpec> law) {
+  std::vector<ParameterSpec> keys = {
+      element_name_spec(), text("body_a", "name of a RigidBody3D; the axis is fixed in it"),
+      text("body_b", "name of a RigidBody3D; absent: the ground").optional(),
+      vector("axis", 3, "", "the spring's axis in body_a's axes (need not be a unit vector)")
+          .with_default({0.0, 0.0, 1.0})};
+  for (ParameterSpec& key : law)
+    keys.push_back(std::move(key));
+  keys.push_back(number("rest_angle", "rad",
+                        "the twist at which it is relaxed, from the initial configuration "
+                        "(default 0: relaxed at the start)")
+                     .optional());
+  return keys;
+}
+
 std::vector<BlockSpec> spring_blocks() {
   return {
       block_spec("SpringDamper",
@@ -98,6 +114,30 @@ std::vector<BlockSpec> spring_blocks() {
                                      rest_length_spec()}))
           .as_list()
           .spatial(),
+      block_spec(
+          "RotationalSpringDamper3D",
+          "Rotational spring-damper about `axis` (body_a's axes): the torque on body_a is "
+          "-k twist - c rate about the axis, on body_b the opposite (absent: the ground); twist = "
+          "body_a's rotation relative to body_b about the axis from the initial configuration, "
+          "less rest_angle (the hinge angle, beside a RevoluteJoint3D about the same axis), "
+          "measured within +-170 degrees of the rest (a pure damper turns freely).",
+          spatial_rotational_spring(
+              {number("stiffness", "N m/rad", "k").at_least(0.0),
+               number("damping", "N m s/rad", "c").at_least(0.0).with_default(0.0)}))
+          .as_list()
+          .spatial(),
+      block_spec("NonlinearRotationalSpringDamper3D",
+                 with_scene_numbers(
+                     "Rotational spring-damper about `axis` whose torque resisting the twist is "
+                     "f(rotation, rate, t), a muParser expression (rotation = the twist [rad] "
+                     "as RotationalSpringDamper3D's, rate = its rate [rad/s], t the time [s]): "
+                     "the torque on body_a is -f about the axis, on body_b +f."),
+                 spatial_rotational_spring(
+                     {text("torque",
+                           "torque [N m] resisting the twist, in rotation, rate and t, e.g. "
+                           "\"rotation > 0 ? 50*rotation : 0\" (a one-sided stop)")}))
+          .as_list()
+          .spatial(),
   };
 }
 
@@ -163,6 +203,18 @@ void build_planar_actors(SceneBuilder& builder) {
   });
 }
 
+// The bodies, axis and rest angle of a spatial rotational spring.
+mbd::SpatialRotationalSpringDamperSpec spatial_rotational_ends(SceneBuilder& builder,
+                                                               const View& f) {
+  mbd::SpatialRotationalSpringDamperSpec spec;
+  spec.name = name_of(f);
+  spec.a = builder.find_body(f, "body_a");
+  if (f.has("body_b")) spec.b = builder.find_body(f, "body_b");
+  spec.axis = vector3(f, "axis");
+  spec.rest_angle = optional_number(f, "rest_angle");
+  return spec;
+}
+
 void build_spatial_springs(SceneBuilder& builder) {
   builder.each("SpringDamper3D", [&](const View& f) {
     mbd::SpatialSpringDamperSpec spec;
@@ -184,6 +236,20 @@ void build_spatial_springs(SceneBuilder& builder) {
     spec.rest_length = optional_number(f, "rest_length");
     builder.add_force_element(
         f, [&] { return builder.model.add_spatial_nonlinear_spring_damper(spec); }, false);
+  });
+  builder.each("RotationalSpringDamper3D", [&](const View& f) {
+    mbd::SpatialRotationalSpringDamperSpec spec = spatial_rotational_ends(builder, f);
+    spec.stiffness = f.number("stiffness");
+    spec.damping = f.number("damping");
+    builder.add_force_element(
+        f, [&] { return builder.model.add_spatial_rotational_spring_damper(spec); }, true);
+  });
+  builder.each("NonlinearRotationalSpringDamper3D", [&](const View& f) {
+    mbd::SpatialRotationalSpringDamperSpec spec = spatial_rotational_ends(builder, f);
+    const RuntimeExpression law = builder.expression(f, "torque", {"rotation", "rate", "t"});
+    spec.torque = [law](double rotation, double rate, double t) { return law(rotation, rate, t); };
+    builder.add_force_element(
+        f, [&] { return builder.model.add_spatial_rotational_spring_damper(spec); }, true);
   });
 }
 

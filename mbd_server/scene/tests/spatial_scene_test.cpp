@@ -307,6 +307,73 @@ RevoluteJoint3D { name = "pm"; body_a = "bob"; rate = 2 }
   EXPECT_NE(render_markdown(scene_schema()).find("| `rate` | number | rad/s |"), std::string::npos);
 }
 
+TEST_F(SpatialScene, RotationalSpringsHoldAFlapAndTheirSensorsReadTorqueAndPower) {
+  // A flap hinged about x, swinging against a linear coil (k = 4, c = 0.2) and a one-sided stop
+  // (50 rotation beyond 0): the spring_force sensors read -k theta - c theta' and the stop's
+  // torque, the power sensor their product with the rate, the potential energy their energies.
+  const Scene scene = build_scene(write(R"scene(
+RigidBody3D { name = "flap"; mass = 2; inertia = [0.3, 0.4, 0.5]; angular_velocity = [1.5, 0, 0]
+              Mesh { stl = "box.stl"; scale = 0.1 } }
+RevoluteJoint3D { name = "hinge"; body_a = "flap"; axis = [1, 0, 0] }
+RotationalSpringDamper3D { name = "coil"; body_a = "flap"; axis = [2, 0, 0]; stiffness = 4; damping = 0.2 }
+NonlinearRotationalSpringDamper3D { name = "stop"; body_a = "flap"; axis = [1, 0, 0]
+                                    torque = "rotation > 0 ? 50*rotation : 0" }
+Sensor { name = "coil_torque"; type = "spring_force"; element = "coil" }
+Sensor { name = "stop_torque"; type = "spring_force"; element = "stop" }
+Sensor { name = "coil_power"; type = "power"; element = "coil" }
+Sensor { name = "energy_p"; type = "potential_energy" }
+)scene")
+                                      .string());
+  ASSERT_EQ(scene.sensors.size(), 4u);
+  EXPECT_EQ(scene.sensors[0].unit, "N m");
+  EXPECT_EQ(scene.sensors[2].unit, "W");
+  mbd::RadauIIA integrator(scene.solver.integrator_options());
+  mbd::State state = scene.model.initial_state();
+  for (int i = 0; i < 100; ++i)
+    integrator.step(scene.model, state, 1e-3);
+  const Eigen::Matrix3d turned = orientation(scene.model, state, 0);
+  const double theta = std::atan2(turned(2, 1), turned(1, 1));
+  const double rate = angular_velocity(scene.model, state, 0).x();
+  EXPECT_GT(theta, 0.05);  // swung into the stop
+  EXPECT_NEAR(structure_sensor_value(scene.model, scene.sensors[0], state),
+              -4.0 * theta - 0.2 * rate, 1e-9);
+  EXPECT_NEAR(structure_sensor_value(scene.model, scene.sensors[1], state), -50.0 * theta, 1e-6);
+  EXPECT_NEAR(structure_sensor_value(scene.model, scene.sensors[2], state),
+              (-4.0 * theta - 0.2 * rate) * rate, 1e-9);
+  EXPECT_NEAR(structure_sensor_value(scene.model, scene.sensors[3], state),
+              0.5 * 4.0 * theta * theta + 0.5 * 50.0 * theta * theta, 1e-6);
+
+  // Mistakes at their lines: a point mass, a law in an unknown variable, k beside a law (a
+  // schema problem: the nonlinear block has no stiffness), a planar scene.
+  const std::string text = testing::build_error(write(R"scene(
+RigidBody3D { name = "flap"; mass = 2; inertia = [0.3, 0.4, 0.5] }
+PointMass { name = "bob"; mass = 1 }
+RotationalSpringDamper3D { name = "a"; body_a = "bob"; stiffness = 1 }
+NonlinearRotationalSpringDamper3D { name = "b"; body_a = "flap"; torque = "5*angle" }
+NonlinearRotationalSpringDamper3D { name = "c"; body_a = "flap"; torque = "rotation"; stiffness = 2 }
+RotationalSpringDamper3D { name = "d"; body_a = "flap"; axis = [0, 0, 0]; stiffness = 1 }
+Sensor { name = "s"; type = "spring_force"; element = "nothing" }
+)scene"));
+  for (const char* expected :
+       {"m.scene:7:", "'bob' is not a rigid body", "m.scene:8:", "'angle' is neither",
+        "m.scene:9:", "unknown parameter 'NonlinearRotationalSpringDamper3D[1].stiffness'",
+        "m.scene:10:", "finite, non-zero vector",
+        "m.scene:11:", "(Nonlinear)RotationalSpringDamper3D block"}) {
+    EXPECT_NE(text.find(expected), std::string::npos) << expected << "\n" << text;
+  }
+  const std::string planar = testing::build_error(write(R"scene(
+RigidBody2D { name = "plate"; mass = 1; inertia = 1 }
+RotationalSpringDamper3D { body_a = "plate"; stiffness = 1 }
+)scene",
+                                                        2));
+  EXPECT_NE(planar.find("m.scene:6:1: RotationalSpringDamper3D is a spatial (3D) element"),
+            std::string::npos)
+      << planar;
+  const std::string help = render_help(scene_schema());
+  EXPECT_NE(help.find("RotationalSpringDamper3D.axis"), std::string::npos);
+  EXPECT_NE(help.find("NonlinearRotationalSpringDamper3D.torque"), std::string::npos);
+}
+
 TEST_F(SpatialScene, MistakesAreProblemsAtTheirPlace) {
   const std::string text = testing::build_error(write(R"scene(
 RigidBody3D { name = "flat"; mass = 1; inertia = [1, 1, 2] }

@@ -298,6 +298,25 @@ struct SpatialSpringDamperSpec {
   std::optional<double> rest_length = std::nullopt;  // [m]; default: the initial distance
 };
 
+// A rotational spring-damper between two spatial rigid bodies about `axis` (in body a's axes):
+// the torque resisting the twist, T = k twist + c rate or a user's law torque(twist, rate, t),
+// acts on a as -T about the axis and on b as +T. The twist is a's rotation relative to b about
+// the axis from the initial configuration, less rest_angle, measured within half a turn (a law
+// that depends on it stops the run beyond +-170 degrees; a pure damper turns freely). With a
+// RevoluteJoint3D about the same axis it is the hinge angle (the spatial RotationalSpringDamper);
+// otherwise the angle of b's projection on the plane normal to the axis
+// (spatial_rotational_spring.hpp).
+struct SpatialRotationalSpringDamperSpec {
+  std::string name;    // default "rotational spring-damper <k>"
+  BodyId a = kGround;  // a RigidBody3D
+  BodyId b = kGround;  // a RigidBody3D, or kGround
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();
+  double stiffness = 0.0;  // [N m/rad], the linear law (torque empty)
+  double damping = 0.0;    // [N m s/rad]
+  TensionFunction torque;  // a user's law of (twist [rad], rate [rad/s], t [s]); then k = c = 0
+  std::optional<double> rest_angle = std::nullopt;  // [rad]; default 0: relaxed initially
+};
+
 // A spatial point-to-point force whose tension is a user function of the elongation
 // l - rest_length [m], its rate [m/s] and the time [s] (as NonlinearSpringDamperSpec, planar): a
 // one-sided stop, a preload, a hardening mooring line, an actuator. Derivatives by central

@@ -57,6 +57,12 @@ class ForceElement {
   virtual bool user_law() const { return false; }
   // Names the element in messages (non-finite forces, sensors).
   virtual std::string description() const { return "force element"; }
+  // Why add_force is not finite at this state, when the element knows (a measure it cannot take
+  // there); empty otherwise. Messages append it to the description.
+  virtual std::string non_finite_reason(double /*time*/, const Eigen::VectorXd& /*q*/,
+                                        const Eigen::VectorXd& /*v*/) const {
+    return {};
+  }
   // The elastic energy stored in the element at q (zero for non-conservative elements); summed
   // into Model::potential_energy.
   virtual double potential_energy(double /*time*/, const Eigen::VectorXd& /*q*/) const {
