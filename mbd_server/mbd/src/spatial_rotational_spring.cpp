@@ -97,7 +97,8 @@ SpatialRotationalSpringDamper::Kinematics SpatialRotationalSpringDamper::kinemat
   return k;
 }
 
-std::string SpatialRotationalSpringDamper::problem(const Kinematics& k, const Tension& law) const {
+std::string SpatialRotationalSpringDamper::problem(const Kinematics& k, const Tension& law,
+                                                   double rate, double time) const {
   if (!(k.rho >= kSmallestProjection)) {
     return "body b's reference direction has turned into the spring's axis (its projection on "
            "the plane normal to the axis is " +
@@ -105,7 +106,11 @@ std::string SpatialRotationalSpringDamper::problem(const Kinematics& k, const Te
            " of its length), where the twist about the axis is not defined: hold the axis with a "
            "RevoluteJoint3D about it";
   }
-  if (std::abs(k.twist) > kTwistLimit && law.by_elongation != 0.0) {
+  // Beyond the range a law that depends on the twist, or differs on the two sides of the half
+  // turn (a one-sided stop), would jump there.
+  if (std::abs(k.twist) > kTwistLimit &&
+      (law.by_elongation != 0.0 || law_->at(std::numbers::pi, rate, time).value !=
+                                       law_->at(-std::numbers::pi, rate, time).value)) {
     return "twisted past the +-170 degrees from its rest angle that it measures (" +
            significant(k.twist * 180.0 / std::numbers::pi, 7) +
            "; at +-180 the torque would jump to the other side of the spring): keep the twist "
@@ -118,8 +123,9 @@ std::string SpatialRotationalSpringDamper::problem(const Kinematics& k, const Te
 double SpatialRotationalSpringDamper::measured_force(double time, const Eigen::VectorXd& q,
                                                      const Eigen::VectorXd& v) const {
   const Kinematics k = kinematics(q, false);
-  const Tension law = law_->at(k.twist, k.rate(v), time);
-  if (!problem(k, law).empty()) return std::numeric_limits<double>::quiet_NaN();
+  const double rate = k.rate(v);
+  const Tension law = law_->at(k.twist, rate, time);
+  if (!problem(k, law, rate, time).empty()) return std::numeric_limits<double>::quiet_NaN();
   return -law.value;
 }
 
@@ -127,9 +133,10 @@ void SpatialRotationalSpringDamper::add_force(double time, const Eigen::VectorXd
                                               const Eigen::VectorXd& v,
                                               Eigen::VectorXd& force) const {
   const Kinematics k = kinematics(q, false);
-  const Tension law = law_->at(k.twist, k.rate(v), time);
+  const double rate = k.rate(v);
+  const Tension law = law_->at(k.twist, rate, time);
   const double torque =
-      problem(k, law).empty() ? law.value : std::numeric_limits<double>::quiet_NaN();
+      problem(k, law, rate, time).empty() ? law.value : std::numeric_limits<double>::quiet_NaN();
   for (std::size_t c = 0; c < k.columns.size(); ++c)
     force(k.columns[c]) -= torque * k.gradient(static_cast<Eigen::Index>(c));
 }
@@ -168,7 +175,8 @@ double SpatialRotationalSpringDamper::potential_energy(double time,
 std::string SpatialRotationalSpringDamper::non_finite_reason(double time, const Eigen::VectorXd& q,
                                                              const Eigen::VectorXd& v) const {
   const Kinematics k = kinematics(q, false);
-  return problem(k, law_->at(k.twist, k.rate(v), time));
+  const double rate = k.rate(v);
+  return problem(k, law_->at(k.twist, rate, time), rate, time);
 }
 
 double SpatialRotationalSpringDamper::twist(const Eigen::VectorXd& q) const {

@@ -16,8 +16,9 @@
 // With a revolute joint about n the twist is the hinge angle; otherwise it is the angle of u's
 // projection on the plane normal to n, which loses its meaning where u turns into the axis (a
 // non-finite force, with the reason). The twist is measured within half a turn of the rest
-// angle: a law that depends on it is refused beyond +-170 degrees (at +-180 the torque would jump
-// to the other side of the spring); a pure damper turns any number of times.
+// angle: a law that depends on it, or differs at +180 and -180 degrees (a one-sided stop), is
+// refused beyond +-170 degrees (at +-180 the torque would jump); a pure damper turns any number
+// of times.
 
 #include <memory>
 #include <string>
@@ -68,8 +69,8 @@ class SpatialRotationalSpringDamper final : public SparseForceElement, public Me
     double rate(const Eigen::VectorXd& v) const;
   };
   Kinematics kinematics(const Eigen::VectorXd& q, bool with_hessian) const;
-  // Why the force is not finite at this state (empty when it is).
-  std::string problem(const Kinematics& k, const Tension& law) const;
+  // Why the force is not finite at this state (empty when it is); `law` at the twist and rate.
+  std::string problem(const Kinematics& k, const Tension& law, double rate, double time) const;
 
   SpatialDirection e1_;
   SpatialDirection e2_;

@@ -308,6 +308,36 @@ TEST(MbdSpatialRotationalSpring, ASpringWoundPastItsRangeStopsWithTheReason) {
   EXPECT_NE(message.find("rotational spring-damper 'coil': twisted past"), std::string::npos)
       << message;
   EXPECT_NE(message.find("+-170 degrees from its rest angle"), std::string::npos) << message;
+  // A one-sided stop (nothing below its rest) turned the free way past -170 degrees: flat where
+  // the rotor is, but the law jumps from 0 to 50 pi at the half turn, so the run stops too.
+  {
+    Model model;
+    RigidBody3DSpec spec = rotor_spec("rotor");
+    spec.angular_velocity = -4.0 * spec.orientation.col(2);
+    const BodyId rotor = model.add_rigid_body_3d(spec);
+    model.add_revolute_joint_3d({"hinge",
+                                 {rotor, Eigen::Vector3d::Zero()},
+                                 {kGround, spec.position},
+                                 Eigen::Vector3d::UnitZ(),
+                                 std::nullopt});
+    SpatialRotationalSpringDamperSpec stop;
+    stop.name = "stop";
+    stop.a = rotor;
+    stop.torque = [](double s, double, double) { return s > 0.0 ? 50.0 * s : 0.0; };
+    model.add_spatial_rotational_spring_damper(stop);
+    RadauIIA one_sided({.stages = 3, .newton = kTight});
+    State turning = model.initial_state();
+    const std::string text = error_message([&] {
+      for (int i = 0; i < 1000; ++i)
+        one_sided.step(model, turning, 2e-3);
+    });
+    // Stopped on the free side at -170 degrees (0.742 s at 4 rad/s), not after the jump at the
+    // half turn (0.785 s), where the law's own slope would first show.
+    EXPECT_NE(text.find("'stop': twisted past"), std::string::npos) << text;
+    EXPECT_NE(text.find("(-170.0"), std::string::npos) << text;
+    EXPECT_GT(turning.time, 0.73);
+    EXPECT_LT(turning.time, 0.745);
+  }
   // IDA stops there too, with the same reason beside the row it names.
   TorsionOscillator again(probe.inertia, 0.0, 3.2);
   IdaIntegrator ida({.relative_tolerance = 1e-8, .absolute_tolerance = 1e-10});

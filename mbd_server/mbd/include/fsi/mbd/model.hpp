@@ -169,7 +169,7 @@ class Model final : public ConstrainedSystem {
   int add_spatial_torque(const SpatialTorqueSpec& spec);
   // Throws for a body a that is not a RigidBody3D, b neither one nor the ground, both on one
   // body, a zero or non-finite axis, negative or non-finite k or c, k or c beside a torque law,
-  // a non-finite rest angle.
+  // a rest angle that is not finite or beyond +-170 degrees.
   int add_spatial_rotational_spring_damper(const SpatialRotationalSpringDamperSpec& spec);
   // Penalty contact between two surface meshes (ContactSpec; planar or spatial after the model's
   // dimension). Throws fsi::Error naming the contact for unknown bodies, cables (their tube
